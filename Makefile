@@ -1,0 +1,69 @@
+# The two commands of the README: `make demo` and `make test`. Both install what is
+# missing (Debian 12 packages via apt, Python test tools into .venv), build, and run.
+SHELL := /bin/bash
+BUILD_DIR ?= build
+SAN_BUILD_DIR ?= build-asan
+JOBS ?= 2
+CMAKE_FLAGS ?=
+VENV := .venv
+
+DEB_PACKAGES := build-essential cmake ninja-build pkg-config git \
+  libceres-dev libopencv-dev libpcl-dev libgpiod-dev libyaml-cpp-dev libsqlite3-dev \
+  libzstd-dev liblz4-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev \
+  libeigen3-dev libfftw3-dev python3-venv python3-pip clang-format
+
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+
+.PHONY: all deps venv build test demo bench sanitize-test format format-check clean
+
+all: build
+
+# Installs only the Debian packages that are missing, so a ready machine pays nothing.
+deps:
+	@missing=""; for p in $(DEB_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  echo "installing Debian packages:$$missing"; \
+	  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get update -qq && \
+	  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing; \
+	fi
+
+# Python test tools (independent bag writers, trajectory metrics) live in a venv.
+venv: $(VENV)/.stamp
+$(VENV)/.stamp: test/requirements.txt | deps
+	python3 -m venv $(VENV)
+	$(VENV)/bin/pip install -q --upgrade pip
+	$(VENV)/bin/pip install -q -r test/requirements.txt
+	touch $@
+
+$(BUILD_DIR)/build.ninja: | deps
+	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
+
+build: deps $(BUILD_DIR)/build.ninja
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+test: build venv
+	cd $(BUILD_DIR) && UWBSAR_VENV=$(CURDIR)/$(VENV) ctest --output-on-failure -j $(JOBS)
+
+demo: build
+	$(BUILD_DIR)/bin/uwbsar demo --out out/demo
+
+bench: build
+	$(BUILD_DIR)/bin/uwbsar_bench
+
+# Unit tests once more under AddressSanitizer + UndefinedBehaviorSanitizer (CI).
+sanitize-test: deps venv
+	cmake -S . -B $(SAN_BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DUWBSAR_SANITIZE=ON -DUWBSAR_WERROR=ON -DUWBSAR_BUILD_BENCH=OFF $(CMAKE_FLAGS)
+	cmake --build $(SAN_BUILD_DIR) -j $(JOBS)
+	cd $(SAN_BUILD_DIR) && UWBSAR_VENV=$(CURDIR)/$(VENV) ctest --output-on-failure -j $(JOBS) -L unit
+
+format:
+	git ls-files '*.h' '*.cc' | xargs clang-format -i
+
+format-check:
+	git ls-files '*.h' '*.cc' | xargs clang-format --dry-run --Werror
+
+clean:
+	rm -rf $(BUILD_DIR) $(SAN_BUILD_DIR)

@@ -1,0 +1,45 @@
+// Pixel geometry of an image in a metric frame (world or a tile's anchor frame).
+// Convention (DESIGN.md): column = +x, row = -y; pixel (row 0, col 0) is the
+// top-left pixel and its centre sits at (x0_m, y0_m). All pixel <-> metric
+// conversions of the project go through here.
+#pragma once
+
+#include <cmath>
+
+#include "slam/pose2.h"
+
+namespace uwbsar {
+
+struct ImageGrid {
+  double x0_m = 0.0;          ///< x of the centre of column 0
+  double y0_m = 0.0;          ///< y of the centre of row 0 (the top row)
+  double resolution_m = 0.005;
+  int rows = 0;
+  int cols = 0;
+
+  /// A grid whose pixels cover [x_min, x_max] x [y_min, y_max] (rounded outwards).
+  static ImageGrid Covering(double x_min_m, double x_max_m, double y_min_m, double y_max_m,
+                            double resolution_m) {
+    ImageGrid g;
+    g.resolution_m = resolution_m;
+    g.cols = static_cast<int>(std::ceil((x_max_m - x_min_m) / resolution_m));
+    g.rows = static_cast<int>(std::ceil((y_max_m - y_min_m) / resolution_m));
+    g.x0_m = x_min_m + 0.5 * resolution_m;
+    g.y0_m = y_max_m - 0.5 * resolution_m;
+    return g;
+  }
+
+  double ColToX(double col) const { return x0_m + col * resolution_m; }
+  double RowToY(double row) const { return y0_m - row * resolution_m; }
+  double XToCol(double x_m) const { return (x_m - x0_m) / resolution_m; }
+  double YToRow(double y_m) const { return (y0_m - y_m) / resolution_m; }
+  Point2 PixelToMetric(double col, double row) const { return {ColToX(col), RowToY(row)}; }
+
+  double width_m() const { return cols * resolution_m; }
+  double height_m() const { return rows * resolution_m; }
+  bool Contains(double col, double row) const {
+    return col >= -0.5 && row >= -0.5 && col < cols - 0.5 && row < rows - 0.5;
+  }
+};
+
+}  // namespace uwbsar

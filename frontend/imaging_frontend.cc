@@ -1,0 +1,143 @@
+#include "frontend/imaging_frontend.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace uwbsar {
+
+ImagingFrontend::ImagingFrontend(const Config& config)
+    : config_(config), odometry_(config.gating) {
+  const bool coherent = config.imaging.mode == "coherent";
+  for (const RadarConfig& radar : config.radars) {
+    sensors_.push_back(SensorGeometry::FromConfig(radar, config.pulse));
+    compressors_.push_back(std::make_unique<RangeCompressor>(
+        config.pulse, sensors_.back(), coherent, config.imaging.coherent_oversampling));
+  }
+  have_last_.assign(sensors_.size(), false);
+  last_imaged_pose_.resize(sensors_.size());
+  builder_ = std::make_unique<KeyframeBuilder>(config.keyframe, config.imaging, sensors_);
+}
+
+ImagingFrontend::~ImagingFrontend() = default;
+
+void ImagingFrontend::AddOdometry(const OdometrySample& sample) {
+  ++stats_.odometry_received;
+  switch (odometry_.Add(sample)) {
+    case OdometryBuffer::AddResult::kAccepted:
+      break;
+    case OdometryBuffer::AddResult::kJumpCorrected:
+      ++stats_.odometry_jumps_corrected;
+      log_once_.Warn("odom_jump", "odometry jumped more than gating.max_odom_jump_m at t=" +
+                                      std::to_string(NsToSeconds(sample.stamp_ns)) +
+                                      " s; treated as no motion");
+      break;
+    case OdometryBuffer::AddResult::kOutOfOrder:
+      ++stats_.odometry_rejected_out_of_order;
+      log_once_.Warn("odom_order", "odometry sample out of time order dropped");
+      return;
+    case OdometryBuffer::AddResult::kNonFinite:
+      ++stats_.odometry_rejected_nonfinite;
+      log_once_.Warn("odom_nan", "odometry sample with NaN/Inf pose dropped");
+      return;
+  }
+  ProcessPending(false);
+}
+
+void ImagingFrontend::AddScan(const RadarScan& scan) {
+  ++stats_.scans_received;
+  if (scan.sensor_id < 0 || scan.sensor_id >= static_cast<int>(sensors_.size())) {
+    ++stats_.scans_rejected_unknown_sensor;
+    log_once_.Warn("scan_sensor", "scan from unknown sensor id " + std::to_string(scan.sensor_id));
+    return;
+  }
+  const std::string& name = config_.radars[scan.sensor_id].name;
+  if (scan.samples.empty()) {
+    ++stats_.scans_rejected_empty;
+    log_once_.Warn("scan_empty/" + name, "empty scan from radar '" + name + "' rejected");
+    return;
+  }
+  const int expected = config_.radars[scan.sensor_id].num_samples;
+  if (static_cast<int>(scan.samples.size()) != expected) {
+    ++stats_.scans_rejected_length;
+    log_once_.Warn("scan_length/" + name,
+                   "scan from radar '" + name + "' has " + std::to_string(scan.samples.size()) +
+                       " samples, radars[].num_samples says " + std::to_string(expected) +
+                       "; rejected");
+    return;
+  }
+  const bool finite = std::all_of(scan.samples.begin(), scan.samples.end(),
+                                  [](float v) { return std::isfinite(v); });
+  if (!finite) {
+    ++stats_.scans_rejected_nonfinite;
+    log_once_.Warn("scan_nan/" + name, "scan from radar '" + name + "' holds NaN/Inf; rejected");
+    return;
+  }
+  auto pos = std::upper_bound(
+      pending_.begin(), pending_.end(), scan.stamp_ns,
+      [](TimestampNs t, const RadarScan& s) { return t < s.stamp_ns; });
+  pending_.insert(pos, scan);
+  ProcessPending(false);
+}
+
+void ImagingFrontend::ProcessPending(bool final) {
+  std::size_t done = 0;
+  const TimestampNs newest_scan = pending_.empty() ? 0 : pending_.back().stamp_ns;
+  for (; done < pending_.size(); ++done) {
+    RadarScan& scan = pending_[done];
+    OdometryEntry odom;
+    const auto result = odometry_.Lookup(scan.stamp_ns, &odom);
+    if (result == OdometryBuffer::LookupResult::kAfterLast) {
+      // Wait for odometry, unless it has stalled for too long.
+      const bool stale =
+          NsToSeconds(newest_scan - scan.stamp_ns) > config_.gating.max_scan_latency_s;
+      if (!final && !stale) break;
+      ++stats_.scans_rejected_stale;
+      log_once_.Warn("scan_stale", "scans arrived with no odometry to cover them; dropped");
+      continue;
+    }
+    if (result != OdometryBuffer::LookupResult::kOk) {
+      ++stats_.scans_rejected_no_odometry;
+      log_once_.Warn("scan_no_odom", "scans before the first odometry sample or in an odometry "
+                                     "gap longer than gating.max_odom_gap_s; dropped");
+      continue;
+    }
+    ImageScan(std::move(scan), odom);
+  }
+  pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(done));
+  if (!pending_.empty()) odometry_.TrimBefore(pending_.front().stamp_ns);
+  else odometry_.TrimBefore(odometry_.latest_stamp_ns());
+}
+
+void ImagingFrontend::ImageScan(RadarScan&& scan, const OdometryEntry& odom) {
+  const int id = scan.sensor_id;
+  // Gating (paper: a scan is used once the robot moved >= 3 mm since the last one used).
+  if (have_last_[id] &&
+      Distance(last_imaged_pose_[id], odom.T_world_robot) < config_.gating.min_travel_m) {
+    ++stats_.scans_gated;
+    return;
+  }
+  have_last_[id] = true;
+  last_imaged_pose_[id] = odom.T_world_robot;
+  ImagedScan imaged;
+  imaged.stamp_ns = scan.stamp_ns;
+  imaged.sensor_id = id;
+  imaged.T_world_robot = odom.T_world_robot;
+  imaged.path_m = odom.path_m;
+  imaged.profile = compressors_[id]->Compress(scan.samples);
+  stats_.pixel_updates += builder_->Add(imaged);
+  ++stats_.scans_imaged;
+  if (observer_) observer_(imaged);
+}
+
+void ImagingFrontend::Finish() {
+  ProcessPending(true);
+  builder_->Finish();
+}
+
+std::vector<Keyframe> ImagingFrontend::TakeKeyframes() {
+  std::vector<Keyframe> out = builder_->TakeClosed();
+  stats_.keyframes += static_cast<long long>(out.size());
+  return out;
+}
+
+}  // namespace uwbsar

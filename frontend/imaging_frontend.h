@@ -1,0 +1,83 @@
+// The imaging frontend: validates raw scans, interpolates the odometry pose at
+// each scan's timestamp, gates scans by travel (paper: >= 3 mm), range-compresses
+// them and back-projects them into overlapping keyframe tiles.
+// Bad input never crashes it and never reaches a tile: each rejection is
+// counted in FrontendStats and logged once per kind.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "frontend/keyframe.h"
+#include "frontend/keyframe_builder.h"
+#include "frontend/odometry_buffer.h"
+#include "slam/config.h"
+#include "slam/log.h"
+
+namespace uwbsar {
+
+struct FrontendStats {
+  long long scans_received = 0;
+  long long scans_imaged = 0;
+  long long scans_gated = 0;  ///< dropped because the robot had not moved min_travel_m
+  long long scans_rejected_unknown_sensor = 0;
+  long long scans_rejected_empty = 0;
+  long long scans_rejected_length = 0;     ///< length differs from radars[i].num_samples
+  long long scans_rejected_nonfinite = 0;  ///< NaN or Inf samples
+  long long scans_rejected_no_odometry = 0;  ///< before the first odometry or in a gap
+  long long scans_rejected_stale = 0;  ///< waited longer than max_scan_latency_s for odometry
+  long long odometry_received = 0;
+  long long odometry_jumps_corrected = 0;
+  long long odometry_rejected_out_of_order = 0;
+  long long odometry_rejected_nonfinite = 0;
+  long long pixel_updates = 0;
+  long long keyframes = 0;
+
+  long long scans_rejected() const {
+    return scans_rejected_unknown_sensor + scans_rejected_empty + scans_rejected_length +
+           scans_rejected_nonfinite + scans_rejected_no_odometry + scans_rejected_stale;
+  }
+};
+
+class ImagingFrontend {
+ public:
+  explicit ImagingFrontend(const Config& config);
+  ~ImagingFrontend();
+
+  void AddOdometry(const OdometrySample& sample);
+  /// Queues the scan until odometry covers its timestamp, then images it.
+  void AddScan(const RadarScan& scan);
+  /// Images what can still be imaged and closes the open tiles.
+  void Finish();
+
+  /// Keyframes closed since the last call, oldest first.
+  std::vector<Keyframe> TakeKeyframes();
+  /// Called for every scan that passed gating (e.g. to render a whole-run strip).
+  void SetScanObserver(std::function<void(const ImagedScan&)> observer) {
+    observer_ = std::move(observer);
+  }
+
+  const FrontendStats& stats() const { return stats_; }
+  const std::vector<SensorGeometry>& sensors() const { return sensors_; }
+  const KeyframeBuilder& builder() const { return *builder_; }
+
+ private:
+  void ProcessPending(bool final);
+  void ImageScan(RadarScan&& scan, const OdometryEntry& odom);
+
+  Config config_;
+  std::vector<SensorGeometry> sensors_;
+  std::vector<std::unique_ptr<RangeCompressor>> compressors_;
+  std::vector<bool> have_last_;
+  std::vector<Pose2> last_imaged_pose_;
+  OdometryBuffer odometry_;
+  std::unique_ptr<KeyframeBuilder> builder_;
+  std::vector<RadarScan> pending_;  ///< sorted by stamp
+  std::function<void(const ImagedScan&)> observer_;
+  FrontendStats stats_;
+  LogOnce log_once_;
+};
+
+}  // namespace uwbsar

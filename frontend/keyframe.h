@@ -1,0 +1,39 @@
+// A keyframe: an overlapping SAR tile over L metres of path, with everything
+// needed to relate it metrically to other tiles and to re-render it from
+// corrected poses (DESIGN.md "Keyframe{id, odom pose, tile image, scan poses}").
+#pragma once
+
+#include <memory>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "frontend/image_grid.h"
+#include "frontend/range_profile.h"
+#include "slam/types.h"
+
+namespace uwbsar {
+
+/// A scan that passed gating, with the odometry pose it was imaged at.
+struct ImagedScan {
+  TimestampNs stamp_ns = 0;
+  int sensor_id = 0;
+  Pose2 T_world_robot;  ///< odometry pose at the scan's timestamp
+  double path_m = 0.0;  ///< odometry path length at the scan's timestamp
+  std::shared_ptr<const RangeProfile> profile;  ///< shared by the tiles that hold the scan
+};
+
+struct Keyframe {
+  int id = 0;
+  TimestampNs stamp_ns = 0;  ///< time of the anchor pose
+  Pose2 T_world_anchor;      ///< odometry pose of the tile's anchor (its first scan's robot pose)
+  ImageGrid grid;            ///< pixel geometry in the anchor frame (x forward, y left)
+  cv::Mat image;             ///< CV_32FC1 (paper mode) or CV_32FC2 (coherent), grid-sized
+  double path_begin_m = 0.0;
+  double path_end_m = 0.0;
+  bool complete = false;     ///< false for the last tiles of a run, cut short
+  std::vector<ImagedScan> scans;
+
+  bool coherent() const { return image.type() == CV_32FC2; }
+};
+
+}  // namespace uwbsar

@@ -1,0 +1,79 @@
+#include "slam/config_io.h"
+
+#include <gtest/gtest.h>
+
+namespace uwbsar {
+namespace {
+
+TEST(ConfigIoTest, DefaultYamlEqualsInClassDefaults) {
+  // config/default.yaml documents every field; it must not drift from the structs.
+  const Config from_file = LoadConfig(std::string(UWBSAR_SOURCE_DIR) + "/config/default.yaml");
+  EXPECT_EQ(ConfigToYaml(from_file), ConfigToYaml(Config{}));
+}
+
+TEST(ConfigIoTest, DefaultsMatchThePaper) {
+  const Config c;
+  EXPECT_DOUBLE_EQ(c.pulse.sampling_frequency_hz, 23.328e9);
+  EXPECT_DOUBLE_EQ(c.pulse.center_frequency_hz, 7.29e9);
+  EXPECT_DOUBLE_EQ(c.imaging.pixel_size_m, 0.005);
+  EXPECT_DOUBLE_EQ(c.gating.min_travel_m, 0.003);
+  ASSERT_EQ(c.radars.size(), 2u);
+  EXPECT_DOUBLE_EQ(c.radars[0].boresight_yaw_deg, 90.0);
+  EXPECT_DOUBLE_EQ(c.radars[1].boresight_yaw_deg, -90.0);
+  EXPECT_DOUBLE_EQ(c.radars[0].min_range_m, 0.4);
+  EXPECT_DOUBLE_EQ(c.radars[0].max_range_m, 3.0);
+}
+
+TEST(ConfigIoTest, PartialFileKeepsOtherDefaults) {
+  const Config c = LoadConfigFromString("imaging:\n  mode: coherent\n", "t.yaml");
+  EXPECT_EQ(c.imaging.mode, "coherent");
+  EXPECT_DOUBLE_EQ(c.imaging.pixel_size_m, 0.005);
+  EXPECT_EQ(c.radars.size(), 2u);
+}
+
+TEST(ConfigIoTest, UnknownKeyNamesKeyFileAndLine) {
+  try {
+    LoadConfigFromString("imaging:\n  mode: paper\n  pixel_sise_m: 0.01\n", "robot.yaml");
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("robot.yaml:3"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("imaging.pixel_sise_m"), std::string::npos) << msg;
+  }
+}
+
+TEST(ConfigIoTest, UnknownKeyInsideListEntryIsAnError) {
+  EXPECT_THROW(LoadConfigFromString("radars:\n  - name: a\n    fov_deg: 10\n", "r.yaml"),
+               ConfigError);
+}
+
+TEST(ConfigIoTest, WrongTypeIsAnError) {
+  try {
+    LoadConfigFromString("imaging:\n  pixel_size_m: five\n", "x.yaml");
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("imaging.pixel_size_m"), std::string::npos);
+  }
+  EXPECT_THROW(LoadConfigFromString("imaging: 3\n", "x.yaml"), ConfigError);
+  EXPECT_THROW(LoadConfigFromString("radars: {a: 1}\n", "x.yaml"), ConfigError);
+}
+
+TEST(ConfigIoTest, InvalidValuesAreRejected) {
+  EXPECT_THROW(LoadConfigFromString("imaging:\n  mode: fancy\n", "x.yaml"), ConfigError);
+  EXPECT_THROW(LoadConfigFromString("imaging:\n  pixel_size_m: 0\n", "x.yaml"), ConfigError);
+  EXPECT_THROW(LoadConfigFromString("imaging:\n  pixel_size_m: .nan\n", "x.yaml"), ConfigError);
+  EXPECT_THROW(LoadConfigFromString("radars: []\n", "x.yaml"), ConfigError);
+  EXPECT_THROW(LoadConfigFromString("keyframe:\n  tile_spacing_m: 3\n", "x.yaml"), ConfigError);
+}
+
+TEST(ConfigIoTest, SyntaxErrorAndMissingFileAreReported) {
+  EXPECT_THROW(LoadConfigFromString("imaging: [\n", "x.yaml"), ConfigError);
+  EXPECT_THROW(LoadConfig("/nonexistent/uwbsar.yaml"), ConfigError);
+}
+
+TEST(ConfigIoTest, EmptyFileMeansDefaults) {
+  EXPECT_EQ(ConfigToYaml(LoadConfigFromString("", "e.yaml")), ConfigToYaml(Config{}));
+}
+
+}  // namespace
+}  // namespace uwbsar

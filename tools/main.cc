@@ -1,0 +1,45 @@
+// uwbsar: pose-graph SLAM with UWB synthetic-aperture radar. See README.md.
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+
+#include "slam/errors.h"
+#include "slam/log.h"
+#include "tools/commands.h"
+
+int main(int argc, char** argv) {
+  using namespace uwbsar;
+  using namespace uwbsar::tools;
+  CLI::App app{
+      "uwbsar - pose-graph SLAM with UWB synthetic-aperture radar.\n"
+      "Exit codes: 0 success, 1 internal or I/O failure, 2 bad command line,\n"
+      "3 bad input file or configuration (the message names the file and field)."};
+  app.require_subcommand(1);
+  GlobalOptions globals;
+  app.add_option("--config", globals.config_path, "YAML configuration (default: built-in)")
+      ->check(CLI::ExistingFile);
+  app.add_flag("-q,--quiet", globals.quiet, "Only print errors");
+  app.add_flag("-v,--verbose", globals.verbose, "Print debug messages");
+  app.parse_complete_callback([&] {
+    SetLogLevel(globals.quiet ? LogLevel::kError
+                              : (globals.verbose ? LogLevel::kDebug : LogLevel::kInfo));
+  });
+
+  AddConfigCommand(app, globals);
+  AddImageCommand(app, globals);
+  AddDemoCommand(app, globals);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitUsage;
+  } catch (const InputError& e) {
+    std::cerr << "uwbsar: error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "uwbsar: error: " << e.what() << "\n";
+    return kExitFailure;
+  }
+  return kExitOk;
+}
