@@ -77,7 +77,10 @@ long long KeyframeBuilder::Add(const ImagedScan& scan) {
 }
 
 void KeyframeBuilder::Finish() {
-  for (Keyframe& k : open_) {
+  // Open tiles all end at the last scan, so a younger one holds a subset of the
+  // oldest one's scans: only the oldest carries information; the others are dropped.
+  if (!open_.empty()) {
+    Keyframe& k = open_.front();
     k.complete = k.path_end_m - k.path_begin_m >= config_.tile_length_m * 0.999;
     closed_.push_back(std::move(k));
   }

@@ -21,7 +21,8 @@ class KeyframeBuilder {
   /// Images `scan` into every open tile; scans must come in non-decreasing path_m.
   /// Returns the pixels updated.
   long long Add(const ImagedScan& scan);
-  /// Closes all open tiles (end of run); they are marked incomplete if shorter than L.
+  /// End of run: closes the oldest open tile (marked incomplete if shorter than L) and
+  /// drops the younger ones, whose scans it already holds.
   void Finish();
   /// Tiles closed so far, oldest first; the builder forgets them.
   std::vector<Keyframe> TakeClosed();

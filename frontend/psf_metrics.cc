@@ -51,10 +51,11 @@ CutResult AnalyseCut(const cv::Mat& img, const ImageGrid& grid, const Point2& pe
       const double t = (v[i] - half_power) / std::max(v[i] - v[j], 1e-30);
       edges[side] = (std::abs(i - n) + t) * step;
     }
-    // Main lobe ends at the first local minimum; everything beyond is sidelobe.
-    int k = n;
+    // The main lobe runs past the half-power point down to the first null (local
+    // minimum); everything beyond it on the cut is sidelobe. Ripples above half
+    // power are part of the main lobe, not sidelobes.
+    int k = i;
     while (k + dirn >= 0 && k + dirn <= 2 * n && v[k + dirn] <= v[k]) k += dirn;
-    // (If the cut decreases monotonically to its end, k is the end: no sidelobe.)
     for (int m = k + dirn; m >= 0 && m <= 2 * n; m += dirn) {
       result.max_sidelobe = std::max(result.max_sidelobe, v[m]);
     }

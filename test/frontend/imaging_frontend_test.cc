@@ -1,0 +1,196 @@
+// The frontend's contract on bad input (issue 2, point D), gating and tiles.
+#include "frontend/imaging_frontend.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "drivers/synthetic_run.h"
+
+namespace uwbsar {
+namespace {
+
+// A short run over one point target, with scans of a smaller pixel budget.
+struct Fixture {
+  Config config;
+  SyntheticRun run;
+  Fixture(double length_m = 1.0) {
+    config.imaging.pixel_size_m = 0.02;
+    SyntheticPath path;
+    path.length_m = length_m;
+    path.speed_mps = 0.5;
+    path.radar_rate_hz = 50;
+    run = SimulateRun(config, path, {{{0.5, 1.2}, 1.0}}, EchoModel{}, 1);
+  }
+};
+
+void Feed(ImagingFrontend* f, const SyntheticRun& run) {
+  std::size_t i = 0, j = 0;
+  while (i < run.odometry.size() || j < run.scans.size()) {
+    if (j >= run.scans.size() ||
+        (i < run.odometry.size() && run.odometry[i].stamp_ns <= run.scans[j].stamp_ns)) {
+      f->AddOdometry(run.odometry[i++]);
+    } else {
+      f->AddScan(run.scans[j++]);
+    }
+  }
+  f->Finish();
+}
+
+double ImageSum(const std::vector<Keyframe>& kfs) {
+  double s = 0;
+  for (const Keyframe& k : kfs) s += cv::sum(cv::abs(k.image))[0];
+  return s;
+}
+
+TEST(ImagingFrontendTest, CleanRunImagesEveryMovingScan) {
+  Fixture fx;
+  ImagingFrontend f(fx.config);
+  Feed(&f, fx.run);
+  const FrontendStats& s = f.stats();
+  EXPECT_EQ(s.scans_received, static_cast<long long>(fx.run.scans.size()));
+  EXPECT_EQ(s.scans_rejected(), 0);
+  // 0.5 m/s at 50 Hz = 10 mm per scan: every scan passes the 3 mm gate.
+  EXPECT_EQ(s.scans_imaged, s.scans_received);
+  EXPECT_GT(s.pixel_updates, 0);
+}
+
+TEST(ImagingFrontendTest, StationaryRobotScansAreGated) {
+  Fixture fx;
+  for (auto& o : fx.run.odometry) o.T_world_robot = Pose2{};  // robot never moves
+  ImagingFrontend f(fx.config);
+  Feed(&f, fx.run);
+  EXPECT_EQ(f.stats().scans_imaged, 2);  // the first scan of each radar only
+  EXPECT_EQ(f.stats().scans_gated, f.stats().scans_received - 2);
+}
+
+TEST(ImagingFrontendTest, BadScansAreCountedAndNeverReachTiles) {
+  Fixture fx;
+  ImagingFrontend clean(fx.config);
+  Feed(&clean, fx.run);
+  const double clean_sum = ImageSum(clean.TakeKeyframes());
+
+  SyntheticRun bad = fx.run;
+  RadarScan nan_scan = bad.scans[10];
+  nan_scan.samples[500] = std::numeric_limits<float>::quiet_NaN();
+  RadarScan inf_scan = bad.scans[12];
+  inf_scan.samples[3] = std::numeric_limits<float>::infinity();
+  RadarScan empty = bad.scans[14];
+  empty.samples.clear();
+  RadarScan short_scan = bad.scans[16];
+  short_scan.samples.resize(700);
+  RadarScan long_scan = bad.scans[18];
+  long_scan.samples.resize(1500, 1.0f);
+  RadarScan unknown = bad.scans[20];
+  unknown.sensor_id = 7;
+  for (const RadarScan& s : {nan_scan, inf_scan, empty, short_scan, long_scan, unknown}) {
+    bad.scans.push_back(s);
+  }
+  std::stable_sort(bad.scans.begin(), bad.scans.end(),
+                   [](const RadarScan& a, const RadarScan& b) { return a.stamp_ns < b.stamp_ns; });
+  ImagingFrontend f(fx.config);
+  Feed(&f, bad);
+  const FrontendStats& s = f.stats();
+  EXPECT_EQ(s.scans_rejected_nonfinite, 2);
+  EXPECT_EQ(s.scans_rejected_empty, 1);
+  EXPECT_EQ(s.scans_rejected_length, 2);
+  EXPECT_EQ(s.scans_rejected_unknown_sensor, 1);
+  // The tiles equal the clean run's: nothing of the bad scans was imaged.
+  EXPECT_NEAR(ImageSum(f.TakeKeyframes()), clean_sum, 1e-6 * clean_sum);
+}
+
+TEST(ImagingFrontendTest, OdometryJumpIsCorrectedNotImagedAsTeleport) {
+  Fixture fx(2.0);
+  SyntheticRun jumped = fx.run;
+  // From the middle on, the odometry reports the robot 5 m away (driver reset).
+  for (std::size_t i = jumped.odometry.size() / 2; i < jumped.odometry.size(); ++i) {
+    jumped.odometry[i].T_world_robot = Pose2{5.0, -3.0, 0.0} * jumped.odometry[i].T_world_robot;
+  }
+  ImagingFrontend f(fx.config);
+  Feed(&f, jumped);
+  EXPECT_EQ(f.stats().odometry_jumps_corrected, 1);
+  // The corrected path stays continuous: travelled distance ~ 2 m, not 7+ m.
+  const auto kfs = f.TakeKeyframes();
+  ASSERT_FALSE(kfs.empty());
+  const double path_end = kfs.back().path_end_m;
+  EXPECT_LT(path_end, 2.1);
+  EXPECT_GT(path_end, 1.8);
+}
+
+TEST(ImagingFrontendTest, OutOfOrderAndNonFiniteOdometryAreRejected) {
+  Fixture fx;
+  ImagingFrontend f(fx.config);
+  f.AddOdometry(fx.run.odometry[5]);
+  f.AddOdometry(fx.run.odometry[3]);  // older than the last
+  OdometrySample nan = fx.run.odometry[6];
+  nan.T_world_robot.yaw_rad = std::nan("");
+  f.AddOdometry(nan);
+  EXPECT_EQ(f.stats().odometry_rejected_out_of_order, 1);
+  EXPECT_EQ(f.stats().odometry_rejected_nonfinite, 1);
+}
+
+TEST(ImagingFrontendTest, ScansWithoutOdometryAreDroppedNotImaged) {
+  Fixture fx;
+  ImagingFrontend f(fx.config);
+  for (const RadarScan& s : fx.run.scans) f.AddScan(s);  // odometry never arrives
+  f.Finish();
+  EXPECT_EQ(f.stats().scans_imaged, 0);
+  EXPECT_EQ(f.stats().scans_rejected_stale + f.stats().scans_rejected_no_odometry,
+            f.stats().scans_received);
+}
+
+TEST(ImagingFrontendTest, TilesOverlapByHalfAndHoldTheirScanPoses) {
+  Fixture fx(4.5);
+  ImagingFrontend f(fx.config);
+  Feed(&f, fx.run);
+  const auto kfs = f.TakeKeyframes();
+  // Tiles start every 1 m over 4.5 m of path: 0, 1, 2 complete, 3 cut short; the
+  // one started at 4 m holds only scans that tile 3 holds too, so it is dropped.
+  ASSERT_EQ(kfs.size(), 4u);
+  for (std::size_t i = 0; i < kfs.size(); ++i) {
+    EXPECT_NEAR(kfs[i].path_begin_m, static_cast<double>(i), 0.02);
+    EXPECT_EQ(kfs[i].complete, i < 3);
+    ASSERT_FALSE(kfs[i].scans.empty());
+    EXPECT_NEAR(kfs[i].T_world_anchor.x_m, kfs[i].scans.front().T_world_robot.x_m, 1e-12);
+  }
+  // Consecutive tiles share the scans of their overlapping metre.
+  EXPECT_EQ(kfs[0].scans.back().stamp_ns, kfs[1].scans[kfs[1].scans.size() / 2 - 1].stamp_ns);
+}
+
+TEST(ImagingFrontendTest, TilePixelsMapToTheWorldThroughTheAnchor) {
+  // The point target must appear in a tile at T_anchor^-1 * p_world.
+  Fixture fx(2.0);
+  fx.config.imaging.pixel_size_m = 0.005;
+  fx.config.imaging.mode = "coherent";
+  ImagingFrontend f(fx.config);
+  Feed(&f, fx.run);
+  const auto kfs = f.TakeKeyframes();
+  ASSERT_FALSE(kfs.empty());
+  const Keyframe& k = kfs.front();
+  std::vector<cv::Mat> parts;
+  cv::split(k.image, parts);
+  cv::Mat mag;
+  cv::magnitude(parts[0], parts[1], mag);
+  cv::Point peak;
+  cv::minMaxLoc(mag, nullptr, nullptr, nullptr, &peak);
+  const Point2 in_tile = k.grid.PixelToMetric(peak.x, peak.y);
+  const Point2 world = k.T_world_anchor * in_tile;
+  EXPECT_NEAR(world.x_m, 0.5, 0.01);
+  EXPECT_NEAR(world.y_m, 1.2, 0.01);
+}
+
+TEST(ImagingFrontendTest, SameInputGivesBitIdenticalTiles) {
+  Fixture fx;
+  ImagingFrontend a(fx.config), b(fx.config);
+  Feed(&a, fx.run);
+  Feed(&b, fx.run);
+  const auto ka = a.TakeKeyframes(), kb = b.TakeKeyframes();
+  ASSERT_EQ(ka.size(), kb.size());
+  for (std::size_t i = 0; i < ka.size(); ++i) {
+    EXPECT_EQ(cv::norm(ka[i].image, kb[i].image, cv::NORM_INF), 0.0);
+  }
+}
+
+}  // namespace
+}  // namespace uwbsar

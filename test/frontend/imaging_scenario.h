@@ -1,0 +1,31 @@
+// Test helper: simulate a run over point scatterers, image it with the real
+// frontend and measure point-target quality. Shared by the imaging acceptance tests.
+#pragma once
+
+#include <vector>
+
+#include "drivers/synthetic_run.h"
+#include "frontend/enhance.h"
+#include "frontend/psf_metrics.h"
+#include "frontend/strip_renderer.h"
+#include "tools/imaging_job.h"
+
+namespace uwbsar::testing {
+
+/// The paper's detection (positive image Re + |Re|, Gaussian blur) of the real
+/// part of an image. Applied to both modes it compares the imaging algorithms
+/// under one detector: the real part of the coherent image is what the paper's
+/// real-valued back-projection approximates.
+inline cv::Mat PaperDetection(const Config& config, const cv::Mat& sar) {
+  cv::Mat real = sar;
+  if (sar.channels() == 2) cv::extractChannel(sar, real, 0);
+  return EnhancedFloat(real, config.enhance);
+}
+
+inline Config ConfigForMode(const char* mode) {
+  Config config;
+  config.imaging.mode = mode;
+  return config;
+}
+
+}  // namespace uwbsar::testing
