@@ -17,7 +17,7 @@ struct LookupFrame {
 // The inner loops are branch-free over a contiguous span so that the compiler
 // can vectorise the range computation; the table read is a gather.
 void AccumulateRealSpans(const RowSpan* begin, const RowSpan* end, const ImageGrid& grid,
-                         const LookupFrame& f, const float* table, cv::Mat* image) {
+                         const LookupFrame& f, const float* __restrict table, cv::Mat* image) {
   const float res = static_cast<float>(grid.resolution_m);
   for (const RowSpan* s = begin; s != end; ++s) {
     float* row = image->ptr<float>(s->row);
@@ -25,7 +25,7 @@ void AccumulateRealSpans(const RowSpan* begin, const RowSpan* end, const ImageGr
     const float dy2 = dy * dy;
     const float dx0 = static_cast<float>(grid.ColToX(s->col_begin)) - f.sx;
     const int n = s->col_end - s->col_begin;
-    float* out = row + s->col_begin;
+    float* __restrict out = row + s->col_begin;
     for (int k = 0; k < n; ++k) {
       const float dx = dx0 + static_cast<float>(k) * res;
       const float pos = std::sqrt(dx * dx + dy2) * f.inv_step - f.start_index;
@@ -37,7 +37,8 @@ void AccumulateRealSpans(const RowSpan* begin, const RowSpan* end, const ImageGr
 }
 
 void AccumulateComplexSpans(const RowSpan* begin, const RowSpan* end, const ImageGrid& grid,
-                            const LookupFrame& f, const float* table, cv::Mat* image) {
+                            const LookupFrame& f, const float* __restrict re,
+                            const float* __restrict im, cv::Mat* image) {
   const float res = static_cast<float>(grid.resolution_m);
   for (const RowSpan* s = begin; s != end; ++s) {
     float* row = image->ptr<float>(s->row);
@@ -45,15 +46,14 @@ void AccumulateComplexSpans(const RowSpan* begin, const RowSpan* end, const Imag
     const float dy2 = dy * dy;
     const float dx0 = static_cast<float>(grid.ColToX(s->col_begin)) - f.sx;
     const int n = s->col_end - s->col_begin;
-    float* out = row + 2 * s->col_begin;
+    float* __restrict out = row + 2 * s->col_begin;
     for (int k = 0; k < n; ++k) {
       const float dx = dx0 + static_cast<float>(k) * res;
       const float pos = std::sqrt(dx * dx + dy2) * f.inv_step - f.start_index;
       const int i = std::min(std::max(static_cast<int>(pos), 0), f.last_index);
       const float frac = pos - static_cast<float>(i);
-      const float* a = table + 2 * i;
-      out[2 * k] += a[0] + frac * (a[2] - a[0]);
-      out[2 * k + 1] += a[1] + frac * (a[3] - a[1]);
+      out[2 * k] += re[i] + frac * (re[i + 1] - re[i]);
+      out[2 * k + 1] += im[i] + frac * (im[i + 1] - im[i]);
     }
   }
 }
@@ -84,14 +84,11 @@ long long BackProjector::Accumulate(const RangeProfile& profile, const Pose2& T_
   f.start_index = static_cast<float>(profile.range_start_m / profile.range_step_m);
   f.last_index = static_cast<int>(profile.size()) - 2;
 
-  const float* table = profile.coherent()
-                           ? reinterpret_cast<const float*>(profile.analytic.data())
-                           : profile.real.data();
   auto run = [&](const RowSpan* b, const RowSpan* e) {
     if (profile.coherent()) {
-      AccumulateComplexSpans(b, e, grid, f, table, image);
+      AccumulateComplexSpans(b, e, grid, f, profile.real.data(), profile.imag.data(), image);
     } else {
-      AccumulateRealSpans(b, e, grid, f, table, image);
+      AccumulateRealSpans(b, e, grid, f, profile.real.data(), image);
     }
   };
   if (stripes_ <= 1) {

@@ -46,8 +46,12 @@ std::shared_ptr<const RangeProfile> RangeCompressor::Compress(const std::vector<
   profile->max_valid_range_m = geometry_.range_offset_m + (table_length - 1) * step;
   if (coherent_) {
     filter_->CompressAnalytic(scratch_in_.data(), scratch_analytic_.data());
-    profile->analytic.assign(scratch_analytic_.begin() + first,
-                             scratch_analytic_.begin() + last + 1);
+    profile->real.resize(static_cast<std::size_t>(last - first + 1));
+    profile->imag.resize(profile->real.size());
+    for (int k = first; k <= last; ++k) {
+      profile->real[k - first] = scratch_analytic_[k].real();
+      profile->imag[k - first] = scratch_analytic_[k].imag();
+    }
   } else {
     filter_->CompressReal(scratch_in_.data(), scratch_real_.data());
     profile->real.assign(scratch_real_.begin() + first, scratch_real_.begin() + last + 1);

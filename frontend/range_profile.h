@@ -17,10 +17,12 @@ struct RangeProfile {
   double range_start_m = 0.0;  ///< range of table entry 0
   double range_step_m = 0.0;   ///< range between entries (bin size / upsampling)
   double max_valid_range_m = 0.0;  ///< farthest range the scan's samples cover
-  std::vector<float> real;     ///< paper mode: compressed samples
-  std::vector<std::complex<float>> analytic;  ///< coherent mode: analytic signal
-  bool coherent() const { return !analytic.empty(); }
-  std::size_t size() const { return coherent() ? analytic.size() : real.size(); }
+  /// Paper mode: the compressed samples. Coherent mode: the real part of the
+  /// upsampled analytic signal (planar storage so the lookup vectorises).
+  std::vector<float> real;
+  std::vector<float> imag;  ///< coherent mode only: imaginary part of the analytic signal
+  bool coherent() const { return !imag.empty(); }
+  std::size_t size() const { return real.size(); }
 };
 
 /// Turns raw scans into RangeProfiles for one radar. Not thread-safe (owns FFT buffers).
