@@ -6,6 +6,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "slam/config.h"
 #include "slam/errors.h"
@@ -27,6 +28,10 @@ Config LoadConfigFromString(const std::string& yaml_text, const std::string& sou
 
 /// Semantic checks (positive sizes, known modes, sane ranges). Throws ConfigError naming the key.
 void ValidateConfig(const Config& config, const std::string& source_name);
+
+/// Reads a point-target file for the simulator: a YAML mapping whose only key,
+/// `point_targets`, lists {x_m, y_m, rcs_m2} entries as simulator.radar.point_targets does.
+std::vector<PointTargetConfig> LoadPointTargets(const std::string& path);
 
 /// The configuration as YAML (every field, no comments), e.g. for run summaries.
 std::string ConfigToYaml(const Config& config);
