@@ -1,0 +1,90 @@
+// The `uwbsar` executable as a user meets it: exit codes, one-line errors, outputs.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace {
+
+struct CliRun {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr
+};
+
+CliRun Uwbsar(const std::string& args) {
+  CliRun run;
+  const std::string cmd = std::string(UWBSAR_BIN) + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (pipe == nullptr) return run;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), pipe) != nullptr) run.output += buf.data();
+  const int status = pclose(pipe);
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+std::string TempDir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("uwbsar_cli_" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+void WriteFile(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+TEST(CliTest, HelpDocumentsExitCodes) {
+  const CliRun r = Uwbsar("--help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.output.find("Exit codes"), std::string::npos);
+  EXPECT_NE(r.output.find("image"), std::string::npos);
+}
+
+TEST(CliTest, UnknownFlagIsUsageError) {
+  EXPECT_EQ(Uwbsar("image --no-such-flag").exit_code, 2);
+}
+
+TEST(CliTest, ConfigWithUnknownKeyIsBadInputNamingKeyAndFile) {
+  const std::string dir = TempDir("config");
+  WriteFile(dir + "/bad.yaml", "imaging:\n  pixle_size_m: 0.01\n");
+  const CliRun r = Uwbsar("--config " + dir + "/bad.yaml config");
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.output.find("bad.yaml:2"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("imaging.pixle_size_m"), std::string::npos) << r.output;
+}
+
+TEST(CliTest, MalformedTextLogNamesFileAndLine) {
+  const std::string dir = TempDir("log");
+  WriteFile(dir + "/run.log", "odom 100 0 0 0\nscan 200 0 3 1.0 2.0\n");
+  const CliRun r = Uwbsar("image --log " + dir + "/run.log --out " + dir + "/out");
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.output.find("run.log:2"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out/strip_float.tif"));
+}
+
+TEST(CliTest, ImageFromTextLogWritesEveryOutput) {
+  // A tiny log: the robot drives 0.3 m while the left radar sees one echo.
+  const std::string dir = TempDir("image");
+  std::string log;
+  for (int i = 0; i <= 30; ++i) {
+    log += "odom " + std::to_string(1000000000LL + i * 20000000LL) + " " +
+           std::to_string(i * 0.01) + " 0 0\n";
+  }
+  for (int i = 0; i < 25; ++i) {
+    log += "scan " + std::to_string(1010000000LL + i * 20000000LL) + " 0 1000";
+    for (int k = 0; k < 1000; ++k) log += (k == 200 ? " 1.0" : " 0");
+    log += "\n";
+  }
+  WriteFile(dir + "/run.log", log);
+  const CliRun r = Uwbsar("image --log " + dir + "/run.log --out " + dir + "/out --mode coherent");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* f : {"strip_raw.png", "strip_positive.png", "strip_enhanced.png",
+                        "strip_logmag.png", "strip_float.tif", "strip_grid.yaml"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir + "/out/" + f)) << f;
+  }
+  EXPECT_NE(r.output.find("25 imaged"), std::string::npos) << r.output;
+}
+
+}  // namespace
