@@ -7,7 +7,6 @@
 
 #include "drivers/echo_simulator.h"
 #include "frontend/back_projection.h"
-#include "frontend/keyframe_builder.h"
 #include "frontend/range_profile.h"
 
 namespace uwbsar {
@@ -38,7 +37,7 @@ void BM_BackProjectScanPair(benchmark::State& state) {
     RangeCompressor compressor(config.pulse, sensors.back(), coherent, 4);
     profiles.push_back(compressor.Compress(SimulatedScan(config, sensors.back())));
   }
-  const ImageGrid grid = TileGridFor(sensors, 2.0, 0.25, 0.005);
+  const ImageGrid grid = ImageGrid::Covering(-2.0, 4.0, -3.5, 3.5, 0.005);  // a 2 m tile
   cv::Mat image = MakeSarImage(grid, coherent);
   BackProjector projector(threads);
   const Pose2 T_anchor_robot{1.0, 0.0, 0.0};

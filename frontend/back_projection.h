@@ -23,9 +23,11 @@ class BackProjector {
   explicit BackProjector(int parallel_stripes = 2) : stripes_(parallel_stripes) {}
 
   /// Adds `profile` into `image` (grid-sized; type CV_32FC1 or CV_32FC2 to match the profile)
-  /// for a sensor at T_grid_sensor. Returns the number of pixels updated.
+  /// for a sensor at T_grid_sensor. Returns the number of pixels updated; if `touched`
+  /// is given it receives the bounding box of those pixels (empty when none).
   long long Accumulate(const RangeProfile& profile, const Pose2& T_grid_sensor,
-                       const SensorGeometry& geometry, const ImageGrid& grid, cv::Mat* image);
+                       const SensorGeometry& geometry, const ImageGrid& grid, cv::Mat* image,
+                       cv::Rect* touched = nullptr);
 
  private:
   int stripes_;

@@ -1,90 +1,133 @@
 #include "frontend/keyframe_builder.h"
 
 #include <algorithm>
+#include <climits>
+#include <cmath>
 
 namespace uwbsar {
-
-ImageGrid TileGridFor(const std::vector<SensorGeometry>& sensors, double path_length_m,
-                      double margin_m, double resolution_m) {
-  double lo_x = 0.0, hi_x = 0.0, lo_y = 0.0, hi_y = 0.0;
-  for (const SensorGeometry& s : sensors) {
-    double b[4];
-    s.SectorBoundsInRobot(b);
-    lo_x = std::min(lo_x, b[0]);
-    hi_x = std::max(hi_x, b[1]);
-    lo_y = std::min(lo_y, b[2]);
-    hi_y = std::max(hi_y, b[3]);
-  }
-  return ImageGrid::Covering(lo_x - margin_m, path_length_m + hi_x + margin_m, lo_y - margin_m,
-                             hi_y + margin_m, resolution_m);
-}
 
 KeyframeBuilder::KeyframeBuilder(const KeyframeConfig& keyframe, const ImagingConfig& imaging,
                                  std::vector<SensorGeometry> sensors)
     : config_(keyframe),
+      resolution_m_(imaging.pixel_size_m),
       coherent_(imaging.mode == "coherent"),
+      segments_per_tile_(std::max(
+          1, static_cast<int>(std::lround(keyframe.tile_length_m / keyframe.tile_spacing_m)))),
       sensors_(std::move(sensors)),
-      tile_grid_(TileGridFor(sensors_, keyframe.tile_length_m, keyframe.margin_m,
-                             imaging.pixel_size_m)),
-      projector_(std::max(1, imaging.num_threads)) {}
+      projector_(std::max(1, imaging.num_threads)) {
+  // A segment's robot stays within tile_spacing_m (plus one scan step) of where the
+  // segment started, in any direction: its canvas covers that disk plus the
+  // farthest corner of any sensor's sector.
+  double reach = 0.0;
+  for (const SensorGeometry& s : sensors_) {
+    double b[4];
+    s.SectorBoundsInRobot(b);
+    for (double x : {b[0], b[1]}) {
+      for (double y : {b[2], b[3]}) reach = std::max(reach, std::hypot(x, y));
+    }
+  }
+  canvas_half_size_m_ = 1.05 * keyframe.tile_spacing_m + reach + keyframe.margin_m;
+}
 
-void KeyframeBuilder::OpenTile(const ImagedScan& scan) {
+void KeyframeBuilder::OpenSegment(const ImagedScan& scan) {
+  Segment seg;
+  const long long half = static_cast<long long>(std::ceil(canvas_half_size_m_ / resolution_m_));
+  const long long cx = std::llround(scan.T_world_robot.x_m / resolution_m_);
+  const long long cy = std::llround(scan.T_world_robot.y_m / resolution_m_);
+  seg.lattice_col0 = cx - half;
+  seg.lattice_row0 = -(cy + half);  // lattice row r has y = -r * resolution
+  seg.grid.resolution_m = resolution_m_;
+  seg.grid.cols = static_cast<int>(2 * half + 1);
+  seg.grid.rows = static_cast<int>(2 * half + 1);
+  seg.grid.x0_m = static_cast<double>(seg.lattice_col0) * resolution_m_;
+  seg.grid.y0_m = -static_cast<double>(seg.lattice_row0) * resolution_m_;
+  seg.image = MakeSarImage(seg.grid, coherent_);
+  seg.path_begin_m = seg.path_end_m = scan.path_m;
+  segments_.push_back(std::move(seg));
+  ++segments_opened_;
+}
+
+Keyframe KeyframeBuilder::MakeTile(std::size_t first, std::size_t count, bool complete) {
+  // Union of the observed pixels, in global lattice indices.
+  long long c_lo = LLONG_MAX, c_hi = LLONG_MIN, r_lo = LLONG_MAX, r_hi = LLONG_MIN;
+  for (std::size_t i = first; i < first + count; ++i) {
+    const Segment& s = segments_[i];
+    if (s.touched.empty()) continue;
+    c_lo = std::min(c_lo, s.lattice_col0 + s.touched.x);
+    c_hi = std::max(c_hi, s.lattice_col0 + s.touched.x + s.touched.width);
+    r_lo = std::min(r_lo, s.lattice_row0 + s.touched.y);
+    r_hi = std::max(r_hi, s.lattice_row0 + s.touched.y + s.touched.height);
+  }
+  const Segment& head = segments_[first];
+  const ImagedScan& start = head.scans.front();
   Keyframe tile;
   tile.id = next_id_++;
-  tile.stamp_ns = scan.stamp_ns;
-  tile.T_world_anchor = scan.T_world_robot;
-  tile.grid = tile_grid_;
-  tile.image = MakeSarImage(tile_grid_, coherent_);
-  tile.path_begin_m = scan.path_m;
-  tile.path_end_m = scan.path_m;
-  open_.push_back(std::move(tile));
+  tile.stamp_ns = start.stamp_ns;
+  tile.T_world_robot = start.T_world_robot;
+  // The anchor: the lattice point nearest the robot, world orientation.
+  const long long ax = std::llround(start.T_world_robot.x_m / resolution_m_);
+  const long long ay = std::llround(start.T_world_robot.y_m / resolution_m_);
+  tile.T_world_anchor = {static_cast<double>(ax) * resolution_m_,
+                         static_cast<double>(ay) * resolution_m_, 0.0};
+  tile.complete = complete;
+  tile.path_begin_m = head.path_begin_m;
+  tile.path_end_m = segments_[first + count - 1].path_end_m;
+  if (c_lo > c_hi) {  // nothing observed
+    c_lo = c_hi = ax;
+    r_lo = r_hi = -ay;
+  }
+  tile.grid.resolution_m = resolution_m_;
+  tile.grid.cols = static_cast<int>(std::max(1LL, c_hi - c_lo));
+  tile.grid.rows = static_cast<int>(std::max(1LL, r_hi - r_lo));
+  tile.grid.x0_m = static_cast<double>(c_lo - ax) * resolution_m_;
+  tile.grid.y0_m = static_cast<double>(-r_lo - ay) * resolution_m_;
+  tile.image = MakeSarImage(tile.grid, coherent_);
+  for (std::size_t i = first; i < first + count; ++i) {
+    const Segment& s = segments_[i];
+    tile.scans.insert(tile.scans.end(), s.scans.begin(), s.scans.end());
+    if (s.touched.empty()) continue;
+    const cv::Rect dst(static_cast<int>(s.lattice_col0 + s.touched.x - c_lo),
+                       static_cast<int>(s.lattice_row0 + s.touched.y - r_lo), s.touched.width,
+                       s.touched.height);
+    cv::Mat roi = tile.image(dst);
+    roi += s.image(s.touched);
+  }
+  return tile;
 }
 
 long long KeyframeBuilder::Add(const ImagedScan& scan) {
-  // Close the tiles this scan lies beyond.
-  auto done = [&](const Keyframe& k) {
-    return scan.path_m >= k.path_begin_m + config_.tile_length_m;
-  };
-  std::vector<Keyframe> still_open;
-  for (Keyframe& k : open_) {
-    if (done(k)) {
-      k.complete = true;
-      closed_.push_back(std::move(k));
-    } else {
-      still_open.push_back(std::move(k));
+  if (segments_.empty() ||
+      scan.path_m >= segments_.back().path_begin_m + config_.tile_spacing_m) {
+    // The newest segment is full. When the window holds a whole tile's worth, that
+    // tile is complete; then the oldest segment is no longer needed.
+    if (static_cast<int>(segments_.size()) == segments_per_tile_) {
+      closed_.push_back(MakeTile(0, segments_.size(), /*complete=*/true));
+      segments_.pop_front();
     }
+    OpenSegment(scan);
   }
-  open_.swap(still_open);
-  // Open a new tile when the path reaches the next start; after a long gap the
-  // missed starts are skipped rather than opened empty.
-  if (!started_ || scan.path_m >= next_start_m_) {
-    OpenTile(scan);
-    const double base = started_ ? next_start_m_ : scan.path_m;
-    started_ = true;
-    next_start_m_ = base + config_.tile_spacing_m;
-    while (next_start_m_ <= scan.path_m) next_start_m_ += config_.tile_spacing_m;
-  }
+  Segment& seg = segments_.back();
   const SensorGeometry& sensor = sensors_.at(scan.sensor_id);
-  long long pixels = 0;
-  for (Keyframe& k : open_) {
-    const Pose2 T_anchor_sensor =
-        k.T_world_anchor.Inverse() * scan.T_world_robot * sensor.T_robot_sensor;
-    pixels += projector_.Accumulate(*scan.profile, T_anchor_sensor, sensor, k.grid, &k.image);
-    k.scans.push_back(scan);
-    k.path_end_m = scan.path_m;
-  }
+  cv::Rect touched;
+  const long long pixels = projector_.Accumulate(
+      *scan.profile, scan.T_world_robot * sensor.T_robot_sensor, sensor, seg.grid, &seg.image,
+      &touched);
+  seg.touched = seg.touched.empty() ? touched : (touched.empty() ? seg.touched : seg.touched | touched);
+  seg.scans.push_back(scan);
+  seg.path_end_m = scan.path_m;
   return pixels;
 }
 
 void KeyframeBuilder::Finish() {
-  // Open tiles all end at the last scan, so a younger one holds a subset of the
-  // oldest one's scans: only the oldest carries information; the others are dropped.
-  if (!open_.empty()) {
-    Keyframe& k = open_.front();
-    k.complete = k.path_end_m - k.path_begin_m >= config_.tile_length_m * 0.999;
-    closed_.push_back(std::move(k));
+  // The last tile holds what the window has; shorter windows at the very start
+  // (a run shorter than one tile) still give one tile.
+  if (!segments_.empty()) {
+    const bool complete = static_cast<int>(segments_.size()) == segments_per_tile_ &&
+                          segments_.back().path_end_m - segments_.front().path_begin_m >=
+                              config_.tile_length_m * 0.999;
+    closed_.push_back(MakeTile(0, segments_.size(), complete));
   }
-  open_.clear();
+  segments_.clear();
 }
 
 std::vector<Keyframe> KeyframeBuilder::TakeClosed() {

@@ -1,9 +1,14 @@
-// Cuts the stream of imaged scans into overlapping keyframe tiles: a new tile
-// starts every tile_spacing_m of path and takes every scan of the next
-// tile_length_m, so with the defaults (2 m every 1 m) each scan lands in two
-// tiles and consecutive tiles overlap by half, like the paper's regions.
+// Cuts the stream of imaged scans into overlapping keyframe tiles, imaging each
+// scan only once. The path is split into segments of tile_spacing_m; each
+// segment's scans are back-projected into a dense canvas on a world-aligned
+// pixel lattice (pixel centres at integer multiples of the resolution, world
+// axes). A tile is the exact sum of tile_length_m / tile_spacing_m consecutive
+// segments, cropped to the pixels they observed: with the defaults (2 m every
+// 1 m) consecutive tiles overlap by half, like the paper's regions, at half the
+// back-projection cost of imaging every scan into two tiles.
 #pragma once
 
+#include <deque>
 #include <vector>
 
 #include "frontend/back_projection.h"
@@ -15,39 +20,47 @@ namespace uwbsar {
 
 class KeyframeBuilder {
  public:
+  /// tile_length_m must be a whole multiple of tile_spacing_m (ValidateConfig checks).
   KeyframeBuilder(const KeyframeConfig& keyframe, const ImagingConfig& imaging,
                   std::vector<SensorGeometry> sensors);
 
-  /// Images `scan` into every open tile; scans must come in non-decreasing path_m.
+  /// Images `scan` into the current segment; scans must come in non-decreasing path_m.
   /// Returns the pixels updated.
   long long Add(const ImagedScan& scan);
-  /// End of run: closes the oldest open tile (marked incomplete if shorter than L) and
-  /// drops the younger ones, whose scans it already holds.
+  /// End of run: emits the last tile (marked incomplete if shorter than L).
   void Finish();
   /// Tiles closed so far, oldest first; the builder forgets them.
   std::vector<Keyframe> TakeClosed();
 
-  /// The tile grid in the anchor frame (same for every tile).
-  const ImageGrid& tile_grid() const { return tile_grid_; }
+  int segments_per_tile() const { return segments_per_tile_; }
 
  private:
-  void OpenTile(const ImagedScan& scan);
+  struct Segment {
+    long long lattice_col0 = 0;  ///< global lattice column of the canvas's column 0
+    long long lattice_row0 = 0;  ///< global lattice row of the canvas's row 0 (row = -y)
+    ImageGrid grid;              ///< canvas geometry in the world frame
+    cv::Mat image;
+    cv::Rect touched;            ///< canvas pixels that received any scan
+    std::vector<ImagedScan> scans;
+    double path_begin_m = 0.0;
+    double path_end_m = 0.0;
+  };
+
+  void OpenSegment(const ImagedScan& scan);
+  /// Tile of the segments [first, first + count) of segments_.
+  Keyframe MakeTile(std::size_t first, std::size_t count, bool complete);
 
   KeyframeConfig config_;
+  double resolution_m_;
   bool coherent_;
+  int segments_per_tile_;
   std::vector<SensorGeometry> sensors_;
-  ImageGrid tile_grid_;
+  double canvas_half_size_m_;  ///< reach of one segment's sensors around its start
   BackProjector projector_;
-  std::vector<Keyframe> open_;
+  std::deque<Segment> segments_;  ///< the last segments_per_tile_ segments, newest last
   std::vector<Keyframe> closed_;
-  double next_start_m_ = 0.0;
-  bool started_ = false;
+  int segments_opened_ = 0;
   int next_id_ = 0;
 };
-
-/// Tile grid in the anchor frame covering every sensor's reach over a straight
-/// path of `path_length_m` along +x, plus `margin_m`.
-ImageGrid TileGridFor(const std::vector<SensorGeometry>& sensors, double path_length_m,
-                      double margin_m, double resolution_m);
 
 }  // namespace uwbsar

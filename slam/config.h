@@ -103,7 +103,8 @@ struct GatingConfig {
 /// Keyframe tiles: overlapping SAR images of L metres of path (the paper's regions).
 struct KeyframeConfig {
   double tile_length_m = 2.0;   ///< path length imaged into one tile (paper: 400 px = 2 m)
-  double tile_spacing_m = 1.0;  ///< path length between tile starts (paper: 1 m step)
+  double tile_spacing_m = 1.0;  ///< path between tile starts (paper: 1 m step); tile_length_m
+                                ///< must be a whole multiple of it
   double margin_m = 0.25;       ///< extra border around the sensors' reach, in the anchor frame
 
   template <class V>
@@ -125,6 +126,54 @@ struct EnhanceConfig {
     v("blur_sigma_px", blur_sigma_px);
     v("display_range_db", display_range_db);
     v("colormap", colormap);
+  }
+};
+
+/// Pose-graph backend (Ceres): loop outlier handling, odometry weighting, solver settings.
+struct BackendConfig {
+  std::string robust_loss = "cauchy";      ///< loss on loop edges while outliers are sought:
+                                           ///< cauchy, huber or none
+  double robust_loss_scale = 1.0;          ///< whitened residual norm (sigmas) where it turns robust
+  double loop_rejection_chi2 = 16.27;      ///< a loop whose chi2 at the solution exceeds this is
+                                           ///< rejected (16.27 = 99.9 % quantile, 3 DOF)
+  int max_rejection_rounds = 10;           ///< solve / reject / re-admit rounds per optimisation
+  int min_loop_support = 1;                ///< loops agreeing with fewer other loops nearby are
+                                           ///< held back and only admitted if the map solved
+                                           ///< without them confirms them; 0 disables
+  int loop_support_window = 10;            ///< nodes along the odometry chain that count as nearby
+  double unsupported_loop_chi2 = 32.5;     ///< a held-back loop is admitted when its chi2 against
+                                           ///< the map solved without it is at most this (twice
+                                           ///< loop_rejection_chi2: the map's own uncertainty
+                                           ///< between the ends counted as one more loop)
+  bool final_least_squares = true;         ///< last solve without loss on the accepted loops
+  double odometry_xy_information = 50.0;   ///< x, y information of 1 m of odometry (1/m^2),
+                                           ///< divided by the edge's travelled distance
+  double odometry_yaw_information = 50.0;  ///< yaw information of 1 m of odometry (1/rad^2)
+  double odometry_min_distance_m = 0.1;    ///< shorter odometry edges weigh as this distance
+  double loop_xy_information = 44.7;       ///< loop information when none is given (follow-on)
+  double loop_yaw_information = 44.7;      ///< loop yaw information when none is given (follow-on)
+  int max_iterations = 100;                ///< Ceres iterations per solve
+  double function_tolerance = 1e-6;        ///< Ceres convergence: relative change of the cost
+  int num_threads = 1;                     ///< Ceres threads (Jacobian evaluation)
+
+  template <class V>
+  void Visit(V& v) {
+    v("robust_loss", robust_loss);
+    v("robust_loss_scale", robust_loss_scale);
+    v("loop_rejection_chi2", loop_rejection_chi2);
+    v("max_rejection_rounds", max_rejection_rounds);
+    v("min_loop_support", min_loop_support);
+    v("loop_support_window", loop_support_window);
+    v("unsupported_loop_chi2", unsupported_loop_chi2);
+    v("final_least_squares", final_least_squares);
+    v("odometry_xy_information", odometry_xy_information);
+    v("odometry_yaw_information", odometry_yaw_information);
+    v("odometry_min_distance_m", odometry_min_distance_m);
+    v("loop_xy_information", loop_xy_information);
+    v("loop_yaw_information", loop_yaw_information);
+    v("max_iterations", max_iterations);
+    v("function_tolerance", function_tolerance);
+    v("num_threads", num_threads);
   }
 };
 
@@ -279,6 +328,162 @@ struct SimulatorConfig {
     v("start_time_s", start_time_s);
   }
 };
+/// Feature detectors on the 8-bit enhanced tile (paper Table II, REFERENCE.md section 3),
+/// tuned to about 200 keypoints per tile.
+struct DetectorConfig {
+  int max_keypoints = 200;                 ///< keep the strongest this many per tile and detector
+  int mask_erode_px = 8;                   ///< detect only this far inside the imaged area
+                                           ///< (the sector edges are not scene features)
+  double sift_contrast_threshold = 0.015;  ///< SIFT contrastThreshold (paper)
+  double surf_hessian_threshold = 200.0;   ///< SURF hessianThreshold (paper)
+  int surf_octaves = 4;                    ///< SURF nOctaves (paper)
+  int surf_octave_layers = 4;              ///< SURF nOctaveLayers (paper)
+  bool surf_upright = false;               ///< U-SURF: no orientation (faster, not rotation invariant)
+  int brisk_threshold = 15;                ///< BRISK thresh (paper)
+  double akaze_threshold = 0.0005;         ///< AKAZE threshold, KAZE descriptor (paper)
+  int orb_fast_threshold = 15;             ///< ORB fastThreshold (paper)
+  int orb_wta_k = 4;                       ///< ORB WTA_K (paper; 3 and 4 match with Hamming2)
+
+  template <class V>
+  void Visit(V& v) {
+    v("max_keypoints", max_keypoints);
+    v("mask_erode_px", mask_erode_px);
+    v("sift_contrast_threshold", sift_contrast_threshold);
+    v("surf_hessian_threshold", surf_hessian_threshold);
+    v("surf_octaves", surf_octaves);
+    v("surf_octave_layers", surf_octave_layers);
+    v("surf_upright", surf_upright);
+    v("brisk_threshold", brisk_threshold);
+    v("akaze_threshold", akaze_threshold);
+    v("orb_fast_threshold", orb_fast_threshold);
+    v("orb_wta_k", orb_wta_k);
+  }
+};
+
+/// Descriptor matching and transform estimation (paper Fig. "matching pipeline").
+struct FeatureMatchConfig {
+  double ratio = 0.8;                    ///< Lowe ratio test on the two nearest neighbours
+  double ransac_reprojection_px = 15.0;  ///< estimateAffinePartial2D RANSAC threshold (paper)
+  int ransac_max_iterations = 2000;      ///< RANSAC iterations (OpenCV default)
+  double ransac_confidence = 0.99;       ///< RANSAC confidence (OpenCV default)
+
+  template <class V>
+  void Visit(V& v) {
+    v("ratio", ratio);
+    v("ransac_reprojection_px", ransac_reprojection_px);
+    v("ransac_max_iterations", ransac_max_iterations);
+    v("ransac_confidence", ransac_confidence);
+  }
+};
+
+/// The paper's AKAZE+ORB loop validation ("Identifying Loop Closures while Exploring")
+/// and the uncertainty given to accepted loops.
+struct LoopValidationConfig {
+  int min_good_matches = 10;          ///< both detectors need more good matches than this (paper)
+  double min_scale = 0.85;            ///< both scales must lie in [min_scale, max_scale] (paper)
+  double max_scale = 1.15;            ///< ...
+  double max_tx_difference_px = 10.0;   ///< |tx_akaze - tx_orb| limit (paper)
+  double max_ty_difference_px = 10.0;   ///< |ty_akaze - ty_orb| limit (paper)
+  double max_rotation_difference_deg = 10.0;  ///< |rot_akaze - rot_orb| limit (paper)
+  double min_inlier_spread_px = 5.0;  ///< the inliers' smaller principal standard deviation
+                                      ///< must exceed this (collinear matches are degenerate)
+  double min_residual_px = 1.0;       ///< floor of the per-feature position noise used for the
+                                      ///< loop's information matrix
+  double min_xy_sigma_m = 0.005;      ///< floor of a loop's translation standard deviation
+  double min_yaw_sigma_deg = 0.1;     ///< floor of a loop's rotation standard deviation
+
+  template <class V>
+  void Visit(V& v) {
+    v("min_good_matches", min_good_matches);
+    v("min_scale", min_scale);
+    v("max_scale", max_scale);
+    v("max_tx_difference_px", max_tx_difference_px);
+    v("max_ty_difference_px", max_ty_difference_px);
+    v("max_rotation_difference_deg", max_rotation_difference_deg);
+    v("min_inlier_spread_px", min_inlier_spread_px);
+    v("min_residual_px", min_residual_px);
+    v("min_xy_sigma_m", min_xy_sigma_m);
+    v("min_yaw_sigma_deg", min_yaw_sigma_deg);
+  }
+};
+
+/// Which past keyframes a new keyframe is matched against.
+struct CandidateSearchConfig {
+  bool use_pose_prior = true;          ///< false: every past keyframe is a candidate
+                                       ///< (re-localisation after large drift)
+  double base_radius_m = 1.0;          ///< search radius around the pose estimate after a loop
+  double radius_growth_per_m = 0.1;    ///< radius grows by this per metre of odometry travelled
+                                       ///< since the last accepted loop (drift)
+  double max_radius_m = 10.0;          ///< radius cap (follow-on: 10 m)
+  int max_candidates = 15;             ///< nearest candidates kept (follow-on: 15; 0 = all)
+  double exclude_recent_path_m = 3.0;  ///< keyframes that began less than this much path
+                                       ///< before the new one are skipped (they share scans)
+  double grid_cell_m = 2.0;            ///< cell size of the spatial hash of keyframe positions
+
+  template <class V>
+  void Visit(V& v) {
+    v("use_pose_prior", use_pose_prior);
+    v("base_radius_m", base_radius_m);
+    v("radius_growth_per_m", radius_growth_per_m);
+    v("max_radius_m", max_radius_m);
+    v("max_candidates", max_candidates);
+    v("exclude_recent_path_m", exclude_recent_path_m);
+    v("grid_cell_m", grid_cell_m);
+  }
+};
+
+/// Place recognition: loop-closure constraints between keyframe tiles.
+struct PlaceRecognitionConfig {
+  DetectorConfig detectors;
+  FeatureMatchConfig matching;
+  LoopValidationConfig validation;
+  CandidateSearchConfig candidates;
+
+  template <class V>
+  void Visit(V& v) {
+    v("detectors", detectors);
+    v("matching", matching);
+    v("validation", validation);
+    v("candidates", candidates);
+  }
+};
+
+/// Map comparison against a LiDAR occupancy grid (`uwbsar compare`) and PCD export
+/// (`uwbsar export-pcd`). Evaluation rule: see backend/compare/map_metrics.h.
+struct CompareConfig {
+  std::string align = "icp";                  ///< icp (from the map origins or --init) or origin
+  std::string icp_method = "point_to_point";  ///< point_to_point or point_to_plane (2-D normals)
+  std::vector<double> icp_max_correspondence_m = {1.0, 0.5, 0.25, 0.1};  ///< coarse-to-fine
+                                              ///< ICP stages: pairs farther apart are ignored
+  int icp_max_iterations = 50;                ///< ICP iterations per stage
+  double icp_transformation_epsilon = 1e-9;   ///< a stage stops when the transform changes less
+                                              ///< (PCL: squared translation + rotation change)
+  int icp_normal_neighbours = 6;              ///< point_to_plane: cells used for each normal
+  double icp_min_inlier_fraction = 0.3;       ///< fewer SAR cells within the last stage's
+                                              ///< distance: ICP rejected, initial transform kept
+  int tolerance_cells = 1;                    ///< precision / recall / F1 match distance
+                                              ///< (cells, 8-neighbourhood)
+  int overlay_pixels_per_cell = 4;            ///< overlay.png scale
+  double pcd_peak_fraction = 0.2;             ///< export-pcd of a float SAR map: peaks weaker
+                                              ///< than this fraction of the strongest are dropped
+  double pcd_peak_radius_m = 0.05;            ///< export-pcd: a peak is the maximum within this
+
+  template <class V>
+  void Visit(V& v) {
+    v("align", align);
+    v("icp_method", icp_method);
+    v("icp_max_correspondence_m", icp_max_correspondence_m);
+    v("icp_max_iterations", icp_max_iterations);
+    v("icp_transformation_epsilon", icp_transformation_epsilon);
+    v("icp_normal_neighbours", icp_normal_neighbours);
+    v("icp_min_inlier_fraction", icp_min_inlier_fraction);
+    v("tolerance_cells", tolerance_cells);
+    v("overlay_pixels_per_cell", overlay_pixels_per_cell);
+    v("pcd_peak_fraction", pcd_peak_fraction);
+    v("pcd_peak_radius_m", pcd_peak_radius_m);
+  }
+};
+
 /// The whole configuration; config/default.yaml mirrors it field by field.
 struct Config {
   PulseConfig pulse;
@@ -287,7 +492,10 @@ struct Config {
   GatingConfig gating;
   KeyframeConfig keyframe;
   EnhanceConfig enhance;
+  BackendConfig backend;
   SimulatorConfig simulator;
+  PlaceRecognitionConfig place_recognition;
+  CompareConfig compare;
 
   template <class V>
   void Visit(V& v) {
@@ -297,7 +505,10 @@ struct Config {
     v("gating", gating);
     v("keyframe", keyframe);
     v("enhance", enhance);
+    v("backend", backend);
     v("simulator", simulator);
+    v("place_recognition", place_recognition);
+    v("compare", compare);
   }
 };
 

@@ -185,6 +185,84 @@ void ValidateSimulator(const SimulatorConfig& s, const std::string& src) {
           "must be in [0, 9e9)");
 }
 
+void ValidatePlaceRecognition(const PlaceRecognitionConfig& p, const std::string& src) {
+  const std::string k = "place_recognition.";
+  const DetectorConfig& d = p.detectors;
+  Require(d.max_keypoints >= 1 && d.max_keypoints <= 100000, src, k + "detectors.max_keypoints",
+          "must be in [1, 100000]");
+  Require(d.mask_erode_px >= 0 && d.mask_erode_px <= 1000, src, k + "detectors.mask_erode_px",
+          "must be in [0, 1000]");
+  Require(d.sift_contrast_threshold > 0, src, k + "detectors.sift_contrast_threshold",
+          "must be > 0");
+  Require(d.surf_hessian_threshold >= 0, src, k + "detectors.surf_hessian_threshold",
+          "must be >= 0");
+  Require(d.surf_octaves >= 1 && d.surf_octaves <= 8, src, k + "detectors.surf_octaves",
+          "must be in [1, 8]");
+  Require(d.surf_octave_layers >= 1 && d.surf_octave_layers <= 8, src,
+          k + "detectors.surf_octave_layers", "must be in [1, 8]");
+  Require(d.brisk_threshold >= 1 && d.brisk_threshold <= 255, src, k + "detectors.brisk_threshold",
+          "must be in [1, 255]");
+  Require(d.akaze_threshold > 0, src, k + "detectors.akaze_threshold", "must be > 0");
+  Require(d.orb_fast_threshold >= 1 && d.orb_fast_threshold <= 255, src,
+          k + "detectors.orb_fast_threshold", "must be in [1, 255]");
+  Require(d.orb_wta_k >= 2 && d.orb_wta_k <= 4, src, k + "detectors.orb_wta_k",
+          "must be 2, 3 or 4");
+  const FeatureMatchConfig& m = p.matching;
+  Require(m.ratio > 0 && m.ratio <= 1, src, k + "matching.ratio", "must be in (0, 1]");
+  Require(m.ransac_reprojection_px > 0, src, k + "matching.ransac_reprojection_px", "must be > 0");
+  Require(m.ransac_max_iterations >= 1, src, k + "matching.ransac_max_iterations", "must be >= 1");
+  Require(m.ransac_confidence > 0 && m.ransac_confidence < 1, src,
+          k + "matching.ransac_confidence", "must be in (0, 1)");
+  const LoopValidationConfig& v = p.validation;
+  Require(v.min_good_matches >= 2, src, k + "validation.min_good_matches", "must be >= 2");
+  Require(v.min_scale > 0 && v.min_scale <= 1, src, k + "validation.min_scale",
+          "must be in (0, 1]");
+  Require(v.max_scale >= 1, src, k + "validation.max_scale", "must be >= 1");
+  Require(v.max_tx_difference_px >= 0, src, k + "validation.max_tx_difference_px", "must be >= 0");
+  Require(v.max_ty_difference_px >= 0, src, k + "validation.max_ty_difference_px", "must be >= 0");
+  Require(v.max_rotation_difference_deg >= 0 && v.max_rotation_difference_deg <= 180, src,
+          k + "validation.max_rotation_difference_deg", "must be in [0, 180]");
+  Require(v.min_inlier_spread_px >= 0, src, k + "validation.min_inlier_spread_px",
+          "must be >= 0");
+  Require(v.min_residual_px > 0, src, k + "validation.min_residual_px", "must be > 0");
+  Require(v.min_xy_sigma_m > 0, src, k + "validation.min_xy_sigma_m", "must be > 0");
+  Require(v.min_yaw_sigma_deg > 0, src, k + "validation.min_yaw_sigma_deg", "must be > 0");
+  const CandidateSearchConfig& c = p.candidates;
+  Require(c.base_radius_m > 0, src, k + "candidates.base_radius_m", "must be > 0");
+  Require(c.radius_growth_per_m >= 0, src, k + "candidates.radius_growth_per_m", "must be >= 0");
+  Require(c.max_radius_m >= c.base_radius_m, src, k + "candidates.max_radius_m",
+          "must be >= base_radius_m");
+  Require(c.max_candidates >= 0, src, k + "candidates.max_candidates", "must be >= 0");
+  Require(c.exclude_recent_path_m >= 0, src, k + "candidates.exclude_recent_path_m",
+          "must be >= 0");
+  Require(c.grid_cell_m > 0, src, k + "candidates.grid_cell_m", "must be > 0");
+}
+
+void ValidateCompare(const CompareConfig& c, const std::string& src) {
+  const std::string k = "compare.";
+  Require(c.align == "icp" || c.align == "origin", src, k + "align", "must be 'icp' or 'origin'");
+  Require(c.icp_method == "point_to_point" || c.icp_method == "point_to_plane", src,
+          k + "icp_method", "must be 'point_to_point' or 'point_to_plane'");
+  Require(!c.icp_max_correspondence_m.empty(), src, k + "icp_max_correspondence_m",
+          "must list at least one distance");
+  for (double d : c.icp_max_correspondence_m) {
+    Require(d > 0, src, k + "icp_max_correspondence_m", "distances must be > 0");
+  }
+  Require(c.icp_max_iterations >= 1, src, k + "icp_max_iterations", "must be >= 1");
+  Require(c.icp_transformation_epsilon > 0, src, k + "icp_transformation_epsilon", "must be > 0");
+  Require(c.icp_normal_neighbours >= 3 && c.icp_normal_neighbours <= 100, src,
+          k + "icp_normal_neighbours", "must be in [3, 100]");
+  Require(c.icp_min_inlier_fraction >= 0 && c.icp_min_inlier_fraction <= 1, src,
+          k + "icp_min_inlier_fraction", "must be in [0, 1]");
+  Require(c.tolerance_cells >= 0 && c.tolerance_cells <= 50, src, k + "tolerance_cells",
+          "must be in [0, 50]");
+  Require(c.overlay_pixels_per_cell >= 1 && c.overlay_pixels_per_cell <= 32, src,
+          k + "overlay_pixels_per_cell", "must be in [1, 32]");
+  Require(c.pcd_peak_fraction >= 0 && c.pcd_peak_fraction < 1, src, k + "pcd_peak_fraction",
+          "must be in [0, 1)");
+  Require(c.pcd_peak_radius_m > 0, src, k + "pcd_peak_radius_m", "must be > 0");
+}
+
 /// A point-target file: `point_targets:` followed by the same entries as the configuration.
 struct PointTargetFile {
   std::vector<PointTargetConfig> point_targets;
@@ -224,7 +302,9 @@ Config LoadConfig(const std::string& path) {
 }
 
 void ValidateConfig(const Config& c, const std::string& src) {
+  ValidateCompare(c.compare, src);
   ValidateSimulator(c.simulator, src);
+  ValidatePlaceRecognition(c.place_recognition, src);
   Require(c.pulse.center_frequency_hz > 0, src, "pulse.center_frequency_hz", "must be > 0");
   Require(c.pulse.bandwidth_hz > 0, src, "pulse.bandwidth_hz", "must be > 0");
   Require(c.pulse.sampling_frequency_hz > 2 * c.pulse.center_frequency_hz, src,
@@ -254,6 +334,11 @@ void ValidateConfig(const Config& c, const std::string& src) {
   Require(c.keyframe.tile_length_m > 0, src, "keyframe.tile_length_m", "must be > 0");
   Require(c.keyframe.tile_spacing_m > 0 && c.keyframe.tile_spacing_m <= c.keyframe.tile_length_m,
           src, "keyframe.tile_spacing_m", "must be in (0, tile_length_m]");
+  {
+    const double ratio = c.keyframe.tile_length_m / c.keyframe.tile_spacing_m;
+    Require(std::abs(ratio - std::round(ratio)) < 1e-6, src, "keyframe.tile_length_m",
+            "must be a whole multiple of keyframe.tile_spacing_m");
+  }
   Require(c.keyframe.margin_m >= 0, src, "keyframe.margin_m", "must be >= 0");
   Require(c.enhance.blur_sigma_px >= 0, src, "enhance.blur_sigma_px", "must be >= 0");
   Require(c.enhance.display_range_db > 0, src, "enhance.display_range_db", "must be > 0");
@@ -261,6 +346,24 @@ void ValidateConfig(const Config& c, const std::string& src) {
                                                    "viridis", "magma", "hot"};
   Require(kColormaps.count(c.enhance.colormap) > 0, src, "enhance.colormap",
           "must be one of gray, inferno, jet, viridis, magma, hot");
+  const BackendConfig& b = c.backend;
+  Require(b.robust_loss == "cauchy" || b.robust_loss == "huber" || b.robust_loss == "none", src,
+          "backend.robust_loss", "must be 'cauchy', 'huber' or 'none'");
+  Require(b.robust_loss_scale > 0, src, "backend.robust_loss_scale", "must be > 0");
+  Require(b.loop_rejection_chi2 > 0, src, "backend.loop_rejection_chi2", "must be > 0");
+  Require(b.max_rejection_rounds >= 0, src, "backend.max_rejection_rounds", "must be >= 0");
+  Require(b.min_loop_support >= 0, src, "backend.min_loop_support", "must be >= 0");
+  Require(b.loop_support_window >= 1, src, "backend.loop_support_window", "must be >= 1");
+  Require(b.unsupported_loop_chi2 > 0, src, "backend.unsupported_loop_chi2", "must be > 0");
+  Require(b.odometry_xy_information > 0, src, "backend.odometry_xy_information", "must be > 0");
+  Require(b.odometry_yaw_information > 0, src, "backend.odometry_yaw_information", "must be > 0");
+  Require(b.odometry_min_distance_m > 0, src, "backend.odometry_min_distance_m", "must be > 0");
+  Require(b.loop_xy_information > 0, src, "backend.loop_xy_information", "must be > 0");
+  Require(b.loop_yaw_information > 0, src, "backend.loop_yaw_information", "must be > 0");
+  Require(b.max_iterations >= 1, src, "backend.max_iterations", "must be >= 1");
+  Require(b.function_tolerance > 0 && b.function_tolerance < 1, src, "backend.function_tolerance",
+          "must be in (0, 1)");
+  Require(b.num_threads >= 1, src, "backend.num_threads", "must be >= 1");
 }
 
 std::string ConfigToYaml(const Config& config) {
@@ -270,7 +373,6 @@ std::string ConfigToYaml(const Config& config) {
   writer.Write(copy);
   return out.c_str();
 }
-
 
 std::vector<PointTargetConfig> LoadPointTargets(const std::string& path) {
   std::ifstream in(path);
