@@ -131,6 +131,8 @@ struct EnhanceConfig {
 
 /// Pose-graph backend (Ceres): loop outlier handling, odometry weighting, solver settings.
 struct BackendConfig {
+  std::string initialization = "guess";    ///< first solve starts from: guess (the nodes'
+                                           ///< initial estimates) or chordal (relaxation)
   std::string robust_loss = "cauchy";      ///< loss on loop edges while outliers are sought:
                                            ///< cauchy, huber or none
   double robust_loss_scale = 1.0;          ///< whitened residual norm (sigmas) where it turns robust
@@ -158,6 +160,7 @@ struct BackendConfig {
 
   template <class V>
   void Visit(V& v) {
+    v("initialization", initialization);
     v("robust_loss", robust_loss);
     v("robust_loss_scale", robust_loss_scale);
     v("loop_rejection_chi2", loop_rejection_chi2);
@@ -484,6 +487,26 @@ struct CompareConfig {
   }
 };
 
+/// The SLAM pipeline as `uwbsar map` and live mode run it.
+struct SlamConfig {
+  std::string odometry_topic = "/odom";  ///< nav_msgs/Odometry topic of wheel odometry
+  std::string ground_truth_topic = "/ground_truth/odom";  ///< optional, for evaluation
+  double map_resolution_m = 0.01;  ///< pixel size of the global map (map.png, map_float.tif)
+  bool keep_tile_images = false;   ///< keep every full-resolution tile in memory after its
+                                   ///< features are computed (debugging; costs ~5 MB per metre)
+  bool optimize_after_each_loop = true;  ///< re-solve the graph after every accepted loop
+                                         ///< (false: once at the end, like the follow-on code)
+
+  template <class V>
+  void Visit(V& v) {
+    v("odometry_topic", odometry_topic);
+    v("ground_truth_topic", ground_truth_topic);
+    v("map_resolution_m", map_resolution_m);
+    v("keep_tile_images", keep_tile_images);
+    v("optimize_after_each_loop", optimize_after_each_loop);
+  }
+};
+
 /// The whole configuration; config/default.yaml mirrors it field by field.
 struct Config {
   PulseConfig pulse;
@@ -497,8 +520,11 @@ struct Config {
   PlaceRecognitionConfig place_recognition;
   CompareConfig compare;
 
+  SlamConfig slam;
+
   template <class V>
   void Visit(V& v) {
+    v("slam", slam);
     v("pulse", pulse);
     v("radars", radars);
     v("imaging", imaging);

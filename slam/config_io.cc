@@ -321,6 +321,8 @@ void ValidateConfig(const Config& c, const std::string& src) {
     Require(r.zero_leading_samples >= 0 && r.zero_leading_samples < r.num_samples, src,
             k + "zero_leading_samples", "must be in [0, num_samples)");
   }
+  Require(c.slam.map_resolution_m > 0, src, "slam.map_resolution_m", "must be > 0");
+  Require(!c.slam.odometry_topic.empty(), src, "slam.odometry_topic", "must not be empty");
   Require(c.imaging.mode == "paper" || c.imaging.mode == "coherent", src, "imaging.mode",
           "must be 'paper' or 'coherent'");
   Require(c.imaging.pixel_size_m > 0, src, "imaging.pixel_size_m", "must be > 0");
@@ -347,6 +349,8 @@ void ValidateConfig(const Config& c, const std::string& src) {
   Require(kColormaps.count(c.enhance.colormap) > 0, src, "enhance.colormap",
           "must be one of gray, inferno, jet, viridis, magma, hot");
   const BackendConfig& b = c.backend;
+  Require(b.initialization == "guess" || b.initialization == "chordal", src,
+          "backend.initialization", "must be 'guess' or 'chordal'");
   Require(b.robust_loss == "cauchy" || b.robust_loss == "huber" || b.robust_loss == "none", src,
           "backend.robust_loss", "must be 'cauchy', 'huber' or 'none'");
   Require(b.robust_loss_scale > 0, src, "backend.robust_loss_scale", "must be > 0");
