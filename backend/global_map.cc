@@ -1,0 +1,163 @@
+#include "backend/global_map.h"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+namespace uwbsar {
+
+GlobalMap::GlobalMap(double resolution_m, int block_px)
+    : resolution_m_(resolution_m), block_px_(block_px) {}
+
+std::size_t GlobalMap::memory_bytes() const {
+  return blocks_.size() * 2u * static_cast<std::size_t>(block_px_) * block_px_ * sizeof(float);
+}
+
+// Lattice pixel (c, r) has its centre at world (c * res, -r * res); block (bc, br)
+// holds lattice pixels [bc * B, bc * B + B) x [br * B, br * B + B).
+void GlobalMap::AddTile(const cv::Mat& tile, const ImageGrid& grid, const Pose2& T_world_tile) {
+  CV_Assert(tile.type() == CV_32FC1 && tile.rows == grid.rows && tile.cols == grid.cols);
+  if (tile.empty()) return;
+  // World bounding box of the tile's corners.
+  double lo_x = 1e300, hi_x = -1e300, lo_y = 1e300, hi_y = -1e300;
+  for (double c : {-0.5, grid.cols - 0.5}) {
+    for (double r : {-0.5, grid.rows - 0.5}) {
+      const Point2 p = T_world_tile * grid.PixelToMetric(c, r);
+      lo_x = std::min(lo_x, p.x_m), hi_x = std::max(hi_x, p.x_m);
+      lo_y = std::min(lo_y, p.y_m), hi_y = std::max(hi_y, p.y_m);
+    }
+  }
+  const auto floor_div = [](long long a, long long b) { return a >= 0 ? a / b : -((-a + b - 1) / b); };
+  const long long c0 = static_cast<long long>(std::floor(lo_x / resolution_m_));
+  const long long c1 = static_cast<long long>(std::ceil(hi_x / resolution_m_));
+  const long long r0 = static_cast<long long>(std::floor(-hi_y / resolution_m_));
+  const long long r1 = static_cast<long long>(std::ceil(-lo_y / resolution_m_));
+  // Block pixel (u, v) of block (bc, br) -> world -> tile pixel: an affine map.
+  const Pose2 T_tile_world = T_world_tile.Inverse();
+  const double ct = std::cos(T_tile_world.yaw_rad), st = std::sin(T_tile_world.yaw_rad);
+  cv::Mat observed;
+  cv::compare(tile, 0.0f, observed, cv::CMP_GT);
+  cv::Mat ones;
+  observed.convertTo(ones, CV_32F, 1.0 / 255.0);
+  for (long long br = floor_div(r0, block_px_); br <= floor_div(r1, block_px_); ++br) {
+    for (long long bc = floor_div(c0, block_px_); bc <= floor_div(c1, block_px_); ++bc) {
+      // World of block pixel (u, v): x = (bc B + u) res, y = -(br B + v) res.
+      // Tile metric p = T_tile_world * world; tile pixel col = (p.x - x0) / res_t,
+      // row = (y0 - p.y) / res_t.
+      const double rt = grid.resolution_m, rw = resolution_m_;
+      const double wx0 = static_cast<double>(bc * block_px_) * rw;
+      const double wy0 = -static_cast<double>(br * block_px_) * rw;
+      // p.x = ct*wx - st*wy + tx ; p.y = st*wx + ct*wy + ty, with wx = wx0 + u rw, wy = wy0 - v rw
+      const double px0 = ct * wx0 - st * wy0 + T_tile_world.x_m;
+      const double py0 = st * wx0 + ct * wy0 + T_tile_world.y_m;
+      cv::Matx23d M((ct * rw) / rt, (st * rw) / rt, (px0 - grid.x0_m) / rt,
+                    -(st * rw) / rt, (ct * rw) / rt, (grid.y0_m - py0) / rt);
+      cv::Mat warped, weight;
+      cv::warpAffine(tile, warped, M, cv::Size(block_px_, block_px_),
+                     cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_CONSTANT, 0.0);
+      cv::warpAffine(ones, weight, M, cv::Size(block_px_, block_px_),
+                     cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_CONSTANT, 0.0);
+      if (cv::countNonZero(weight) == 0) continue;
+      Block& b = blocks_[{bc, br}];
+      if (b.sum.empty()) {
+        b.sum = cv::Mat::zeros(block_px_, block_px_, CV_32FC1);
+        b.weight = cv::Mat::zeros(block_px_, block_px_, CV_32FC1);
+      }
+      b.sum += warped;
+      b.weight += weight;
+    }
+  }
+}
+
+cv::Mat GlobalMap::Render(ImageGrid* grid) const {
+  cv::Mat observed;
+  return Render(grid, &observed);
+}
+
+cv::Mat GlobalMap::Render(ImageGrid* grid, cv::Mat* observed) const {
+  long long bc0 = LLONG_MAX, bc1 = LLONG_MIN, br0 = LLONG_MAX, br1 = LLONG_MIN;
+  for (const auto& [key, block] : blocks_) {
+    bc0 = std::min(bc0, key.first), bc1 = std::max(bc1, key.first);
+    br0 = std::min(br0, key.second), br1 = std::max(br1, key.second);
+  }
+  grid->resolution_m = resolution_m_;
+  if (blocks_.empty()) {
+    grid->rows = grid->cols = 0;
+    *observed = cv::Mat();
+    return cv::Mat();
+  }
+  grid->cols = static_cast<int>((bc1 - bc0 + 1) * block_px_);
+  grid->rows = static_cast<int>((br1 - br0 + 1) * block_px_);
+  grid->x0_m = static_cast<double>(bc0 * block_px_) * resolution_m_;
+  grid->y0_m = -static_cast<double>(br0 * block_px_) * resolution_m_;
+  cv::Mat out = cv::Mat::zeros(grid->rows, grid->cols, CV_32FC1);
+  *observed = cv::Mat::zeros(grid->rows, grid->cols, CV_8UC1);
+  for (const auto& [key, block] : blocks_) {
+    const cv::Rect roi(static_cast<int>((key.first - bc0) * block_px_),
+                       static_cast<int>((key.second - br0) * block_px_), block_px_, block_px_);
+    cv::Mat mean;
+    cv::divide(block.sum, cv::max(block.weight, 1e-6), mean);
+    cv::Mat seen;
+    cv::compare(block.weight, 1e-3, seen, cv::CMP_GT);
+    mean.setTo(0.0f, ~seen);
+    mean.copyTo(out(roi));
+    seen.copyTo((*observed)(roi));
+  }
+  return out;
+}
+
+OccupancyGrid MapToOccupancy(const cv::Mat& map, const cv::Mat& observed, const ImageGrid& grid,
+                             double cell_m, double occupied_fraction,
+                             double reference_percentile) {
+  OccupancyGrid occ;
+  occ.resolution_m = cell_m;
+  if (map.empty()) return occ;
+  // Reference level: a high percentile of the observed pixels.
+  std::vector<float> values;
+  values.reserve(static_cast<std::size_t>(cv::countNonZero(observed)));
+  for (int r = 0; r < map.rows; ++r) {
+    const float* m = map.ptr<float>(r);
+    const unsigned char* o = observed.ptr<unsigned char>(r);
+    for (int c = 0; c < map.cols; ++c) {
+      if (o[c]) values.push_back(m[c]);
+    }
+  }
+  float reference = 0.0f;
+  if (!values.empty()) {
+    const std::size_t k = std::min(values.size() - 1,
+                                   static_cast<std::size_t>(reference_percentile / 100.0 *
+                                                            static_cast<double>(values.size())));
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
+    reference = values[k];
+  }
+  const float threshold = static_cast<float>(occupied_fraction) * reference;
+  // Cells on a lattice of cell_m: the map's left/top edge is the grid's outer border.
+  const double left = grid.x0_m - 0.5 * grid.resolution_m;
+  const double top = grid.y0_m + 0.5 * grid.resolution_m;
+  occ.cols = std::max(1, static_cast<int>(std::ceil(grid.width_m() / cell_m)));
+  occ.rows = std::max(1, static_cast<int>(std::ceil(grid.height_m() / cell_m)));
+  occ.origin = {left, top - occ.rows * cell_m, 0.0};
+  occ.cells.assign(static_cast<std::size_t>(occ.rows) * occ.cols, OccupancyGrid::kUnknown);
+  std::vector<float> cell_max(occ.cells.size(), -1.0f);
+  const double scale = grid.resolution_m / cell_m;
+  for (int r = 0; r < map.rows; ++r) {
+    const float* m = map.ptr<float>(r);
+    const unsigned char* o = observed.ptr<unsigned char>(r);
+    const int cr = std::min(occ.rows - 1, static_cast<int>((r + 0.5) * scale));
+    for (int c = 0; c < map.cols; ++c) {
+      if (!o[c]) continue;
+      const int cc = std::min(occ.cols - 1, static_cast<int>((c + 0.5) * scale));
+      float& v = cell_max[static_cast<std::size_t>(cr) * occ.cols + cc];
+      v = std::max(v, m[c]);
+    }
+  }
+  for (std::size_t i = 0; i < occ.cells.size(); ++i) {
+    if (cell_max[i] < 0.0f) continue;
+    occ.cells[i] = reference > 0.0f && cell_max[i] >= threshold ? OccupancyGrid::kOccupied
+                                                                : OccupancyGrid::kFree;
+  }
+  return occ;
+}
+
+}  // namespace uwbsar

@@ -1,0 +1,59 @@
+// The global SAR map as a sparse canvas: square blocks on a world-aligned pixel
+// lattice, allocated only where some tile lands, so memory follows the observed
+// area and not the bounding box of the run. The fast mosaic places each
+// keyframe's detected tile (positive / magnitude image, blurred; non-negative)
+// at its optimised pose and averages where tiles overlap. Dense images are only
+// made when rendering outputs, at any resolution.
+#pragma once
+
+#include <map>
+#include <opencv2/core.hpp>
+#include <utility>
+
+#include "frontend/image_grid.h"
+#include "slam/occupancy_grid.h"
+#include "slam/pose2.h"
+
+namespace uwbsar {
+
+class GlobalMap {
+ public:
+  /// `resolution_m`: pixel size of the canvas; `block_px`: block side in pixels.
+  explicit GlobalMap(double resolution_m, int block_px = 256);
+
+  /// Adds a non-negative CV_32FC1 tile whose pixels live on `grid` in the frame
+  /// T_world_tile (bilinear resampling). Pixels that are exactly 0 count as unobserved.
+  void AddTile(const cv::Mat& tile, const ImageGrid& grid, const Pose2& T_world_tile);
+
+  /// Dense mean image over the bounding box of the allocated blocks (CV_32FC1;
+  /// unobserved pixels are 0), and its grid in the world frame.
+  cv::Mat Render(ImageGrid* grid) const;
+  /// The same, with a mask of observed pixels (CV_8UC1, 255 = observed).
+  cv::Mat Render(ImageGrid* grid, cv::Mat* observed) const;
+
+  double resolution_m() const { return resolution_m_; }
+  std::size_t num_blocks() const { return blocks_.size(); }
+  /// Bytes held by the blocks (sum and weight planes).
+  std::size_t memory_bytes() const;
+
+ private:
+  struct Block {
+    cv::Mat sum;     ///< CV_32FC1
+    cv::Mat weight;  ///< CV_32FC1: number of tiles that observed the pixel
+  };
+  using BlockKey = std::pair<long long, long long>;  ///< (block column, block row)
+
+  double resolution_m_;
+  int block_px_;
+  std::map<BlockKey, Block> blocks_;  // ordered: deterministic iteration
+};
+
+/// Occupancy from a rendered map: a cell (of `cell_m`) is unknown where no map pixel in
+/// it was observed; otherwise occupied when the cell's strongest pixel reaches
+/// `occupied_fraction` of the map's `reference_percentile` value (robust to a few
+/// very bright scatterers), else free.
+OccupancyGrid MapToOccupancy(const cv::Mat& map, const cv::Mat& observed, const ImageGrid& grid,
+                             double cell_m, double occupied_fraction,
+                             double reference_percentile);
+
+}  // namespace uwbsar
