@@ -1,0 +1,73 @@
+#include "drivers/rosbag/sqlite_util.h"
+
+#include "slam/errors.h"
+
+namespace uwbsar::rosbag {
+
+SqliteDb::SqliteDb(const std::string& path, int flags) : path_(path) {
+  if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
+    const std::string message = db_ ? sqlite3_errmsg(db_) : "out of memory";
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw InputError(path + ": cannot open as sqlite3: " + message);
+  }
+  sqlite3_extended_result_codes(db_, 1);
+}
+
+SqliteDb::~SqliteDb() { sqlite3_close(db_); }
+
+void SqliteDb::Fail(const std::string& what) const {
+  throw InputError(path_ + ": sqlite3 " + what + ": " + sqlite3_errmsg(db_));
+}
+
+void SqliteDb::Exec(const std::string& sql) {
+  if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, nullptr) != SQLITE_OK) {
+    Fail("'" + sql.substr(0, 40) + "'");
+  }
+}
+
+SqliteStatement::SqliteStatement(const SqliteDb& db, const std::string& sql) : db_(db), sql_(sql) {
+  if (sqlite3_prepare_v2(db.get(), sql.c_str(), -1, &stmt_, nullptr) != SQLITE_OK) {
+    db.Fail("query '" + sql.substr(0, 60) + "'");
+  }
+}
+
+SqliteStatement::~SqliteStatement() { sqlite3_finalize(stmt_); }
+
+bool SqliteStatement::Step() {
+  const int rc = sqlite3_step(stmt_);
+  if (rc == SQLITE_ROW) return true;
+  if (rc == SQLITE_DONE) return false;
+  db_.Fail("query '" + sql_.substr(0, 60) + "'");
+}
+
+void SqliteStatement::Reset() {
+  sqlite3_reset(stmt_);
+  sqlite3_clear_bindings(stmt_);
+}
+
+void SqliteStatement::Bind(int index, std::int64_t value) {
+  if (sqlite3_bind_int64(stmt_, index, value) != SQLITE_OK) db_.Fail("bind");
+}
+
+void SqliteStatement::Bind(int index, const std::string& text) {
+  if (sqlite3_bind_text(stmt_, index, text.data(), static_cast<int>(text.size()),
+                        SQLITE_TRANSIENT) != SQLITE_OK) {
+    db_.Fail("bind");
+  }
+}
+
+void SqliteStatement::BindBlob(int index, const void* data, std::size_t size) {
+  if (sqlite3_bind_blob64(stmt_, index, data, size, SQLITE_STATIC) != SQLITE_OK) {
+    db_.Fail("bind");
+  }
+}
+
+std::string SqliteStatement::Text(int column) const {
+  const auto* p = sqlite3_column_text(stmt_, column);
+  return p ? std::string(reinterpret_cast<const char*>(p),
+                         static_cast<std::size_t>(sqlite3_column_bytes(stmt_, column)))
+           : std::string();
+}
+
+}  // namespace uwbsar::rosbag
