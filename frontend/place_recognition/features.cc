@@ -1,0 +1,151 @@
+#include "frontend/place_recognition/features.h"
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <numeric>
+#include <opencv2/imgproc.hpp>
+
+#include "frontend/enhance.h"
+
+#ifdef UWBSAR_WITH_SURF
+#include "frontend/place_recognition/surf.h"
+#endif
+
+namespace uwbsar {
+
+const char* DetectorName(DetectorKind kind) {
+  switch (kind) {
+    case DetectorKind::kSift:
+      return "SIFT";
+    case DetectorKind::kSurf:
+      return "SURF";
+    case DetectorKind::kBrisk:
+      return "BRISK";
+    case DetectorKind::kAkaze:
+      return "AKAZE";
+    case DetectorKind::kOrb:
+      return "ORB";
+  }
+  return "?";
+}
+
+bool ParseDetector(const std::string& name, DetectorKind* kind) {
+  std::string upper = name;
+  for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  for (DetectorKind k : {DetectorKind::kSift, DetectorKind::kSurf, DetectorKind::kBrisk,
+                         DetectorKind::kAkaze, DetectorKind::kOrb}) {
+    if (upper == DetectorName(k)) {
+      *kind = k;
+      return true;
+    }
+  }
+  return false;
+}
+
+bool DetectorAvailable(DetectorKind kind) {
+#ifdef UWBSAR_WITH_SURF
+  (void)kind;
+  return true;
+#else
+  return kind != DetectorKind::kSurf;
+#endif
+}
+
+std::vector<DetectorKind> AvailableDetectors() {
+  std::vector<DetectorKind> out;
+  for (DetectorKind k : {DetectorKind::kSift, DetectorKind::kSurf, DetectorKind::kBrisk,
+                         DetectorKind::kAkaze, DetectorKind::kOrb}) {
+    if (DetectorAvailable(k)) out.push_back(k);
+  }
+  return out;
+}
+
+cv::Ptr<cv::Feature2D> CreateDetector(DetectorKind kind, const DetectorConfig& c) {
+  switch (kind) {
+    case DetectorKind::kSift:
+      return cv::SIFT::create(c.max_keypoints, 3, c.sift_contrast_threshold);
+    case DetectorKind::kSurf: {
+#ifdef UWBSAR_WITH_SURF
+      SurfParams p;
+      p.hessian_threshold = c.surf_hessian_threshold;
+      p.octaves = c.surf_octaves;
+      p.octave_layers = c.surf_octave_layers;
+      p.upright = c.surf_upright;
+      p.max_keypoints = c.max_keypoints;
+      return Surf::Create(p);
+#else
+      CV_Error(cv::Error::StsNotImplemented, "SURF needs -DUWBSAR_WITH_SURF=ON");
+#endif
+    }
+    case DetectorKind::kBrisk:
+      return cv::BRISK::create(c.brisk_threshold);
+    case DetectorKind::kAkaze:
+      return cv::AKAZE::create(cv::AKAZE::DESCRIPTOR_KAZE, 0, 3,
+                               static_cast<float>(c.akaze_threshold));
+    case DetectorKind::kOrb:
+      return cv::ORB::create(c.max_keypoints, 1.2f, 8, 31, 0, c.orb_wta_k, cv::ORB::HARRIS_SCORE,
+                             31, c.orb_fast_threshold);
+  }
+  return nullptr;
+}
+
+int MatchNorm(DetectorKind kind, const DetectorConfig& c) {
+  switch (kind) {
+    case DetectorKind::kBrisk:
+      return cv::NORM_HAMMING;
+    case DetectorKind::kOrb:
+      return c.orb_wta_k > 2 ? cv::NORM_HAMMING2 : cv::NORM_HAMMING;
+    default:
+      return cv::NORM_L2;
+  }
+}
+
+FeatureImage MakeFeatureImage(const cv::Mat& sar, const EnhanceConfig& enhance, int erode_px) {
+  FeatureImage out;
+  if (sar.empty()) return out;
+  cv::Mat clean = sar.clone();
+  cv::patchNaNs(clean, 0.0);  // also makes the mask below exclude NaN pixels
+  cv::Mat magnitude = MagnitudeImage(clean);
+  cv::Mat finite = (magnitude < 1e30) & (magnitude > -1e30);  // excludes +-Inf
+  magnitude.setTo(0.0, ~finite);
+  if (clean.channels() == 1) clean.setTo(0.0, ~finite);
+  out.gray = Enhance8U(clean.channels() == 1 ? clean : magnitude, enhance);
+  out.mask = (magnitude > 0.0);
+  if (erode_px > 0) {
+    const cv::Mat kernel =
+        cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * erode_px + 1, 2 * erode_px + 1));
+    cv::erode(out.mask, out.mask, kernel, cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+  }
+  return out;
+}
+
+FeatureSet ComputeFeatures(const FeatureImage& image, DetectorKind kind,
+                           const DetectorConfig& config) {
+  FeatureSet out;
+  out.detector = kind;
+  out.norm_type = MatchNorm(kind, config);
+  if (image.gray.empty() || cv::countNonZero(image.mask) == 0) return out;
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<cv::KeyPoint> keypoints;
+  cv::Mat descriptors;
+  CreateDetector(kind, config)->detectAndCompute(image.gray, image.mask, keypoints, descriptors);
+  // Keep the strongest; ties keep detection order so results are reproducible.
+  std::vector<int> order(keypoints.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return keypoints[a].response > keypoints[b].response; });
+  if (static_cast<int>(order.size()) > config.max_keypoints) order.resize(config.max_keypoints);
+  out.keypoints.reserve(order.size());
+  if (!descriptors.empty())
+    out.descriptors.create(static_cast<int>(order.size()), descriptors.cols, descriptors.type());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    out.keypoints.push_back(keypoints[order[k]]);
+    descriptors.row(order[k]).copyTo(out.descriptors.row(static_cast<int>(k)));
+  }
+  out.detect_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace uwbsar

@@ -1,0 +1,57 @@
+// Keypoints and descriptors of one tile for the five detectors of the paper
+// (SIFT, SURF, BRISK, AKAZE with the KAZE descriptor, ORB with WTA_K = 4), with the
+// paper's settings (Table II) and the strongest max_keypoints kept. Features are
+// computed once per keyframe and cached (KeyframeFeatures), never per candidate pair.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <opencv2/features2d.hpp>
+#include <string>
+#include <vector>
+
+#include "slam/config.h"
+
+namespace uwbsar {
+
+enum class DetectorKind { kSift, kSurf, kBrisk, kAkaze, kOrb };
+
+/// "SIFT", "SURF", "BRISK", "AKAZE", "ORB".
+const char* DetectorName(DetectorKind kind);
+/// Case-insensitive; false for an unknown name.
+bool ParseDetector(const std::string& name, DetectorKind* kind);
+/// False for SURF when the project was built without UWBSAR_WITH_SURF.
+bool DetectorAvailable(DetectorKind kind);
+/// The paper's order (SIFT, SURF, BRISK, AKAZE, ORB), only those available.
+std::vector<DetectorKind> AvailableDetectors();
+
+/// The detector with the configured (paper) settings.
+cv::Ptr<cv::Feature2D> CreateDetector(DetectorKind kind, const DetectorConfig& config);
+/// Descriptor norm to match with: L2 (SIFT, SURF, AKAZE-KAZE), Hamming (BRISK),
+/// Hamming2 (ORB with WTA_K 3 or 4).
+int MatchNorm(DetectorKind kind, const DetectorConfig& config);
+
+/// What the detectors see: the paper's 8-bit enhanced image and the mask of imaged
+/// pixels, eroded so that the edges of the radar sectors are not taken for features.
+struct FeatureImage {
+  cv::Mat gray;  ///< CV_8UC1
+  cv::Mat mask;  ///< CV_8UC1, 255 where features may be detected
+};
+/// From a tile (CV_32FC1 paper mode, CV_32FC2 coherent). Non-finite pixels count as
+/// not imaged.
+FeatureImage MakeFeatureImage(const cv::Mat& sar, const EnhanceConfig& enhance, int erode_px);
+
+struct FeatureSet {
+  DetectorKind detector = DetectorKind::kAkaze;
+  std::vector<cv::KeyPoint> keypoints;  ///< strongest first
+  cv::Mat descriptors;                  ///< one row per keypoint
+  int norm_type = cv::NORM_L2;
+  double detect_ms = 0.0;
+
+  int size() const { return static_cast<int>(keypoints.size()); }
+};
+
+/// Detects and describes; keeps the max_keypoints strongest (by response).
+FeatureSet ComputeFeatures(const FeatureImage& image, DetectorKind kind,
+                           const DetectorConfig& config);
+
+}  // namespace uwbsar

@@ -1,0 +1,127 @@
+#include "frontend/place_recognition/loop_validator.h"
+
+#include <Eigen/LU>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+namespace uwbsar {
+namespace {
+
+Point2 ToMetric(const ImageGrid& g, const cv::Point2d& p) { return g.PixelToMetric(p.x, p.y); }
+
+}  // namespace
+
+Pose2 PixelToMetricTransform(const ImageGrid& grid_a, const ImageGrid& grid_b, double tx_px,
+                             double ty_px, double rotation_deg) {
+  // Rows grow towards -y, so a rotation by +rot in pixels is -rot in metres. Map the
+  // metric origin of b through the pixel transform to find the translation.
+  const double rot = rotation_deg * M_PI / 180.0;
+  const double c = std::cos(rot), s = std::sin(rot);
+  auto map = [&](double x_m, double y_m) {
+    const double col = grid_b.XToCol(x_m), row = grid_b.YToRow(y_m);
+    return grid_a.PixelToMetric(c * col - s * row + tx_px, s * col + c * row + ty_px);
+  };
+  const Point2 origin = map(0.0, 0.0);
+  return {origin.x_m, origin.y_m, NormalizeAngle(-rot)};
+}
+
+LoopValidation ValidateLoop(int id_i, const ImageGrid& grid_i, int id_j, const ImageGrid& grid_j,
+                            const MatchResult& akaze, const MatchResult& orb,
+                            const LoopValidationConfig& config) {
+  LoopValidation v;
+  v.decision = ApplyLoopRule(StatsOf(akaze), StatsOf(orb), config);
+  if (!v.decision.accepted) {
+    v.reason = v.decision.reason;
+    return v;
+  }
+  // All inliers of both detectors, in metres in the two anchor frames.
+  std::vector<Point2> qi, qj;
+  Eigen::Vector2d mean_px = Eigen::Vector2d::Zero();
+  for (const MatchResult* m : {&akaze, &orb}) {
+    for (std::size_t k = 0; k < m->inliers_a.size(); ++k) {
+      qi.push_back(ToMetric(grid_i, m->inliers_a[k]));
+      qj.push_back(ToMetric(grid_j, m->inliers_b[k]));
+      mean_px += Eigen::Vector2d(m->inliers_b[k].x, m->inliers_b[k].y);
+    }
+  }
+  const double n = static_cast<double>(qi.size());
+  mean_px /= n;
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  for (const MatchResult* m : {&akaze, &orb}) {
+    for (const cv::Point2d& p : m->inliers_b) {
+      const Eigen::Vector2d d = Eigen::Vector2d(p.x, p.y) - mean_px;
+      scatter += d * d.transpose();
+    }
+  }
+  // Smaller eigenvalue of the 2x2 covariance, in closed form.
+  const Eigen::Matrix2d cov_px = scatter / n;
+  const double half_trace = 0.5 * (cov_px(0, 0) + cov_px(1, 1));
+  const double half_diff = 0.5 * (cov_px(0, 0) - cov_px(1, 1));
+  const double min_eig = half_trace - std::hypot(half_diff, cov_px(0, 1));
+  v.inlier_spread_px = std::sqrt(std::max(0.0, min_eig));
+  if (!(v.inlier_spread_px >= config.min_inlier_spread_px)) {
+    char buf[128];
+    std::snprintf(buf, sizeof(buf), "degenerate: inliers nearly collinear (spread %.1f px < %.1f)",
+                  v.inlier_spread_px, config.min_inlier_spread_px);
+    v.reason = buf;
+    return v;
+  }
+  // Fused rotation (paper), metric; translation = least squares for that rotation over
+  // all inliers (equals the paper's weighted mean when scale is 1, and unlike the pixel
+  // translation it does not pick up a lever-arm error from a scale slightly off 1).
+  const double yaw = NormalizeAngle(-v.decision.rotation_deg * M_PI / 180.0);
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  Eigen::Vector2d ci = Eigen::Vector2d::Zero(), rj = Eigen::Vector2d::Zero();
+  std::vector<Eigen::Vector2d> rotated(qi.size());
+  for (std::size_t k = 0; k < qi.size(); ++k) {
+    rotated[k] = Eigen::Vector2d(c * qj[k].x_m - s * qj[k].y_m, s * qj[k].x_m + c * qj[k].y_m);
+    ci += Eigen::Vector2d(qi[k].x_m, qi[k].y_m);
+    rj += rotated[k];
+  }
+  const Eigen::Vector2d t = (ci - rj) / n;
+  double sum_sq = 0.0;
+  Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
+  for (std::size_t k = 0; k < qi.size(); ++k) {
+    sum_sq += (Eigen::Vector2d(qi[k].x_m, qi[k].y_m) - rotated[k] - t).squaredNorm();
+    // d(R q + t) / d(tx, ty, yaw) = [I, perp(R q)].
+    Eigen::Matrix<double, 2, 3> jac;
+    jac << 1, 0, -rotated[k].y(), 0, 1, rotated[k].x();
+    jtj += jac.transpose() * jac;
+  }
+  const double dof = std::max(1.0, 2.0 * n - 3.0);
+  const double floor_m = config.min_residual_px * grid_i.resolution_m;
+  const double sigma2 = std::max(sum_sq / dof, floor_m * floor_m);
+  Eigen::Matrix3d floors = Eigen::Matrix3d::Zero();
+  const double yaw_floor = config.min_yaw_sigma_deg * M_PI / 180.0;
+  floors.diagonal() << config.min_xy_sigma_m * config.min_xy_sigma_m,
+      config.min_xy_sigma_m * config.min_xy_sigma_m, yaw_floor * yaw_floor;
+  // J^T J is 3x3 and well scaled in metres: the closed-form inverse is enough, and
+  // its determinant (relative to the scale of the entries) tells a singular geometry.
+  const Eigen::Matrix3d fisher = jtj / sigma2;
+  const double det = fisher.determinant();
+  const double scale3 = std::pow(fisher.diagonal().cwiseAbs().maxCoeff(), 3.0);
+  if (!(std::abs(det) > 1e-12 * scale3)) {
+    v.reason = "degenerate: inlier geometry does not fix the pose";
+    return v;
+  }
+  const Eigen::Matrix3d covariance = fisher.inverse() + floors;
+  const Eigen::Matrix3d information = covariance.inverse();
+  LoopConstraint& lc = v.constraint;
+  lc.i = id_i;
+  lc.j = id_j;
+  lc.T_ij = {t.x(), t.y(), yaw};
+  lc.information = 0.5 * (information + information.transpose());
+  lc.good_matches_akaze = akaze.good_matches;
+  lc.good_matches_orb = orb.good_matches;
+  lc.residual_rms_m = std::sqrt(sum_sq / n);
+  if (!lc.information.allFinite() || !std::isfinite(lc.T_ij.x_m) || !std::isfinite(lc.T_ij.y_m) ||
+      !std::isfinite(lc.T_ij.yaw_rad)) {
+    v.reason = "degenerate: non-finite constraint";
+    return v;
+  }
+  v.accepted = true;
+  return v;
+}
+
+}  // namespace uwbsar

@@ -1,0 +1,50 @@
+// From two detectors' matches between keyframe tiles i (a) and j (b) to a metric
+// loop constraint: the paper's AKAZE+ORB rule (loop_rule.h), a geometry check
+// (collinear inliers cannot fix a pose), the fused transform converted exactly from
+// pixels to the tiles' anchor frames, and an information matrix derived from the
+// match: the Fisher information of a rigid fit to all inliers with the measured
+// residual spread, plus configured floors on the standard deviations.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+
+#include "frontend/image_grid.h"
+#include "frontend/place_recognition/feature_matcher.h"
+#include "frontend/place_recognition/loop_rule.h"
+#include "slam/config.h"
+#include "slam/pose2.h"
+
+namespace uwbsar {
+
+/// A loop edge for the pose graph: the pose of keyframe j's anchor in keyframe i's
+/// anchor frame, with information over (x, y, yaw) of that measurement in frame i
+/// (the backend's residual: [R_i^T (t_j - t_i) - t_ij; yaw_j - yaw_i - yaw_ij]).
+struct LoopConstraint {
+  int i = 0;
+  int j = 0;
+  Pose2 T_ij;
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+  int good_matches_akaze = 0;
+  int good_matches_orb = 0;
+  double residual_rms_m = 0.0;  ///< of all inliers under T_ij
+};
+
+struct LoopValidation {
+  bool accepted = false;
+  std::string reason;             ///< why rejected (empty when accepted)
+  LoopDecision decision;          ///< the paper's rule and fused pixel transform
+  double inlier_spread_px = 0.0;  ///< smaller principal std of the inliers in tile j
+  LoopConstraint constraint;      ///< valid when accepted
+};
+
+/// Metric T_anchorA_anchorB of a pixel similarity p_a = s R(rot) p_b + t (scale ignored),
+/// using the two tiles' grids: the exact counterpart of a pixel transform.
+Pose2 PixelToMetricTransform(const ImageGrid& grid_a, const ImageGrid& grid_b, double tx_px,
+                             double ty_px, double rotation_deg);
+
+LoopValidation ValidateLoop(int id_i, const ImageGrid& grid_i, int id_j, const ImageGrid& grid_j,
+                            const MatchResult& akaze, const MatchResult& orb,
+                            const LoopValidationConfig& config);
+
+}  // namespace uwbsar
