@@ -1,0 +1,36 @@
+// Routes for the simulated robot: a polyline of waypoints in the world (map)
+// frame, either built in (`depart-return`, `loop`) or read from a waypoints file.
+//
+// Waypoints file: one waypoint per line, `x_m y_m` (whitespace or comma
+// separated), '#' starts a comment, blank lines are skipped. At least two
+// distinct waypoints; the robot starts on the first, facing the second.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "slam/config.h"
+#include "slam/errors.h"
+#include "slam/occupancy_grid.h"
+#include "slam/pose2.h"
+
+namespace uwbsar::sim {
+
+struct Route {
+  std::string name;
+  std::vector<Point2> waypoints;
+};
+
+/// `depart-return`: from the start pose, depart_distance_m straight ahead, turn
+/// around on the spot and drive back to the start (the paper's experiment).
+/// `loop`: a closed rectangle loop_length_m x loop_width_m, turning left, back to the start.
+Route BuiltInRoute(const std::string& name, const SimRouteConfig& config);
+/// The built-in route names, for help texts and errors.
+std::vector<std::string> BuiltInRouteNames();
+
+/// A built-in route name, or else a waypoints file. Throws InputError naming the
+/// file and line on malformed input, or listing the built-in names when `spec` is neither.
+Route ResolveRoute(const std::string& spec, const SimRouteConfig& config);
+Route ReadWaypointsFile(const std::string& path);
+
+}  // namespace uwbsar::sim

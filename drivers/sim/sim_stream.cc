@@ -1,0 +1,112 @@
+#include "drivers/sim/sim_stream.h"
+
+#include <cmath>
+
+#include "frontend/sensor_geometry.h"
+
+namespace uwbsar::sim {
+namespace {
+
+// Seed streams: the environment uses its own (sim_environment.cc).
+constexpr std::uint64_t kOdometryStream = 1;
+constexpr std::uint64_t kLaserStream = 2;
+constexpr std::uint64_t kRadarStream = 16;  // + sensor id
+
+long long CountFor(double duration_s, double rate_hz) {
+  return static_cast<long long>(std::floor(duration_s * rate_hz + 1e-9)) + 1;
+}
+
+}  // namespace
+
+SimScenario MakeScenario(const Config& config, const std::string& map_yaml,
+                         const std::string& route_spec, std::uint64_t seed,
+                         const std::vector<PointTargetConfig>& extra_targets) {
+  SimRadarConfig radar = config.simulator.radar;
+  radar.point_targets.insert(radar.point_targets.end(), extra_targets.begin(), extra_targets.end());
+  SimScenario scenario;
+  scenario.environment =
+      std::make_shared<const SimEnvironment>(LoadOccupancyGrid(map_yaml), radar, seed);
+  scenario.route = ResolveRoute(route_spec, config.simulator.route);
+  scenario.trajectory = Trajectory::Plan(scenario.route, config.simulator.route);
+  scenario.trajectory.CheckClearance(scenario.environment->grid(),
+                                     config.simulator.route.clearance_m);
+  return scenario;
+}
+
+SimStream::SimStream(const Config& config, const SimScenario& scenario, std::uint64_t seed)
+    : config_(config),
+      scenario_(scenario),
+      seed_(seed),
+      start_ns_(SecondsToNs(config.simulator.start_time_s)),
+      laser_caster_(scenario.environment->grid()),
+      odometry_(config.simulator.odometry, scenario.trajectory.At(0.0),
+                DeriveSeed(seed, kOdometryStream)) {
+  for (const RadarConfig& radar : config.radars) {
+    const SensorGeometry sensor = SensorGeometry::FromConfig(radar, config.pulse);
+    T_robot_sensor_.push_back(sensor.T_robot_sensor);
+    radars_.push_back(std::make_unique<RadarSimulator>(*scenario.environment, config.pulse, sensor,
+                                                       config.simulator.radar));
+  }
+  const double duration = scenario.trajectory.duration_s();
+  const SimulatorConfig& s = config.simulator;
+  ground_truth_clock_ = {s.odometry.ground_truth_rate_hz, 0,
+                         CountFor(duration, s.odometry.ground_truth_rate_hz)};
+  odometry_clock_ = {s.odometry.rate_hz, 0, CountFor(duration, s.odometry.rate_hz)};
+  radar_clock_ = {s.radar.rate_hz, 0, radars_.empty() ? 0 : CountFor(duration, s.radar.rate_hz)};
+  laser_clock_ = {s.laser.rate_hz, 0, s.laser.enabled ? CountFor(duration, s.laser.rate_hz) : 0};
+}
+
+TimestampNs SimStream::StampOf(const Clock& clock) const {
+  return start_ns_ + static_cast<TimestampNs>(
+                         std::llround(static_cast<double>(clock.next) * 1e9 / clock.rate_hz));
+}
+
+bool SimStream::Next(SimMessage* msg) {
+  // Pick the source with the earliest pending message; ties go in declaration order.
+  Clock* clocks[4] = {&ground_truth_clock_, &odometry_clock_, &radar_clock_, &laser_clock_};
+  int best = -1;
+  TimestampNs best_stamp = 0;
+  for (int i = 0; i < 4; ++i) {
+    if (clocks[i]->next >= clocks[i]->count) continue;
+    const TimestampNs stamp = StampOf(*clocks[i]);
+    if (best < 0 || stamp < best_stamp) {
+      best = i;
+      best_stamp = stamp;
+    }
+  }
+  if (best < 0) return false;
+  Clock& clock = *clocks[best];
+  const RobotState truth = scenario_.trajectory.At(TimeOf(clock));
+  msg->stamp_ns = best_stamp;
+  if (best == 0) {
+    msg->kind = SimMessage::Kind::kGroundTruth;
+    msg->pose = {best_stamp, truth.T_world_robot, truth.linear_mps, truth.angular_radps};
+    ++clock.next;
+  } else if (best == 1) {
+    msg->kind = SimMessage::Kind::kOdometry;
+    msg->pose = odometry_.Step(best_stamp, truth);
+    ++clock.next;
+  } else if (best == 2) {
+    const int k = next_radar_;
+    msg->kind = SimMessage::Kind::kRadarScan;
+    std::mt19937_64 rng(DeriveSeed(seed_, kRadarStream + static_cast<std::uint64_t>(k),
+                                   static_cast<std::uint64_t>(clock.next)));
+    msg->scan.stamp_ns = best_stamp;
+    msg->scan.sensor_id = k;
+    msg->scan.samples = radars_[k]->Simulate(truth.T_world_robot * T_robot_sensor_[k], &rng);
+    if (++next_radar_ == static_cast<int>(radars_.size())) {
+      next_radar_ = 0;
+      ++clock.next;
+    }
+  } else {
+    msg->kind = SimMessage::Kind::kLaserScan;
+    std::mt19937_64 rng(DeriveSeed(seed_, kLaserStream, static_cast<std::uint64_t>(clock.next)));
+    msg->laser =
+        SimulateLaserScan(laser_caster_, truth.T_world_robot, config_.simulator.laser, &rng);
+    msg->laser.stamp_ns = best_stamp;
+    ++clock.next;
+  }
+  return true;
+}
+
+}  // namespace uwbsar::sim
