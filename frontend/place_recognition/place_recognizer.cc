@@ -1,0 +1,109 @@
+#include "frontend/place_recognition/place_recognizer.h"
+
+#include <chrono>
+
+namespace uwbsar {
+namespace {
+
+double MsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+}  // namespace
+
+KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe, const Config& config) {
+  const DetectorConfig& d = config.place_recognition.detectors;
+  KeyframeFeatures k;
+  k.id = keyframe.id;
+  k.grid = keyframe.grid;
+  k.path_begin_m = keyframe.path_begin_m;
+  k.T_world_anchor = keyframe.T_world_anchor;
+  const FeatureImage image = MakeFeatureImage(keyframe.image, config.enhance, d.mask_erode_px);
+  k.akaze = ComputeFeatures(image, DetectorKind::kAkaze, d);
+  k.orb = ComputeFeatures(image, DetectorKind::kOrb, d);
+  // Where the robot drove while imaging the tile: a better "position" of the tile than
+  // the anchor, which sits at its first scan.
+  double sx = 0.0, sy = 0.0;
+  for (const ImagedScan& s : keyframe.scans) {
+    const Pose2 T_anchor_robot = Between(keyframe.T_world_anchor, s.T_world_robot);
+    sx += T_anchor_robot.x_m;
+    sy += T_anchor_robot.y_m;
+  }
+  if (!keyframe.scans.empty()) {
+    const double n = static_cast<double>(keyframe.scans.size());
+    k.centre_anchor = {sx / n, sy / n};
+  } else {
+    k.centre_anchor =
+        keyframe.grid.PixelToMetric(0.5 * (keyframe.grid.cols - 1), 0.5 * (keyframe.grid.rows - 1));
+  }
+  return k;
+}
+
+PlaceRecognizer::PlaceRecognizer(const Config& config)
+    : config_(config), index_(config.place_recognition.candidates.grid_cell_m) {}
+
+Point2 PlaceRecognizer::CentreInWorld(const KeyframeFeatures& k) const {
+  return k.T_world_anchor * k.centre_anchor;
+}
+
+PlaceRecognitionResult PlaceRecognizer::Process(const Keyframe& keyframe) {
+  return Process(keyframe, keyframe.T_world_anchor);
+}
+
+PlaceRecognitionResult PlaceRecognizer::Process(const Keyframe& keyframe,
+                                                const Pose2& T_world_anchor_estimate) {
+  const auto start = std::chrono::steady_clock::now();
+  KeyframeFeatures features = ExtractKeyframeFeatures(keyframe, config_);
+  features.T_world_anchor = T_world_anchor_estimate;
+  return Process(std::move(features), MsSince(start));
+}
+
+PlaceRecognitionResult PlaceRecognizer::Process(KeyframeFeatures features, double features_ms) {
+  const PlaceRecognitionConfig& pr = config_.place_recognition;
+  PlaceRecognitionResult result;
+  result.keyframe_id = features.id;
+  result.features_ms = features_ms;
+  if (!have_path_origin_) {
+    path_at_last_loop_m_ = features.path_begin_m;
+    have_path_origin_ = true;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  CandidateQuery query;
+  query.position_world = CentreInWorld(features);
+  query.path_begin_m = features.path_begin_m;
+  query.travelled_since_loop_m = features.path_begin_m - path_at_last_loop_m_;
+  result.candidates = FindCandidates(index_, query, pr.candidates);
+  for (int id : result.candidates.ids) {
+    const KeyframeFeatures& old = *database_.at(id);
+    LoopAttempt attempt;
+    attempt.candidate_id = id;
+    attempt.akaze = MatchFeatures(old.akaze, features.akaze, pr.matching);
+    attempt.orb = MatchFeatures(old.orb, features.orb, pr.matching);
+    attempt.validation = ValidateLoop(old.id, old.grid, features.id, features.grid, attempt.akaze,
+                                      attempt.orb, pr.validation);
+    if (attempt.validation.accepted) result.loops.push_back(attempt.validation.constraint);
+    result.attempts.push_back(std::move(attempt));
+  }
+  if (!result.loops.empty()) path_at_last_loop_m_ = features.path_begin_m;
+  result.matching_ms = MsSince(start);
+  const int id = features.id;
+  auto stored = std::make_unique<KeyframeFeatures>(std::move(features));
+  index_.Upsert(id, CentreInWorld(*stored), stored->path_begin_m);
+  database_[id] = std::move(stored);
+  return result;
+}
+
+void PlaceRecognizer::UpdatePose(int id, const Pose2& T_world_anchor) {
+  auto it = database_.find(id);
+  if (it == database_.end()) return;
+  it->second->T_world_anchor = T_world_anchor;
+  index_.Upsert(id, CentreInWorld(*it->second), it->second->path_begin_m);
+}
+
+const KeyframeFeatures* PlaceRecognizer::Find(int id) const {
+  auto it = database_.find(id);
+  return it == database_.end() ? nullptr : it->second.get();
+}
+
+}  // namespace uwbsar

@@ -1,0 +1,78 @@
+// Loop-closure detection for a stream of keyframes: each new keyframe's AKAZE and
+// ORB features are computed once and cached; candidates come from the spatial
+// index (candidate_search.h); each candidate pair is matched with both detectors,
+// validated by the paper's rule (loop_validator.h) and, when accepted, becomes a
+// metric LoopConstraint. Every attempt is reported with its reason.
+#pragma once
+
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include "frontend/keyframe.h"
+#include "frontend/place_recognition/candidate_search.h"
+#include "frontend/place_recognition/feature_matcher.h"
+#include "frontend/place_recognition/features.h"
+#include "frontend/place_recognition/loop_validator.h"
+#include "slam/config.h"
+
+namespace uwbsar {
+
+/// What is kept of a keyframe for place recognition (the tile image is not needed).
+struct KeyframeFeatures {
+  int id = 0;
+  ImageGrid grid;
+  FeatureSet akaze;
+  FeatureSet orb;
+  Point2 centre_anchor;  ///< mean robot position of the tile's scans, in the anchor frame
+  double path_begin_m = 0.0;
+  Pose2 T_world_anchor;  ///< latest estimate (odometry, or optimised via UpdatePose)
+};
+
+/// Computes a keyframe's cached features (AKAZE and ORB) from its tile.
+KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe, const Config& config);
+
+struct LoopAttempt {
+  int candidate_id = 0;  ///< i (the older keyframe); the new one is j
+  MatchResult akaze;
+  MatchResult orb;
+  LoopValidation validation;
+};
+
+struct PlaceRecognitionResult {
+  int keyframe_id = 0;
+  CandidateSet candidates;
+  std::vector<LoopAttempt> attempts;
+  std::vector<LoopConstraint> loops;  ///< accepted: T_ij = pose of the new keyframe j in i
+  double features_ms = 0.0;
+  double matching_ms = 0.0;  ///< all candidates, matching and validation
+};
+
+class PlaceRecognizer {
+ public:
+  explicit PlaceRecognizer(const Config& config);
+
+  /// Processes a new keyframe: features, candidates, matching, validation; then adds it
+  /// to the database. `T_world_anchor_estimate` is the best current estimate of its
+  /// anchor (odometry chained onto the last optimised pose); by default its odometry pose.
+  PlaceRecognitionResult Process(const Keyframe& keyframe);
+  PlaceRecognitionResult Process(const Keyframe& keyframe, const Pose2& T_world_anchor_estimate);
+  /// Same, for features computed elsewhere (e.g. in a worker thread).
+  PlaceRecognitionResult Process(KeyframeFeatures features, double features_ms);
+
+  /// Moves a stored keyframe after the pose graph corrected it.
+  void UpdatePose(int id, const Pose2& T_world_anchor);
+  const KeyframeFeatures* Find(int id) const;
+  std::size_t size() const { return database_.size(); }
+
+ private:
+  Point2 CentreInWorld(const KeyframeFeatures& k) const;
+
+  Config config_;
+  KeyframeIndex index_;
+  std::unordered_map<int, std::unique_ptr<KeyframeFeatures>> database_;
+  double path_at_last_loop_m_ = 0.0;
+  bool have_path_origin_ = false;
+};
+
+}  // namespace uwbsar
