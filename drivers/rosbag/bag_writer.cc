@@ -55,7 +55,8 @@ std::string BagWriter::StorageFileName() const {
   return fs::path(dir_).filename().string() + "_0." + (options_.storage == "mcap" ? "mcap" : "db3");
 }
 
-int BagWriter::AddTopic(const std::string& name, const std::string& type) {
+int BagWriter::AddTopic(const std::string& name, const std::string& type,
+                        const std::string& definition) {
   for (const TopicInfo& t : topics_) {
     if (t.name == name) throw std::invalid_argument("topic " + name + " added twice");
   }
@@ -63,7 +64,7 @@ int BagWriter::AddTopic(const std::string& name, const std::string& type) {
   t.name = name;
   t.type = type;
   t.offered_qos_profiles = DefaultQosProfileYaml();
-  t.message_definition = RosMessageDefinition(type);
+  t.message_definition = definition.empty() ? RosMessageDefinition(type) : definition;
   t.definition_encoding = "ros2msg";
   storage_->AddTopic(t);
   topics_.push_back(std::move(t));

@@ -36,8 +36,10 @@ class BagWriter {
   BagWriter& operator=(const BagWriter&) = delete;
 
   /// Registers a topic and returns its id. Known types (ros_messages.h) get their
-  /// message definition; others are written with an empty one.
-  int AddTopic(const std::string& name, const std::string& type);
+  /// ros2msg definition by default; pass `definition` for other types (MCAP readers
+  /// such as Foxglove and rosbags decode with it), else an empty one is stored.
+  int AddTopic(const std::string& name, const std::string& type,
+               const std::string& definition = "");
   /// Writes one serialized (CDR) message received at `log_time_ns`.
   void Write(int topic, TimestampNs log_time_ns, const std::uint8_t* data, std::size_t size);
   void Write(int topic, TimestampNs log_time_ns, const std::vector<std::uint8_t>& cdr) {

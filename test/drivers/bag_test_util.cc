@@ -182,7 +182,10 @@ void WriteFixtureBag(const std::string& dir, const BagWriterOptions& options) {
     return m;
   };
   for (const Item& it : items) {
-    if (!ids.count(it.topic)) ids[it.topic] = writer.AddTopic(it.topic, types[it.kind]);
+    if (!ids.count(it.topic)) {
+      ids[it.topic] =
+          writer.AddTopic(it.topic, types[it.kind], it.kind == 5 ? "string data\n" : "");
+    }
     const int id = ids[it.topic];
     switch (it.kind) {
       case 0: {
