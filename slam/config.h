@@ -135,7 +135,7 @@ struct BackendConfig {
                                            ///< initial estimates) or chordal (relaxation)
   std::string robust_loss = "cauchy";      ///< loss on loop edges while outliers are sought:
                                            ///< cauchy, huber or none
-  double robust_loss_scale = 1.0;          ///< whitened residual norm (sigmas) where it turns robust
+  double robust_loss_scale = 2.0;          ///< whitened residual norm (sigmas) where it turns robust
   double loop_rejection_chi2 = 16.27;      ///< a loop whose chi2 at the solution exceeds this is
                                            ///< rejected (16.27 = 99.9 % quantile, 3 DOF)
   int max_rejection_rounds = 10;           ///< solve / reject / re-admit rounds per optimisation
@@ -155,7 +155,7 @@ struct BackendConfig {
   double loop_xy_information = 44.7;       ///< loop information when none is given (follow-on)
   double loop_yaw_information = 44.7;      ///< loop yaw information when none is given (follow-on)
   int max_iterations = 100;                ///< Ceres iterations per solve
-  double function_tolerance = 1e-6;        ///< Ceres convergence: relative change of the cost
+  double function_tolerance = 1e-10;       ///< Ceres convergence: relative change of the cost
   int num_threads = 1;                     ///< Ceres threads (Jacobian evaluation)
 
   template <class V>

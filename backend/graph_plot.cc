@@ -1,0 +1,46 @@
+#include "backend/graph_plot.h"
+
+#include <algorithm>
+#include <opencv2/imgproc.hpp>
+
+namespace uwbsar {
+
+cv::Mat PlotPoseGraph(const std::map<int, Pose2>& poses, const std::vector<PoseGraphEdge>& edges,
+                      const std::vector<EdgeReport>& reports, int size_px) {
+  double lo_x = 1e300, hi_x = -1e300, lo_y = 1e300, hi_y = -1e300;
+  for (const auto& [id, p] : poses) {
+    lo_x = std::min(lo_x, p.x_m);
+    hi_x = std::max(hi_x, p.x_m);
+    lo_y = std::min(lo_y, p.y_m);
+    hi_y = std::max(hi_y, p.y_m);
+  }
+  if (poses.empty()) return cv::Mat(size_px, size_px, CV_8UC3, cv::Scalar(255, 255, 255));
+  const int margin = 10;
+  const double span = std::max({hi_x - lo_x, hi_y - lo_y, 1e-6});
+  const double scale = (size_px - 2 * margin) / span;
+  const int cols = static_cast<int>((hi_x - lo_x) * scale) + 2 * margin + 1;
+  const int rows = static_cast<int>((hi_y - lo_y) * scale) + 2 * margin + 1;
+  cv::Mat image(rows, cols, CV_8UC3, cv::Scalar(255, 255, 255));
+  auto pixel = [&](const Pose2& p) {  // row 0 at the top: +y up
+    return cv::Point(static_cast<int>(margin + (p.x_m - lo_x) * scale),
+                     static_cast<int>(margin + (hi_y - p.y_m) * scale));
+  };
+  // Loops first so that the trajectory stays visible on top; rejected loops last.
+  for (int pass = 0; pass < 3; ++pass) {
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      const PoseGraphEdge& e = edges[i];
+      const bool rejected = i < reports.size() && reports[i].rejected;
+      const int wanted = e.kind == EdgeKind::kOdometry ? 1 : (rejected ? 2 : 0);
+      if (wanted != pass) continue;
+      const auto a = poses.find(e.from_id), b = poses.find(e.to_id);
+      if (a == poses.end() || b == poses.end()) continue;
+      const cv::Scalar colour = pass == 1   ? cv::Scalar(0, 0, 0)
+                                : pass == 2 ? cv::Scalar(0, 0, 230)
+                                            : cv::Scalar(80, 190, 80);
+      cv::line(image, pixel(a->second), pixel(b->second), colour, 1, cv::LINE_AA);
+    }
+  }
+  return image;
+}
+
+}  // namespace uwbsar

@@ -1,0 +1,405 @@
+#include "backend/pose_graph.h"
+
+#include <ceres/loss_function.h>
+#include <ceres/problem.h>
+#include <ceres/solver.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "backend/chordal_init.h"
+#include "backend/loop_support.h"
+#include "backend/se2_edge_cost.h"
+#include "slam/errors.h"
+
+namespace uwbsar {
+
+struct PoseGraph::SolverNode {
+  std::array<double, 3> x{};  // the Ceres parameter block [x_m, y_m, yaw_rad]
+};
+
+struct PoseGraph::SolverEdge {
+  int index = 0;
+  PoseGraphEdge edge;
+  Eigen::Matrix3d sqrt_information;
+  SolverNode* from = nullptr;
+  SolverNode* to = nullptr;
+  // Loops only: the loss is swapped between robust, none and "switched off" without
+  // touching the problem's structure (the wrapper is owned here, not by the problem).
+  std::unique_ptr<ceres::LossFunctionWrapper> loss;
+  bool rejected = false;
+  bool held_back = false;  // unsupported and not (yet) confirmed by the solution
+  int support = -1;
+  double chi2 = 0.0;
+
+  double Chi2() const {
+    return Se2Chi2(from->x.data(), to->x.data(), edge.T_from_to, sqrt_information);
+  }
+};
+
+namespace {
+
+std::string EdgeName(const PoseGraphEdge& e) {
+  return std::string(e.kind == EdgeKind::kLoop ? "loop" : "odometry") + " edge " +
+         std::to_string(e.from_id) + " -> " + std::to_string(e.to_id);
+}
+
+bool Finite(const Pose2& p) {
+  return std::isfinite(p.x_m) && std::isfinite(p.y_m) && std::isfinite(p.yaw_rad);
+}
+
+ceres::LossFunction* MakeRobustLoss(const BackendConfig& c) {
+  if (c.robust_loss == "cauchy") return new ceres::CauchyLoss(c.robust_loss_scale);
+  if (c.robust_loss == "huber") return new ceres::HuberLoss(c.robust_loss_scale);
+  return nullptr;  // "none": plain least squares
+}
+
+}  // namespace
+
+PoseGraph::PoseGraph(const BackendConfig& config) : config_(config) {
+  ceres::Problem::Options options;
+  options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+  options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_ = std::make_unique<ceres::Problem>(options);
+}
+
+PoseGraph::~PoseGraph() = default;
+
+void PoseGraph::AddNode(int id, const Pose2& T_world_node, bool reseed_from_odometry) {
+  if (!Finite(T_world_node)) {
+    throw InputError("pose graph: node " + std::to_string(id) + " has a non-finite pose");
+  }
+  std::lock_guard<std::mutex> lock(data_mutex_);
+  if (estimates_.count(id)) {
+    throw InputError("pose graph: node " + std::to_string(id) + " already exists");
+  }
+  estimates_[id] = T_world_node;
+  pending_nodes_.push_back({id, T_world_node, reseed_from_odometry});
+}
+
+void PoseGraph::FixNode(int id) {
+  std::lock_guard<std::mutex> lock(data_mutex_);
+  if (!estimates_.count(id)) {
+    throw InputError("pose graph: cannot fix unknown node " + std::to_string(id));
+  }
+  if (std::find(fixed_ids_.begin(), fixed_ids_.end(), id) != fixed_ids_.end()) return;
+  fixed_ids_.push_back(id);
+  pending_fixed_.push_back(id);
+}
+
+int PoseGraph::AddEdge(const PoseGraphEdge& edge) {
+  const std::string name = EdgeName(edge);
+  if (edge.from_id == edge.to_id)
+    throw InputError("pose graph: " + name + " joins a node to itself");
+  if (!Finite(edge.T_from_to))
+    throw InputError("pose graph: " + name + " has a non-finite measurement");
+  if (!SqrtInformation(edge.information)) {
+    throw InputError("pose graph: " + name +
+                     " has an information matrix that is not symmetric positive definite");
+  }
+  std::lock_guard<std::mutex> lock(data_mutex_);
+  for (const int id : {edge.from_id, edge.to_id}) {
+    if (!estimates_.count(id)) {
+      throw InputError("pose graph: " + name + " refers to unknown node " + std::to_string(id));
+    }
+  }
+  const int index = static_cast<int>(edges_.size());
+  edges_.push_back(edge);
+  EdgeReport report;
+  report.index = index;
+  report.from_id = edge.from_id;
+  report.to_id = edge.to_id;
+  report.kind = edge.kind;
+  reports_.push_back(report);
+  pending_edges_.push_back(index);
+  return index;
+}
+
+int PoseGraph::AddOdometryEdge(int from_id, int to_id, const Pose2& T_from_to) {
+  const double d =
+      std::max(std::hypot(T_from_to.x_m, T_from_to.y_m), config_.odometry_min_distance_m);
+  PoseGraphEdge e;
+  e.from_id = from_id;
+  e.to_id = to_id;
+  e.T_from_to = T_from_to;
+  e.kind = EdgeKind::kOdometry;
+  e.information =
+      Eigen::Vector3d(config_.odometry_xy_information / d, config_.odometry_xy_information / d,
+                      config_.odometry_yaw_information / d)
+          .asDiagonal();
+  return AddEdge(e);
+}
+
+int PoseGraph::AddLoopEdge(int from_id, int to_id, const Pose2& T_from_to) {
+  PoseGraphEdge e;
+  e.from_id = from_id;
+  e.to_id = to_id;
+  e.T_from_to = T_from_to;
+  e.kind = EdgeKind::kLoop;
+  e.information = Eigen::Vector3d(config_.loop_xy_information, config_.loop_xy_information,
+                                  config_.loop_yaw_information)
+                      .asDiagonal();
+  return AddEdge(e);
+}
+
+void PoseGraph::InsertPending(std::vector<PendingNode> nodes, const std::vector<int>& edge_indices,
+                              const std::vector<PoseGraphEdge>& edges,
+                              const std::vector<int>& fixed) {
+  std::unordered_map<int, bool> reseed;  // new nodes that may still be re-seeded
+  for (const PendingNode& n : nodes) {
+    auto node = std::make_unique<SolverNode>();
+    node->x = {n.guess.x_m, n.guess.y_m, n.guess.yaw_rad};
+    problem_->AddParameterBlock(node->x.data(), 3);
+    if (first_node_id_ < 0) {
+      first_node_id_ = n.id;
+      problem_->SetParameterBlockConstant(node->x.data());
+    }
+    // A node the caller fixes keeps the pose it was given.
+    if (n.reseed && std::find(fixed.begin(), fixed.end(), n.id) == fixed.end()) reseed[n.id] = true;
+    solver_nodes_[n.id] = std::move(node);
+  }
+  if (!fixed.empty()) {
+    if (!explicit_gauge_) {
+      explicit_gauge_ = true;
+      problem_->SetParameterBlockVariable(solver_nodes_.at(first_node_id_)->x.data());
+    }
+    for (const int id : fixed) problem_->SetParameterBlockConstant(solver_nodes_.at(id)->x.data());
+  }
+  for (std::size_t k = 0; k < edge_indices.size(); ++k) {
+    auto se = std::make_unique<SolverEdge>();
+    se->index = edge_indices[k];
+    se->edge = edges[k];
+    se->sqrt_information = *SqrtInformation(se->edge.information);  // checked in AddEdge
+    se->from = solver_nodes_.at(se->edge.from_id).get();
+    se->to = solver_nodes_.at(se->edge.to_id).get();
+    if (se->edge.kind == EdgeKind::kOdometry) {
+      auto it = reseed.find(se->edge.to_id);
+      if (it != reseed.end() && it->second) {
+        const Pose2 T_world_from{se->from->x[0], se->from->x[1], se->from->x[2]};
+        const Pose2 T_world_to = T_world_from * se->edge.T_from_to;
+        se->to->x = {T_world_to.x_m, T_world_to.y_m, T_world_to.yaw_rad};
+        it->second = false;
+      }
+    } else {
+      se->loss = std::make_unique<ceres::LossFunctionWrapper>(nullptr, ceres::TAKE_OWNERSHIP);
+    }
+    problem_->AddResidualBlock(new Se2EdgeCost(se->edge.T_from_to, se->sqrt_information),
+                               se->loss.get(), se->from->x.data(), se->to->x.data());
+    solver_edges_.push_back(std::move(se));
+  }
+}
+
+void PoseGraph::SetLoopLosses(bool robust) {
+  for (auto& se : solver_edges_) {
+    if (!se->loss) continue;
+    if (se->rejected) {
+      // A zero-weight loss switches the residual off but keeps the problem's structure.
+      se->loss->Reset(new ceres::ScaledLoss(nullptr, 0.0, ceres::TAKE_OWNERSHIP),
+                      ceres::TAKE_OWNERSHIP);
+    } else {
+      se->loss->Reset(robust ? MakeRobustLoss(config_) : nullptr, ceres::TAKE_OWNERSHIP);
+    }
+  }
+}
+
+void PoseGraph::RunSolve(OptimizeResult* result) {
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  options.max_num_iterations = config_.max_iterations;
+  options.function_tolerance = config_.function_tolerance;
+  options.num_threads = config_.num_threads;
+  options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, problem_.get(), &summary);
+  result->iterations += static_cast<int>(summary.iterations.size()) - 1;
+  result->solves += 1;
+  result->converged = summary.termination_type == ceres::CONVERGENCE;
+  result->termination = ceres::TerminationTypeToString(summary.termination_type) +
+                        std::string(": ") + summary.message;
+}
+
+bool PoseGraph::UpdateLoopStatus() {
+  bool changed = false;
+  for (auto& se : solver_edges_) {
+    se->chi2 = se->Chi2();
+    if (!se->loss || se->held_back || config_.max_rejection_rounds == 0) continue;
+    const bool reject = !(se->chi2 <= config_.loop_rejection_chi2);
+    if (reject != se->rejected) {
+      se->rejected = reject;
+      changed = true;
+    }
+  }
+  return changed;
+}
+
+void PoseGraph::RejectionRounds(bool robust, OptimizeResult* result) {
+  for (int round = 0; round < std::max(1, config_.max_rejection_rounds); ++round) {
+    SetLoopLosses(robust);
+    RunSolve(result);
+    if (!UpdateLoopStatus()) break;
+  }
+}
+
+void PoseGraph::ChordalStart() {
+  std::vector<const double*> constant;
+  for (const auto& [id, node] : solver_nodes_) {
+    if (problem_->IsParameterBlockConstant(node->x.data())) constant.push_back(node->x.data());
+  }
+  if (constant.size() != 1) return;  // the relaxation holds exactly one node in place
+  int anchor_id = -1;
+  std::map<int, Pose2> guess;
+  for (const auto& [id, node] : solver_nodes_) {
+    guess[id] = Pose2{node->x[0], node->x[1], node->x[2]};
+    if (node->x.data() == constant[0]) anchor_id = id;
+  }
+  std::vector<PoseGraphEdge> edges;
+  for (const auto& se : solver_edges_) {
+    if (!se->held_back) edges.push_back(se->edge);
+  }
+  for (const auto& [id, pose] : ChordalInitialization(guess, edges, anchor_id)) {
+    solver_nodes_.at(id)->x = {pose.x_m, pose.y_m, pose.yaw_rad};
+  }
+}
+
+void PoseGraph::ComputeSupport() {
+  if (config_.min_loop_support <= 0) return;
+  std::vector<PoseGraphEdge> edges;
+  edges.reserve(solver_edges_.size());
+  for (const auto& se : solver_edges_) edges.push_back(se->edge);
+  LoopSupportOptions options;
+  options.window_nodes = config_.loop_support_window;
+  options.max_cycle_chi2 = config_.loop_rejection_chi2;
+  const std::vector<int> support = CountLoopSupport(edges, options);
+  for (std::size_t i = 0; i < solver_edges_.size(); ++i) {
+    SolverEdge& se = *solver_edges_[i];
+    se.support = support[i];
+    if (!se.loss) continue;
+    se.held_back = support[i] < config_.min_loop_support;
+    if (se.held_back) se.rejected = true;
+  }
+}
+
+double PoseGraph::HalfChi2Sum(bool accepted_only) const {
+  double sum = 0.0;
+  for (const auto& se : solver_edges_) {
+    if (accepted_only && se->rejected) continue;
+    sum += se->Chi2();
+  }
+  return 0.5 * sum;
+}
+
+OptimizeResult PoseGraph::Optimize() {
+  std::lock_guard<std::mutex> solve_lock(solve_mutex_);
+  const auto t0 = std::chrono::steady_clock::now();
+  {
+    std::vector<PendingNode> nodes;
+    std::vector<int> edge_indices;
+    std::vector<PoseGraphEdge> edges;
+    std::vector<int> fixed;
+    {
+      std::lock_guard<std::mutex> lock(data_mutex_);
+      nodes.swap(pending_nodes_);
+      edge_indices.swap(pending_edges_);
+      fixed.swap(pending_fixed_);
+      for (const int i : edge_indices) edges.push_back(edges_[static_cast<std::size_t>(i)]);
+    }
+    InsertPending(std::move(nodes), edge_indices, edges, fixed);
+  }
+
+  OptimizeResult result;
+  result.converged = true;  // nothing to solve is a solved problem
+  result.termination = "no edges";
+  result.initial_cost = HalfChi2Sum(false);
+  ComputeSupport();
+  if (!solved_once_ && config_.initialization == "chordal") ChordalStart();
+  solved_once_ = true;
+  const bool robust = config_.robust_loss != "none";
+  if (!solver_edges_.empty()) {
+    RejectionRounds(robust, &result);
+    // Held-back loops that the solution confirms join the others.
+    bool admitted = false;
+    for (auto& se : solver_edges_) {
+      if (!se->held_back) continue;
+      if (se->Chi2() <= config_.unsupported_loop_chi2) {
+        se->held_back = false;
+        se->rejected = false;
+        admitted = true;
+      }
+    }
+    if (admitted) RejectionRounds(robust, &result);
+    if (robust && config_.final_least_squares &&
+        std::any_of(solver_edges_.begin(), solver_edges_.end(),
+                    [](const auto& se) { return se->loss && !se->rejected; })) {
+      // Plain least squares on the inliers; a loop that only fit under the robust loss is
+      // rejected and the inliers re-solved.
+      RejectionRounds(false, &result);
+    }
+  }
+  for (auto& se : solver_edges_) se->chi2 = se->Chi2();
+  result.final_cost = HalfChi2Sum(true);
+
+  std::lock_guard<std::mutex> lock(data_mutex_);
+  for (auto& [id, node] : solver_nodes_) {
+    node->x[2] = NormalizeAngle(node->x[2]);
+    estimates_[id] = Pose2{node->x[0], node->x[1], node->x[2]};
+  }
+  for (const auto& se : solver_edges_) {
+    EdgeReport& r = reports_[static_cast<std::size_t>(se->index)];
+    r.chi2 = se->chi2;
+    r.rejected = se->rejected;
+    r.support = se->support;
+    r.reason = !se->rejected ? "" : (se->held_back ? "unsupported" : "chi2");
+    if (r.rejected) result.rejected.push_back(r);
+    if (r.kind == EdgeKind::kLoop) ++result.num_loops;
+  }
+  result.num_nodes = static_cast<int>(solver_nodes_.size());
+  result.num_edges = static_cast<int>(solver_edges_.size());
+  result.solve_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return result;
+}
+
+bool PoseGraph::HasNode(int id) const {
+  std::lock_guard<std::mutex> lock(data_mutex_);
+  return estimates_.count(id) > 0;
+}
+
+Pose2 PoseGraph::GetPose(int id) const {
+  std::lock_guard<std::mutex> lock(data_mutex_);
+  return estimates_.at(id);
+}
+
+std::map<int, Pose2> PoseGraph::GetPoses() const {
+  std::lock_guard<std::mutex> lock(data_mutex_);
+  return estimates_;
+}
+
+std::vector<PoseGraphEdge> PoseGraph::Edges() const {
+  std::lock_guard<std::mutex> lock(data_mutex_);
+  return edges_;
+}
+
+std::vector<EdgeReport> PoseGraph::EdgeReports() const {
+  std::lock_guard<std::mutex> lock(data_mutex_);
+  return reports_;
+}
+
+std::vector<int> PoseGraph::FixedNodes() const {
+  std::lock_guard<std::mutex> lock(data_mutex_);
+  return fixed_ids_;
+}
+
+int PoseGraph::NumNodes() const {
+  std::lock_guard<std::mutex> lock(data_mutex_);
+  return static_cast<int>(estimates_.size());
+}
+
+int PoseGraph::NumEdges() const {
+  std::lock_guard<std::mutex> lock(data_mutex_);
+  return static_cast<int>(edges_.size());
+}
+
+}  // namespace uwbsar

@@ -1,0 +1,171 @@
+// The SE(2) pose graph on Ceres: nodes are keyframe poses in the world frame,
+// edges are relative-pose measurements (odometry between consecutive keyframes,
+// loops from place recognition). Optimize() solves it robustly:
+//
+//   0. on the first call with initialization = "chordal", the estimate is replaced by a
+//      chordal relaxation (backend/chordal_init.h) over the edges that pass step 1;
+//   1. support gate (min_loop_support > 0): loops that too few neighbouring loops
+//      agree with (backend/loop_support.h) are held back from the first solves;
+//   2. loops carry a robust loss (BackendConfig::robust_loss) and the graph is solved;
+//      every loop's chi2 (e^T Omega e) is evaluated at the solution: loops above
+//      loop_rejection_chi2 are rejected (their residual is switched off), rejected
+//      loops that fit again are re-admitted, and the graph is re-solved, until the
+//      set of accepted loops no longer changes (at most max_rejection_rounds);
+//   3. held-back loops whose chi2 against that solution passes the same test are
+//      admitted and step 2 repeats; the others stay rejected as "unsupported"
+//      (a lone false loop into an otherwise unconstrained part of the map, e.g. the
+//      end of a run, fits perfectly once accepted, so only this order rejects it);
+//   4. with final_least_squares, a last solve without loss on the accepted loops
+//      gives the plain least-squares (maximum-likelihood) estimate of the inliers.
+// Odometry edges are never rejected. The gauge is held by the nodes marked fixed,
+// or by the first node added when none is.
+//
+// Incremental use: the Ceres problem lives as long as the graph; AddNode/AddEdge
+// queue new elements, Optimize() inserts them and re-solves from the current
+// estimate without rebuilding anything.
+//
+// Locking contract: every public method is safe to call from any thread.
+// Add*/Fix*/Get*/Edge* only take a short internal lock, never wait for a
+// running solve, and see the estimate of the last finished Optimize() (nodes
+// added since then have their initial guess). Optimize() calls are serialised
+// with each other; a solve runs on the caller's thread (e.g. a background
+// optimisation thread) while the frontend keeps adding keyframes.
+#pragma once
+
+#include <Eigen/Core>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "slam/config.h"
+#include "slam/pose2.h"
+
+namespace ceres {
+class Problem;
+}
+
+namespace uwbsar {
+
+enum class EdgeKind { kOdometry, kLoop };
+
+struct PoseGraphEdge {
+  int from_id = 0;
+  int to_id = 0;
+  Pose2 T_from_to;  ///< measurement: pose of `to` in the frame of `from`
+  Eigen::Matrix3d information = Eigen::Matrix3d::Identity();  ///< over (x, y, yaw), SPD
+  EdgeKind kind = EdgeKind::kLoop;
+};
+
+/// The state of one edge after the last Optimize().
+struct EdgeReport {
+  int index = 0;  ///< the index AddEdge returned
+  int from_id = 0;
+  int to_id = 0;
+  EdgeKind kind = EdgeKind::kLoop;
+  bool rejected = false;  ///< only loops are ever rejected
+  std::string reason;     ///< why rejected: "chi2" (residual test) or "unsupported"
+  int support = -1;       ///< loops: neighbouring loops that agree (-1: not computed)
+  double chi2 = 0.0;      ///< e^T Omega e at the last solution (0 before the first)
+};
+
+struct OptimizeResult {
+  bool converged = false;     ///< the last Ceres solve reported CONVERGENCE
+  std::string termination;    ///< the last solve's termination type and message
+  int iterations = 0;         ///< Ceres iterations, summed over all solves of this call
+  int solves = 0;             ///< Ceres solves of this call (rejection rounds + final)
+  double initial_cost = 0.0;  ///< 0.5 * sum of chi2 of all edges at the initial estimate
+  double final_cost = 0.0;    ///< 0.5 * sum of chi2 of the accepted edges at the solution
+  double solve_time_s = 0.0;  ///< wall time of this call (insertion, solves, rejection)
+  int num_nodes = 0;
+  int num_edges = 0;
+  int num_loops = 0;
+  std::vector<EdgeReport> rejected;  ///< every loop rejected at the end, with its chi2
+};
+
+class PoseGraph {
+ public:
+  explicit PoseGraph(const BackendConfig& config = {});
+  ~PoseGraph();
+  PoseGraph(const PoseGraph&) = delete;
+  PoseGraph& operator=(const PoseGraph&) = delete;
+
+  /// Adds a node with its initial estimate. With `reseed_from_odometry`, the first
+  /// odometry edge that reaches the node before it is first optimised replaces the
+  /// guess by estimate(from) * T_from_to, so that a keyframe added during a solve
+  /// starts on the corrected trajectory. Throws InputError on a duplicate id or a
+  /// non-finite pose; the graph is then unchanged.
+  void AddNode(int id, const Pose2& T_world_node, bool reseed_from_odometry = true);
+
+  /// Holds a node constant (the gauge). Throws InputError on an unknown id.
+  void FixNode(int id);
+
+  /// Adds an edge; returns its index. Throws InputError (graph unchanged) when a node
+  /// is unknown, from == to, the measurement is not finite, or the information is not
+  /// symmetric positive definite.
+  int AddEdge(const PoseGraphEdge& edge);
+
+  /// An odometry edge whose information is config's per-metre information divided by
+  /// the travelled distance |t_from_to| (at least odometry_min_distance_m).
+  int AddOdometryEdge(int from_id, int to_id, const Pose2& T_from_to);
+
+  /// A loop edge with the configured default information.
+  int AddLoopEdge(int from_id, int to_id, const Pose2& T_from_to);
+
+  /// Inserts what was added since the last call and solves (see the file comment).
+  OptimizeResult Optimize();
+
+  bool HasNode(int id) const;
+  /// Current estimate of a node; throws std::out_of_range on an unknown id.
+  Pose2 GetPose(int id) const;
+  std::map<int, Pose2> GetPoses() const;
+  std::vector<PoseGraphEdge> Edges() const;
+  std::vector<EdgeReport> EdgeReports() const;
+  std::vector<int> FixedNodes() const;
+  int NumNodes() const;
+  int NumEdges() const;
+  const BackendConfig& config() const { return config_; }
+
+ private:
+  struct SolverNode;
+  struct SolverEdge;
+  struct PendingNode {
+    int id = 0;
+    Pose2 guess;
+    bool reseed = false;
+  };
+
+  // Solver side, guarded by solve_mutex_.
+  void InsertPending(std::vector<PendingNode> nodes, const std::vector<int>& edge_indices,
+                     const std::vector<PoseGraphEdge>& edges, const std::vector<int>& fixed);
+  void SetLoopLosses(bool robust);
+  void RunSolve(OptimizeResult* result);
+  bool UpdateLoopStatus();  ///< returns true when some loop changed status
+  void RejectionRounds(bool robust, OptimizeResult* result);
+  void ComputeSupport();
+  void ChordalStart();
+  double HalfChi2Sum(bool accepted_only) const;
+
+  const BackendConfig config_;
+
+  mutable std::mutex data_mutex_;  // guards everything below up to solve_mutex_
+  std::map<int, Pose2> estimates_;
+  std::vector<PoseGraphEdge> edges_;
+  std::vector<EdgeReport> reports_;
+  std::vector<int> fixed_ids_;
+  std::vector<PendingNode> pending_nodes_;
+  std::vector<int> pending_edges_;
+  std::vector<int> pending_fixed_;
+
+  std::mutex solve_mutex_;  // guards the solver side below
+  std::unique_ptr<ceres::Problem> problem_;
+  std::unordered_map<int, std::unique_ptr<SolverNode>> solver_nodes_;
+  std::vector<std::unique_ptr<SolverEdge>> solver_edges_;
+  int first_node_id_ = -1;
+  bool explicit_gauge_ = false;
+  bool solved_once_ = false;
+};
+
+}  // namespace uwbsar
