@@ -455,7 +455,7 @@ struct PlaceRecognitionConfig {
 /// (`uwbsar export-pcd`). Evaluation rule: see backend/compare/map_metrics.h.
 struct CompareConfig {
   std::string align = "icp";                  ///< icp (from the map origins or --init) or origin
-  std::string icp_method = "point_to_point";  ///< point_to_point or point_to_plane (2-D normals)
+  std::string icp_method = "point_to_plane";  ///< point_to_plane (2-D normals) or point_to_point
   std::vector<double> icp_max_correspondence_m = {1.0, 0.5, 0.25, 0.1};  ///< coarse-to-fine
                                               ///< ICP stages: pairs farther apart are ignored
   int icp_max_iterations = 50;                ///< ICP iterations per stage

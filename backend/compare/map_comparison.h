@@ -1,0 +1,46 @@
+// `uwbsar compare`: a SAR occupancy map against a LiDAR grid, from files to outputs.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "backend/compare/grid_alignment.h"
+#include "backend/compare/map_metrics.h"
+#include "slam/config.h"
+#include "slam/occupancy_grid.h"
+
+namespace uwbsar {
+
+/// How the SAR map is placed on the LiDAR grid.
+struct AlignRequest {
+  std::string mode = "icp";  ///< "icp": ICP from `T_lidar_sar`; "origin": identity (the map
+                             ///< origins are trusted); "fixed": `T_lidar_sar` as given
+  Pose2 T_lidar_sar;         ///< ICP start (icp) or the transform (fixed)
+  std::string method;        ///< overrides config.icp_method when not empty
+};
+
+struct ComparisonReport {
+  std::string sar_path;
+  std::string lidar_path;
+  OccupancyGrid sar;
+  OccupancyGrid lidar;
+  std::string align_mode;     ///< icp, origin or fixed
+  std::string icp_method;     ///< when align_mode == icp
+  AlignmentResult alignment;  ///< T_target_source = T_lidar_sar actually used
+  GridComparison comparison;
+  double seconds = 0.0;  ///< loading, alignment and scoring
+};
+
+/// Loads both maps (InputError naming the file on bad input), aligns and scores.
+/// Throws InputError when the maps do not overlap: no observed SAR cell falls on a known
+/// LiDAR cell, before or after alignment. Writes nothing.
+ComparisonReport CompareMapFiles(const std::string& sar_yaml, const std::string& lidar_yaml,
+                                 const AlignRequest& request, const CompareConfig& config);
+
+/// Writes `dir`/overlay.png then `dir`/metrics.json (each to a temporary name, renamed);
+/// returns the paths. `dir` must exist.
+std::vector<std::string> WriteComparisonOutputs(const ComparisonReport& report,
+                                                const std::string& dir,
+                                                const CompareConfig& config);
+
+}  // namespace uwbsar

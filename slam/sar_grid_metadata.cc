@@ -1,0 +1,62 @@
+#include "slam/sar_grid_metadata.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+
+#include "slam/errors.h"
+
+namespace uwbsar {
+namespace {
+
+std::string Where(const std::string& file, const YAML::Node& node) {
+  const YAML::Mark mark = node.Mark();
+  return mark.line >= 0 ? file + ":" + std::to_string(mark.line + 1) : file;
+}
+
+template <class T>
+T Require(const std::string& file, const YAML::Node& root, const char* key) {
+  const YAML::Node node = root[key];
+  if (!node) throw InputError(file + ": missing grid key '" + key + "'");
+  try {
+    return node.as<T>();
+  } catch (const YAML::Exception&) {
+    throw InputError(Where(file, node) + ": grid key '" + key + "' has invalid value '" +
+                     (node.IsScalar() ? node.Scalar() : std::string("<not a value>")) + "'");
+  }
+}
+
+}  // namespace
+
+SarGridMetadata LoadSarGridMetadata(const std::string& yaml_path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(yaml_path);
+  } catch (const YAML::BadFile&) {
+    throw InputError(yaml_path + ": cannot open grid file");
+  } catch (const YAML::ParserException& e) {
+    throw InputError(yaml_path + ":" + std::to_string(e.mark.line + 1) +
+                     ": YAML syntax error: " + e.msg);
+  }
+  if (!root.IsMap()) throw InputError(yaml_path + ": a grid file must be a YAML mapping");
+  SarGridMetadata g;
+  g.x0_m = Require<double>(yaml_path, root, "x0_m");
+  g.y0_m = Require<double>(yaml_path, root, "y0_m");
+  g.resolution_m = Require<double>(yaml_path, root, "resolution_m");
+  g.rows = Require<int>(yaml_path, root, "rows");
+  g.cols = Require<int>(yaml_path, root, "cols");
+  if (root["mode"]) g.mode = Require<std::string>(yaml_path, root, "mode");
+  if (!std::isfinite(g.x0_m) || !std::isfinite(g.y0_m)) {
+    throw InputError(yaml_path + ": grid keys 'x0_m' and 'y0_m' must be finite");
+  }
+  if (!(g.resolution_m > 0.0) || !std::isfinite(g.resolution_m)) {
+    throw InputError(Where(yaml_path, root["resolution_m"]) +
+                     ": grid key 'resolution_m' must be > 0");
+  }
+  if (g.rows < 1 || g.cols < 1) {
+    throw InputError(yaml_path + ": grid keys 'rows' and 'cols' must be >= 1");
+  }
+  return g;
+}
+
+}  // namespace uwbsar
