@@ -32,5 +32,6 @@ void EnsureDirectory(const std::string& dir);
 void AddConfigCommand(CLI::App& app, const GlobalOptions& globals);
 void AddImageCommand(CLI::App& app, const GlobalOptions& globals);
 void AddDemoCommand(CLI::App& app, const GlobalOptions& globals);
+void AddInfoCommand(CLI::App& app, const GlobalOptions& globals);
 
 }  // namespace uwbsar::tools
