@@ -11,11 +11,11 @@ DEB_PACKAGES := build-essential cmake ninja-build pkg-config git \
   libceres-dev libopencv-dev libpcl-dev libgpiod-dev libyaml-cpp-dev libsqlite3-dev \
   libzstd-dev liblz4-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev \
   libeigen3-dev libfftw3-dev nlohmann-json3-dev python3-venv python3-pip clang-format \
-  chromium
+  chromium clang libclang-rt-14-dev
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps venv build test demo bench sanitize-test format format-check clean
+.PHONY: all deps venv build test demo bench sanitize-test format format-check clean fuzz-smoke
 
 all: build
 
@@ -59,6 +59,17 @@ sanitize-test: deps venv
 	  -DUWBSAR_SANITIZE=ON -DUWBSAR_WERROR=ON -DUWBSAR_BUILD_BENCH=OFF $(CMAKE_FLAGS)
 	cmake --build $(SAN_BUILD_DIR) -j $(JOBS)
 	cd $(SAN_BUILD_DIR) && UWBSAR_VENV=$(CURDIR)/$(VENV) ctest --output-on-failure -j $(JOBS) -L unit
+
+# libFuzzer targets of the bag parsers (fuzz/), built with clang, each run briefly from
+# the seed corpus; fails on any finding (crash, leak, timeout, out-of-memory).
+FUZZ_DIR ?= build-fuzz
+FUZZ_SECONDS ?= 20
+fuzz-smoke: deps
+	cmake -S fuzz -B $(FUZZ_DIR) -G Ninja -DCMAKE_CXX_COMPILER=clang++
+	cmake --build $(FUZZ_DIR) -j $(JOBS)
+	for f in cdr mcap; do mkdir -p $(FUZZ_DIR)/corpus_$$f && \
+	  $(FUZZ_DIR)/$${f}_fuzz -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=2048 \
+	    -artifact_prefix=$(FUZZ_DIR)/$${f}_ $(FUZZ_DIR)/corpus_$$f fuzz/corpus/$$f || exit 1; done
 
 format:
 	git ls-files '*.h' '*.cc' | xargs clang-format -i

@@ -403,6 +403,13 @@ class McapStorageReader final : public StorageReader {
         Entry e;
         e.log_time_ns = ToNs(r.U64(), r);
         r.U64();
+        // The merge opens chunks by their declared start time, so a message before it
+        // would come out of order: the spec makes the range binding, so hold it to it.
+        if (e.log_time_ns < s.start_ns || e.log_time_ns > s.end_ns) {
+          r.Fail("message log_time " + std::to_string(e.log_time_ns) +
+                 " lies outside the chunk's declared range [" + std::to_string(s.start_ns) + ", " +
+                 std::to_string(s.end_ns) + "]");
+        }
         e.topic = TopicOf(channel, r);
         e.offset = content + 22;
         e.size = static_cast<std::size_t>(length) - 22;

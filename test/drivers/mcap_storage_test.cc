@@ -201,6 +201,17 @@ TEST(McapStorageTest, WrongSummaryCrcIsNamed) {
   EXPECT_NE(ErrorOf(f).find("summary CRC mismatch"), std::string::npos) << ErrorOf(f);
 }
 
+TEST(McapStorageTest, MessageOutsideItsChunkRangeIsNamed) {
+  TempDir tmp;
+  McapWriteOptions o;
+  o.compression = "";
+  Bytes f = WriteMcap(tmp.path, o, Ramp(10));
+  const std::size_t chunk = FindRecord(f, mcap::kChunk);
+  const std::uint64_t later = kT0 + 5000;  // message_start_time after the first messages
+  std::memcpy(f.data() + chunk + 9, &later, 8);
+  EXPECT_NE(ErrorOf(f).find("outside the chunk's declared range"), std::string::npos) << ErrorOf(f);
+}
+
 TEST(McapStorageTest, RecordLengthOverrunIsNamed) {
   TempDir tmp;
   McapWriteOptions o;
