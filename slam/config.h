@@ -208,7 +208,7 @@ struct SimRouteConfig {
   double start_yaw_deg = 0.0;      ///< ... heading this way
   double depart_distance_m = 7.5;  ///< depart-return: distance driven out before turning back
   double loop_length_m = 7.0;      ///< loop: rectangle this long along the start heading ...
-  double loop_width_m = 0.8;       ///< ... and this wide, turning left
+  double loop_width_m = 0.6;       ///< ... and this wide, turning left
   double clearance_m = 0.15;       ///< a route passing closer to an occupied cell is an error
 
   template <class V>
@@ -267,13 +267,13 @@ struct SimOdometryConfig {
   double wheel_radius_m = 0.035;          ///< wheel radius the base assumes
   double wheelbase_m = 0.230;             ///< wheel separation the base assumes
   double ticks_per_revolution = 2578.33;  ///< encoder ticks per wheel turn
-  double wheel_scale_error = 0.015;       ///< encoders over-report wheel travel by this
+  double wheel_scale_error = 0.01;        ///< encoders over-report wheel travel by this
                                           ///< fraction (true wheels smaller than assumed)
-  double wheel_scale_asymmetry = 0.0012;  ///< right minus left scale error: heading drift
-                                          ///< of about 3 deg per 10 m straight
+  double wheel_scale_asymmetry = 0.0007;  ///< right minus left scale error: heading drift
+                                          ///< of about 1.7 deg per 10 m straight
   double wheelbase_error = 0.02;          ///< true wheelbase is this fraction shorter than
                                           ///< assumed: turns are under-reported
-  double wheel_slip_std = 0.02;           ///< random error of each wheel's travel per step,
+  double wheel_slip_std = 0.01;           ///< random error of each wheel's travel per step,
                                           ///< as a fraction of that travel
 
   template <class V>

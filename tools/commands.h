@@ -33,5 +33,6 @@ void AddConfigCommand(CLI::App& app, const GlobalOptions& globals);
 void AddImageCommand(CLI::App& app, const GlobalOptions& globals);
 void AddDemoCommand(CLI::App& app, const GlobalOptions& globals);
 void AddInfoCommand(CLI::App& app, const GlobalOptions& globals);
+void AddSimulateCommand(CLI::App& app, const GlobalOptions& globals);
 
 }  // namespace uwbsar::tools

@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   AddImageCommand(app, globals);
   AddDemoCommand(app, globals);
   AddInfoCommand(app, globals);
+  AddSimulateCommand(app, globals);
 
   try {
     app.parse(argc, argv);
