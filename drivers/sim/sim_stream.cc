@@ -47,8 +47,13 @@ SimStream::SimStream(const Config& config, const SimScenario& scenario, std::uin
     radars_.push_back(std::make_unique<RadarSimulator>(*scenario.environment, config.pulse, sensor,
                                                        config.simulator.radar));
   }
-  const double duration = scenario.trajectory.duration_s();
   const SimulatorConfig& s = config.simulator;
+  // The recording ends on the first odometry sample at or after the end of the motion
+  // (the robot stands still by then), so odometry brackets every scan as in a real bag.
+  const double odometry_period = 1.0 / s.odometry.rate_hz;
+  const double duration =
+      std::ceil(scenario.trajectory.duration_s() / odometry_period - 1e-9) * odometry_period;
+  end_s_ = duration;
   ground_truth_clock_ = {s.odometry.ground_truth_rate_hz, 0,
                          CountFor(duration, s.odometry.ground_truth_rate_hz)};
   odometry_clock_ = {s.odometry.rate_hz, 0, CountFor(duration, s.odometry.rate_hz)};

@@ -58,7 +58,8 @@ class SimStream {
   bool Next(SimMessage* msg);
 
   TimestampNs start_ns() const { return start_ns_; }
-  double duration_s() const { return scenario_.trajectory.duration_s(); }
+  /// Time from the first to the last message: the motion, rounded up to whole odometry periods.
+  double duration_s() const { return end_s_; }
   /// Cells lit by the latest scan of radar `sensor_id` (for metrics and tests).
   const std::vector<int>& lit_cells(int sensor_id) const { return radars_[sensor_id]->lit_cells(); }
 
@@ -78,6 +79,7 @@ class SimStream {
   SimScenario scenario_;
   std::uint64_t seed_;
   TimestampNs start_ns_ = 0;
+  double end_s_ = 0.0;
   std::vector<std::unique_ptr<RadarSimulator>> radars_;
   std::vector<Pose2> T_robot_sensor_;
   GridRayCaster laser_caster_;
