@@ -464,6 +464,8 @@ struct CompareConfig {
   int icp_normal_neighbours = 6;              ///< point_to_plane: cells used for each normal
   double icp_min_inlier_fraction = 0.3;       ///< fewer SAR cells within the last stage's
                                               ///< distance: ICP rejected, initial transform kept
+  bool grey_205_unknown = true;               ///< trinary maps: grey 205 is unknown even where
+                                              ///< the YAML's free_thresh (Nav2: 0.25) says free
   int tolerance_cells = 1;                    ///< precision / recall / F1 match distance
                                               ///< (cells, 8-neighbourhood)
   int overlay_pixels_per_cell = 4;            ///< overlay.png scale
@@ -480,6 +482,7 @@ struct CompareConfig {
     v("icp_transformation_epsilon", icp_transformation_epsilon);
     v("icp_normal_neighbours", icp_normal_neighbours);
     v("icp_min_inlier_fraction", icp_min_inlier_fraction);
+    v("grey_205_unknown", grey_205_unknown);
     v("tolerance_cells", tolerance_cells);
     v("overlay_pixels_per_cell", overlay_pixels_per_cell);
     v("pcd_peak_fraction", pcd_peak_fraction);

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <sstream>
 
+#include "backend/compare/map_loading.h"
 #include "backend/compare/metrics_json.h"
 #include "backend/compare/overlay.h"
 #include "frontend/image_io.h"
@@ -47,8 +48,8 @@ ComparisonReport CompareMapFiles(const std::string& sar_yaml, const std::string&
   ComparisonReport r;
   r.sar_path = sar_yaml;
   r.lidar_path = lidar_yaml;
-  r.sar = LoadOccupancyGrid(sar_yaml);
-  r.lidar = LoadOccupancyGrid(lidar_yaml);
+  r.sar = LoadMapForComparison(sar_yaml, config.grey_205_unknown);
+  r.lidar = LoadMapForComparison(lidar_yaml, config.grey_205_unknown);
   r.align_mode = request.mode;
   const int tolerance = config.tolerance_cells;
 

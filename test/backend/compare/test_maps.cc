@@ -5,13 +5,15 @@
 #include <filesystem>
 #include <fstream>
 
+#include "backend/compare/map_loading.h"
+
 namespace uwbsar::testing {
 
 std::string SeedLabYaml() {
   return std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_lab/my_map.yaml";
 }
 
-OccupancyGrid SeedLabGrid() { return LoadOccupancyGrid(SeedLabYaml()); }
+OccupancyGrid SeedLabGrid() { return LoadMapForComparison(SeedLabYaml(), true); }
 
 OccupancyGrid RasterizedCopy(const OccupancyGrid& grid, const Pose2& T, double resolution_m) {
   const double res = resolution_m > 0 ? resolution_m : grid.resolution_m;

@@ -1,0 +1,47 @@
+#include "backend/compare/map_loading.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "test_maps.h"
+
+namespace uwbsar {
+namespace {
+
+int CountUnknown(const OccupancyGrid& g) {
+  int n = 0;
+  for (std::int8_t v : g.cells) n += v == OccupancyGrid::kUnknown;
+  return n;
+}
+
+TEST(MapLoadingTest, SeedLabGrey205IsUnknownDespiteNav2FreeThreshold) {
+  // my_map.pgm: 14308 free (254), 10656 unknown (205), 1276 occupied (0); free_thresh 0.25.
+  const OccupancyGrid literal = LoadMapForComparison(testing::SeedLabYaml(), false);
+  const OccupancyGrid compared = LoadMapForComparison(testing::SeedLabYaml(), true);
+  EXPECT_EQ(CountUnknown(literal), 0);
+  EXPECT_EQ(CountUnknown(compared), 10656);
+  int occupied = 0;
+  for (int r = 0; r < compared.rows; ++r) {
+    for (int c = 0; c < compared.cols; ++c) occupied += compared.IsOccupied(r, c);
+  }
+  EXPECT_EQ(occupied, 1276);
+}
+
+TEST(MapLoadingTest, OnlyTrinaryUnnegatedMapsAreReinterpreted) {
+  const std::string dir = testing::FreshDir("loading");
+  std::ofstream(dir + "/m.pgm", std::ios::binary) << "P5\n3 1\n255\n"
+                                                  << std::string("\xcd\xfe\x00", 3);
+  std::ofstream(dir + "/scale.yaml")
+      << "image: m.pgm\nmode: scale\nresolution: 0.1\norigin: [0, 0, 0]\n";
+  std::ofstream(dir + "/negated.yaml")
+      << "image: m.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 1\n";
+  std::ofstream(dir + "/trinary.yaml") << "image: m.pgm\nresolution: 0.1\norigin: [0, 0, 0]\n";
+  EXPECT_EQ(LoadMapForComparison(dir + "/trinary.yaml", true).At(0, 0), OccupancyGrid::kUnknown);
+  EXPECT_EQ(LoadMapForComparison(dir + "/trinary.yaml", true).At(0, 1), OccupancyGrid::kFree);
+  EXPECT_NE(LoadMapForComparison(dir + "/scale.yaml", true).At(0, 0), OccupancyGrid::kUnknown);
+  EXPECT_NE(LoadMapForComparison(dir + "/negated.yaml", true).At(0, 0), OccupancyGrid::kUnknown);
+}
+
+}  // namespace
+}  // namespace uwbsar
