@@ -264,6 +264,18 @@ void PoseGraph::ChordalStart() {
   }
 }
 
+bool PoseGraph::AdmitConfirmedLoops() {
+  bool admitted = false;
+  for (auto& se : solver_edges_) {
+    if (se->held_back && se->Chi2() <= config_.unsupported_loop_chi2) {
+      se->held_back = false;
+      se->rejected = false;
+      admitted = true;
+    }
+  }
+  return admitted;
+}
+
 void PoseGraph::ComputeSupport() {
   if (config_.min_loop_support <= 0) return;
   std::vector<PoseGraphEdge> edges;
@@ -314,28 +326,31 @@ OptimizeResult PoseGraph::Optimize() {
   result.termination = "no edges";
   result.initial_cost = HalfChi2Sum(false);
   ComputeSupport();
-  if (!solved_once_ && config_.initialization == "chordal") ChordalStart();
+  const bool first = !solved_once_;
+  if (first && config_.initialization == "chordal") ChordalStart();
   solved_once_ = true;
   const bool robust = config_.robust_loss != "none";
   if (!solver_edges_.empty()) {
-    RejectionRounds(robust, &result);
-    // Held-back loops that the solution confirms join the others.
-    bool admitted = false;
-    for (auto& se : solver_edges_) {
-      if (!se->held_back) continue;
-      if (se->Chi2() <= config_.unsupported_loop_chi2) {
-        se->held_back = false;
-        se->rejected = false;
-        admitted = true;
-      }
+    bool settled = false;
+    if (!first) {
+      // Warm update: the current estimate is the map solved without the held-back loops,
+      // so they are tested right away; then plain least squares, and the robust rounds
+      // only when some loop changes status.
+      AdmitConfirmedLoops();
+      SetLoopLosses(false);
+      RunSolve(&result);
+      settled = !UpdateLoopStatus();
     }
-    if (admitted) RejectionRounds(robust, &result);
-    if (robust && config_.final_least_squares &&
-        std::any_of(solver_edges_.begin(), solver_edges_.end(),
-                    [](const auto& se) { return se->loss && !se->rejected; })) {
-      // Plain least squares on the inliers; a loop that only fit under the robust loss is
-      // rejected and the inliers re-solved.
-      RejectionRounds(false, &result);
+    if (!settled) {
+      RejectionRounds(robust, &result);
+      if (AdmitConfirmedLoops()) RejectionRounds(robust, &result);
+      if (robust && config_.final_least_squares &&
+          std::any_of(solver_edges_.begin(), solver_edges_.end(),
+                      [](const auto& se) { return se->loss && !se->rejected; })) {
+        // Plain least squares on the inliers; a loop that only fit under the robust loss
+        // is rejected and the inliers re-solved.
+        RejectionRounds(false, &result);
+      }
     }
   }
   for (auto& se : solver_edges_) se->chi2 = se->Chi2();

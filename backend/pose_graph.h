@@ -17,6 +17,9 @@
 //      end of a run, fits perfectly once accepted, so only this order rejects it);
 //   4. with final_least_squares, a last solve without loss on the accepted loops
 //      gives the plain least-squares (maximum-likelihood) estimate of the inliers.
+// Later calls (incremental updates) start from the previous solution, which is already
+// the map without the held-back loops: those are tested first (step 3), then one plain
+// least-squares solve runs, and steps 2-4 follow only if some loop changes status.
 // Odometry edges are never rejected. The gauge is held by the nodes marked fixed,
 // or by the first node added when none is.
 //
@@ -145,6 +148,7 @@ class PoseGraph {
   bool UpdateLoopStatus();  ///< returns true when some loop changed status
   void RejectionRounds(bool robust, OptimizeResult* result);
   void ComputeSupport();
+  bool AdmitConfirmedLoops();  ///< admits held-back loops that the estimate confirms
   void ChordalStart();
   double HalfChi2Sum(bool accepted_only) const;
 

@@ -32,6 +32,7 @@ void EnsureDirectory(const std::string& dir);
 void AddConfigCommand(CLI::App& app, const GlobalOptions& globals);
 void AddImageCommand(CLI::App& app, const GlobalOptions& globals);
 void AddDemoCommand(CLI::App& app, const GlobalOptions& globals);
+void AddOptimizeCommand(CLI::App& app, const GlobalOptions& globals);
 void AddLoopsCommand(CLI::App& app, const GlobalOptions& globals);
 void AddInfoCommand(CLI::App& app, const GlobalOptions& globals);
 void AddSimulateCommand(CLI::App& app, const GlobalOptions& globals);

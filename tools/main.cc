@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   AddConfigCommand(app, globals);
   AddImageCommand(app, globals);
   AddDemoCommand(app, globals);
+  AddOptimizeCommand(app, globals);
   AddLoopsCommand(app, globals);
   AddInfoCommand(app, globals);
   AddSimulateCommand(app, globals);
