@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   AddDemoCommand(app, globals);
   AddOptimizeCommand(app, globals);
   AddLoopsCommand(app, globals);
+  AddDetectorsCommand(app, globals);
   AddInfoCommand(app, globals);
   AddSimulateCommand(app, globals);
 
