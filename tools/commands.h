@@ -37,5 +37,7 @@ void AddLoopsCommand(CLI::App& app, const GlobalOptions& globals);
 void AddDetectorsCommand(CLI::App& app, const GlobalOptions& globals);
 void AddInfoCommand(CLI::App& app, const GlobalOptions& globals);
 void AddSimulateCommand(CLI::App& app, const GlobalOptions& globals);
+void AddCompareCommand(CLI::App& app, const GlobalOptions& globals);
+void AddExportPcdCommand(CLI::App& app, const GlobalOptions& globals);
 
 }  // namespace uwbsar::tools

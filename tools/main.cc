@@ -33,6 +33,8 @@ int main(int argc, char** argv) {
   AddDetectorsCommand(app, globals);
   AddInfoCommand(app, globals);
   AddSimulateCommand(app, globals);
+  AddCompareCommand(app, globals);
+  AddExportPcdCommand(app, globals);
 
   try {
     app.parse(argc, argv);
