@@ -1,0 +1,145 @@
+// Acceptance B (issue 4): over all candidate keyframe pairs of simulated runs (no pose
+// prior: every pair that does not share scans), precision and recall of accepted loops
+// for each detector alone (more than N good matches and a plausible scale) and for the
+// paper's AKAZE+ORB rule. An accepted loop is correct when its metric transform is
+// within 5 cm and 2 deg of the ground truth; a pair is a true loop when the tiles'
+// true centres are within 1 m (their paths overlap by at least half).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <map>
+
+#include "frontend/place_recognition/place_recognizer.h"
+#include "test/frontend/place_recognition/sim_run.h"
+
+namespace uwbsar::testing {
+namespace {
+
+struct Tally {
+  int accepted = 0, correct = 0, positives = 0, found = 0;
+  double Precision() const { return accepted ? static_cast<double>(correct) / accepted : 1.0; }
+  double Recall() const { return positives ? static_cast<double>(found) / positives : 1.0; }
+  void Add(const Tally& o) {
+    accepted += o.accepted;
+    correct += o.correct;
+    positives += o.positives;
+    found += o.found;
+  }
+};
+
+using Scores = std::map<std::string, Tally>;
+
+Scores Evaluate(const Config& config, const std::vector<Keyframe>& keyframes,
+                const std::vector<Pose2>& T_world_anchor_true) {
+  const auto& pr = config.place_recognition;
+  std::vector<std::map<DetectorKind, FeatureSet>> features(keyframes.size());
+  std::vector<Point2> centre(keyframes.size());
+  for (std::size_t k = 0; k < keyframes.size(); ++k) {
+    const FeatureImage image =
+        MakeFeatureImage(keyframes[k].image, config.enhance, pr.detectors.mask_erode_px);
+    for (DetectorKind kind : AvailableDetectors()) {
+      features[k][kind] = ComputeFeatures(image, kind, pr.detectors);
+    }
+    centre[k] =
+        T_world_anchor_true[k] * ExtractKeyframeFeatures(keyframes[k], config).centre_anchor;
+  }
+  Scores scores;
+  for (std::size_t i = 0; i < keyframes.size(); ++i) {
+    for (std::size_t j = i + 1; j < keyframes.size(); ++j) {
+      if (keyframes[j].path_begin_m - keyframes[i].path_begin_m <
+          pr.candidates.exclude_recent_path_m) {
+        continue;  // shares scans: never a candidate
+      }
+      const Pose2 truth = Between(T_world_anchor_true[i], T_world_anchor_true[j]);
+      const bool positive =
+          std::hypot(centre[i].x_m - centre[j].x_m, centre[i].y_m - centre[j].y_m) <= 1.0;
+      auto score = [&](const std::string& name, const LoopValidation& v) {
+        Tally& t = scores[name];
+        t.positives += positive;
+        if (!v.accepted) return;
+        const Pose2 e = Between(truth, v.constraint.T_ij);
+        const bool correct =
+            std::hypot(e.x_m, e.y_m) < 0.05 && std::abs(e.yaw_rad) < 2 * M_PI / 180;
+        ++t.accepted;
+        t.correct += correct;
+        t.found += correct && positive;
+      };
+      const Keyframe& a = keyframes[i];
+      const Keyframe& b = keyframes[j];
+      std::map<DetectorKind, MatchResult> m;
+      for (DetectorKind kind : AvailableDetectors()) {
+        m[kind] = MatchFeatures(features[i][kind], features[j][kind], pr.matching);
+        // One detector alone: the rule with the detector standing in for both.
+        score(DetectorName(kind),
+              ValidateLoop(a.id, a.grid, b.id, b.grid, m[kind], m[kind], pr.validation));
+      }
+      score("AKAZE+ORB", ValidateLoop(a.id, a.grid, b.id, b.grid, m[DetectorKind::kAkaze],
+                                      m[DetectorKind::kOrb], pr.validation));
+    }
+  }
+  return scores;
+}
+
+std::vector<Pose2> TrueAnchors(const SimulatedRun& run) {
+  std::vector<Pose2> out;
+  for (const Keyframe& k : run.keyframes) {
+    out.push_back(TruePoseAt(run.ground_truth, k.stamp_ns) *
+                  Between(k.T_world_robot, k.T_world_anchor));
+  }
+  return out;
+}
+
+void Print(const std::string& run, const Scores& s) {
+  for (const auto& [name, t] : s) {
+    std::printf(
+        "[B] %-26s %-9s accepted %3d correct %3d | true loops %3d found %3d | precision "
+        "%.3f recall %.3f\n",
+        run.c_str(), name.c_str(), t.accepted, t.correct, t.positives, t.found, t.Precision(),
+        t.Recall());
+  }
+}
+
+TEST(PrecisionRecallAcceptanceTest, AkazeOrbRuleHasPrecisionOneOnSimulatedRuns) {
+  Config config;
+  Scores total;
+  auto add = [&](const std::string& name, const Scores& s) {
+    Print(name, s);
+    for (const auto& [k, t] : s) total[k].Add(t);
+  };
+  {
+    const SimulatedRun run = SimulateAndImage(config, SeedLabMap(), "depart-return", 4);
+    add("seed_lab depart-return", Evaluate(config, run.keyframes, TrueAnchors(run)));
+  }
+  {
+    const SimulatedRun run = SimulateAndImage(config, SeedLabMap(), "loop", 5);
+    add("seed_lab loop", Evaluate(config, run.keyframes, TrueAnchors(run)));
+  }
+  {
+    // Second environment: a cluttered corridor of point scatterers (walls, furniture).
+    SyntheticPath out;
+    out.length_m = 8.0;
+    out.radar_rate_hz = 60.0;
+    SyntheticPath back = out;
+    back.start = {8.0, 0.05, M_PI};
+    back.start_stamp_ns = out.start_stamp_ns + SecondsToNs(60);
+    const auto scene = ClutterScene(7);
+    ImagedPass d = ImagePass(config, out, scene, 1);
+    ImagedPass r = ImagePass(config, back, scene, 2, 0.01, 0.003, Pose2{0.05, -0.03, 0.01});
+    std::vector<Keyframe> keyframes = std::move(d.keyframes);
+    std::vector<Pose2> truth = d.T_world_anchor_true;
+    for (std::size_t k = 0; k < r.keyframes.size(); ++k) {
+      Keyframe kf = std::move(r.keyframes[k]);
+      kf.id += 1000;
+      kf.path_begin_m += 100.0;
+      keyframes.push_back(std::move(kf));
+      truth.push_back(r.T_world_anchor_true[k]);
+    }
+    add("clutter corridor", Evaluate(config, keyframes, truth));
+  }
+  Print("all runs", total);
+  EXPECT_EQ(total["AKAZE+ORB"].accepted, total["AKAZE+ORB"].correct);
+  EXPECT_GT(total["AKAZE+ORB"].Recall(), 0.5);
+}
+
+}  // namespace
+}  // namespace uwbsar::testing
