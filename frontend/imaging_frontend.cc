@@ -40,6 +40,7 @@ void ImagingFrontend::AddOdometry(const OdometrySample& sample) {
       log_once_.Warn("odom_nan", "odometry sample with NaN/Inf pose dropped");
       return;
   }
+  if (odometry_observer_) odometry_observer_(odometry_.entries().back());
   ProcessPending(false);
 }
 

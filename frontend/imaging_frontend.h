@@ -58,6 +58,10 @@ class ImagingFrontend {
   void SetScanObserver(std::function<void(const ImagedScan&)> observer) {
     observer_ = std::move(observer);
   }
+  /// Called for every odometry sample accepted, as the frontend uses it (jumps corrected).
+  void SetOdometryObserver(std::function<void(const OdometryEntry&)> observer) {
+    odometry_observer_ = std::move(observer);
+  }
 
   const FrontendStats& stats() const { return stats_; }
   const std::vector<SensorGeometry>& sensors() const { return sensors_; }
@@ -76,6 +80,7 @@ class ImagingFrontend {
   std::unique_ptr<KeyframeBuilder> builder_;
   std::vector<RadarScan> pending_;  ///< sorted by stamp
   std::function<void(const ImagedScan&)> observer_;
+  std::function<void(const OdometryEntry&)> odometry_observer_;
   FrontendStats stats_;
   LogOnce log_once_;
 };

@@ -148,9 +148,11 @@ struct BackendConfig {
                                            ///< loop_rejection_chi2: the map's own uncertainty
                                            ///< between the ends counted as one more loop)
   bool final_least_squares = true;         ///< last solve without loss on the accepted loops
-  double odometry_xy_information = 50.0;   ///< x, y information of 1 m of odometry (1/m^2),
-                                           ///< divided by the edge's travelled distance
-  double odometry_yaw_information = 50.0;  ///< yaw information of 1 m of odometry (1/rad^2)
+  double odometry_xy_information = 2500.0;   ///< x, y information of 1 m of odometry (1/m^2):
+                                             ///< sigma 2 cm per metre (wheel odometry, 1-2 %),
+                                             ///< divided by the edge's travelled distance
+  double odometry_yaw_information = 10000.0; ///< yaw information of 1 m of odometry (1/rad^2):
+                                             ///< sigma 0.6 deg per metre
   double odometry_min_distance_m = 0.1;    ///< shorter odometry edges weigh as this distance
   double loop_xy_information = 44.7;       ///< loop information when none is given (follow-on)
   double loop_yaw_information = 44.7;      ///< loop yaw information when none is given (follow-on)
@@ -392,8 +394,10 @@ struct LoopValidationConfig {
                                       ///< must exceed this (collinear matches are degenerate)
   double min_residual_px = 1.0;       ///< floor of the per-feature position noise used for the
                                       ///< loop's information matrix
-  double min_xy_sigma_m = 0.005;      ///< floor of a loop's translation standard deviation
-  double min_yaw_sigma_deg = 0.1;     ///< floor of a loop's rotation standard deviation
+  double min_xy_sigma_m = 0.02;       ///< floor of a loop's translation standard deviation:
+                                      ///< tiles are imaged with odometry, whose 1-2 % drift
+                                      ///< within a tile distorts it by about this much
+  double min_yaw_sigma_deg = 0.5;     ///< floor of a loop's rotation standard deviation
 
   template <class V>
   void Visit(V& v) {
@@ -499,6 +503,11 @@ struct SlamConfig {
                                    ///< features are computed (debugging; costs ~5 MB per metre)
   bool optimize_after_each_loop = true;  ///< re-solve the graph after every accepted loop
                                          ///< (false: once at the end, like the follow-on code)
+  double occupancy_resolution_m = 0.05;  ///< cell size of map.pgm (map_server format)
+  double occupied_fraction = 0.3;        ///< a cell is occupied when its strongest map pixel
+                                         ///< reaches this fraction of the reference level
+  double occupancy_reference_percentile = 99.0;  ///< reference level: this percentile of
+                                                 ///< the observed map pixels
 
   template <class V>
   void Visit(V& v) {
@@ -507,6 +516,9 @@ struct SlamConfig {
     v("map_resolution_m", map_resolution_m);
     v("keep_tile_images", keep_tile_images);
     v("optimize_after_each_loop", optimize_after_each_loop);
+    v("occupancy_resolution_m", occupancy_resolution_m);
+    v("occupied_fraction", occupied_fraction);
+    v("occupancy_reference_percentile", occupancy_reference_percentile);
   }
 };
 

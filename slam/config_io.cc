@@ -323,6 +323,12 @@ void ValidateConfig(const Config& c, const std::string& src) {
   }
   Require(c.slam.map_resolution_m > 0, src, "slam.map_resolution_m", "must be > 0");
   Require(!c.slam.odometry_topic.empty(), src, "slam.odometry_topic", "must not be empty");
+  Require(c.slam.occupancy_resolution_m >= c.slam.map_resolution_m, src,
+          "slam.occupancy_resolution_m", "must be >= slam.map_resolution_m");
+  Require(c.slam.occupied_fraction > 0 && c.slam.occupied_fraction <= 1, src,
+          "slam.occupied_fraction", "must be in (0, 1]");
+  Require(c.slam.occupancy_reference_percentile > 0 && c.slam.occupancy_reference_percentile <= 100,
+          src, "slam.occupancy_reference_percentile", "must be in (0, 100]");
   Require(c.imaging.mode == "paper" || c.imaging.mode == "coherent", src, "imaging.mode",
           "must be 'paper' or 'coherent'");
   Require(c.imaging.pixel_size_m > 0, src, "imaging.pixel_size_m", "must be > 0");

@@ -1,52 +1,66 @@
-// `uwbsar demo`: the embedded default. Until the end-to-end SLAM pipeline lands
-// it is the imaging demo: a simulated 3 m pass along a wall and six metal poles,
-// imaged in both modes, with the point-target quality figures printed.
-#include <cmath>
+// `uwbsar demo`: the embedded default. Simulates the paper's experiment in the
+// seed_lab room shipped with the project (a depart-and-return pass through the
+// real LiDAR map, with wheel-odometry drift), maps it with the full pipeline,
+// compares with the ground truth and prints a five-line summary.
 #include <cstdio>
+#include <filesystem>
 
-#include "frontend/enhance.h"
-#include "frontend/psf_metrics.h"
+#include "drivers/sim/sim_stream.h"
 #include "tools/commands.h"
-#include "tools/imaging_job.h"
+#include "tools/map_outputs.h"
 
 namespace uwbsar::tools {
 
+/// The project's bundled seed_lab map: next to the working directory when run from
+/// the repository (make demo), else from the source tree the binary was built in.
+std::string SeedLabMap() {
+  const std::string relative = "config/maps/seed_lab/my_map.yaml";
+  if (std::filesystem::exists(relative)) return relative;
+  return std::string(UWBSAR_SOURCE_DIR) + "/" + relative;
+}
+
 void AddDemoCommand(CLI::App& app, const GlobalOptions& globals) {
-  auto out_dir = std::make_shared<std::string>("out/demo");
-  CLI::App* cmd = app.add_subcommand("demo", "Run the built-in example and print a summary");
-  cmd->add_option("--out", *out_dir, "Output folder")->capture_default_str();
-  cmd->callback([out_dir, &globals] {
-    const Config base = LoadConfigFor(globals);
-    EnsureDirectory(*out_dir);
-    SyntheticPath path;
-    const SyntheticRun run = SimulateRun(base, path, DemoScatterers(), EchoModel{}, 1);
-    for (const char* mode : {"paper", "coherent"}) {
-      Config config = base;
-      config.imaging.mode = mode;
-      const StripResult result = ImageRun(config, run.odometry, run.scans);
-      WriteStripOutputs(*out_dir, mode, result.strip, config.enhance);
-      const cv::Mat detected = config.imaging.mode == "coherent"
-                                   ? MagnitudeImage(result.strip.image)
-                                   : EnhancedFloat(result.strip.image, config.enhance);
-      double error = 0, range_w = 0, cross_w = 0, pslr = -99;
-      int found = 0;
-      for (const Point2& t : DemoPointTargets()) {
-        const Point2 range_dir{0.0, t.y_m > 0 ? 1.0 : -1.0};
-        const PsfMetrics m = MeasurePsf(detected, result.strip.grid, t, range_dir);
-        if (!m.found) continue;
-        ++found;
-        error = std::max(error, m.position_error_m);
-        range_w += m.range_width_m;
-        cross_w += m.cross_range_width_m;
-        pslr = std::max(pslr, m.pslr_db);
-      }
-      std::printf(
-          "%-8s %lld scans imaged in %.2f s; %d/6 poles found, worst position error %.1f mm, "
-          "mean -3 dB width range %.1f mm / cross-range %.1f mm, worst PSLR %.1f dB\n",
-          mode, result.stats.scans_imaged, result.seconds, found, error * 1e3,
-          found ? range_w / found * 1e3 : 0.0, found ? cross_w / found * 1e3 : 0.0, pslr);
-    }
-    std::printf("images: %s/paper_*.png, %s/coherent_*.png\n", out_dir->c_str(), out_dir->c_str());
+  struct Options {
+    std::string out_dir = "out/demo";
+    std::uint64_t seed = 1;
+  };
+  auto opts = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand(
+      "demo", "Simulate the paper's seed_lab run, map it and compare with ground truth");
+  cmd->add_option("--out", opts->out_dir, "Output folder")->capture_default_str();
+  cmd->add_option("--seed", opts->seed, "Simulation seed")->capture_default_str();
+  cmd->callback([opts, &globals] {
+    const Config config = LoadConfigFor(globals);
+    EnsureDirectory(opts->out_dir);
+    const sim::SimScenario scenario =
+        sim::MakeScenario(config, SeedLabMap(), "depart-return", opts->seed);
+    sim::SimStream stream(config, scenario, opts->seed);
+    sim::SimMessage msg;
+    MapRun run = MapStream(config, "simulated seed_lab depart-return (seed " +
+                                        std::to_string(opts->seed) + ")",
+                           [&](MapRun* r) {
+                             if (!stream.Next(&msg)) return false;
+                             if (r->messages++ == 0) r->first_stamp_ns = msg.stamp_ns;
+                             r->last_stamp_ns = msg.stamp_ns;
+                             switch (msg.kind) {
+                               case sim::SimMessage::Kind::kGroundTruth:
+                                 r->ground_truth.push_back(msg.pose);
+                                 break;
+                               case sim::SimMessage::Kind::kOdometry:
+                                 ++r->odometry_messages;
+                                 r->slam->AddOdometry(msg.pose);
+                                 break;
+                               case sim::SimMessage::Kind::kRadarScan:
+                                 ++r->radar_messages;
+                                 r->slam->AddScan(msg.scan);
+                                 break;
+                               case sim::SimMessage::Kind::kLaserScan:
+                                 break;
+                             }
+                             return true;
+                           });
+    const MapOutputs outputs = WriteMapOutputs(run, opts->out_dir);
+    PrintMapSummary(run, outputs, opts->out_dir);
   });
 }
 

@@ -35,6 +35,7 @@ void AddDemoCommand(CLI::App& app, const GlobalOptions& globals);
 void AddOptimizeCommand(CLI::App& app, const GlobalOptions& globals);
 void AddLoopsCommand(CLI::App& app, const GlobalOptions& globals);
 void AddDetectorsCommand(CLI::App& app, const GlobalOptions& globals);
+void AddMapCommand(CLI::App& app, const GlobalOptions& globals);
 void AddInfoCommand(CLI::App& app, const GlobalOptions& globals);
 void AddSimulateCommand(CLI::App& app, const GlobalOptions& globals);
 void AddCompareCommand(CLI::App& app, const GlobalOptions& globals);

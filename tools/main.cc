@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   AddOptimizeCommand(app, globals);
   AddLoopsCommand(app, globals);
   AddDetectorsCommand(app, globals);
+  AddMapCommand(app, globals);
   AddInfoCommand(app, globals);
   AddSimulateCommand(app, globals);
   AddCompareCommand(app, globals);

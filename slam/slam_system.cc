@@ -1,0 +1,185 @@
+#include "slam/slam_system.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "frontend/enhance.h"
+#include "slam/errors.h"
+#include "slam/log.h"
+
+namespace uwbsar {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// The detected tile (the paper's positive image, or the magnitude, blurred) at
+/// the map resolution: what the mosaic is made of.
+void MakeDetected(const Keyframe& k, const Config& config, cv::Mat* detected, ImageGrid* grid) {
+  const cv::Mat full = EnhancedFloat(k.image, config.enhance);
+  const double factor = config.slam.map_resolution_m / k.grid.resolution_m;
+  *grid = k.grid;
+  if (factor <= 1.0 + 1e-9) {
+    *detected = full;
+    return;
+  }
+  const int cols = std::max(1, static_cast<int>(std::lround(k.grid.cols / factor)));
+  const int rows = std::max(1, static_cast<int>(std::lround(k.grid.rows / factor)));
+  cv::resize(full, *detected, cv::Size(cols, rows), 0, 0, cv::INTER_AREA);
+  // Output pixel 0 averages input pixels [0, f): its centre is at input (f - 1) / 2.
+  const double fx = static_cast<double>(k.grid.cols) / cols;
+  const double fy = static_cast<double>(k.grid.rows) / rows;
+  grid->resolution_m = k.grid.resolution_m * fx;
+  grid->cols = cols;
+  grid->rows = rows;
+  grid->x0_m = k.grid.ColToX(0.5 * (fx - 1.0));
+  grid->y0_m = k.grid.RowToY(0.5 * (fy - 1.0));
+}
+
+}  // namespace
+
+SlamSystem::SlamSystem(const Config& config)
+    : config_(config),
+      frontend_(std::make_unique<ImagingFrontend>(config)),
+      graph_(std::make_unique<PoseGraph>(config.backend)),
+      recognizer_(std::make_unique<PlaceRecognizer>(config)) {
+  frontend_->SetOdometryObserver([this](const OdometryEntry& e) { odometry_.push_back(e); });
+}
+
+SlamSystem::~SlamSystem() = default;
+
+void SlamSystem::AddOdometry(const OdometrySample& sample) {
+  const auto start = Clock::now();
+  frontend_->AddOdometry(sample);
+  times_.imaging_s += SecondsSince(start);
+  ProcessKeyframes();
+}
+
+void SlamSystem::AddScan(const RadarScan& scan) {
+  const auto start = Clock::now();
+  frontend_->AddScan(scan);
+  times_.imaging_s += SecondsSince(start);
+  ProcessKeyframes();
+}
+
+void SlamSystem::Finish() {
+  const auto start = Clock::now();
+  frontend_->Finish();
+  times_.imaging_s += SecondsSince(start);
+  ProcessKeyframes();
+  if (graph_->NumNodes() > 0) Optimize();
+  // Final state of every loop edge.
+  const std::vector<EdgeReport> reports = graph_->EdgeReports();
+  for (LoopRecord& loop : loops_) {
+    if (loop.edge_index < 0 || loop.edge_index >= static_cast<int>(reports.size())) continue;
+    loop.rejected_by_backend = reports[loop.edge_index].rejected;
+    loop.chi2 = reports[loop.edge_index].chi2;
+  }
+}
+
+void SlamSystem::ProcessKeyframes() {
+  for (Keyframe& k : frontend_->TakeKeyframes()) AddKeyframe(std::move(k));
+}
+
+void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
+  // The node starts on the corrected trajectory: the previous keyframe's estimate
+  // composed with the odometry between the two.
+  Pose2 estimate = keyframe.T_world_anchor;
+  if (!keyframes_.empty()) {
+    const Keyframe& prev = keyframes_.back().keyframe;
+    const Pose2 T_prev_this = Between(prev.T_world_anchor, keyframe.T_world_anchor);
+    estimate = graph_->GetPose(prev.id) * T_prev_this;
+    graph_->AddNode(keyframe.id, estimate, /*reseed_from_odometry=*/false);
+    graph_->AddOdometryEdge(prev.id, keyframe.id, T_prev_this);
+  } else {
+    graph_->AddNode(keyframe.id, estimate, false);
+    graph_->FixNode(keyframe.id);
+  }
+
+  const PlaceRecognitionResult found = recognizer_->Process(keyframe, estimate);
+  times_.features_s += found.features_ms * 1e-3;
+  times_.matching_s += found.matching_ms * 1e-3;
+  for (const LoopAttempt& attempt : found.attempts) {
+    LoopRecord loop;
+    loop.query_id = keyframe.id;
+    loop.match_id = attempt.candidate_id;
+    loop.akaze = attempt.akaze;
+    loop.orb = attempt.orb;
+    loop.validation = attempt.validation;
+    for (MatchResult* m : {&loop.akaze, &loop.orb}) {  // only the decision is kept
+      m->matches.clear();
+      m->inlier.clear();
+      m->inliers_a.clear();
+      m->inliers_b.clear();
+    }
+    if (loop.validation.accepted) {
+      PoseGraphEdge edge;
+      edge.from_id = attempt.candidate_id;
+      edge.to_id = keyframe.id;
+      edge.T_from_to = loop.validation.constraint.T_ij;
+      edge.information = loop.validation.constraint.information;
+      edge.kind = EdgeKind::kLoop;
+      try {
+        loop.edge_index = graph_->AddEdge(edge);
+        graph_dirty_ = true;
+      } catch (const InputError& e) {
+        loop.validation.accepted = false;
+        loop.validation.reason = std::string("backend refused the edge: ") + e.what();
+      }
+    }
+    loops_.push_back(std::move(loop));
+  }
+
+  const auto start = Clock::now();
+  KeyframeRecord record;
+  MakeDetected(keyframe, config_, &record.detected, &record.detected_grid);
+  if (!config_.slam.keep_tile_images) keyframe.image.release();
+  record.keyframe = std::move(keyframe);
+  keyframes_.push_back(std::move(record));
+  times_.features_s += SecondsSince(start);
+  if (graph_dirty_ && config_.slam.optimize_after_each_loop) Optimize();
+}
+
+void SlamSystem::Optimize() {
+  const auto start = Clock::now();
+  last_optimization_ = graph_->Optimize();
+  for (const auto& [id, pose] : graph_->GetPoses()) recognizer_->UpdatePose(id, pose);
+  times_.optimization_s += SecondsSince(start);
+  graph_dirty_ = false;
+}
+
+std::map<int, Pose2> SlamSystem::KeyframePoses() const { return graph_->GetPoses(); }
+
+Pose2 SlamSystem::CorrectionAt(TimestampNs stamp_ns) const {
+  if (keyframes_.empty()) return Pose2{};
+  auto correction = [&](std::size_t i) {
+    const Keyframe& k = keyframes_[i].keyframe;
+    return graph_->GetPose(k.id) * k.T_world_anchor.Inverse();
+  };
+  auto after = std::lower_bound(
+      keyframes_.begin(), keyframes_.end(), stamp_ns,
+      [](const KeyframeRecord& r, TimestampNs t) { return r.keyframe.stamp_ns < t; });
+  if (after == keyframes_.begin()) return correction(0);
+  if (after == keyframes_.end()) return correction(keyframes_.size() - 1);
+  const std::size_t i = static_cast<std::size_t>(after - keyframes_.begin());
+  const TimestampNs t0 = keyframes_[i - 1].keyframe.stamp_ns, t1 = after->keyframe.stamp_ns;
+  const double t = t1 > t0 ? static_cast<double>(stamp_ns - t0) / static_cast<double>(t1 - t0)
+                           : 0.0;
+  return Interpolate(correction(i - 1), correction(i), t);
+}
+
+std::vector<std::pair<TimestampNs, Pose2>> SlamSystem::CorrectedTrajectory() const {
+  std::vector<std::pair<TimestampNs, Pose2>> out;
+  out.reserve(odometry_.size());
+  for (const OdometryEntry& e : odometry_) {
+    out.push_back({e.stamp_ns, CorrectionAt(e.stamp_ns) * e.T_world_robot});
+  }
+  return out;
+}
+
+}  // namespace uwbsar

@@ -1,0 +1,92 @@
+// End-to-end acceptance of the SLAM pipeline on simulated runs (issue 6, A).
+#include "slam/slam_system.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "drivers/sim/sim_stream.h"
+#include "tools/map_job.h"
+
+namespace uwbsar {
+namespace {
+
+std::string SeedLab() { return std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_lab/my_map.yaml"; }
+
+tools::MapRun MapSimulated(const Config& config, const std::string& map, const std::string& route,
+                           std::uint64_t seed) {
+  const sim::SimScenario scenario = sim::MakeScenario(config, map, route, seed);
+  sim::SimStream stream(config, scenario, seed);
+  sim::SimMessage msg;
+  return tools::MapStream(config, route, [&](tools::MapRun* r) {
+    if (!stream.Next(&msg)) return false;
+    if (r->messages++ == 0) r->first_stamp_ns = msg.stamp_ns;
+    r->last_stamp_ns = msg.stamp_ns;
+    if (msg.kind == sim::SimMessage::Kind::kGroundTruth) r->ground_truth.push_back(msg.pose);
+    if (msg.kind == sim::SimMessage::Kind::kOdometry) {
+      ++r->odometry_messages;
+      r->slam->AddOdometry(msg.pose);
+    }
+    if (msg.kind == sim::SimMessage::Kind::kRadarScan) {
+      ++r->radar_messages;
+      r->slam->AddScan(msg.scan);
+    }
+    return true;
+  });
+}
+
+TEST(SlamSystemTest, SeedLabDepartReturnBeatsOdometryByThreeTimes) {
+  Config config;
+  if (getenv("XY")) config.backend.odometry_xy_information = atof(getenv("XY"));
+  if (getenv("YAW")) config.backend.odometry_yaw_information = atof(getenv("YAW"));
+  if (getenv("LXY")) config.place_recognition.validation.min_xy_sigma_m = atof(getenv("LXY"));
+  if (getenv("LYAW")) config.place_recognition.validation.min_yaw_sigma_deg = atof(getenv("LYAW"));
+  if (getenv("SCALE")) config.simulator.odometry.wheel_scale_error = atof(getenv("SCALE"));
+  const tools::MapRun run = MapSimulated(config, SeedLab(), "depart-return", 1);
+  std::vector<std::pair<TimestampNs, Pose2>> odometry;
+  for (const OdometryEntry& e : run.slam->odometry()) odometry.push_back({e.stamp_ns, e.T_world_robot});
+  const AteResult slam = tools::TrajectoryError(run.slam->CorrectedTrajectory(), run.ground_truth);
+  const AteResult odom = tools::TrajectoryError(odometry, run.ground_truth);
+  // True anchor poses: the anchor is rigidly attached to the robot at the tile's start.
+  auto true_pose_at = [&](TimestampNs t) {
+    const OdometrySample* best = &run.ground_truth.front();
+    for (const auto& g : run.ground_truth) {
+      if (std::llabs(g.stamp_ns - t) < std::llabs(best->stamp_ns - t)) best = &g;
+    }
+    return best->T_world_robot;
+  };
+  std::map<int, Pose2> true_anchor;
+  for (const KeyframeRecord& k : run.slam->keyframes()) {
+    const Pose2 T_robot_anchor = k.keyframe.T_world_robot.Inverse() * k.keyframe.T_world_anchor;
+    true_anchor[k.keyframe.id] = true_pose_at(k.keyframe.stamp_ns) * T_robot_anchor;
+  }
+  int accepted = 0;
+  double worst_loop_m = 0.0;
+  for (const LoopRecord& l : run.slam->loops()) {
+    accepted += l.accepted();
+    if (!l.validation.accepted) continue;
+    const Pose2 truth = Between(true_anchor[l.match_id], true_anchor[l.query_id]);
+    const Pose2& T = l.validation.constraint.T_ij;
+    const double err = std::hypot(T.x_m - truth.x_m, T.y_m - truth.y_m);
+    worst_loop_m = std::max(worst_loop_m, err);
+    std::printf("loop %d -> %d: akaze %d orb %d, error %.1f mm %.2f deg, backend %s chi2 %.2f\n",
+                l.match_id, l.query_id, l.akaze.good_matches, l.orb.good_matches, err * 1e3,
+                NormalizeAngle(T.yaw_rad - truth.yaw_rad) * 180 / M_PI,
+                l.rejected_by_backend ? "rejected" : "accepted", l.chi2);
+  }
+  const StageTimes& t = run.slam->times();
+  std::printf("keyframes %zu, candidates %zu, loops accepted %d; ATE %.2f cm, odometry %.2f cm; "
+              "log %.1f s processed in %.2f s (imaging %.2f, features %.2f, matching %.2f, "
+              "optimisation %.2f)\n",
+              run.slam->keyframes().size(), run.slam->loops().size(), accepted, slam.rmse_m * 100,
+              odom.rmse_m * 100, run.log_duration_s(), run.processing_s, t.imaging_s, t.features_s,
+              t.matching_s, t.optimization_s);
+  EXPECT_GT(accepted, 0);
+  EXPECT_LE(slam.rmse_m, 0.05);
+  EXPECT_LE(3.0 * slam.rmse_m, odom.rmse_m);
+}
+
+}  // namespace
+}  // namespace uwbsar

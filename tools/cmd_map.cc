@@ -1,0 +1,49 @@
+// `uwbsar map BAG --out DIR`: the main job on a recorded (or simulated) bag.
+#include <cstdio>
+
+#include "drivers/tum_reader.h"
+#include "tools/commands.h"
+#include "tools/map_outputs.h"
+
+namespace uwbsar::tools {
+
+void PrintMapSummary(const MapRun& run, const MapOutputs& outputs, const std::string& out_dir) {
+  const auto& s = outputs.summary;
+  std::printf("mapped %.1f s of log (%.1f m) in %.2f s: real-time factor %.1f\n",
+              run.log_duration_s(), s["path_length_m"].get<double>(), run.processing_s,
+              s["real_time_factor"].get<double>());
+  std::printf("%zu keyframes, %d loops accepted of %zu candidates (%d rejected by the backend)\n",
+              run.slam->keyframes().size(), s["loops"]["accepted"].get<int>(),
+              run.slam->loops().size(), s["loops"]["rejected_by_backend"].get<int>());
+  if (outputs.ate.num_poses > 0) {
+    std::printf("ATE RMSE %.2f cm (odometry alone %.2f cm) over %d poses\n",
+                outputs.ate.rmse_m * 100, outputs.odometry_ate.rmse_m * 100, outputs.ate.num_poses);
+  } else {
+    std::printf("no ground truth: ATE not computed\n");
+  }
+  std::printf("peak memory %.0f MiB\n", s["peak_memory_mib"].get<double>());
+  std::printf("report: %s/report.html\n", out_dir.c_str());
+}
+
+void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
+  struct Options {
+    std::string bag, out_dir, ground_truth;
+  };
+  auto opts = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand("map", "Map a ROS 2 bag: trajectory, loops, global SAR map");
+  cmd->add_option("bag", opts->bag, "Bag directory, .db3 or .mcap")->required();
+  cmd->add_option("--out", opts->out_dir, "Output folder")->required();
+  cmd->add_option("--ground-truth", opts->ground_truth,
+                  "TUM trajectory to evaluate against (default: the bag's ground-truth topic)")
+      ->check(CLI::ExistingFile);
+  cmd->callback([opts, &globals] {
+    const Config config = LoadConfigFor(globals);
+    EnsureDirectory(opts->out_dir);
+    MapRun run = MapBag(config, opts->bag, !globals.quiet);
+    if (!opts->ground_truth.empty()) run.ground_truth = ReadTum(opts->ground_truth);
+    const MapOutputs outputs = WriteMapOutputs(run, opts->out_dir);
+    if (!globals.quiet) PrintMapSummary(run, outputs, opts->out_dir);
+  });
+}
+
+}  // namespace uwbsar::tools

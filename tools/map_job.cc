@@ -1,0 +1,176 @@
+#include "tools/map_job.h"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "drivers/rosbag/bag_reader.h"
+#include "drivers/rosbag/robot_bag.h"
+#include "slam/errors.h"
+
+namespace uwbsar::tools {
+namespace {
+
+/// A progress bar on stderr, redrawn at most 5 times a second; silent when stderr
+/// is not a terminal.
+class ProgressBar {
+ public:
+  ProgressBar(bool enabled, TimestampNs start_ns, TimestampNs end_ns)
+      : enabled_(enabled && ::isatty(2)), start_ns_(start_ns), end_ns_(end_ns) {}
+  ~ProgressBar() {
+    if (drawn_) std::fprintf(stderr, "\n");
+  }
+  void Update(TimestampNs now_ns) {
+    if (!enabled_ || end_ns_ <= start_ns_) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (drawn_ && now - last_ < std::chrono::milliseconds(200)) return;
+    last_ = now;
+    drawn_ = true;
+    const double f = std::clamp(static_cast<double>(now_ns - start_ns_) /
+                                    static_cast<double>(end_ns_ - start_ns_),
+                                0.0, 1.0);
+    const int filled = static_cast<int>(f * 30);
+    std::fprintf(stderr, "\r[%.*s%*s] %3.0f%% of %.0f s of log", filled,
+                 "##############################", 30 - filled, "", 100 * f,
+                 NsToSeconds(end_ns_ - start_ns_));
+    std::fflush(stderr);
+  }
+
+ private:
+  bool enabled_;
+  TimestampNs start_ns_, end_ns_;
+  bool drawn_ = false;
+  std::chrono::steady_clock::time_point last_;
+};
+
+class Feeder : public rosbag::RobotBagVisitor {
+ public:
+  Feeder(MapRun* run, ProgressBar* bar) : run_(run), bar_(bar) {}
+  void OnRadarScan(const RadarScan& scan) override {
+    Note(scan.stamp_ns);
+    ++run_->radar_messages;
+    run_->slam->AddScan(scan);
+  }
+  void OnOdometry(const OdometrySample& odometry) override {
+    Note(odometry.stamp_ns);
+    ++run_->odometry_messages;
+    run_->slam->AddOdometry(odometry);
+  }
+  void OnGroundTruth(const OdometrySample& pose) override {
+    Note(pose.stamp_ns);
+    run_->ground_truth.push_back(pose);
+  }
+
+ private:
+  void Note(TimestampNs t) {
+    if (run_->messages++ == 0) run_->first_stamp_ns = t;
+    run_->first_stamp_ns = std::min(run_->first_stamp_ns, t);
+    run_->last_stamp_ns = std::max(run_->last_stamp_ns, t);
+    bar_->Update(t);
+  }
+  MapRun* run_;
+  ProgressBar* bar_;
+};
+
+}  // namespace
+
+void CheckMappable(const MapRun& run) {
+  const FrontendStats& s = run.slam->frontend_stats();
+  if (run.odometry_messages == 0) {
+    throw InputError(run.input + ": no odometry messages on '" +
+                     run.slam->config().slam.odometry_topic + "' (slam.odometry_topic)");
+  }
+  if (run.radar_messages == 0) {
+    throw InputError(run.input + ": no radar scans on the topics of radars[].topic");
+  }
+  if (s.scans_imaged == 0) {
+    throw InputError(run.input + ": no radar scan could be imaged (" +
+                     std::to_string(s.scans_rejected_no_odometry + s.scans_rejected_stale) +
+                     " without odometry covering their time, " +
+                     std::to_string(s.scans_rejected_length + s.scans_rejected_nonfinite +
+                                    s.scans_rejected_empty) +
+                     " malformed, " + std::to_string(s.scans_gated) + " while not moving)");
+  }
+  if (run.slam->keyframes().empty()) {
+    throw InputError(run.input + ": the run is too short for one keyframe tile");
+  }
+}
+
+MapRun MapBag(const Config& config, const std::string& bag_path, bool progress) {
+  MapRun run;
+  run.input = bag_path;
+  TimestampNs start = 0, end = 0;
+  {
+    rosbag::BagReader probe(bag_path);
+    start = probe.Info().start_ns;
+    end = probe.Info().end_ns;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  run.slam = std::make_unique<SlamSystem>(config);
+  rosbag::RobotBagOptions options = rosbag::RobotBagOptionsFromConfig(config);
+  options.odometry_topic = config.slam.odometry_topic;
+  options.ground_truth_topic = config.slam.ground_truth_topic;
+  {
+    ProgressBar bar(progress, start, end);
+    Feeder feeder(&run, &bar);
+    rosbag::ReadRobotBag(bag_path, options, feeder);
+  }
+  run.slam->Finish();
+  run.processing_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  CheckMappable(run);
+  return run;
+}
+
+MapRun MapStream(const Config& config, const std::string& description,
+                 const std::function<bool(MapRun*)>& next) {
+  MapRun run;
+  run.input = description;
+  const auto t0 = std::chrono::steady_clock::now();
+  run.slam = std::make_unique<SlamSystem>(config);
+  while (next(&run)) {
+  }
+  run.slam->Finish();
+  run.processing_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  CheckMappable(run);
+  return run;
+}
+
+AteResult TrajectoryError(const std::vector<std::pair<TimestampNs, Pose2>>& estimate,
+                          const std::vector<OdometrySample>& reference, double max_dt_s) {
+  std::vector<OdometrySample> ref = reference;
+  std::stable_sort(ref.begin(), ref.end(), [](const OdometrySample& a, const OdometrySample& b) {
+    return a.stamp_ns < b.stamp_ns;
+  });
+  std::vector<Pose2> est_poses, ref_poses;
+  const TimestampNs max_dt = SecondsToNs(max_dt_s);
+  for (const auto& [stamp, pose] : estimate) {
+    auto it = std::lower_bound(ref.begin(), ref.end(), stamp,
+                               [](const OdometrySample& s, TimestampNs t) { return s.stamp_ns < t; });
+    const OdometrySample* best = nullptr;
+    TimestampNs best_dt = max_dt + 1;
+    for (auto c : {it, it == ref.begin() ? it : it - 1}) {
+      if (c == ref.end()) continue;
+      const TimestampNs dt = std::llabs(c->stamp_ns - stamp);
+      if (dt < best_dt) best_dt = dt, best = &*c;
+    }
+    if (best == nullptr || best_dt > max_dt) continue;
+    est_poses.push_back(pose);
+    ref_poses.push_back(best->T_world_robot);
+  }
+  if (est_poses.size() < 2) return AteResult{};
+  return ComputeAte(est_poses, ref_poses);
+}
+
+double PeakMemoryMiB() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+}  // namespace uwbsar::tools

@@ -1,0 +1,54 @@
+// The main job behind `uwbsar map` and `uwbsar demo`: stream a log (a ROS 2 bag
+// or a simulated run) through a SlamSystem, then evaluate the result against
+// ground truth when there is one. Writing the outputs is map_outputs.h.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "backend/trajectory_metrics.h"
+#include "slam/slam_system.h"
+
+namespace uwbsar::tools {
+
+struct MapRun {
+  std::unique_ptr<SlamSystem> slam;
+  std::vector<OdometrySample> ground_truth;  ///< from the bag's topic or --ground-truth
+  std::string input;                         ///< what was mapped (path or description)
+  TimestampNs first_stamp_ns = 0;
+  TimestampNs last_stamp_ns = 0;
+  long long messages = 0;
+  long long radar_messages = 0;
+  long long odometry_messages = 0;
+  double processing_s = 0.0;  ///< wall time of streaming + SLAM (not output writing)
+  double log_duration_s() const { return NsToSeconds(last_stamp_ns - first_stamp_ns); }
+};
+
+/// Emits one message of a log into a SlamSystem; returns false at the end.
+/// Used to stream the simulator without a bag on disk.
+using MessageSource = std::function<bool(MapRun* run)>;
+
+/// Maps a ROS 2 bag (directory, .db3 or .mcap). `progress` draws a bar on stderr.
+/// Throws InputError for bags that cannot be mapped (no odometry or radar topic,
+/// no scan overlapping the odometry, too short for one keyframe).
+MapRun MapBag(const Config& config, const std::string& bag_path, bool progress);
+
+/// Maps what `next` emits (it calls run->slam->Add*), with the same checks.
+MapRun MapStream(const Config& config, const std::string& description,
+                 const std::function<bool(MapRun*)>& next);
+
+/// Checks that the run produced a map; throws InputError with the reason if not.
+void CheckMappable(const MapRun& run);
+
+/// Trajectory error of `estimate` against `reference`: poses paired by nearest stamp
+/// within `max_dt_s` (as evo does), then ATE after SE(2) alignment. num_poses = 0 when
+/// fewer than two pairs.
+AteResult TrajectoryError(const std::vector<std::pair<TimestampNs, Pose2>>& estimate,
+                          const std::vector<OdometrySample>& reference, double max_dt_s = 0.01);
+
+/// Peak resident memory of this process so far, in MiB.
+double PeakMemoryMiB();
+
+}  // namespace uwbsar::tools
