@@ -74,6 +74,17 @@ GridComparison CompareOnLidarGrid(const OccupancyGrid& sar, const OccupancyGrid&
       m.lidar_matched += lo && sar_near.at<std::uint8_t>(r, c) != 0;
     }
   }
+  // The paper's rule: every cell of the SAR rectangle, unknown counted as not occupied.
+  const Pose2 T_sar_lidar = T_lidar_sar.Inverse();
+  for (int r = 0; r < lidar.rows; ++r) {
+    for (int c = 0; c < lidar.cols; ++c) {
+      int sr = 0, sc = 0;
+      if (!sar.CellOf(T_sar_lidar * lidar.CellCenter(r, c), &sr, &sc)) continue;
+      ++m.rectangle_cells;
+      m.rectangle_differing += (sar_occ.at<std::uint8_t>(r, c) != 0) != lidar.IsOccupied(r, c);
+    }
+  }
+  m.paper_difference_ratio = Ratio(m.rectangle_differing, m.rectangle_cells);
   m.difference_ratio = Ratio(m.differing_cells, m.evaluated_cells);
   m.precision = Ratio(m.sar_matched, m.sar_occupied);
   m.recall = Ratio(m.lidar_matched, m.lidar_occupied);

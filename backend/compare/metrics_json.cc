@@ -69,6 +69,8 @@ std::string ComparisonToJson(const ComparisonReport& r) {
                 {"sar_known_on_lidar_unknown", m.sar_known_on_lidar_unknown},
                 {"evaluated", m.evaluated_cells},
                 {"differing", m.differing_cells},
+                {"sar_rectangle", m.rectangle_cells},
+                {"sar_rectangle_differing", m.rectangle_differing},
                 {"sar_occupied", m.sar_occupied},
                 {"lidar_occupied", m.lidar_occupied},
                 {"both_occupied", m.both_occupied},
@@ -76,6 +78,7 @@ std::string ComparisonToJson(const ComparisonReport& r) {
                 {"sar_matched", m.sar_matched},
                 {"lidar_matched", m.lidar_matched}};
   j["metrics"] = {{"difference_ratio", Number(m.difference_ratio)},
+                  {"paper_difference_ratio", Number(m.paper_difference_ratio)},
                   {"tolerance_cells", m.tolerance_cells},
                   {"precision", Number(m.precision)},
                   {"recall", Number(m.recall)},
@@ -105,7 +108,10 @@ std::vector<std::string> ComparisonSummaryLines(const ComparisonReport& r) {
   lines.push_back(
       Format("cell-wise difference: %.0f / %.0f = ", static_cast<double>(m.differing_cells),
              static_cast<double>(m.evaluated_cells)) +
-      Value(100.0 * m.difference_ratio, "%.1f") + " %");
+      Value(100.0 * m.difference_ratio, "%.1f") + " % of the observed cells; paper's rule " +
+      Format("(whole SAR rectangle): %.0f / %.0f = ", static_cast<double>(m.rectangle_differing),
+             static_cast<double>(m.rectangle_cells)) +
+      Value(100.0 * m.paper_difference_ratio, "%.1f") + " %");
   lines.push_back(Format("occupied cells (SAR %.0f, LiDAR %.0f), tolerance %.0f cell: ",
                          static_cast<double>(m.sar_occupied), static_cast<double>(m.lidar_occupied),
                          m.tolerance_cells) +

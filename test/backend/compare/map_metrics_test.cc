@@ -25,6 +25,8 @@ TEST(MapMetricsTest, SeedLabAgainstItselfIsPerfect) {
   EXPECT_GT(m.lidar_occupied, 500);
   EXPECT_EQ(m.differing_cells, 0);
   EXPECT_EQ(m.difference_ratio, 0.0);
+  EXPECT_EQ(m.paper_difference_ratio, 0.0);
+  EXPECT_EQ(m.rectangle_cells, lidar.rows * lidar.cols);
   EXPECT_EQ(m.precision, 1.0);
   EXPECT_EQ(m.recall, 1.0);
   EXPECT_EQ(m.f1, 1.0);
@@ -66,6 +68,11 @@ TEST(MapMetricsTest, HandCountedCellsOnlyWhereBothMapsAreKnown) {
   EXPECT_EQ(m.evaluated_cells, 12);  // rows 1..3, columns 0..3
   EXPECT_EQ(m.differing_cells, 3);   // (2,1), (3,1) missed; (1,3) extra
   EXPECT_DOUBLE_EQ(m.difference_ratio, 0.25);
+  // Paper's rule: all 20 cells of the SAR rectangle; unknown = not occupied, so (0,1) and
+  // (3,4) differ too.
+  EXPECT_EQ(m.rectangle_cells, 20);
+  EXPECT_EQ(m.rectangle_differing, 5);
+  EXPECT_DOUBLE_EQ(m.paper_difference_ratio, 0.25);
   EXPECT_EQ(m.sar_occupied, 2);
   EXPECT_EQ(m.lidar_occupied, 3);
   EXPECT_DOUBLE_EQ(m.precision, 0.5);     // (1,3) is two cells from the wall
