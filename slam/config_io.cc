@@ -263,6 +263,76 @@ void ValidateCompare(const CompareConfig& c, const std::string& src) {
   Require(c.pcd_peak_radius_m > 0, src, k + "pcd_peak_radius_m", "must be > 0");
 }
 
+void ValidateLive(const LiveConfig& l, const std::string& src) {
+  const std::string k = "live.";
+  for (std::size_t i = 0; i < l.radar_devices.size(); ++i) {
+    Require(!l.radar_devices[i].empty(), src, k + "radar_devices[" + std::to_string(i) + "]",
+            "must not be empty");
+  }
+  Require(l.radar_baud > 0, src, k + "radar_baud", "must be > 0");
+  Require(l.kobuki_baud > 0, src, k + "kobuki_baud", "must be > 0");
+  Require(l.lt102_raw_data_code > 0 && l.lt102_raw_data_code < 255 &&
+              l.lt102_raw_data_code != 0x80,
+          src, k + "lt102_raw_data_code", "must be in [1, 254] and not 128 (0x80, the escape)");
+  for (const auto* list : {&l.lt102_start_commands, &l.lt102_stop_commands}) {
+    for (const std::string& command : *list) {
+      std::istringstream in(command);
+      std::string byte;
+      int n = 0;
+      while (in >> byte) {
+        const bool hex = byte.size() <= 2 && byte.find_first_not_of("0123456789abcdefABCDEF") ==
+                                                 std::string::npos;
+        Require(hex, src,
+                k + (list == &l.lt102_start_commands ? "lt102_start_commands"
+                                                     : "lt102_stop_commands"),
+                "entries must be hex bytes separated by spaces (got '" + command + "')");
+        ++n;
+      }
+      Require(n > 0, src, k + "lt102_start_commands", "entries must not be empty");
+    }
+  }
+  Require(l.lt102_channel >= 0, src, k + "lt102_channel", "must be >= 0");
+  Require(!l.kobuki_device.empty(), src, k + "kobuki_device", "must not be empty");
+  Require(l.kobuki_wheel_radius_m > 0, src, k + "kobuki_wheel_radius_m", "must be > 0");
+  Require(l.kobuki_wheelbase_m > 0, src, k + "kobuki_wheelbase_m", "must be > 0");
+  Require(l.kobuki_ticks_per_revolution > 0, src, k + "kobuki_ticks_per_revolution",
+          "must be > 0");
+  Require(l.max_wheel_speed_mps > 0, src, k + "max_wheel_speed_mps", "must be > 0");
+  Require(l.odometry_stall_s > 0, src, k + "odometry_stall_s", "must be > 0");
+  const std::size_t n = l.radar_devices.size();
+  Require(l.radar_power_lines.empty() || l.radar_power_lines.size() == n, src,
+          k + "radar_power_lines", "must be empty or list one line per radar_devices entry");
+  Require(l.radar_reset_lines.empty() || l.radar_reset_lines.size() == n, src,
+          k + "radar_reset_lines", "must be empty or list one line per radar_devices entry");
+  for (int line : l.radar_power_lines) {
+    Require(line >= 0, src, k + "radar_power_lines", "line offsets must be >= 0");
+  }
+  for (int line : l.radar_reset_lines) {
+    Require(line >= 0, src, k + "radar_reset_lines", "line offsets must be >= 0");
+  }
+  Require(l.status_led_line >= -1, src, k + "status_led_line", "must be >= 0, or -1 (none)");
+  const bool wired = !l.radar_power_lines.empty() || !l.radar_reset_lines.empty() ||
+                     l.status_led_line >= 0;
+  Require(!wired || !l.gpio_chip.empty(), src, k + "gpio_chip",
+          "must name a chip when GPIO lines are configured");
+  Require(l.reset_pulse_s > 0, src, k + "reset_pulse_s", "must be > 0");
+  Require(l.power_settle_s >= 0, src, k + "power_settle_s", "must be >= 0");
+  Require(l.power_off_s > 0, src, k + "power_off_s", "must be > 0");
+  Require(l.power_cycle_after_failures >= 1, src, k + "power_cycle_after_failures",
+          "must be >= 1");
+  Require(l.read_timeout_s > 0, src, k + "read_timeout_s", "must be > 0");
+  Require(l.reconnect_initial_s > 0, src, k + "reconnect_initial_s", "must be > 0");
+  Require(l.reconnect_max_s >= l.reconnect_initial_s, src, k + "reconnect_max_s",
+          "must be >= reconnect_initial_s");
+  Require(l.processing_queue_size >= 1, src, k + "processing_queue_size", "must be >= 1");
+  Require(l.snapshot_period_s >= 0, src, k + "snapshot_period_s", "must be >= 0");
+  Require(l.recording_storage == "mcap" || l.recording_storage == "sqlite3", src,
+          k + "recording_storage", "must be 'mcap' or 'sqlite3'");
+  Require(l.recording_flush_period_s > 0 && l.recording_flush_period_s <= 1, src,
+          k + "recording_flush_period_s", "must be in (0, 1]");
+  Require(l.clock_step_threshold_s > 0, src, k + "clock_step_threshold_s", "must be > 0");
+}
+
 /// A point-target file: `point_targets:` followed by the same entries as the configuration.
 struct PointTargetFile {
   std::vector<PointTargetConfig> point_targets;
@@ -303,6 +373,7 @@ Config LoadConfig(const std::string& path) {
 
 void ValidateConfig(const Config& c, const std::string& src) {
   ValidateCompare(c.compare, src);
+  ValidateLive(c.live, src);
   ValidateSimulator(c.simulator, src);
   ValidatePlaceRecognition(c.place_recognition, src);
   Require(c.pulse.center_frequency_hz > 0, src, "pulse.center_frequency_hz", "must be > 0");

@@ -1,0 +1,121 @@
+#include "drivers/live/device_link.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "slam/log.h"
+
+namespace uwbsar::live {
+
+DeviceLink::DeviceLink(std::string name, std::string path, LinkPolicy policy,
+                       LinkProtocol* protocol, FaultLog* faults, std::function<void()> power_cycle)
+    : name_(std::move(name)),
+      path_(std::move(path)),
+      policy_(policy),
+      protocol_(protocol),
+      faults_(faults),
+      power_cycle_(std::move(power_cycle)) {}
+
+void DeviceLink::Start() {
+  stop_ = false;
+  thread_ = std::thread([this] { Loop(); });
+}
+
+void DeviceLink::Stop() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  if (thread_.joinable()) thread_.join();
+}
+
+bool DeviceLink::Wait(double s) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  wake_.wait_for(lock, std::chrono::duration<double>(s), [this] { return stop_.load(); });
+  return !stop_;
+}
+
+void DeviceLink::Loop() {
+  SerialPort port;
+  std::vector<std::uint8_t> buffer(1 << 16);
+  double backoff_s = policy_.reconnect_initial_s;
+  int failures = 0;
+  bool ever_connected = false;
+  // A failure is a failed open or a connection that ended without delivering a byte.
+  auto note_failure = [&] {
+    ++failures;
+    if (power_cycle_ && failures % policy_.power_cycle_after_failures == 0) {
+      ++counters_.power_cycles;
+      faults_->Report(name_ + ": power cycled",
+                      "after " + std::to_string(failures) + " failed connections in a row");
+      power_cycle_();
+    }
+  };
+  while (!stop_) {
+    // Connect.
+    try {
+      port.Open(path_, policy_.baud);
+      if (!protocol_->OnOpen(port)) throw SerialError(path_ + ": start commands not accepted");
+    } catch (const SerialError& e) {
+      port.Close();
+      ++counters_.open_failures;
+      faults_->Report(name_ + ": cannot connect", e.what());
+      note_failure();
+      if (!Wait(backoff_s)) break;
+      backoff_s = std::min(backoff_s * 2.0, policy_.reconnect_max_s);
+      continue;
+    }
+    if (ever_connected) {
+      Log(LogLevel::kInfo, name_ + ": reconnected on " + path_ + " after " +
+                               std::to_string(failures) + " failed attempts");
+    }
+    ever_connected = true;
+    ++counters_.connects;
+    connected_ = true;
+    bool delivered = false;
+    // Read until the device goes away, falls silent or we stop.
+    double silent_s = 0.0;
+    constexpr double kPollS = 0.05;
+    while (!stop_) {
+      std::size_t n = 0;
+      const auto status = port.Read(buffer.data(), buffer.size(), kPollS, &n);
+      if (status == SerialPort::ReadStatus::kData) {
+        counters_.bytes += static_cast<long long>(n);
+        silent_s = 0.0;
+        if (!delivered) {
+          delivered = true;
+          failures = 0;
+          backoff_s = policy_.reconnect_initial_s;
+        }
+        protocol_->OnBytes(buffer.data(), n);
+      } else if (status == SerialPort::ReadStatus::kTimeout) {
+        silent_s += kPollS;
+        if (silent_s >= policy_.read_timeout_s) {
+          ++counters_.timeouts;
+          faults_->Report(name_ + ": silent", "no bytes for " +
+                                                  std::to_string(policy_.read_timeout_s) +
+                                                  " s on " + path_ + ", reconnecting");
+          break;
+        }
+      } else {
+        ++counters_.disconnects;
+        faults_->Report(name_ + ": unplugged", path_ + " disappeared, reconnecting with backoff");
+        break;
+      }
+    }
+    connected_ = false;
+    if (stop_) {
+      protocol_->OnStop(port);
+      port.Close();
+      break;
+    }
+    port.Close();
+    protocol_->OnLost();
+    if (!delivered) note_failure();
+    if (!Wait(backoff_s)) break;
+    if (!delivered) backoff_s = std::min(backoff_s * 2.0, policy_.reconnect_max_s);
+  }
+}
+
+}  // namespace uwbsar::live

@@ -1,0 +1,83 @@
+// One serial device kept alive on its own thread: open, let the protocol send its
+// start commands, read with a timeout and hand the bytes to the protocol; when the
+// device disappears (unplug) or stays silent longer than the read timeout, close it
+// and reopen with exponential backoff. After `power_cycle_after_failures` failed
+// attempts in a row the optional power-cycle hook runs (radar power through GPIO).
+// Every fault goes to the FaultLog under "<name>: <what>". The reading thread never
+// waits on anything but the device: the protocol's sinks must not block.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "drivers/live/fault_log.h"
+#include "drivers/live/serial_port.h"
+
+namespace uwbsar::live {
+
+struct LinkPolicy {
+  int baud = 115200;
+  double read_timeout_s = 1.0;
+  double reconnect_initial_s = 0.2;
+  double reconnect_max_s = 5.0;
+  int power_cycle_after_failures = 3;
+};
+
+/// What a device speaks.
+class LinkProtocol {
+ public:
+  virtual ~LinkProtocol() = default;
+  /// Called after each (re)open: send start commands; false = the device did not accept them.
+  virtual bool OnOpen(SerialPort& /*port*/) { return true; }
+  virtual void OnBytes(const std::uint8_t* data, std::size_t size) = 0;
+  /// Called before a deliberate close (stop): send stop commands.
+  virtual void OnStop(SerialPort& /*port*/) {}
+  /// Called after the link was lost: forget partial frames.
+  virtual void OnLost() {}
+};
+
+struct LinkCounters {
+  std::atomic<long long> connects{0};
+  std::atomic<long long> disconnects{0};
+  std::atomic<long long> open_failures{0};
+  std::atomic<long long> timeouts{0};
+  std::atomic<long long> power_cycles{0};
+  std::atomic<long long> bytes{0};
+};
+
+class DeviceLink {
+ public:
+  DeviceLink(std::string name, std::string path, LinkPolicy policy, LinkProtocol* protocol,
+             FaultLog* faults, std::function<void()> power_cycle = {});
+  ~DeviceLink() { Stop(); }
+
+  void Start();
+  /// Stops the thread (sends the protocol's stop commands if connected); idempotent.
+  void Stop();
+  bool connected() const { return connected_; }
+  const LinkCounters& counters() const { return counters_; }
+  const std::string& name() const { return name_; }
+
+ private:
+  void Loop();
+  /// Sleeps up to `s` seconds; false when stopping.
+  bool Wait(double s);
+
+  std::string name_, path_;
+  LinkPolicy policy_;
+  LinkProtocol* protocol_;
+  FaultLog* faults_;
+  std::function<void()> power_cycle_;
+  std::thread thread_;
+  std::atomic<bool> stop_{false};
+  std::atomic<bool> connected_{false};
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  LinkCounters counters_;
+};
+
+}  // namespace uwbsar::live

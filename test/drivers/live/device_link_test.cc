@@ -1,0 +1,132 @@
+#include "drivers/live/device_link.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <thread>
+
+#include "drivers/live/kobuki_driver.h"
+#include "drivers/live/lt102_driver.h"
+#include "drivers/live/pty_device.h"
+
+namespace uwbsar::live {
+namespace {
+
+std::string TempLink(const std::string& name) {
+  return (std::filesystem::temp_directory_path() /
+          ("uwbsar_link_" + std::to_string(::getpid()) + "_" + name))
+      .string();
+}
+
+bool WaitFor(const std::function<bool()>& ok, double timeout_s = 5.0) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (std::chrono::steady_clock::now() < end) {
+    if (ok()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return ok();
+}
+
+TEST(SerialPortTest, MissingDeviceErrorNamesThePath) {
+  SerialPort port;
+  try {
+    port.Open("/dev/uwbsar_no_such_tty", 115200);
+    FAIL();
+  } catch (const SerialError& e) {
+    EXPECT_NE(std::string(e.what()).find("/dev/uwbsar_no_such_tty"), std::string::npos);
+  }
+  EXPECT_THROW(BaudConstant(12345), SerialError);
+}
+
+TEST(Lt102DriverTest, SendsStartCommandAndDeliversScansOverAPty) {
+  PtyDevice device(TempLink("lt102"));
+  LiveConfig config;
+  FaultLog faults;
+  std::atomic<int> scans{0};
+  std::vector<float> first;
+  std::mutex mutex;
+  Lt102Driver driver("radar left", 0, config, &faults, [&](RadarScan&& scan) {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (scans++ == 0) first = scan.samples;
+  });
+  LinkPolicy policy;
+  DeviceLink link("radar left", device.link_path(), policy, &driver, &faults);
+  link.Start();
+  // The emulated radar sees the start command.
+  std::vector<std::uint8_t> received;
+  ASSERT_TRUE(WaitFor([&] {
+    auto b = device.ReadAvailable();
+    received.insert(received.end(), b.begin(), b.end());
+    return received.size() >= 4;
+  }));
+  EXPECT_EQ(received, (std::vector<std::uint8_t>{0xFF, 0x53, 0x01, 0x00}));
+  std::vector<float> i(100), q(100, 0.0f);
+  for (int k = 0; k < 100; ++k) i[static_cast<std::size_t>(k)] = 0.01f * static_cast<float>(k);
+  const auto payload = EncodeLt102RawData(3, 100, 0, i, q);
+  std::vector<std::uint8_t> frame = {0x01, 0x02};  // garbage first
+  EncodeLt102Frame(82, payload.data(), payload.size(), &frame);
+  device.Write(frame);
+  ASSERT_TRUE(WaitFor([&] { return scans == 1; }));
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    EXPECT_EQ(first, i);
+  }
+  EXPECT_EQ(faults.Count("radar left: garbage bytes"), 2);
+  link.Stop();
+}
+
+TEST(DeviceLinkTest, ReconnectsAfterUnplugAndPowerCyclesAfterRepeatedFailures) {
+  PtyDevice device(TempLink("kobuki"));
+  LiveConfig config;
+  FaultLog faults;
+  std::atomic<int> samples{0};
+  KobukiDriver driver(
+      config, &faults, [] { return std::int64_t{0}; }, [&](OdometrySample&&) { ++samples; });
+  LinkPolicy policy;
+  policy.reconnect_initial_s = 0.01;
+  policy.reconnect_max_s = 0.04;
+  policy.power_cycle_after_failures = 3;
+  std::atomic<int> power_cycles{0};
+  DeviceLink link("kobuki", device.link_path(), policy, &driver, &faults, [&] { ++power_cycles; });
+  link.Start();
+  ASSERT_TRUE(WaitFor([&] { return link.connected(); }));
+  KobukiBasicSensorData d;
+  for (int k = 0; k < 3; ++k) {
+    d.left_encoder = d.right_encoder = static_cast<std::uint16_t>(k);
+    device.Write(EncodeKobukiPacket(d));
+  }
+  ASSERT_TRUE(WaitFor([&] { return samples == 2; }));  // the first packet sets the reference
+  device.Unplug();
+  ASSERT_TRUE(WaitFor([&] { return power_cycles >= 1; }));
+  EXPECT_GE(faults.Count("kobuki: unplugged"), 1);
+  EXPECT_GE(faults.Count("kobuki: cannot connect"), 3);
+  device.Plug();
+  ASSERT_TRUE(WaitFor([&] { return link.connected(); }));
+  d.left_encoder = d.right_encoder = 3;
+  device.Write(EncodeKobukiPacket(d));
+  ASSERT_TRUE(WaitFor([&] { return samples == 3; }));  // odometry continues after the replug
+  EXPECT_GE(link.counters().connects.load(), 2);
+  link.Stop();
+}
+
+TEST(DeviceLinkTest, SilentDeviceIsReportedAndReconnected) {
+  PtyDevice device(TempLink("silent"));
+  LiveConfig config;
+  FaultLog faults;
+  KobukiDriver driver(
+      config, &faults, [] { return std::int64_t{0}; }, [](OdometrySample&&) {});
+  LinkPolicy policy;
+  policy.read_timeout_s = 0.1;
+  policy.reconnect_initial_s = 0.01;
+  DeviceLink link("kobuki", device.link_path(), policy, &driver, &faults);
+  link.Start();
+  ASSERT_TRUE(WaitFor([&] { return link.counters().connects >= 2; }));
+  EXPECT_GE(faults.Count("kobuki: silent"), 1);
+  link.Stop();
+}
+
+}  // namespace
+}  // namespace uwbsar::live
