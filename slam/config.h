@@ -269,8 +269,10 @@ struct SimOdometryConfig {
   double wheel_radius_m = 0.035;          ///< wheel radius the base assumes
   double wheelbase_m = 0.230;             ///< wheel separation the base assumes
   double ticks_per_revolution = 2578.33;  ///< encoder ticks per wheel turn
-  double wheel_scale_error = 0.01;        ///< encoders over-report wheel travel by this
-                                          ///< fraction (true wheels smaller than assumed)
+  double wheel_scale_error = 0.005;       ///< encoders over-report wheel travel by this
+                                          ///< fraction (true wheels smaller than assumed; a
+                                          ///< calibrated base). No loop on a there-and-back
+                                          ///< route can observe it: it bounds any ATE from below
   double wheel_scale_asymmetry = 0.0007;  ///< right minus left scale error: heading drift
                                           ///< of about 1.7 deg per 10 m straight
   double wheelbase_error = 0.02;          ///< true wheelbase is this fraction shorter than
@@ -336,6 +338,11 @@ struct SimulatorConfig {
 /// Feature detectors on the 8-bit enhanced tile (paper Table II, REFERENCE.md section 3),
 /// tuned to about 200 keypoints per tile.
 struct DetectorConfig {
+  double feature_resolution_m = 0.01;      ///< pixel size features are detected at (tiles are
+                                           ///< averaged down to it; 0 = the tile's own, the
+                                           ///< paper's 5 mm). Pixel thresholds of detection,
+                                           ///< matching and validation are the paper's at the
+                                           ///< tile resolution and scale with it
   int max_keypoints = 200;                 ///< keep the strongest this many per tile and detector
   int mask_erode_px = 8;                   ///< detect only this far inside the imaged area
                                            ///< (the sector edges are not scene features)
@@ -351,6 +358,7 @@ struct DetectorConfig {
 
   template <class V>
   void Visit(V& v) {
+    v("feature_resolution_m", feature_resolution_m);
     v("max_keypoints", max_keypoints);
     v("mask_erode_px", mask_erode_px);
     v("sift_contrast_threshold", sift_contrast_threshold);
@@ -557,7 +565,8 @@ struct LiveConfig {
   int processing_queue_size = 4000;     ///< messages waiting for SLAM; beyond, the oldest
                                         ///< are dropped from processing (never from recording)
   double snapshot_period_s = 10.0;      ///< map outputs are rewritten this often (0 = only at end)
-  std::string recording_storage = "mcap";  ///< recording bag storage: mcap or sqlite3
+  std::string recording_storage = "sqlite3";  ///< recording bag storage: sqlite3 (survives a
+                                              ///< crash up to the last flush) or mcap
   double recording_flush_period_s = 0.5;   ///< the recording is made durable this often
   double clock_step_threshold_s = 0.1;  ///< host clock moving this much against the
                                         ///< monotonic clock is reported as a clock step

@@ -40,5 +40,6 @@ void AddInfoCommand(CLI::App& app, const GlobalOptions& globals);
 void AddSimulateCommand(CLI::App& app, const GlobalOptions& globals);
 void AddCompareCommand(CLI::App& app, const GlobalOptions& globals);
 void AddExportPcdCommand(CLI::App& app, const GlobalOptions& globals);
+void AddRunCommand(CLI::App& app, const GlobalOptions& globals);
 
 }  // namespace uwbsar::tools

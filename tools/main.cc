@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
   AddSimulateCommand(app, globals);
   AddCompareCommand(app, globals);
   AddExportPcdCommand(app, globals);
+  AddRunCommand(app, globals);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,116 @@
+// `uwbsar run --config config/robot.yaml [--out DIR]`: live SLAM on the robot
+// (tools/live_runner.h). SIGINT/SIGTERM finish the run cleanly: drivers stop, the
+// graph is solved once more, final outputs are written, exit 0.
+// `--emulate` replaces the hardware by emulated devices on pseudo-terminals that play
+// the simulated seed_lab run (drivers/live/sim_device_player.h); the run ends with it.
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <thread>
+
+#include "drivers/live/host_clock.h"
+#include "drivers/live/sim_device_player.h"
+#include "drivers/sim/sim_stream.h"
+#include "tools/commands.h"
+#include "tools/live_runner.h"
+
+namespace uwbsar::tools {
+
+std::string SeedLabMap();  // cmd_demo.cc
+
+namespace {
+std::atomic<bool> g_stop{false};
+extern "C" void OnStopSignal(int) { g_stop = true; }
+}  // namespace
+
+void AddRunCommand(CLI::App& app, const GlobalOptions& globals) {
+  struct Options {
+    std::string out_dir = "out/run";
+    std::string recording;
+    bool emulate = false;
+    double speed = 1.0;
+    double duration_s = 0.0;
+    std::uint64_t seed = 1;
+  };
+  auto opts = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand(
+      "run", "Live SLAM on the robot: LT102 radars, Kobuki odometry, GPIO, recording");
+  cmd->add_option("--out", opts->out_dir, "Output folder (snapshots, final outputs, live.json)")
+      ->capture_default_str();
+  cmd->add_option("--recording", opts->recording,
+                  "Recording bag directory (default: <out>/rosbag2_<date>-<time>)");
+  cmd->add_flag("--emulate", opts->emulate,
+                "Emulated devices on pseudo-terminals playing the simulated seed_lab run");
+  cmd->add_option("--speed", opts->speed, "--emulate: playback speed (1 = real time)")
+      ->check(CLI::Range(0.1, 20.0))
+      ->capture_default_str();
+  cmd->add_option("--duration", opts->duration_s, "--emulate: play only this many seconds");
+  cmd->add_option("--seed", opts->seed, "--emulate: simulation seed")->capture_default_str();
+  cmd->callback([opts, &globals] {
+    Config config = LoadConfigFor(globals);
+    std::signal(SIGINT, OnStopSignal);
+    std::signal(SIGTERM, OnStopSignal);
+    LiveRunOptions options;
+    options.out_dir = opts->out_dir;
+    options.recording_dir = opts->recording;
+    options.stop = &g_stop;
+    options.quiet = globals.quiet;
+    std::unique_ptr<live::SimDevicePlayer> player;
+    std::unique_ptr<live::HostClock> truth_clock;
+    std::thread watcher;
+    if (opts->emulate) {
+      EnsureDirectory(opts->out_dir);
+      const std::string dev_dir = (std::filesystem::path(opts->out_dir) / "dev").string();
+      EnsureDirectory(dev_dir);
+      config.live.radar_devices.clear();
+      for (std::size_t i = 0; i < config.radars.size(); ++i) {
+        config.live.radar_devices.push_back(dev_dir + "/radar" + std::to_string(i));
+      }
+      config.live.kobuki_device = dev_dir + "/kobuki";
+      config.live.gpio_chip.clear();
+      config.live.radar_power_lines.clear();
+      config.live.radar_reset_lines.clear();
+      config.live.status_led_line = -1;
+      options.time_scale = opts->speed;
+      const sim::SimScenario scenario =
+          sim::MakeScenario(config, SeedLabMap(), "depart-return", opts->seed);
+      // Ground truth on a clock started with the run's: the same timeline within microseconds.
+      truth_clock = std::make_unique<live::HostClock>(opts->speed);
+      player = std::make_unique<live::SimDevicePlayer>(
+          config, scenario, opts->seed, config.live.radar_devices, config.live.kobuki_device,
+          opts->speed, 3, live::EmulatorFaults{}, [c = truth_clock.get()] { return c->Now(); },
+          opts->duration_s);
+      options.ground_truth = [p = player.get()] { return p->ground_truth(); };
+      player->Start();
+      watcher = std::thread([p = player.get()] {
+        while (!p->done() && !g_stop) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));  // let the tail arrive
+        g_stop = true;
+      });
+    }
+    LiveRunResult result = RunLive(config, std::move(options));
+    if (watcher.joinable()) watcher.join();
+    if (player) player->Stop();
+    if (!globals.quiet) {
+      std::printf(
+          "live run: %lld scans, %lld odometry, %lld recorded messages, %lld dropped from "
+          "processing\n",
+          result.scans_received, result.odometry_received, result.recorded_messages,
+          result.dropped_from_processing);
+      std::printf("scan-to-tile latency p50 %.1f ms, p99 %.1f ms, max %.1f ms over %lld scans\n",
+                  result.latency_p50_ms, result.latency_p99_ms, result.latency_max_ms,
+                  result.latency_samples);
+      for (const auto& [kind, count] : result.faults) {
+        std::printf("fault %s: %lld\n", kind.c_str(), count);
+      }
+      std::printf("recording: %s\n", result.recording_path.c_str());
+      if (result.run.slam && !result.run.slam->keyframes().empty()) {
+        PrintMapSummary(result.run, result.outputs, opts->out_dir);
+      }
+    }
+  });
+}
+
+}  // namespace uwbsar::tools

@@ -1,0 +1,61 @@
+// `uwbsar run`: SLAM live on the robot. Drivers (two LT102 radars, the Kobuki base)
+// read on their own threads and stamp every message on the host clock; a dispatcher
+// hands each message to the recorder (a ROS 2 bag, unbounded queue: nothing is ever
+// dropped from the recording, made durable at least every live.recording_flush_period_s)
+// and to the SLAM thread through a bounded queue (when SLAM falls behind the oldest
+// waiting messages are dropped from processing and counted). The SLAM thread runs the
+// same SlamSystem as `uwbsar map`, measures each scan's latency from arrival to its
+// inclusion in the open tile, and rewrites the map outputs atomically every
+// live.snapshot_period_s. Stop (SIGINT/SIGTERM, or the options' stop flag): drivers
+// stop, the queue is drained, the graph is solved a last time, the final outputs and
+// live.json are written and the recording is closed.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "drivers/live/gpio.h"
+#include "tools/map_job.h"
+#include "tools/map_outputs.h"
+
+namespace uwbsar::tools {
+
+struct LiveRunOptions {
+  std::string out_dir;        ///< snapshots, final outputs, live.json
+  std::string recording_dir;  ///< the bag; empty = <out_dir>/rosbag2_<date>-<time>
+  double time_scale = 1.0;    ///< host stamps advance this much faster than wall time (tests)
+  /// The GPIO chip; null = from live.gpio_chip (libgpiod, or none when it is empty).
+  std::unique_ptr<live::GpioChip> gpio;
+  const std::atomic<bool>* stop = nullptr;  ///< the run ends when it becomes true
+  /// Called on the SLAM thread before each snapshot: ground truth for the summary (tests).
+  std::function<std::vector<OdometrySample>()> ground_truth;
+  bool quiet = false;
+};
+
+struct LiveRunResult {
+  MapRun run;
+  MapOutputs outputs;
+  std::string recording_path;
+  long long scans_received = 0;
+  long long odometry_received = 0;
+  long long events_recorded = 0;
+  long long recorded_messages = 0;
+  long long dropped_from_processing = 0;
+  long long latency_samples = 0;
+  double latency_p50_ms = 0.0;
+  double latency_p99_ms = 0.0;
+  double latency_max_ms = 0.0;
+  int snapshots = 0;
+  double snapshot_max_s = 0.0;
+  std::map<std::string, long long> faults;
+};
+
+/// Runs until the stop flag is set. Throws InputError / GpioError on start-up problems
+/// (device list not matching the radars, GPIO chip or line missing).
+LiveRunResult RunLive(const Config& config, LiveRunOptions options);
+
+}  // namespace uwbsar::tools
