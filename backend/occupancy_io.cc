@@ -27,7 +27,7 @@ void WriteOccupancyGrid(const std::string& yaml_path, const std::string& image_n
        << "resolution: " << grid.resolution_m << "\n"
        << "origin: [" << grid.origin.x_m << ", " << grid.origin.y_m << ", " << grid.origin.yaw_rad
        << "]\n"
-       << "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.25\n";
+       << "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
   WriteTextAtomic(yaml_path, yaml.str());
 }
 

@@ -1,8 +1,9 @@
 // Writing occupancy grids in the ROS map_server format: a trinary PGM (254 free,
 // 0 occupied, 205 unknown; row 0 = top of the map) and its YAML (image, mode,
 // resolution, origin [x, y, yaw], negate 0, occupied_thresh 0.65, free_thresh
-// 0.25), both written atomically. LoadOccupancyGrid (slam/occupancy_grid.h)
-// reads them back.
+// 0.196), both written atomically. free_thresh 0.196 (as ROS 1's map_saver) makes
+// grey 205 read back as unknown in every map_server reader, ours
+// (slam/occupancy_grid.h) included: p(205) = 50/255 = 0.196 is not below it.
 #pragma once
 
 #include <string>

@@ -35,6 +35,20 @@ struct ImageGrid {
   double YToRow(double y_m) const { return (y0_m - y_m) / resolution_m; }
   Point2 PixelToMetric(double col, double row) const { return {ColToX(col), RowToY(row)}; }
 
+  /// The grid of this image resized to cols x rows (cv::resize, INTER_AREA): output
+  /// pixel 0 averages input pixels [0, f), so its centre is at input (f - 1) / 2.
+  ImageGrid Resized(int new_cols, int new_rows) const {
+    ImageGrid g;
+    const double fx = static_cast<double>(cols) / new_cols;
+    const double fy = static_cast<double>(rows) / new_rows;
+    g.resolution_m = resolution_m * fx;
+    g.cols = new_cols;
+    g.rows = new_rows;
+    g.x0_m = ColToX(0.5 * (fx - 1.0));
+    g.y0_m = RowToY(0.5 * (fy - 1.0));
+    return g;
+  }
+
   double width_m() const { return cols * resolution_m; }
   double height_m() const { return rows * resolution_m; }
   bool Contains(double col, double row) const {

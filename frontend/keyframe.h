@@ -24,15 +24,15 @@ struct ImagedScan {
 
 /// Tiles are imaged on one world-aligned pixel lattice (see KeyframeBuilder), so
 /// the anchor frame has the world frame's orientation: T_world_anchor has yaw 0 in
-/// odometry and sits on a lattice point next to the robot's position at the tile's
-/// first scan. It is rigidly attached to the robot at that instant
+/// odometry and sits on a lattice point next to the robot's position at the middle
+/// of the tile's path. It is rigidly attached to the robot at that instant
 /// (T_anchor_robot is constant), so a pose-graph correction of the anchor applies
 /// to every scan of the tile.
 struct Keyframe {
   int id = 0;
-  TimestampNs stamp_ns = 0;  ///< time of the tile's first scan
+  TimestampNs stamp_ns = 0;  ///< time of the scan at the middle of the tile's path
   Pose2 T_world_anchor;      ///< odometry pose of the tile frame (see above)
-  Pose2 T_world_robot;       ///< odometry pose of the robot at the tile's first scan
+  Pose2 T_world_robot;       ///< odometry pose of the robot at stamp_ns
   ImageGrid grid;            ///< pixel geometry in the anchor frame
   cv::Mat image;             ///< CV_32FC1 (paper mode) or CV_32FC2 (coherent), grid-sized
   double path_begin_m = 0.0;

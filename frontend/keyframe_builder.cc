@@ -59,14 +59,24 @@ Keyframe KeyframeBuilder::MakeTile(std::size_t first, std::size_t count, bool co
     r_hi = std::max(r_hi, s.lattice_row0 + s.touched.y + s.touched.height);
   }
   const Segment& head = segments_[first];
-  const ImagedScan& start = head.scans.front();
+  // The anchor: the lattice point nearest the robot at the middle of the tile's path,
+  // with world orientation. At the middle of the aperture, an odometry scale error
+  // stretches the tile symmetrically about the anchor, so tile-to-tile transforms
+  // (loops) are not biased by it.
+  const double mid_path_m =
+      0.5 * (head.path_begin_m + segments_[first + count - 1].path_end_m);
+  const ImagedScan* mid = &head.scans.front();
+  for (std::size_t i = first; i < first + count; ++i) {
+    for (const ImagedScan& s : segments_[i].scans) {
+      if (std::abs(s.path_m - mid_path_m) < std::abs(mid->path_m - mid_path_m)) mid = &s;
+    }
+  }
   Keyframe tile;
   tile.id = next_id_++;
-  tile.stamp_ns = start.stamp_ns;
-  tile.T_world_robot = start.T_world_robot;
-  // The anchor: the lattice point nearest the robot, world orientation.
-  const long long ax = std::llround(start.T_world_robot.x_m / resolution_m_);
-  const long long ay = std::llround(start.T_world_robot.y_m / resolution_m_);
+  tile.stamp_ns = mid->stamp_ns;
+  tile.T_world_robot = mid->T_world_robot;
+  const long long ax = std::llround(mid->T_world_robot.x_m / resolution_m_);
+  const long long ay = std::llround(mid->T_world_robot.y_m / resolution_m_);
   tile.T_world_anchor = {static_cast<double>(ax) * resolution_m_,
                          static_cast<double>(ay) * resolution_m_, 0.0};
   tile.complete = complete;
@@ -119,13 +129,16 @@ long long KeyframeBuilder::Add(const ImagedScan& scan) {
 }
 
 void KeyframeBuilder::Finish() {
-  // The last tile holds what the window has; shorter windows at the very start
-  // (a run shorter than one tile) still give one tile.
+  // The last tile holds what the window has, if that is at least half a tile
+  // spacing of path (less is too little aperture to be worth a keyframe); so a run
+  // shorter than a whole tile still gives one tile.
   if (!segments_.empty()) {
+    const double path = segments_.back().path_end_m - segments_.front().path_begin_m;
     const bool complete = static_cast<int>(segments_.size()) == segments_per_tile_ &&
-                          segments_.back().path_end_m - segments_.front().path_begin_m >=
-                              config_.tile_length_m * 0.999;
-    closed_.push_back(MakeTile(0, segments_.size(), complete));
+                          path >= config_.tile_length_m * 0.999;
+    if (path >= 0.5 * config_.tile_spacing_m) {
+      closed_.push_back(MakeTile(0, segments_.size(), complete));
+    }
   }
   segments_.clear();
 }

@@ -27,7 +27,8 @@ class KeyframeBuilder {
   /// Images `scan` into the current segment; scans must come in non-decreasing path_m.
   /// Returns the pixels updated.
   long long Add(const ImagedScan& scan);
-  /// End of run: emits the last tile (marked incomplete if shorter than L).
+  /// End of run: emits the last tile (marked incomplete if shorter than L) when it
+  /// holds at least half a tile spacing of path.
   void Finish();
   /// Tiles closed so far, oldest first; the builder forgets them.
   std::vector<Keyframe> TakeClosed();

@@ -393,6 +393,10 @@ void ValidateConfig(const Config& c, const std::string& src) {
             k + "zero_leading_samples", "must be in [0, num_samples)");
   }
   Require(c.slam.map_resolution_m > 0, src, "slam.map_resolution_m", "must be > 0");
+  Require(c.place_recognition.detectors.feature_resolution_m == 0 ||
+              c.place_recognition.detectors.feature_resolution_m >= c.imaging.pixel_size_m,
+          src, "place_recognition.detectors.feature_resolution_m",
+          "must be 0 or >= imaging.pixel_size_m");
   Require(!c.slam.odometry_topic.empty(), src, "slam.odometry_topic", "must not be empty");
   Require(c.slam.occupancy_resolution_m >= c.slam.map_resolution_m, src,
           "slam.occupancy_resolution_m", "must be >= slam.map_resolution_m");

@@ -31,14 +31,7 @@ void MakeDetected(const Keyframe& k, const Config& config, cv::Mat* detected, Im
   const int cols = std::max(1, static_cast<int>(std::lround(k.grid.cols / factor)));
   const int rows = std::max(1, static_cast<int>(std::lround(k.grid.rows / factor)));
   cv::resize(full, *detected, cv::Size(cols, rows), 0, 0, cv::INTER_AREA);
-  // Output pixel 0 averages input pixels [0, f): its centre is at input (f - 1) / 2.
-  const double fx = static_cast<double>(k.grid.cols) / cols;
-  const double fy = static_cast<double>(k.grid.rows) / rows;
-  grid->resolution_m = k.grid.resolution_m * fx;
-  grid->cols = cols;
-  grid->rows = rows;
-  grid->x0_m = k.grid.ColToX(0.5 * (fx - 1.0));
-  grid->y0_m = k.grid.RowToY(0.5 * (fy - 1.0));
+  *grid = k.grid.Resized(cols, rows);
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "frontend/place_recognition/place_recognizer.h"
 
+#include <opencv2/imgproc.hpp>
+
 #include <chrono>
 
 namespace uwbsar {
@@ -19,7 +21,20 @@ KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe, const Config&
   k.grid = keyframe.grid;
   k.path_begin_m = keyframe.path_begin_m;
   k.T_world_anchor = keyframe.T_world_anchor;
-  const FeatureImage image = MakeFeatureImage(keyframe.image, config.enhance, d.mask_erode_px);
+  FeatureImage image = MakeFeatureImage(keyframe.image, config.enhance, d.mask_erode_px);
+  const double factor = FeatureDownsampling(config);
+  if (factor > 1.0 && !image.gray.empty()) {
+    // Average the enhanced tile down to the feature resolution; keep only pixels whose
+    // whole footprint was inside the (eroded) imaged area.
+    const int cols = std::max(1, static_cast<int>(std::lround(image.gray.cols / factor)));
+    const int rows = std::max(1, static_cast<int>(std::lround(image.gray.rows / factor)));
+    cv::Mat gray, mask;
+    cv::resize(image.gray, gray, cv::Size(cols, rows), 0, 0, cv::INTER_AREA);
+    cv::resize(image.mask, mask, cv::Size(cols, rows), 0, 0, cv::INTER_AREA);
+    image.mask = mask >= 255;
+    cv::normalize(gray, image.gray, 0, 255, cv::NORM_MINMAX, CV_8U);
+    k.grid = keyframe.grid.Resized(cols, rows);
+  }
   k.akaze = ComputeFeatures(image, DetectorKind::kAkaze, d);
   k.orb = ComputeFeatures(image, DetectorKind::kOrb, d);
   // Where the robot drove while imaging the tile: a better "position" of the tile than
@@ -40,8 +55,23 @@ KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe, const Config&
   return k;
 }
 
+double FeatureDownsampling(const Config& config) {
+  const double r = config.place_recognition.detectors.feature_resolution_m;
+  return r > config.imaging.pixel_size_m ? r / config.imaging.pixel_size_m : 1.0;
+}
+
 PlaceRecognizer::PlaceRecognizer(const Config& config)
-    : config_(config), index_(config.place_recognition.candidates.grid_cell_m) {}
+    : config_(config), index_(config.place_recognition.candidates.grid_cell_m) {
+  // The pixel thresholds are the paper's at the tile resolution: at a coarser feature
+  // resolution they shrink in pixels so that they keep their size in metres.
+  const double f = FeatureDownsampling(config);
+  PlaceRecognitionConfig& pr = config_.place_recognition;
+  pr.matching.ransac_reprojection_px /= f;
+  pr.validation.max_tx_difference_px /= f;
+  pr.validation.max_ty_difference_px /= f;
+  pr.validation.min_inlier_spread_px /= f;
+  pr.validation.min_residual_px /= f;
+}
 
 Point2 PlaceRecognizer::CentreInWorld(const KeyframeFeatures& k) const {
   return k.T_world_anchor * k.centre_anchor;

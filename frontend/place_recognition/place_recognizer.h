@@ -29,7 +29,11 @@ struct KeyframeFeatures {
   Pose2 T_world_anchor;  ///< latest estimate (odometry, or optimised via UpdatePose)
 };
 
-/// Computes a keyframe's cached features (AKAZE and ORB) from its tile.
+/// Tile pixels per feature pixel (detectors.feature_resolution_m / imaging.pixel_size_m, >= 1).
+double FeatureDownsampling(const Config& config);
+
+/// Computes a keyframe's cached features (AKAZE and ORB) from its tile, at
+/// detectors.feature_resolution_m (`grid` is then the downsampled tile's grid).
 KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe, const Config& config);
 
 struct LoopAttempt {

@@ -1,0 +1,180 @@
+// `uwbsar map` as a user meets it (issue 6, points D and E): every output of a
+// good run, a report that renders in a browser, and bad bags that end with one
+// clear message, a documented exit code and no output that looks complete.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "drivers/rosbag/bag_writer.h"
+#include "drivers/rosbag/ros_codecs.h"
+#include "drivers/synthetic_run.h"
+
+namespace uwbsar {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exit_code = -1;
+  std::string output;
+};
+
+CliRun Uwbsar(const std::string& args) {
+  CliRun run;
+  FILE* pipe = popen((std::string(UWBSAR_BIN) + " " + args + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) return run;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), pipe) != nullptr) run.output += buf.data();
+  const int status = pclose(pipe);
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+std::string TempDir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("uwbsar_map_cli_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir.string();
+}
+
+/// A bag of a synthetic straight run past a wall and poles; `edit` may drop or
+/// change messages before they are written (return false to drop).
+struct BagEdits {
+  bool radar = true;
+  bool odometry = true;
+  double odometry_time_shift_s = 0.0;
+  double length_m = 4.0;
+};
+
+std::string WriteRunBag(const std::string& dir, const BagEdits& edits) {
+  Config config;
+  SyntheticPath path;
+  path.length_m = edits.length_m;
+  path.speed_mps = 0.5;
+  path.radar_rate_hz = 100;
+  std::vector<Scatterer> scene = WallScatterers({-1, 1.6}, {6, 1.6}, 0.01, 0.05);
+  for (int i = 0; i < 8; ++i) scene.push_back({{0.5 * i, i % 2 ? -1.2 : 1.0}, 1.0});
+  const SyntheticRun run = SimulateRun(config, path, scene, EchoModel{}, 3);
+  const std::string bag = dir + "/run";
+  rosbag::BagWriter writer(bag);
+  const int left = writer.AddTopic(config.radars[0].topic, rosbag::kFloat32MultiArrayType);
+  const int right = writer.AddTopic(config.radars[1].topic, rosbag::kFloat32MultiArrayType);
+  const int odom = writer.AddTopic("/odom", rosbag::kOdometryType);
+  std::size_t i = 0, j = 0;
+  const TimestampNs shift = SecondsToNs(edits.odometry_time_shift_s);
+  while (i < run.odometry.size() || j < run.scans.size()) {
+    const bool take_odom =
+        j >= run.scans.size() ||
+        (i < run.odometry.size() && run.odometry[i].stamp_ns + shift <= run.scans[j].stamp_ns);
+    if (take_odom) {
+      const OdometrySample& o = run.odometry[i++];
+      if (!edits.odometry) continue;
+      rosbag::Odometry msg;
+      msg.header.frame_id = "odom";
+      msg.child_frame_id = "base_link";
+      msg.position = {o.T_world_robot.x_m, o.T_world_robot.y_m, 0.0};
+      msg.orientation = rosbag::QuaternionFromYaw(o.T_world_robot.yaw_rad);
+      writer.WriteMessage(odom, o.stamp_ns + shift, msg);
+    } else {
+      const RadarScan& s = run.scans[j++];
+      if (!edits.radar) continue;
+      rosbag::Float32MultiArray msg;
+      msg.data = s.samples;
+      writer.WriteMessage(s.sensor_id == 0 ? left : right, s.stamp_ns, msg);
+    }
+  }
+  writer.Close();
+  return bag;
+}
+
+TEST(MapCliTest, GoodBagWritesEveryOutputAndAReportThatRenders) {
+  const std::string dir = TempDir("good");
+  const std::string bag = WriteRunBag(dir, {});
+  const CliRun r = Uwbsar("map " + bag + " --out " + dir + "/out");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* f : {"map.png", "map_float.tif", "map_grid.yaml", "map.pgm", "map.yaml",
+                        "trajectory.tum", "odometry.tum", "graph.g2o", "loops.csv",
+                        "summary.json", "report.html"}) {
+    EXPECT_TRUE(fs::exists(dir + "/out/" + f)) << f;
+  }
+  std::ifstream summary_file(dir + "/out/summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(summary_file);
+  EXPECT_GE(summary["keyframes"].get<int>(), 3);
+  EXPECT_GT(summary["real_time_factor"].get<double>(), 0.0);
+  EXPECT_TRUE(summary["time_s"].contains("imaging"));
+  // No staging folder is left behind.
+  for (const auto& entry : fs::directory_iterator(dir + "/out")) {
+    EXPECT_EQ(entry.path().filename().string().rfind(".uwbsar-partial", 0), std::string::npos);
+  }
+
+  // The report renders in headless Chromium: its images decode and its tables are there.
+  if (std::system("command -v chromium > /dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "chromium is not installed (make deps installs it)";
+  }
+  const std::string dom = dir + "/dom.html";
+  const std::string shot = dir + "/report.png";
+  const std::string flags =
+      "--headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
+      "--disable-background-networking --disable-component-update --disable-sync "
+      "--user-data-dir=" + dir + "/chromium-profile ";
+  ASSERT_EQ(std::system(("chromium " + flags + "--screenshot=" + shot +
+                         " --window-size=1200,1600 file://" + dir + "/out/report.html > /dev/null 2>&1")
+                            .c_str()),
+            0);
+  EXPECT_GT(fs::file_size(shot), 10000u);
+  ASSERT_EQ(std::system(("chromium " + flags + "--dump-dom file://" + dir +
+                         "/out/report.html > " + dom + " 2> /dev/null")
+                            .c_str()),
+            0);
+  std::ifstream in(dom);
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("<table id=\"summary\">"), std::string::npos);
+  EXPECT_NE(html.find("data:image/png;base64,"), std::string::npos);
+  EXPECT_NE(html.find("Loop candidates"), std::string::npos);
+  EXPECT_NE(html.find("<svg"), std::string::npos);
+}
+
+void ExpectBadInput(const std::string& name, const BagEdits& edits, const std::string& message) {
+  const std::string dir = TempDir(name);
+  const std::string bag = WriteRunBag(dir, edits);
+  const CliRun r = Uwbsar("map " + bag + " --out " + dir + "/out");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(bag), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir + "/out/summary.json"));
+  EXPECT_FALSE(fs::exists(dir + "/out/trajectory.tum"));
+}
+
+TEST(MapCliTest, BagWithoutOdometryIsBadInput) {
+  ExpectBadInput("no_odom", {true, false, 0.0, 4.0}, "no odometry");
+}
+
+TEST(MapCliTest, BagWithoutRadarIsBadInput) {
+  ExpectBadInput("no_radar", {false, true, 0.0, 4.0}, "no radar scans");
+}
+
+TEST(MapCliTest, ScansWithoutOdometryOverlapAreBadInput) {
+  // All odometry lies 100 s after the scans.
+  ExpectBadInput("no_overlap", {true, true, 100.0, 4.0}, "no radar scan could be imaged");
+}
+
+TEST(MapCliTest, RunTooShortForATileIsBadInput) {
+  // 20 cm of travel: scans are imaged, but a keyframe needs half a metre of path.
+  ExpectBadInput("short", {true, true, 0.0, 0.2}, "too short");
+}
+
+TEST(MapCliTest, MissingBagIsBadInput) {
+  const std::string dir = TempDir("missing");
+  const CliRun r = Uwbsar("map " + dir + "/nope --out " + dir + "/out");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find(dir + "/nope"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace uwbsar
