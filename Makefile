@@ -57,7 +57,7 @@ bench: build
 sanitize-test: deps venv
 	cmake -S . -B $(SAN_BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DUWBSAR_SANITIZE=ON -DUWBSAR_WERROR=ON -DUWBSAR_BUILD_BENCH=OFF $(CMAKE_FLAGS)
-	cmake --build $(SAN_BUILD_DIR) -j $(JOBS)
+	cmake --build $(SAN_BUILD_DIR) -j $(JOBS) --target unit_tests
 	cd $(SAN_BUILD_DIR) && UWBSAR_VENV=$(CURDIR)/$(VENV) ctest --output-on-failure -j $(JOBS) -L unit
 
 # libFuzzer targets of the bag parsers (fuzz/), built with clang, each run briefly from
