@@ -12,12 +12,15 @@
 #include <string>
 #include <vector>
 
+#include "slam/errors.h"
+
 namespace uwbsar::live {
 
 /// A GPIO chip or line that cannot be used; what() names the chip, the line and its role.
-class GpioError : public std::runtime_error {
+/// An InputError: the configuration does not match the machine (CLI exit code 3).
+class GpioError : public InputError {
  public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 class GpioOutput {
