@@ -28,6 +28,7 @@ void PrintMapSummary(const MapRun& run, const MapOutputs& outputs, const std::st
 void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
   struct Options {
     std::string bag, out_dir, ground_truth;
+    bool exact = false;
   };
   auto opts = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("map", "Map a ROS 2 bag: trajectory, loops, global SAR map");
@@ -36,12 +37,16 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--ground-truth", opts->ground_truth,
                   "TUM trajectory to evaluate against (default: the bag's ground-truth topic)")
       ->check(CLI::ExistingFile);
+  cmd->add_flag("--exact", opts->exact,
+                "Also write map_exact.png / map_exact_float.tif: every scan back-projected again "
+                "at its corrected pose, at the imaging resolution");
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
     EnsureDirectory(opts->out_dir);
     MapRun run = MapBag(config, opts->bag, !globals.quiet);
     if (!opts->ground_truth.empty()) run.ground_truth = ReadTum(opts->ground_truth);
     const MapOutputs outputs = WriteMapOutputs(run, opts->out_dir);
+    if (opts->exact) WriteExactMap(run, opts->out_dir);
     if (!globals.quiet) PrintMapSummary(run, outputs, opts->out_dir);
   });
 }

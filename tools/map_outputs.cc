@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
@@ -15,6 +16,7 @@
 #include "backend/occupancy_io.h"
 #include "frontend/enhance.h"
 #include "frontend/image_io.h"
+#include "frontend/strip_renderer.h"
 #include "slam/errors.h"
 #include "tools/report_html.h"
 
@@ -107,6 +109,17 @@ nlohmann::json AteJson(const AteResult& a) {
           {"max_m", a.max_m}, {"yaw_rmse_deg", a.yaw_rmse_rad * 180.0 / M_PI}};
 }
 
+std::string GridYaml(const ImageGrid& grid, const std::string& what) {
+  std::ostringstream yaml;
+  yaml.precision(12);
+  yaml << "# Pixel geometry of " << what << ": column = +x, row = -y (world frame)\n"
+       << "x0_m: " << grid.x0_m << "  # x of the centre of column 0\n"
+       << "y0_m: " << grid.y0_m << "  # y of the centre of row 0 (top row)\n"
+       << "resolution_m: " << grid.resolution_m << "\nrows: " << grid.rows
+       << "\ncols: " << grid.cols << "\n";
+  return yaml.str();
+}
+
 std::string ReadFileBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream s;
@@ -134,7 +147,14 @@ MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir) {
     WriteTum(staged("odometry.tum"), InSeconds(odometry));
     WriteG2o(staged("graph.g2o"), slam.graph(), /*drop_rejected_loops=*/false);
     WriteTextAtomic(staged("loops.csv"), LoopsCsv(run));
+    std::vector<std::string> names = {"trajectory.tum", "odometry.tum", "graph.g2o", "loops.csv",
+                                      "map_float.tif", "map_grid.yaml", "map.png", "map.yaml",
+                                      "map.pgm", "report.html"};
     if (!run.ground_truth.empty()) {
+      std::vector<std::pair<double, Pose2>> gt;
+      for (const OdometrySample& g : run.ground_truth) gt.push_back({NsToSeconds(g.stamp_ns), g.T_world_robot});
+      WriteTum(staged("ground_truth.tum"), gt);
+      names.push_back("ground_truth.tum");
       result.ate = TrajectoryError(trajectory, run.ground_truth);
       result.odometry_ate = TrajectoryError(odometry, run.ground_truth);
     }
@@ -149,14 +169,7 @@ MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir) {
     cv::Mat observed;
     const cv::Mat map = global.Render(&grid, &observed);
     WriteFloatTiff(staged("map_float.tif"), map);
-    std::ostringstream grid_yaml;
-    grid_yaml.precision(12);
-    grid_yaml << "# Pixel geometry of map_float.tif and map.png: column = +x, row = -y (world)\n"
-              << "x0_m: " << grid.x0_m << "  # x of the centre of column 0\n"
-              << "y0_m: " << grid.y0_m << "  # y of the centre of row 0 (top row)\n"
-              << "resolution_m: " << grid.resolution_m << "\nrows: " << grid.rows
-              << "\ncols: " << grid.cols << "\n";
-    WriteTextAtomic(staged("map_grid.yaml"), grid_yaml.str());
+    WriteTextAtomic(staged("map_grid.yaml"), GridYaml(grid, "map_float.tif and map.png"));
     WriteImageAtomic(staged("map.png"),
                      RenderMapPng(map, observed, grid, run, trajectory, config.enhance.colormap));
     const OccupancyGrid occupancy =
@@ -277,9 +290,8 @@ MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir) {
 
     // Commit: drop a previous run's summary first, then everything else, the summary last.
     fs::remove(fs::path(out_dir) / "summary.json");
-    for (const char* name : {"trajectory.tum", "odometry.tum", "graph.g2o", "loops.csv",
-                             "map_float.tif", "map_grid.yaml", "map.png", "map.yaml", "map.pgm",
-                             "report.html", "summary.json"}) {
+    names.push_back("summary.json");
+    for (const std::string& name : names) {
       const fs::path target = fs::path(out_dir) / name;
       fs::rename(stage / name, target);
       result.files.push_back(target.string());
@@ -291,6 +303,38 @@ MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir) {
     throw;
   }
   return result;
+}
+
+std::vector<std::string> WriteExactMap(const MapRun& run, const std::string& out_dir) {
+  const SlamSystem& slam = *run.slam;
+  const Config& config = slam.config();
+  // Every imaged scan once (consecutive tiles share the scans of their common metre).
+  std::vector<ImagedScan> scans;
+  std::vector<Pose2> corrected;
+  TimestampNs last_stamp = std::numeric_limits<TimestampNs>::min();
+  for (const KeyframeRecord& k : slam.keyframes()) {
+    for (const ImagedScan& s : k.keyframe.scans) {
+      if (s.stamp_ns < last_stamp || (s.stamp_ns == last_stamp && !scans.empty() &&
+                                      s.sensor_id <= scans.back().sensor_id)) {
+        continue;
+      }
+      last_stamp = s.stamp_ns;
+      scans.push_back(s);
+      corrected.push_back(slam.CorrectionAt(s.stamp_ns) * s.T_world_robot);
+    }
+  }
+  const ImageGrid grid =
+      WorldGridCovering(corrected, slam.sensors(), 0.1, config.imaging.pixel_size_m);
+  const StripImage exact =
+      RenderScans(scans, slam.sensors(), grid, config.imaging.mode == "coherent",
+                  config.imaging.num_threads,
+                  [&](const ImagedScan& s) { return corrected[&s - scans.data()]; });
+  const std::string base = out_dir + "/map_exact";
+  WriteFloatTiff(base + "_float.tif", exact.image);
+  WriteTextAtomic(base + "_grid.yaml", GridYaml(grid, "map_exact_float.tif and map_exact.png"));
+  WriteImageAtomic(base + ".png", Colorize(Enhance8U(exact.image, config.enhance),
+                                           config.enhance.colormap));
+  return {base + "_float.tif", base + "_grid.yaml", base + ".png"};
 }
 
 }  // namespace uwbsar::tools

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -174,6 +175,49 @@ TEST(MapCliTest, MissingBagIsBadInput) {
   const CliRun r = Uwbsar("map " + dir + "/nope --out " + dir + "/out");
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find(dir + "/nope"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace uwbsar
+
+namespace uwbsar {
+namespace {
+
+TEST(MapCliTest, AteEqualsEvoApeWithinOneMillimetre) {
+  const char* venv = std::getenv("UWBSAR_VENV");
+  if (venv == nullptr) GTEST_SKIP() << "UWBSAR_VENV is not set (make test sets it)";
+  const std::string evo = std::string(venv) + "/bin/evo_ape";
+  ASSERT_TRUE(fs::exists(evo)) << evo << " missing: run make venv";
+  const std::string dir = TempDir("evo");
+  // The loop route: depart-return is a straight line, which evo's 3-D Umeyama alignment
+  // rejects as degenerate (ours aligns in 2-D and handles it).
+  const CliRun sim = Uwbsar("simulate --map " + std::string(UWBSAR_SOURCE_DIR) +
+                            "/config/maps/seed_lab/my_map.yaml --route loop --seed 3 --out " + dir +
+                            "/bag");
+  ASSERT_EQ(sim.exit_code, 0) << sim.output;
+  const CliRun map = Uwbsar("map " + dir + "/bag --out " + dir + "/out");
+  ASSERT_EQ(map.exit_code, 0) << map.output;
+  std::ifstream summary_file(dir + "/out/summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(summary_file);
+  ASSERT_TRUE(summary.contains("ate"));
+  const double ours = summary["ate"]["rmse_m"].get<double>();
+  // evo: SE(3) Umeyama alignment (-a), association within 10 ms, as ours.
+  const std::string cmd = evo + " tum " + dir + "/bag/ground_truth.tum " + dir +
+                          "/out/trajectory.tum -a --no_warnings";
+  const CliRun e = [&] {
+    CliRun run;
+    FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
+    std::array<char, 4096> buf{};
+    while (pipe != nullptr && fgets(buf.data(), buf.size(), pipe) != nullptr) run.output += buf.data();
+    run.exit_code = pipe ? WEXITSTATUS(pclose(pipe)) : -1;
+    return run;
+  }();
+  ASSERT_EQ(e.exit_code, 0) << e.output;
+  const std::size_t at = e.output.find("rmse");
+  ASSERT_NE(at, std::string::npos) << e.output;
+  const double evo_rmse = std::stod(e.output.substr(e.output.find_first_of("0123456789", at)));
+  std::printf("ATE RMSE: uwbsar %.5f m, evo_ape %.5f m\n", ours, evo_rmse);
+  EXPECT_NEAR(ours, evo_rmse, 0.001);
 }
 
 }  // namespace
