@@ -22,7 +22,8 @@ struct MapRun {
   long long messages = 0;
   long long radar_messages = 0;
   long long odometry_messages = 0;
-  double processing_s = 0.0;  ///< wall time of streaming + SLAM (not output writing)
+  double processing_s = 0.0;  ///< MapBag: wall time of bag reading + SLAM; MapStream: SLAM's
+                              ///< own time (the source, e.g. the simulator, is not counted)
   double log_duration_s() const { return NsToSeconds(last_stamp_ns - first_stamp_ns); }
 };
 
@@ -35,7 +36,8 @@ using MessageSource = std::function<bool(MapRun* run)>;
 /// no scan overlapping the odometry, too short for one keyframe).
 MapRun MapBag(const Config& config, const std::string& bag_path, bool progress);
 
-/// Maps what `next` emits (it calls run->slam->Add*), with the same checks.
+/// Maps what `next` emits (it calls run->slam->Add*), with the same checks;
+/// processing_s counts only the time spent in the SlamSystem.
 MapRun MapStream(const Config& config, const std::string& description,
                  const std::function<bool(MapRun*)>& next);
 
