@@ -28,7 +28,9 @@ void GlobalMap::AddTile(const cv::Mat& tile, const ImageGrid& grid, const Pose2&
       lo_y = std::min(lo_y, p.y_m), hi_y = std::max(hi_y, p.y_m);
     }
   }
-  const auto floor_div = [](long long a, long long b) { return a >= 0 ? a / b : -((-a + b - 1) / b); };
+  const auto floor_div = [](long long a, long long b) {
+    return a >= 0 ? a / b : -((-a + b - 1) / b);
+  };
   const long long c0 = static_cast<long long>(std::floor(lo_x / resolution_m_));
   const long long c1 = static_cast<long long>(std::ceil(hi_x / resolution_m_));
   const long long r0 = static_cast<long long>(std::floor(-hi_y / resolution_m_));
@@ -51,8 +53,8 @@ void GlobalMap::AddTile(const cv::Mat& tile, const ImageGrid& grid, const Pose2&
       // p.x = ct*wx - st*wy + tx ; p.y = st*wx + ct*wy + ty, with wx = wx0 + u rw, wy = wy0 - v rw
       const double px0 = ct * wx0 - st * wy0 + T_tile_world.x_m;
       const double py0 = st * wx0 + ct * wy0 + T_tile_world.y_m;
-      cv::Matx23d M((ct * rw) / rt, (st * rw) / rt, (px0 - grid.x0_m) / rt,
-                    -(st * rw) / rt, (ct * rw) / rt, (grid.y0_m - py0) / rt);
+      cv::Matx23d M((ct * rw) / rt, (st * rw) / rt, (px0 - grid.x0_m) / rt, -(st * rw) / rt,
+                    (ct * rw) / rt, (grid.y0_m - py0) / rt);
       cv::Mat warped, weight;
       cv::warpAffine(tile, warped, M, cv::Size(block_px_, block_px_),
                      cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_CONSTANT, 0.0);
@@ -108,8 +110,7 @@ cv::Mat GlobalMap::Render(ImageGrid* grid, cv::Mat* observed) const {
 }
 
 OccupancyGrid MapToOccupancy(const cv::Mat& map, const cv::Mat& observed, const ImageGrid& grid,
-                             double cell_m, double occupied_fraction,
-                             double reference_percentile) {
+                             double cell_m, double occupied_fraction, double reference_percentile) {
   OccupancyGrid occ;
   occ.resolution_m = cell_m;
   if (map.empty()) return occ;
@@ -125,9 +126,9 @@ OccupancyGrid MapToOccupancy(const cv::Mat& map, const cv::Mat& observed, const 
   }
   float reference = 0.0f;
   if (!values.empty()) {
-    const std::size_t k = std::min(values.size() - 1,
-                                   static_cast<std::size_t>(reference_percentile / 100.0 *
-                                                            static_cast<double>(values.size())));
+    const std::size_t k =
+        std::min(values.size() - 1, static_cast<std::size_t>(reference_percentile / 100.0 *
+                                                             static_cast<double>(values.size())));
     std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
     reference = values[k];
   }

@@ -53,7 +53,6 @@ class GlobalMap {
 /// `occupied_fraction` of the map's `reference_percentile` value (robust to a few
 /// very bright scatterers), else free.
 OccupancyGrid MapToOccupancy(const cv::Mat& map, const cv::Mat& observed, const ImageGrid& grid,
-                             double cell_m, double occupied_fraction,
-                             double reference_percentile);
+                             double cell_m, double occupied_fraction, double reference_percentile);
 
 }  // namespace uwbsar

@@ -15,8 +15,8 @@ void EchoSimulator::AddEcho(double range_m, double amplitude, std::vector<float>
   const double centre = delay_s * fs;
   const double half = pulse_.HalfSupportS() * fs;
   const int first = std::max(0, static_cast<int>(std::floor(centre - half)));
-  const int last = std::min(static_cast<int>(scan->size()) - 1,
-                            static_cast<int>(std::ceil(centre + half)));
+  const int last =
+      std::min(static_cast<int>(scan->size()) - 1, static_cast<int>(std::ceil(centre + half)));
   for (int k = first; k <= last; ++k) {
     (*scan)[k] += static_cast<float>(amplitude * pulse_(k / fs - delay_s));
   }

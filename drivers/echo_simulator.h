@@ -23,10 +23,10 @@ struct Scatterer {
 struct EchoModel {
   double beam_3db_half_angle_deg = 30.0;  ///< two-way -3 dB angle off boresight
   bool use_beam_pattern = true;
-  bool use_range_loss = true;              ///< amplitude ~ 1 / R^2
-  double max_angle_deg = 90.0;             ///< scatterers beyond this angle are not seen
-  double coupling_amplitude = 0.0;         ///< direct antenna coupling pulse at range 0
-  double noise_std = 0.0;                  ///< white Gaussian noise per sample
+  bool use_range_loss = true;       ///< amplitude ~ 1 / R^2
+  double max_angle_deg = 90.0;      ///< scatterers beyond this angle are not seen
+  double coupling_amplitude = 0.0;  ///< direct antenna coupling pulse at range 0
+  double noise_std = 0.0;           ///< white Gaussian noise per sample
 };
 
 class EchoSimulator {

@@ -15,7 +15,7 @@
 namespace uwbsar {
 
 struct SyntheticPath {
-  Pose2 start;                ///< T_world_robot at t = 0
+  Pose2 start;  ///< T_world_robot at t = 0
   double length_m = 3.0;
   double speed_mps = 0.2;
   double turn_radius_m = 0.0;  ///< 0 = straight; > 0 turns left, < 0 turns right

@@ -8,10 +8,10 @@ namespace uwbsar {
 namespace {
 
 struct LookupFrame {
-  float sx, sy;          // sensor position in the grid frame
-  float inv_step;        // 1 / range step
-  float start_index;     // range_start / step
-  int last_index;        // table size - 2 (the highest i with i + 1 valid)
+  float sx, sy;       // sensor position in the grid frame
+  float inv_step;     // 1 / range step
+  float start_index;  // range_start / step
+  int last_index;     // table size - 2 (the highest i with i + 1 valid)
 };
 
 // The inner loops are branch-free over a contiguous span so that the compiler

@@ -60,11 +60,16 @@ cv::Mat Colorize(const cv::Mat& gray8u, const std::string& colormap) {
     return out;
   }
   int map = cv::COLORMAP_INFERNO;
-  if (colormap == "jet") map = cv::COLORMAP_JET;
-  else if (colormap == "viridis") map = cv::COLORMAP_VIRIDIS;
-  else if (colormap == "magma") map = cv::COLORMAP_MAGMA;
-  else if (colormap == "hot") map = cv::COLORMAP_HOT;
-  else if (colormap != "inferno") throw std::invalid_argument("unknown colour map " + colormap);
+  if (colormap == "jet")
+    map = cv::COLORMAP_JET;
+  else if (colormap == "viridis")
+    map = cv::COLORMAP_VIRIDIS;
+  else if (colormap == "magma")
+    map = cv::COLORMAP_MAGMA;
+  else if (colormap == "hot")
+    map = cv::COLORMAP_HOT;
+  else if (colormap != "inferno")
+    throw std::invalid_argument("unknown colour map " + colormap);
   cv::applyColorMap(gray8u, out, map);
   return out;
 }

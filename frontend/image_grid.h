@@ -11,8 +11,8 @@
 namespace uwbsar {
 
 struct ImageGrid {
-  double x0_m = 0.0;          ///< x of the centre of column 0
-  double y0_m = 0.0;          ///< y of the centre of row 0 (the top row)
+  double x0_m = 0.0;  ///< x of the centre of column 0
+  double y0_m = 0.0;  ///< y of the centre of row 0 (the top row)
   double resolution_m = 0.005;
   int rows = 0;
   int cols = 0;

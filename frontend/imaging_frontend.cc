@@ -5,8 +5,7 @@
 
 namespace uwbsar {
 
-ImagingFrontend::ImagingFrontend(const Config& config)
-    : config_(config), odometry_(config.gating) {
+ImagingFrontend::ImagingFrontend(const Config& config) : config_(config), odometry_(config.gating) {
   const bool coherent = config.imaging.mode == "coherent";
   for (const RadarConfig& radar : config.radars) {
     sensors_.push_back(SensorGeometry::FromConfig(radar, config.pulse));
@@ -60,10 +59,10 @@ void ImagingFrontend::AddScan(const RadarScan& scan) {
   const int expected = config_.radars[scan.sensor_id].num_samples;
   if (static_cast<int>(scan.samples.size()) != expected) {
     ++stats_.scans_rejected_length;
-    log_once_.Warn("scan_length/" + name,
-                   "scan from radar '" + name + "' has " + std::to_string(scan.samples.size()) +
-                       " samples, radars[].num_samples says " + std::to_string(expected) +
-                       "; rejected");
+    log_once_.Warn("scan_length/" + name, "scan from radar '" + name + "' has " +
+                                              std::to_string(scan.samples.size()) +
+                                              " samples, radars[].num_samples says " +
+                                              std::to_string(expected) + "; rejected");
     return;
   }
   const bool finite = std::all_of(scan.samples.begin(), scan.samples.end(),
@@ -73,9 +72,8 @@ void ImagingFrontend::AddScan(const RadarScan& scan) {
     log_once_.Warn("scan_nan/" + name, "scan from radar '" + name + "' holds NaN/Inf; rejected");
     return;
   }
-  auto pos = std::upper_bound(
-      pending_.begin(), pending_.end(), scan.stamp_ns,
-      [](TimestampNs t, const RadarScan& s) { return t < s.stamp_ns; });
+  auto pos = std::upper_bound(pending_.begin(), pending_.end(), scan.stamp_ns,
+                              [](TimestampNs t, const RadarScan& s) { return t < s.stamp_ns; });
   pending_.insert(pos, scan);
   ProcessPending(false);
 }
@@ -98,15 +96,18 @@ void ImagingFrontend::ProcessPending(bool final) {
     }
     if (result != OdometryBuffer::LookupResult::kOk) {
       ++stats_.scans_rejected_no_odometry;
-      log_once_.Warn("scan_no_odom", "scans before the first odometry sample or in an odometry "
-                                     "gap longer than gating.max_odom_gap_s; dropped");
+      log_once_.Warn("scan_no_odom",
+                     "scans before the first odometry sample or in an odometry "
+                     "gap longer than gating.max_odom_gap_s; dropped");
       continue;
     }
     ImageScan(std::move(scan), odom);
   }
   pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(done));
-  if (!pending_.empty()) odometry_.TrimBefore(pending_.front().stamp_ns);
-  else odometry_.TrimBefore(odometry_.latest_stamp_ns());
+  if (!pending_.empty())
+    odometry_.TrimBefore(pending_.front().stamp_ns);
+  else
+    odometry_.TrimBefore(odometry_.latest_stamp_ns());
 }
 
 void ImagingFrontend::ImageScan(RadarScan&& scan, const OdometryEntry& odom) {

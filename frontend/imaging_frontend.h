@@ -24,10 +24,10 @@ struct FrontendStats {
   long long scans_gated = 0;  ///< dropped because the robot had not moved min_travel_m
   long long scans_rejected_unknown_sensor = 0;
   long long scans_rejected_empty = 0;
-  long long scans_rejected_length = 0;     ///< length differs from radars[i].num_samples
-  long long scans_rejected_nonfinite = 0;  ///< NaN or Inf samples
+  long long scans_rejected_length = 0;       ///< length differs from radars[i].num_samples
+  long long scans_rejected_nonfinite = 0;    ///< NaN or Inf samples
   long long scans_rejected_no_odometry = 0;  ///< before the first odometry or in a gap
-  long long scans_rejected_stale = 0;  ///< waited longer than max_scan_latency_s for odometry
+  long long scans_rejected_stale = 0;        ///< waited longer than max_scan_latency_s for odometry
   long long odometry_received = 0;
   long long odometry_jumps_corrected = 0;
   long long odometry_rejected_out_of_order = 0;

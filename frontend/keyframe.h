@@ -17,8 +17,8 @@ namespace uwbsar {
 struct ImagedScan {
   TimestampNs stamp_ns = 0;
   int sensor_id = 0;
-  Pose2 T_world_robot;  ///< odometry pose at the scan's timestamp
-  double path_m = 0.0;  ///< odometry path length at the scan's timestamp
+  Pose2 T_world_robot;                          ///< odometry pose at the scan's timestamp
+  double path_m = 0.0;                          ///< odometry path length at the scan's timestamp
   std::shared_ptr<const RangeProfile> profile;  ///< shared by the tiles that hold the scan
 };
 
@@ -37,7 +37,7 @@ struct Keyframe {
   cv::Mat image;             ///< CV_32FC1 (paper mode) or CV_32FC2 (coherent), grid-sized
   double path_begin_m = 0.0;
   double path_end_m = 0.0;
-  bool complete = false;     ///< false for the last tiles of a run, cut short
+  bool complete = false;  ///< false for the last tiles of a run, cut short
   std::vector<ImagedScan> scans;
 
   bool coherent() const { return image.type() == CV_32FC2; }

@@ -63,8 +63,7 @@ Keyframe KeyframeBuilder::MakeTile(std::size_t first, std::size_t count, bool co
   // with world orientation. At the middle of the aperture, an odometry scale error
   // stretches the tile symmetrically about the anchor, so tile-to-tile transforms
   // (loops) are not biased by it.
-  const double mid_path_m =
-      0.5 * (head.path_begin_m + segments_[first + count - 1].path_end_m);
+  const double mid_path_m = 0.5 * (head.path_begin_m + segments_[first + count - 1].path_end_m);
   const ImagedScan* mid = &head.scans.front();
   for (std::size_t i = first; i < first + count; ++i) {
     for (const ImagedScan& s : segments_[i].scans) {
@@ -106,8 +105,7 @@ Keyframe KeyframeBuilder::MakeTile(std::size_t first, std::size_t count, bool co
 }
 
 long long KeyframeBuilder::Add(const ImagedScan& scan) {
-  if (segments_.empty() ||
-      scan.path_m >= segments_.back().path_begin_m + config_.tile_spacing_m) {
+  if (segments_.empty() || scan.path_m >= segments_.back().path_begin_m + config_.tile_spacing_m) {
     // The newest segment is full. When the window holds a whole tile's worth, that
     // tile is complete; then the oldest segment is no longer needed.
     if (static_cast<int>(segments_.size()) == segments_per_tile_) {
@@ -119,10 +117,11 @@ long long KeyframeBuilder::Add(const ImagedScan& scan) {
   Segment& seg = segments_.back();
   const SensorGeometry& sensor = sensors_.at(scan.sensor_id);
   cv::Rect touched;
-  const long long pixels = projector_.Accumulate(
-      *scan.profile, scan.T_world_robot * sensor.T_robot_sensor, sensor, seg.grid, &seg.image,
-      &touched);
-  seg.touched = seg.touched.empty() ? touched : (touched.empty() ? seg.touched : seg.touched | touched);
+  const long long pixels =
+      projector_.Accumulate(*scan.profile, scan.T_world_robot * sensor.T_robot_sensor, sensor,
+                            seg.grid, &seg.image, &touched);
+  seg.touched =
+      seg.touched.empty() ? touched : (touched.empty() ? seg.touched : seg.touched | touched);
   seg.scans.push_back(scan);
   seg.path_end_m = scan.path_m;
   return pixels;

@@ -41,7 +41,7 @@ class KeyframeBuilder {
     long long lattice_row0 = 0;  ///< global lattice row of the canvas's row 0 (row = -y)
     ImageGrid grid;              ///< canvas geometry in the world frame
     cv::Mat image;
-    cv::Rect touched;            ///< canvas pixels that received any scan
+    cv::Rect touched;  ///< canvas pixels that received any scan
     std::vector<ImagedScan> scans;
     double path_begin_m = 0.0;
     double path_end_m = 0.0;

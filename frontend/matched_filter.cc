@@ -20,10 +20,10 @@ std::mutex& PlannerMutex() {
 // FFTW_ESTIMATE keeps the plans (and so the results) identical run to run,
 // which the byte-identical-output promise of `uwbsar map` depends on.
 struct MatchedFilter::Plans {
-  float* real = nullptr;                ///< N real samples
-  fftwf_complex* spectrum = nullptr;    ///< N/2 + 1 bins
-  fftwf_complex* up_spectrum = nullptr; ///< N * U bins (analytic, zero-padded)
-  fftwf_complex* up_time = nullptr;     ///< N * U samples
+  float* real = nullptr;                 ///< N real samples
+  fftwf_complex* spectrum = nullptr;     ///< N/2 + 1 bins
+  fftwf_complex* up_spectrum = nullptr;  ///< N * U bins (analytic, zero-padded)
+  fftwf_complex* up_time = nullptr;      ///< N * U samples
   fftwf_plan forward = nullptr;
   fftwf_plan backward_real = nullptr;
   fftwf_plan backward_analytic = nullptr;
@@ -55,10 +55,9 @@ MatchedFilter::MatchedFilter(const std::vector<float>& pulse, int pulse_center, 
     plans_->up_spectrum = fftwf_alloc_complex(nu);
     plans_->up_time = fftwf_alloc_complex(nu);
     plans_->forward = fftwf_plan_dft_r2c_1d(n, plans_->real, plans_->spectrum, FFTW_ESTIMATE);
-    plans_->backward_real =
-        fftwf_plan_dft_c2r_1d(n, plans_->spectrum, plans_->real, FFTW_ESTIMATE);
-    plans_->backward_analytic = fftwf_plan_dft_1d(nu, plans_->up_spectrum, plans_->up_time,
-                                                  FFTW_BACKWARD, FFTW_ESTIMATE);
+    plans_->backward_real = fftwf_plan_dft_c2r_1d(n, plans_->spectrum, plans_->real, FFTW_ESTIMATE);
+    plans_->backward_analytic =
+        fftwf_plan_dft_1d(nu, plans_->up_spectrum, plans_->up_time, FFTW_BACKWARD, FFTW_ESTIMATE);
   }
   // Kernel with the pulse centre at index 0 (negative lags wrap to the end), so
   // that correlation output index k is the echo-centre position.

@@ -24,8 +24,8 @@ OdometryBuffer::AddResult OdometryBuffer::Add(const OdometrySample& sample) {
   entry.stamp_ns = sample.stamp_ns;
   entry.T_world_robot = T_corrected_raw_ * raw;
   entry.path_m = entries_.empty() ? 0.0
-                                  : entries_.back().path_m +
-                                        Distance(entries_.back().T_world_robot, entry.T_world_robot);
+                                  : entries_.back().path_m + Distance(entries_.back().T_world_robot,
+                                                                      entry.T_world_robot);
   entries_.push_back(entry);
   return result;
 }
@@ -34,9 +34,9 @@ OdometryBuffer::LookupResult OdometryBuffer::Lookup(TimestampNs stamp_ns,
                                                     OdometryEntry* out) const {
   if (entries_.empty() || stamp_ns < entries_.front().stamp_ns) return LookupResult::kBeforeFirst;
   if (stamp_ns > entries_.back().stamp_ns) return LookupResult::kAfterLast;
-  auto after = std::lower_bound(
-      entries_.begin(), entries_.end(), stamp_ns,
-      [](const OdometryEntry& e, TimestampNs t) { return e.stamp_ns < t; });
+  auto after =
+      std::lower_bound(entries_.begin(), entries_.end(), stamp_ns,
+                       [](const OdometryEntry& e, TimestampNs t) { return e.stamp_ns < t; });
   if (after->stamp_ns == stamp_ns) {
     *out = *after;
     return LookupResult::kOk;
@@ -44,8 +44,8 @@ OdometryBuffer::LookupResult OdometryBuffer::Lookup(TimestampNs stamp_ns,
   const OdometryEntry& b = *after;
   const OdometryEntry& a = *(after - 1);
   if (NsToSeconds(b.stamp_ns - a.stamp_ns) > config_.max_odom_gap_s) return LookupResult::kGap;
-  const double t = static_cast<double>(stamp_ns - a.stamp_ns) /
-                   static_cast<double>(b.stamp_ns - a.stamp_ns);
+  const double t =
+      static_cast<double>(stamp_ns - a.stamp_ns) / static_cast<double>(b.stamp_ns - a.stamp_ns);
   out->stamp_ns = stamp_ns;
   out->T_world_robot = Interpolate(a.T_world_robot, b.T_world_robot, t);
   out->path_m = a.path_m + t * (b.path_m - a.path_m);

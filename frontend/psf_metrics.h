@@ -12,11 +12,11 @@ namespace uwbsar {
 
 struct PsfMetrics {
   bool found = false;
-  Point2 peak;                   ///< sub-pixel peak position, metric
+  Point2 peak;  ///< sub-pixel peak position, metric
   double position_error_m = 0.0;
-  double range_width_m = 0.0;    ///< -3 dB (half-power) width along the range direction
+  double range_width_m = 0.0;  ///< -3 dB (half-power) width along the range direction
   double cross_range_width_m = 0.0;
-  double pslr_db = -99.0;        ///< highest sidelobe over peak on either cut (-99 = none)
+  double pslr_db = -99.0;  ///< highest sidelobe over peak on either cut (-99 = none)
   double peak_value = 0.0;
 };
 

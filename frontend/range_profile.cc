@@ -9,7 +9,9 @@ namespace uwbsar {
 
 RangeCompressor::RangeCompressor(const PulseConfig& pulse, const SensorGeometry& geometry,
                                  bool coherent, int oversampling)
-    : pulse_(pulse), geometry_(geometry), coherent_(coherent),
+    : pulse_(pulse),
+      geometry_(geometry),
+      coherent_(coherent),
       oversampling_(coherent ? std::max(1, oversampling) : 1) {
   const GaussianPulse model(pulse);
   pulse_samples_ = model.Sampled();

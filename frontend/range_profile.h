@@ -14,8 +14,8 @@
 namespace uwbsar {
 
 struct RangeProfile {
-  double range_start_m = 0.0;  ///< range of table entry 0
-  double range_step_m = 0.0;   ///< range between entries (bin size / upsampling)
+  double range_start_m = 0.0;      ///< range of table entry 0
+  double range_step_m = 0.0;       ///< range between entries (bin size / upsampling)
   double max_valid_range_m = 0.0;  ///< farthest range the scan's samples cover
   /// Paper mode: the compressed samples. Coherent mode: the real part of the
   /// upsampled analytic signal (planar storage so the lookup vectorises).

@@ -32,7 +32,8 @@ long long ComputeSectorSpans(const ImageGrid& grid, const Pose2& T_grid_sensor,
   const double ulx = std::cos(left), uly = std::sin(left);
   const double urx = std::cos(right), ury = std::sin(right);
 
-  const int row_first = std::max(0, static_cast<int>(std::floor(grid.YToRow(sy + sector.max_range_m))));
+  const int row_first =
+      std::max(0, static_cast<int>(std::floor(grid.YToRow(sy + sector.max_range_m))));
   const int row_last =
       std::min(grid.rows - 1, static_cast<int>(std::ceil(grid.YToRow(sy - sector.max_range_m))));
   long long pixels = 0;

@@ -8,7 +8,7 @@ namespace uwbsar {
 
 /// The annular field-of-view sector of one radar, in radians and metres.
 struct SensorGeometry {
-  Pose2 T_robot_sensor;         ///< antenna position, x along boresight
+  Pose2 T_robot_sensor;  ///< antenna position, x along boresight
   double fov_half_angle_rad = 0.0;
   double min_range_m = 0.0;
   double max_range_m = 0.0;

@@ -12,8 +12,8 @@ namespace uwbsar {
 
 /// Transmitted pulse and receiver sampling (paper Table I, REFERENCE.md section 1).
 struct PulseConfig {
-  double center_frequency_hz = 7.29e9;      ///< fc
-  double bandwidth_hz = 1.4e9;              ///< -6 dB bandwidth (reference code; paper table: 2 GHz)
+  double center_frequency_hz = 7.29e9;  ///< fc
+  double bandwidth_hz = 1.4e9;          ///< -6 dB bandwidth (reference code; paper table: 2 GHz)
   double sampling_frequency_hz = 23.328e9;  ///< fs; one range bin = c / (2 fs)
   double amplitude_v = 0.6;                 ///< pulse amplitude (reference code; paper: 1.0 V)
 
@@ -28,17 +28,17 @@ struct PulseConfig {
 
 /// One radar: where it sits on the robot, where it looks, what it sees.
 struct RadarConfig {
-  std::string name = "left";                ///< label used in logs and outputs
+  std::string name = "left";                  ///< label used in logs and outputs
   std::string topic = "/UWBradar0/readings";  ///< bag / ROS 2 topic of its scans
-  double mount_x_m = 0.0;                   ///< antenna position in the robot frame (x forward)
-  double mount_y_m = 0.18;                  ///< antenna position in the robot frame (y left)
-  double boresight_yaw_deg = 90.0;          ///< boresight direction in the robot frame
-  double fov_half_angle_deg = 30.0;         ///< half of the effective beam width
-  double min_range_m = 0.4;                 ///< pixels closer than this are not imaged
-  double max_range_m = 3.0;                 ///< pixels farther than this are not imaged
-  double range_offset_m = 0.0;              ///< range of sample 0 (cable/antenna delay)
-  int num_samples = 1000;                   ///< expected samples per scan
-  int zero_leading_samples = 1;             ///< samples zeroed before use (reference zeroes 1)
+  double mount_x_m = 0.0;                     ///< antenna position in the robot frame (x forward)
+  double mount_y_m = 0.18;                    ///< antenna position in the robot frame (y left)
+  double boresight_yaw_deg = 90.0;            ///< boresight direction in the robot frame
+  double fov_half_angle_deg = 30.0;           ///< half of the effective beam width
+  double min_range_m = 0.4;                   ///< pixels closer than this are not imaged
+  double max_range_m = 3.0;                   ///< pixels farther than this are not imaged
+  double range_offset_m = 0.0;                ///< range of sample 0 (cable/antenna delay)
+  int num_samples = 1000;                     ///< expected samples per scan
+  int zero_leading_samples = 1;               ///< samples zeroed before use (reference zeroes 1)
 
   template <class V>
   void Visit(V& v) {
@@ -86,10 +86,10 @@ struct ImagingConfig {
 
 /// Scan gating and odometry sanity checks.
 struct GatingConfig {
-  double min_travel_m = 0.003;     ///< accept a scan after this much robot travel (paper: 3 mm)
-  double max_odom_jump_m = 0.5;    ///< a larger step between consecutive odometry samples is rejected
-  double max_odom_gap_s = 0.5;     ///< scans farther than this from odometry samples are rejected
-  double max_scan_latency_s = 1.0; ///< scans waiting longer than this for odometry are dropped
+  double min_travel_m = 0.003;   ///< accept a scan after this much robot travel (paper: 3 mm)
+  double max_odom_jump_m = 0.5;  ///< a larger step between consecutive odometry samples is rejected
+  double max_odom_gap_s = 0.5;   ///< scans farther than this from odometry samples are rejected
+  double max_scan_latency_s = 1.0;  ///< scans waiting longer than this for odometry are dropped
 
   template <class V>
   void Visit(V& v) {
@@ -117,9 +117,9 @@ struct KeyframeConfig {
 
 /// Image enhancement for display and features (paper section "UWB SAR Imaging").
 struct EnhanceConfig {
-  double blur_sigma_px = 2.0;         ///< Gaussian blur of the positive image
-  double display_range_db = 30.0;     ///< dynamic range of log-magnitude display (coherent)
-  std::string colormap = "inferno";   ///< PNG colour map: gray, inferno, jet, viridis, magma, hot
+  double blur_sigma_px = 2.0;        ///< Gaussian blur of the positive image
+  double display_range_db = 30.0;    ///< dynamic range of log-magnitude display (coherent)
+  std::string colormap = "inferno";  ///< PNG colour map: gray, inferno, jet, viridis, magma, hot
 
   template <class V>
   void Visit(V& v) {
@@ -131,34 +131,34 @@ struct EnhanceConfig {
 
 /// Pose-graph backend (Ceres): loop outlier handling, odometry weighting, solver settings.
 struct BackendConfig {
-  std::string initialization = "guess";    ///< first solve starts from: guess (the nodes'
-                                           ///< initial estimates) or chordal (relaxation)
-  std::string robust_loss = "cauchy";      ///< loss on loop edges while outliers are sought:
-                                           ///< cauchy, huber or none
-  double robust_loss_scale = 2.0;          ///< whitened residual norm (sigmas) where it turns robust
-  double loop_rejection_chi2 = 16.27;      ///< a loop whose chi2 at the solution exceeds this is
-                                           ///< rejected (16.27 = 99.9 % quantile, 3 DOF)
-  int max_rejection_rounds = 10;           ///< solve / reject / re-admit rounds per optimisation
-  int min_loop_support = 1;                ///< loops agreeing with fewer other loops nearby are
-                                           ///< held back and only admitted if the map solved
-                                           ///< without them confirms them; 0 disables
-  int loop_support_window = 10;            ///< nodes along the odometry chain that count as nearby
-  double unsupported_loop_chi2 = 32.5;     ///< a held-back loop is admitted when its chi2 against
-                                           ///< the map solved without it is at most this (twice
-                                           ///< loop_rejection_chi2: the map's own uncertainty
-                                           ///< between the ends counted as one more loop)
-  bool final_least_squares = true;         ///< last solve without loss on the accepted loops
-  double odometry_xy_information = 2500.0;   ///< x, y information of 1 m of odometry (1/m^2):
-                                             ///< sigma 2 cm per metre (wheel odometry, 1-2 %),
-                                             ///< divided by the edge's travelled distance
-  double odometry_yaw_information = 10000.0; ///< yaw information of 1 m of odometry (1/rad^2):
-                                             ///< sigma 0.6 deg per metre
-  double odometry_min_distance_m = 0.1;    ///< shorter odometry edges weigh as this distance
-  double loop_xy_information = 44.7;       ///< loop information when none is given (follow-on)
-  double loop_yaw_information = 44.7;      ///< loop yaw information when none is given (follow-on)
-  int max_iterations = 100;                ///< Ceres iterations per solve
-  double function_tolerance = 1e-10;       ///< Ceres convergence: relative change of the cost
-  int num_threads = 1;                     ///< Ceres threads (Jacobian evaluation)
+  std::string initialization = "guess";  ///< first solve starts from: guess (the nodes'
+                                         ///< initial estimates) or chordal (relaxation)
+  std::string robust_loss = "cauchy";    ///< loss on loop edges while outliers are sought:
+                                         ///< cauchy, huber or none
+  double robust_loss_scale = 2.0;        ///< whitened residual norm (sigmas) where it turns robust
+  double loop_rejection_chi2 = 16.27;    ///< a loop whose chi2 at the solution exceeds this is
+                                         ///< rejected (16.27 = 99.9 % quantile, 3 DOF)
+  int max_rejection_rounds = 10;         ///< solve / reject / re-admit rounds per optimisation
+  int min_loop_support = 1;              ///< loops agreeing with fewer other loops nearby are
+                                         ///< held back and only admitted if the map solved
+                                         ///< without them confirms them; 0 disables
+  int loop_support_window = 10;          ///< nodes along the odometry chain that count as nearby
+  double unsupported_loop_chi2 = 32.5;   ///< a held-back loop is admitted when its chi2 against
+                                         ///< the map solved without it is at most this (twice
+                                         ///< loop_rejection_chi2: the map's own uncertainty
+                                         ///< between the ends counted as one more loop)
+  bool final_least_squares = true;       ///< last solve without loss on the accepted loops
+  double odometry_xy_information = 2500.0;    ///< x, y information of 1 m of odometry (1/m^2):
+                                              ///< sigma 2 cm per metre (wheel odometry, 1-2 %),
+                                              ///< divided by the edge's travelled distance
+  double odometry_yaw_information = 10000.0;  ///< yaw information of 1 m of odometry (1/rad^2):
+                                              ///< sigma 0.6 deg per metre
+  double odometry_min_distance_m = 0.1;       ///< shorter odometry edges weigh as this distance
+  double loop_xy_information = 44.7;          ///< loop information when none is given (follow-on)
+  double loop_yaw_information = 44.7;  ///< loop yaw information when none is given (follow-on)
+  int max_iterations = 100;            ///< Ceres iterations per solve
+  double function_tolerance = 1e-10;   ///< Ceres convergence: relative change of the cost
+  int num_threads = 1;                 ///< Ceres threads (Jacobian evaluation)
 
   template <class V>
   void Visit(V& v) {
@@ -350,11 +350,11 @@ struct DetectorConfig {
   double surf_hessian_threshold = 200.0;   ///< SURF hessianThreshold (paper)
   int surf_octaves = 4;                    ///< SURF nOctaves (paper)
   int surf_octave_layers = 4;              ///< SURF nOctaveLayers (paper)
-  bool surf_upright = false;               ///< U-SURF: no orientation (faster, not rotation invariant)
-  int brisk_threshold = 15;                ///< BRISK thresh (paper)
-  double akaze_threshold = 0.0005;         ///< AKAZE threshold, KAZE descriptor (paper)
-  int orb_fast_threshold = 15;             ///< ORB fastThreshold (paper)
-  int orb_wta_k = 4;                       ///< ORB WTA_K (paper; 3 and 4 match with Hamming2)
+  bool surf_upright = false;        ///< U-SURF: no orientation (faster, not rotation invariant)
+  int brisk_threshold = 15;         ///< BRISK thresh (paper)
+  double akaze_threshold = 0.0005;  ///< AKAZE threshold, KAZE descriptor (paper)
+  int orb_fast_threshold = 15;      ///< ORB fastThreshold (paper)
+  int orb_wta_k = 4;                ///< ORB WTA_K (paper; 3 and 4 match with Hamming2)
 
   template <class V>
   void Visit(V& v) {
@@ -392,20 +392,20 @@ struct FeatureMatchConfig {
 /// The paper's AKAZE+ORB loop validation ("Identifying Loop Closures while Exploring")
 /// and the uncertainty given to accepted loops.
 struct LoopValidationConfig {
-  int min_good_matches = 10;          ///< both detectors need more good matches than this (paper)
-  double min_scale = 0.85;            ///< both scales must lie in [min_scale, max_scale] (paper)
-  double max_scale = 1.15;            ///< ...
-  double max_tx_difference_px = 10.0;   ///< |tx_akaze - tx_orb| limit (paper)
-  double max_ty_difference_px = 10.0;   ///< |ty_akaze - ty_orb| limit (paper)
+  int min_good_matches = 10;           ///< both detectors need more good matches than this (paper)
+  double min_scale = 0.85;             ///< both scales must lie in [min_scale, max_scale] (paper)
+  double max_scale = 1.15;             ///< ...
+  double max_tx_difference_px = 10.0;  ///< |tx_akaze - tx_orb| limit (paper)
+  double max_ty_difference_px = 10.0;  ///< |ty_akaze - ty_orb| limit (paper)
   double max_rotation_difference_deg = 10.0;  ///< |rot_akaze - rot_orb| limit (paper)
-  double min_inlier_spread_px = 5.0;  ///< the inliers' smaller principal standard deviation
+  double min_inlier_spread_px = 5.0;          ///< the inliers' smaller principal standard deviation
                                       ///< must exceed this (collinear matches are degenerate)
-  double min_residual_px = 1.0;       ///< floor of the per-feature position noise used for the
-                                      ///< loop's information matrix
-  double min_xy_sigma_m = 0.02;       ///< floor of a loop's translation standard deviation:
-                                      ///< tiles are imaged with odometry, whose 1-2 % drift
-                                      ///< within a tile distorts it by about this much
-  double min_yaw_sigma_deg = 0.5;     ///< floor of a loop's rotation standard deviation
+  double min_residual_px = 1.0;    ///< floor of the per-feature position noise used for the
+                                   ///< loop's information matrix
+  double min_xy_sigma_m = 0.02;    ///< floor of a loop's translation standard deviation:
+                                   ///< tiles are imaged with odometry, whose 1-2 % drift
+                                   ///< within a tile distorts it by about this much
+  double min_yaw_sigma_deg = 0.5;  ///< floor of a loop's rotation standard deviation
 
   template <class V>
   void Visit(V& v) {
@@ -468,22 +468,23 @@ struct PlaceRecognitionConfig {
 struct CompareConfig {
   std::string align = "icp";                  ///< icp (from the map origins or --init) or origin
   std::string icp_method = "point_to_plane";  ///< point_to_plane (2-D normals) or point_to_point
-  std::vector<double> icp_max_correspondence_m = {1.0, 0.5, 0.25, 0.1};  ///< coarse-to-fine
-                                              ///< ICP stages: pairs farther apart are ignored
-  int icp_max_iterations = 50;                ///< ICP iterations per stage
-  double icp_transformation_epsilon = 1e-9;   ///< a stage stops when the transform changes less
-                                              ///< (PCL: squared translation + rotation change)
-  int icp_normal_neighbours = 6;              ///< point_to_plane: cells used for each normal
-  double icp_min_inlier_fraction = 0.3;       ///< fewer SAR cells within the last stage's
-                                              ///< distance: ICP rejected, initial transform kept
-  bool grey_205_unknown = true;               ///< trinary maps: grey 205 is unknown even where
-                                              ///< the YAML's free_thresh (Nav2: 0.25) says free
-  int tolerance_cells = 1;                    ///< precision / recall / F1 match distance
-                                              ///< (cells, 8-neighbourhood)
-  int overlay_pixels_per_cell = 4;            ///< overlay.png scale
-  double pcd_peak_fraction = 0.2;             ///< export-pcd of a float SAR map: peaks weaker
-                                              ///< than this fraction of the strongest are dropped
-  double pcd_peak_radius_m = 0.05;            ///< export-pcd: a peak is the maximum within this
+  std::vector<double> icp_max_correspondence_m = {
+      1.0, 0.5, 0.25, 0.1};                  ///< coarse-to-fine
+                                             ///< ICP stages: pairs farther apart are ignored
+  int icp_max_iterations = 50;               ///< ICP iterations per stage
+  double icp_transformation_epsilon = 1e-9;  ///< a stage stops when the transform changes less
+                                             ///< (PCL: squared translation + rotation change)
+  int icp_normal_neighbours = 6;             ///< point_to_plane: cells used for each normal
+  double icp_min_inlier_fraction = 0.3;      ///< fewer SAR cells within the last stage's
+                                             ///< distance: ICP rejected, initial transform kept
+  bool grey_205_unknown = true;              ///< trinary maps: grey 205 is unknown even where
+                                             ///< the YAML's free_thresh (Nav2: 0.25) says free
+  int tolerance_cells = 1;                   ///< precision / recall / F1 match distance
+                                             ///< (cells, 8-neighbourhood)
+  int overlay_pixels_per_cell = 4;           ///< overlay.png scale
+  double pcd_peak_fraction = 0.2;            ///< export-pcd of a float SAR map: peaks weaker
+                                             ///< than this fraction of the strongest are dropped
+  double pcd_peak_radius_m = 0.05;           ///< export-pcd: a peak is the maximum within this
 
   template <class V>
   void Visit(V& v) {
@@ -536,40 +537,41 @@ struct SlamConfig {
 /// its command codes are configuration: each command is hex bytes, the first byte the
 /// command code and the rest its payload, sent framed (0xFF code payload 0x00).
 struct LiveConfig {
-  std::vector<std::string> radar_devices = {"/dev/ttyACM0", "/dev/ttyACM1"};  ///< serial
+  std::vector<std::string> radar_devices = {
+      "/dev/ttyACM0", "/dev/ttyACM1"};  ///< serial
                                         ///< device of radars[i] (one per radar)
   int radar_baud = 115200;              ///< LT102 baud rate (SDK default)
   int lt102_raw_data_code = 82;         ///< command byte of the LT102 raw-data message
   std::vector<std::string> lt102_start_commands = {"53 01"};  ///< sent after opening the port
   std::vector<std::string> lt102_stop_commands = {"53 00"};   ///< sent before closing it
-  int lt102_channel = 0;                ///< channel of a multi-channel scan that is used
-  std::string kobuki_device = "/dev/kobuki";  ///< Kobuki base serial device
-  int kobuki_baud = 115200;                   ///< Kobuki baud rate
-  double kobuki_wheel_radius_m = 0.035;       ///< Kobuki wheel radius
-  double kobuki_wheelbase_m = 0.230;          ///< Kobuki wheel separation
+  int lt102_channel = 0;                         ///< channel of a multi-channel scan that is used
+  std::string kobuki_device = "/dev/kobuki";     ///< Kobuki base serial device
+  int kobuki_baud = 115200;                      ///< Kobuki baud rate
+  double kobuki_wheel_radius_m = 0.035;          ///< Kobuki wheel radius
+  double kobuki_wheelbase_m = 0.230;             ///< Kobuki wheel separation
   double kobuki_ticks_per_revolution = 2578.33;  ///< Kobuki encoder ticks per wheel turn
-  double max_wheel_speed_mps = 1.0;     ///< a wheel faster than this between two packets is
-                                        ///< an odometry jump: the step is not integrated
-  double odometry_stall_s = 0.5;        ///< no odometry for this long: reported as a stall
-  std::string gpio_chip = "";           ///< libgpiod chip (e.g. gpiochip0); "" = no GPIO
-  std::vector<int> radar_power_lines;   ///< power-enable line of radars[i]; [] = not wired
-  std::vector<int> radar_reset_lines;   ///< reset line (active low) of radars[i]; [] = not wired
-  int status_led_line = -1;             ///< status LED line; -1 = not wired
-  double reset_pulse_s = 0.1;           ///< reset held low this long
-  double power_settle_s = 0.5;          ///< wait after power-on and after reset
-  double power_off_s = 1.0;             ///< power held off this long in a power cycle
-  int power_cycle_after_failures = 3;   ///< reconnect failures before a radar is power cycled
-  double read_timeout_s = 1.0;          ///< a link silent this long is reconnected
-  double reconnect_initial_s = 0.2;     ///< first reconnect delay, doubled per failure
-  double reconnect_max_s = 5.0;         ///< reconnect delay cap
-  int processing_queue_size = 4000;     ///< messages waiting for SLAM; beyond, the oldest
-                                        ///< are dropped from processing (never from recording)
-  double snapshot_period_s = 10.0;      ///< map outputs are rewritten this often (0 = only at end)
+  double max_wheel_speed_mps = 1.0;    ///< a wheel faster than this between two packets is
+                                       ///< an odometry jump: the step is not integrated
+  double odometry_stall_s = 0.5;       ///< no odometry for this long: reported as a stall
+  std::string gpio_chip = "";          ///< libgpiod chip (e.g. gpiochip0); "" = no GPIO
+  std::vector<int> radar_power_lines;  ///< power-enable line of radars[i]; [] = not wired
+  std::vector<int> radar_reset_lines;  ///< reset line (active low) of radars[i]; [] = not wired
+  int status_led_line = -1;            ///< status LED line; -1 = not wired
+  double reset_pulse_s = 0.1;          ///< reset held low this long
+  double power_settle_s = 0.5;         ///< wait after power-on and after reset
+  double power_off_s = 1.0;            ///< power held off this long in a power cycle
+  int power_cycle_after_failures = 3;  ///< reconnect failures before a radar is power cycled
+  double read_timeout_s = 1.0;         ///< a link silent this long is reconnected
+  double reconnect_initial_s = 0.2;    ///< first reconnect delay, doubled per failure
+  double reconnect_max_s = 5.0;        ///< reconnect delay cap
+  int processing_queue_size = 4000;    ///< messages waiting for SLAM; beyond, the oldest
+                                       ///< are dropped from processing (never from recording)
+  double snapshot_period_s = 10.0;     ///< map outputs are rewritten this often (0 = only at end)
   std::string recording_storage = "sqlite3";  ///< recording bag storage: sqlite3 (survives a
                                               ///< crash up to the last flush) or mcap
-  double recording_flush_period_s = 0.5;   ///< the recording is made durable this often
-  double clock_step_threshold_s = 0.1;  ///< host clock moving this much against the
-                                        ///< monotonic clock is reported as a clock step
+  double recording_flush_period_s = 0.5;      ///< the recording is made durable this often
+  double clock_step_threshold_s = 0.1;        ///< host clock moving this much against the
+                                              ///< monotonic clock is reported as a clock step
 
   template <class V>
   void Visit(V& v) {

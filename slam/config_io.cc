@@ -57,7 +57,8 @@ class Reader {
   template <class T>
   void Read(const YAML::Node& node, T& value, const std::string& key) {
     if constexpr (HasVisit<T>::value) {
-      if (!node.IsMap()) throw ConfigError(Where(source_, node) + ": '" + key + "' must be a mapping");
+      if (!node.IsMap())
+        throw ConfigError(Where(source_, node) + ": '" + key + "' must be a mapping");
       Reader nested(node, source_, key + ".");
       value.Visit(nested);
       nested.CheckUnknownKeys();
@@ -71,7 +72,8 @@ class Reader {
       }
       value = std::move(items);
     } else {
-      if (!node.IsScalar()) throw ConfigError(Where(source_, node) + ": '" + key + "' must be a value");
+      if (!node.IsScalar())
+        throw ConfigError(Where(source_, node) + ": '" + key + "' must be a value");
       try {
         value = node.as<T>();
       } catch (const YAML::Exception&) {
@@ -211,8 +213,8 @@ void ValidatePlaceRecognition(const PlaceRecognitionConfig& p, const std::string
   Require(m.ratio > 0 && m.ratio <= 1, src, k + "matching.ratio", "must be in (0, 1]");
   Require(m.ransac_reprojection_px > 0, src, k + "matching.ransac_reprojection_px", "must be > 0");
   Require(m.ransac_max_iterations >= 1, src, k + "matching.ransac_max_iterations", "must be >= 1");
-  Require(m.ransac_confidence > 0 && m.ransac_confidence < 1, src,
-          k + "matching.ransac_confidence", "must be in (0, 1)");
+  Require(m.ransac_confidence > 0 && m.ransac_confidence < 1, src, k + "matching.ransac_confidence",
+          "must be in (0, 1)");
   const LoopValidationConfig& v = p.validation;
   Require(v.min_good_matches >= 2, src, k + "validation.min_good_matches", "must be >= 2");
   Require(v.min_scale > 0 && v.min_scale <= 1, src, k + "validation.min_scale",
@@ -222,8 +224,7 @@ void ValidatePlaceRecognition(const PlaceRecognitionConfig& p, const std::string
   Require(v.max_ty_difference_px >= 0, src, k + "validation.max_ty_difference_px", "must be >= 0");
   Require(v.max_rotation_difference_deg >= 0 && v.max_rotation_difference_deg <= 180, src,
           k + "validation.max_rotation_difference_deg", "must be in [0, 180]");
-  Require(v.min_inlier_spread_px >= 0, src, k + "validation.min_inlier_spread_px",
-          "must be >= 0");
+  Require(v.min_inlier_spread_px >= 0, src, k + "validation.min_inlier_spread_px", "must be >= 0");
   Require(v.min_residual_px > 0, src, k + "validation.min_residual_px", "must be > 0");
   Require(v.min_xy_sigma_m > 0, src, k + "validation.min_xy_sigma_m", "must be > 0");
   Require(v.min_yaw_sigma_deg > 0, src, k + "validation.min_yaw_sigma_deg", "must be > 0");
@@ -271,8 +272,7 @@ void ValidateLive(const LiveConfig& l, const std::string& src) {
   }
   Require(l.radar_baud > 0, src, k + "radar_baud", "must be > 0");
   Require(l.kobuki_baud > 0, src, k + "kobuki_baud", "must be > 0");
-  Require(l.lt102_raw_data_code > 0 && l.lt102_raw_data_code < 255 &&
-              l.lt102_raw_data_code != 0x80,
+  Require(l.lt102_raw_data_code > 0 && l.lt102_raw_data_code < 255 && l.lt102_raw_data_code != 0x80,
           src, k + "lt102_raw_data_code", "must be in [1, 254] and not 128 (0x80, the escape)");
   for (const auto* list : {&l.lt102_start_commands, &l.lt102_stop_commands}) {
     for (const std::string& command : *list) {
@@ -280,12 +280,12 @@ void ValidateLive(const LiveConfig& l, const std::string& src) {
       std::string byte;
       int n = 0;
       while (in >> byte) {
-        const bool hex = byte.size() <= 2 && byte.find_first_not_of("0123456789abcdefABCDEF") ==
-                                                 std::string::npos;
-        Require(hex, src,
-                k + (list == &l.lt102_start_commands ? "lt102_start_commands"
-                                                     : "lt102_stop_commands"),
-                "entries must be hex bytes separated by spaces (got '" + command + "')");
+        const bool hex = byte.size() <= 2 &&
+                         byte.find_first_not_of("0123456789abcdefABCDEF") == std::string::npos;
+        Require(
+            hex, src,
+            k + (list == &l.lt102_start_commands ? "lt102_start_commands" : "lt102_stop_commands"),
+            "entries must be hex bytes separated by spaces (got '" + command + "')");
         ++n;
       }
       Require(n > 0, src, k + "lt102_start_commands", "entries must not be empty");
@@ -295,8 +295,7 @@ void ValidateLive(const LiveConfig& l, const std::string& src) {
   Require(!l.kobuki_device.empty(), src, k + "kobuki_device", "must not be empty");
   Require(l.kobuki_wheel_radius_m > 0, src, k + "kobuki_wheel_radius_m", "must be > 0");
   Require(l.kobuki_wheelbase_m > 0, src, k + "kobuki_wheelbase_m", "must be > 0");
-  Require(l.kobuki_ticks_per_revolution > 0, src, k + "kobuki_ticks_per_revolution",
-          "must be > 0");
+  Require(l.kobuki_ticks_per_revolution > 0, src, k + "kobuki_ticks_per_revolution", "must be > 0");
   Require(l.max_wheel_speed_mps > 0, src, k + "max_wheel_speed_mps", "must be > 0");
   Require(l.odometry_stall_s > 0, src, k + "odometry_stall_s", "must be > 0");
   const std::size_t n = l.radar_devices.size();
@@ -311,15 +310,14 @@ void ValidateLive(const LiveConfig& l, const std::string& src) {
     Require(line >= 0, src, k + "radar_reset_lines", "line offsets must be >= 0");
   }
   Require(l.status_led_line >= -1, src, k + "status_led_line", "must be >= 0, or -1 (none)");
-  const bool wired = !l.radar_power_lines.empty() || !l.radar_reset_lines.empty() ||
-                     l.status_led_line >= 0;
+  const bool wired =
+      !l.radar_power_lines.empty() || !l.radar_reset_lines.empty() || l.status_led_line >= 0;
   Require(!wired || !l.gpio_chip.empty(), src, k + "gpio_chip",
           "must name a chip when GPIO lines are configured");
   Require(l.reset_pulse_s > 0, src, k + "reset_pulse_s", "must be > 0");
   Require(l.power_settle_s >= 0, src, k + "power_settle_s", "must be >= 0");
   Require(l.power_off_s > 0, src, k + "power_off_s", "must be > 0");
-  Require(l.power_cycle_after_failures >= 1, src, k + "power_cycle_after_failures",
-          "must be >= 1");
+  Require(l.power_cycle_after_failures >= 1, src, k + "power_cycle_after_failures", "must be >= 1");
   Require(l.read_timeout_s > 0, src, k + "read_timeout_s", "must be > 0");
   Require(l.reconnect_initial_s > 0, src, k + "reconnect_initial_s", "must be > 0");
   Require(l.reconnect_max_s >= l.reconnect_initial_s, src, k + "reconnect_max_s",
@@ -425,8 +423,8 @@ void ValidateConfig(const Config& c, const std::string& src) {
   Require(c.keyframe.margin_m >= 0, src, "keyframe.margin_m", "must be >= 0");
   Require(c.enhance.blur_sigma_px >= 0, src, "enhance.blur_sigma_px", "must be >= 0");
   Require(c.enhance.display_range_db > 0, src, "enhance.display_range_db", "must be > 0");
-  static const std::set<std::string> kColormaps = {"gray", "inferno", "jet",
-                                                   "viridis", "magma", "hot"};
+  static const std::set<std::string> kColormaps = {"gray",    "inferno", "jet",
+                                                   "viridis", "magma",   "hot"};
   Require(kColormaps.count(c.enhance.colormap) > 0, src, "enhance.colormap",
           "must be one of gray, inferno, jet, viridis, magma, hot");
   const BackendConfig& b = c.backend;

@@ -161,8 +161,8 @@ Pose2 SlamSystem::CorrectionAt(TimestampNs stamp_ns) const {
   if (after == keyframes_.end()) return correction(keyframes_.size() - 1);
   const std::size_t i = static_cast<std::size_t>(after - keyframes_.begin());
   const TimestampNs t0 = keyframes_[i - 1].keyframe.stamp_ns, t1 = after->keyframe.stamp_ns;
-  const double t = t1 > t0 ? static_cast<double>(stamp_ns - t0) / static_cast<double>(t1 - t0)
-                           : 0.0;
+  const double t =
+      t1 > t0 ? static_cast<double>(stamp_ns - t0) / static_cast<double>(t1 - t0) : 0.0;
   return Interpolate(correction(i - 1), correction(i), t);
 }
 

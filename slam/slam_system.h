@@ -23,21 +23,21 @@ namespace uwbsar {
 
 /// A keyframe as SLAM keeps it (its features live in the PlaceRecognizer).
 struct KeyframeRecord {
-  Keyframe keyframe;         ///< tile image dropped after use unless slam.keep_tile_images
-  cv::Mat detected;          ///< detected tile (positive / magnitude, blurred) at map resolution
-  ImageGrid detected_grid;   ///< its geometry in the anchor frame
+  Keyframe keyframe;        ///< tile image dropped after use unless slam.keep_tile_images
+  cv::Mat detected;         ///< detected tile (positive / magnitude, blurred) at map resolution
+  ImageGrid detected_grid;  ///< its geometry in the anchor frame
 };
 
 /// Every candidate pair that was matched, with the outcome.
 struct LoopRecord {
-  int query_id = 0;       ///< the new keyframe (j)
-  int match_id = 0;       ///< the earlier keyframe (i)
+  int query_id = 0;  ///< the new keyframe (j)
+  int match_id = 0;  ///< the earlier keyframe (i)
   MatchResult akaze;
   MatchResult orb;
   LoopValidation validation;
-  int edge_index = -1;    ///< pose-graph edge, when the validator accepted it
+  int edge_index = -1;  ///< pose-graph edge, when the validator accepted it
   bool rejected_by_backend = false;
-  double chi2 = 0.0;      ///< of the edge at the final solution
+  double chi2 = 0.0;  ///< of the edge at the final solution
   bool accepted() const { return validation.accepted && !rejected_by_backend; }
 };
 

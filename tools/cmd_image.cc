@@ -53,8 +53,8 @@ void AddImageCommand(CLI::App& app, const GlobalOptions& globals) {
     std::printf("scans: %lld received, %lld imaged, %lld gated, %lld rejected\n", s.scans_received,
                 s.scans_imaged, s.scans_gated, s.scans_rejected());
     std::printf("image: %d x %d px at %.4f m (%s mode), %.3f s\n", result.strip.grid.cols,
-                result.strip.grid.rows, result.strip.grid.resolution_m,
-                config.imaging.mode.c_str(), result.seconds);
+                result.strip.grid.rows, result.strip.grid.resolution_m, config.imaging.mode.c_str(),
+                result.seconds);
     for (const auto& f : files) std::printf("wrote %s\n", f.c_str());
   });
 }

@@ -33,8 +33,7 @@ StripResult ImageRun(const Config& config, const std::vector<OdometrySample>& od
       WorldGridCovering(poses, frontend.sensors(), 0.1, config.imaging.pixel_size_m);
   result.strip = RenderScans(result.scans, frontend.sensors(), grid,
                              config.imaging.mode == "coherent", config.imaging.num_threads);
-  result.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 
@@ -61,8 +60,8 @@ std::vector<std::string> WriteStripOutputs(const std::string& dir, const std::st
   write("_positive.png", positive8);
   write("_enhanced.png", Colorize(Enhance8U(strip.image, enhance), enhance.colormap));
   if (coherent) {
-    write("_logmag.png", Colorize(LogMagnitude8U(strip.image, enhance.display_range_db),
-                                  enhance.colormap));
+    write("_logmag.png",
+          Colorize(LogMagnitude8U(strip.image, enhance.display_range_db), enhance.colormap));
   }
   WriteFloatTiff(path("_float.tif"), strip.image);
   written.push_back(path("_float.tif"));

@@ -30,9 +30,9 @@ class ProgressBar {
     if (drawn_ && now - last_ < std::chrono::milliseconds(200)) return;
     last_ = now;
     drawn_ = true;
-    const double f = std::clamp(static_cast<double>(now_ns - start_ns_) /
-                                    static_cast<double>(end_ns_ - start_ns_),
-                                0.0, 1.0);
+    const double f = std::clamp(
+        static_cast<double>(now_ns - start_ns_) / static_cast<double>(end_ns_ - start_ns_), 0.0,
+        1.0);
     const int filled = static_cast<int>(f * 30);
     std::fprintf(stderr, "\r[%.*s%*s] %3.0f%% of %.0f s of log", filled,
                  "##############################", 30 - filled, "", 100 * f,
@@ -120,8 +120,7 @@ MapRun MapBag(const Config& config, const std::string& bag_path, bool progress) 
     rosbag::ReadRobotBag(bag_path, options, feeder);
   }
   run.slam->Finish();
-  run.processing_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  run.processing_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   CheckMappable(run);
   return run;
 }
@@ -150,8 +149,9 @@ AteResult TrajectoryError(const std::vector<std::pair<TimestampNs, Pose2>>& esti
   std::vector<Pose2> est_poses, ref_poses;
   const TimestampNs max_dt = SecondsToNs(max_dt_s);
   for (const auto& [stamp, pose] : estimate) {
-    auto it = std::lower_bound(ref.begin(), ref.end(), stamp,
-                               [](const OdometrySample& s, TimestampNs t) { return s.stamp_ns < t; });
+    auto it =
+        std::lower_bound(ref.begin(), ref.end(), stamp,
+                         [](const OdometrySample& s, TimestampNs t) { return s.stamp_ns < t; });
     const OdometrySample* best = nullptr;
     TimestampNs best_dt = max_dt + 1;
     for (auto c : {it, it == ref.begin() ? it : it - 1}) {

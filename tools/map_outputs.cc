@@ -105,8 +105,11 @@ std::string LoopsCsv(const MapRun& run) {
 }
 
 nlohmann::json AteJson(const AteResult& a) {
-  return {{"poses", a.num_poses}, {"rmse_m", a.rmse_m}, {"mean_m", a.mean_m},
-          {"max_m", a.max_m}, {"yaw_rmse_deg", a.yaw_rmse_rad * 180.0 / M_PI}};
+  return {{"poses", a.num_poses},
+          {"rmse_m", a.rmse_m},
+          {"mean_m", a.mean_m},
+          {"max_m", a.max_m},
+          {"yaw_rmse_deg", a.yaw_rmse_rad * 180.0 / M_PI}};
 }
 
 std::string GridYaml(const ImageGrid& grid, const std::string& what) {
@@ -142,17 +145,19 @@ MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir) {
     // Trajectories.
     const auto trajectory = slam.CorrectedTrajectory();
     std::vector<std::pair<TimestampNs, Pose2>> odometry;
-    for (const OdometryEntry& e : slam.odometry()) odometry.push_back({e.stamp_ns, e.T_world_robot});
+    for (const OdometryEntry& e : slam.odometry())
+      odometry.push_back({e.stamp_ns, e.T_world_robot});
     WriteTum(staged("trajectory.tum"), InSeconds(trajectory));
     WriteTum(staged("odometry.tum"), InSeconds(odometry));
     WriteG2o(staged("graph.g2o"), slam.graph(), /*drop_rejected_loops=*/false);
     WriteTextAtomic(staged("loops.csv"), LoopsCsv(run));
-    std::vector<std::string> names = {"trajectory.tum", "odometry.tum", "graph.g2o", "loops.csv",
-                                      "map_float.tif", "map_grid.yaml", "map.png", "map.yaml",
-                                      "map.pgm", "report.html"};
+    std::vector<std::string> names = {"trajectory.tum", "odometry.tum",  "graph.g2o", "loops.csv",
+                                      "map_float.tif",  "map_grid.yaml", "map.png",   "map.yaml",
+                                      "map.pgm",        "report.html"};
     if (!run.ground_truth.empty()) {
       std::vector<std::pair<double, Pose2>> gt;
-      for (const OdometrySample& g : run.ground_truth) gt.push_back({NsToSeconds(g.stamp_ns), g.T_world_robot});
+      for (const OdometrySample& g : run.ground_truth)
+        gt.push_back({NsToSeconds(g.stamp_ns), g.T_world_robot});
       WriteTum(staged("ground_truth.tum"), gt);
       names.push_back("ground_truth.tum");
       result.ate = TrajectoryError(trajectory, run.ground_truth);
@@ -217,9 +222,13 @@ MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir) {
                    {"optimization", t.optimization_s},
                    {"total", run.processing_s}};
     const OptimizeResult& opt = slam.last_optimization();
-    s["optimization"] = {{"converged", opt.converged}, {"termination", opt.termination},
-                         {"iterations", opt.iterations}, {"final_cost", opt.final_cost}};
-    s["map"] = {{"resolution_m", grid.resolution_m}, {"rows", grid.rows}, {"cols", grid.cols},
+    s["optimization"] = {{"converged", opt.converged},
+                         {"termination", opt.termination},
+                         {"iterations", opt.iterations},
+                         {"final_cost", opt.final_cost}};
+    s["map"] = {{"resolution_m", grid.resolution_m},
+                {"rows", grid.rows},
+                {"cols", grid.cols},
                 {"blocks", global.num_blocks()},
                 {"memory_mib", static_cast<double>(global.memory_bytes()) / 1048576.0}};
     if (result.ate.num_poses > 0) {
@@ -230,23 +239,29 @@ MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir) {
     // report.html (built from the staged files, so it shows exactly what was written).
     RunReport report;
     report.title = "uwbsar map: " + run.input;
-    report.summary = {
-        {"log duration", Fixed(run.log_duration_s(), 1) + " s"},
-        {"processing time", Fixed(run.processing_s, 2) + " s (real-time factor " + Fixed(rtf, 1) + ")"},
-        {"path length", Fixed(s["path_length_m"].get<double>(), 2) + " m"},
-        {"keyframes", std::to_string(slam.keyframes().size())},
-        {"loops accepted / candidates", std::to_string(accepted) + " / " + std::to_string(slam.loops().size())},
-        {"scans imaged / received", std::to_string(fs_stats.scans_imaged) + " / " + std::to_string(fs_stats.scans_received)},
-        {"peak memory", Fixed(PeakMemoryMiB(), 0) + " MiB"}};
+    report.summary = {{"log duration", Fixed(run.log_duration_s(), 1) + " s"},
+                      {"processing time",
+                       Fixed(run.processing_s, 2) + " s (real-time factor " + Fixed(rtf, 1) + ")"},
+                      {"path length", Fixed(s["path_length_m"].get<double>(), 2) + " m"},
+                      {"keyframes", std::to_string(slam.keyframes().size())},
+                      {"loops accepted / candidates",
+                       std::to_string(accepted) + " / " + std::to_string(slam.loops().size())},
+                      {"scans imaged / received", std::to_string(fs_stats.scans_imaged) + " / " +
+                                                      std::to_string(fs_stats.scans_received)},
+                      {"peak memory", Fixed(PeakMemoryMiB(), 0) + " MiB"}};
     if (result.ate.num_poses > 0) {
       report.summary.push_back({"ATE RMSE (SLAM)", Fixed(result.ate.rmse_m * 100, 2) + " cm"});
-      report.summary.push_back({"ATE RMSE (odometry)", Fixed(result.odometry_ate.rmse_m * 100, 2) + " cm"});
+      report.summary.push_back(
+          {"ATE RMSE (odometry)", Fixed(result.odometry_ate.rmse_m * 100, 2) + " cm"});
     }
-    report.images.push_back({"SAR map with the optimised trajectory (white), odometry (grey) and "
-                             "accepted loops (cyan)", ReadFileBytes(staged("map.png"))});
+    report.images.push_back(
+        {"SAR map with the optimised trajectory (white), odometry (grey) and "
+         "accepted loops (cyan)",
+         ReadFileBytes(staged("map.png"))});
     auto points = [](const std::vector<std::pair<TimestampNs, Pose2>>& traj) {
       std::vector<Point2> out;
-      for (std::size_t i = 0; i < traj.size(); i += 5) out.push_back({traj[i].second.x_m, traj[i].second.y_m});
+      for (std::size_t i = 0; i < traj.size(); i += 5)
+        out.push_back({traj[i].second.x_m, traj[i].second.y_m});
       return out;
     };
     if (!run.ground_truth.empty()) {
@@ -263,11 +278,14 @@ MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir) {
       report.loop_segments.push_back({{a.x_m, a.y_m}, {b.x_m, b.y_m}});
     }
     ReportTable timing{"Time per stage", {"stage", "seconds", "share"}, {}};
-    for (const auto& [name, secs] : std::vector<std::pair<std::string, double>>{
-             {"imaging", t.imaging_s}, {"features", t.features_s}, {"matching", t.matching_s},
-             {"optimization", t.optimization_s}}) {
-      timing.rows.push_back({name, Fixed(secs, 3),
-                             Fixed(run.processing_s > 0 ? 100 * secs / run.processing_s : 0, 1) + " %"});
+    for (const auto& [name, secs] :
+         std::vector<std::pair<std::string, double>>{{"imaging", t.imaging_s},
+                                                     {"features", t.features_s},
+                                                     {"matching", t.matching_s},
+                                                     {"optimization", t.optimization_s}}) {
+      timing.rows.push_back(
+          {name, Fixed(secs, 3),
+           Fixed(run.processing_s > 0 ? 100 * secs / run.processing_s : 0, 1) + " %"});
     }
     report.tables.push_back(timing);
     ReportTable loops{"Loop candidates",
@@ -277,12 +295,12 @@ MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir) {
     for (const LoopRecord& l : slam.loops()) {
       const Pose2& T = l.validation.constraint.T_ij;
       const bool v = l.validation.accepted;
-      loops.rows.push_back({std::to_string(l.query_id), std::to_string(l.match_id),
-                            std::to_string(l.akaze.good_matches), std::to_string(l.orb.good_matches),
-                            v ? Fixed(T.x_m, 3) : "", v ? Fixed(T.y_m, 3) : "",
-                            v ? Fixed(T.yaw_rad * 180 / M_PI, 2) : "", v ? "accepted" : "rejected",
-                            v ? (l.rejected_by_backend ? "rejected" : "accepted") : "",
-                            l.validation.reason});
+      loops.rows.push_back(
+          {std::to_string(l.query_id), std::to_string(l.match_id),
+           std::to_string(l.akaze.good_matches), std::to_string(l.orb.good_matches),
+           v ? Fixed(T.x_m, 3) : "", v ? Fixed(T.y_m, 3) : "",
+           v ? Fixed(T.yaw_rad * 180 / M_PI, 2) : "", v ? "accepted" : "rejected",
+           v ? (l.rejected_by_backend ? "rejected" : "accepted") : "", l.validation.reason});
     }
     report.tables.push_back(loops);
     WriteTextAtomic(staged("report.html"), RenderReportHtml(report));
@@ -314,8 +332,8 @@ std::vector<std::string> WriteExactMap(const MapRun& run, const std::string& out
   TimestampNs last_stamp = std::numeric_limits<TimestampNs>::min();
   for (const KeyframeRecord& k : slam.keyframes()) {
     for (const ImagedScan& s : k.keyframe.scans) {
-      if (s.stamp_ns < last_stamp || (s.stamp_ns == last_stamp && !scans.empty() &&
-                                      s.sensor_id <= scans.back().sensor_id)) {
+      if (s.stamp_ns < last_stamp ||
+          (s.stamp_ns == last_stamp && !scans.empty() && s.sensor_id <= scans.back().sensor_id)) {
         continue;
       }
       last_stamp = s.stamp_ns;
@@ -325,15 +343,14 @@ std::vector<std::string> WriteExactMap(const MapRun& run, const std::string& out
   }
   const ImageGrid grid =
       WorldGridCovering(corrected, slam.sensors(), 0.1, config.imaging.pixel_size_m);
-  const StripImage exact =
-      RenderScans(scans, slam.sensors(), grid, config.imaging.mode == "coherent",
-                  config.imaging.num_threads,
-                  [&](const ImagedScan& s) { return corrected[&s - scans.data()]; });
+  const StripImage exact = RenderScans(
+      scans, slam.sensors(), grid, config.imaging.mode == "coherent", config.imaging.num_threads,
+      [&](const ImagedScan& s) { return corrected[&s - scans.data()]; });
   const std::string base = out_dir + "/map_exact";
   WriteFloatTiff(base + "_float.tif", exact.image);
   WriteTextAtomic(base + "_grid.yaml", GridYaml(grid, "map_exact_float.tif and map_exact.png"));
-  WriteImageAtomic(base + ".png", Colorize(Enhance8U(exact.image, config.enhance),
-                                           config.enhance.colormap));
+  WriteImageAtomic(base + ".png",
+                   Colorize(Enhance8U(exact.image, config.enhance), config.enhance.colormap));
   return {base + "_float.tif", base + "_grid.yaml", base + ".png"};
 }
 

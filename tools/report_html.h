@@ -29,7 +29,7 @@ struct RunReport {
   std::vector<std::pair<std::string, std::string>> summary;  ///< key figures, in order
   std::vector<std::pair<std::string, std::string>> images;   ///< caption, PNG file bytes
   std::vector<ReportTrajectory> trajectories;
-  std::vector<std::pair<Point2, Point2>> loop_segments;      ///< accepted loops, drawn
+  std::vector<std::pair<Point2, Point2>> loop_segments;  ///< accepted loops, drawn
   std::vector<ReportTable> tables;
 };
 

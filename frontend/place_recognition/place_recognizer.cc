@@ -1,8 +1,7 @@
 #include "frontend/place_recognition/place_recognizer.h"
 
-#include <opencv2/imgproc.hpp>
-
 #include <chrono>
+#include <opencv2/imgproc.hpp>
 
 namespace uwbsar {
 namespace {

@@ -55,10 +55,11 @@ ModeResult ImagePointTargets(const char* mode, const SyntheticPath& path) {
 void Print(const char* mode, const std::vector<PsfMetrics>& psf) {
   for (std::size_t i = 0; i < psf.size(); ++i) {
     const PsfMetrics& m = psf[i];
-    std::printf("%-12s target (%.1f, %.1f): error %.2f mm, -3 dB range %.1f mm, cross-range "
-                "%.1f mm, PSLR %.1f dB, peak %.1f\n",
-                mode, kTargets[i].x_m, kTargets[i].y_m, m.position_error_m * 1e3,
-                m.range_width_m * 1e3, m.cross_range_width_m * 1e3, m.pslr_db, m.peak_value);
+    std::printf(
+        "%-12s target (%.1f, %.1f): error %.2f mm, -3 dB range %.1f mm, cross-range "
+        "%.1f mm, PSLR %.1f dB, peak %.1f\n",
+        mode, kTargets[i].x_m, kTargets[i].y_m, m.position_error_m * 1e3, m.range_width_m * 1e3,
+        m.cross_range_width_m * 1e3, m.pslr_db, m.peak_value);
   }
 }
 
@@ -148,8 +149,8 @@ TEST(BackProjectionTest, CurvedPathStillFocusesPointTargets) {
     for (const Point2& t : targets) {
       const Point2 range_dir{t.x_m - mid.x_m, t.y_m - mid.y_m};
       const PsfMetrics m = MeasurePsf(detected, result.strip.grid, t, range_dir);
-      std::printf("%-8s arc target (%.2f, %.2f): error %.2f mm, cross-range %.1f mm\n", mode,
-                  t.x_m, t.y_m, m.position_error_m * 1e3, m.cross_range_width_m * 1e3);
+      std::printf("%-8s arc target (%.2f, %.2f): error %.2f mm, cross-range %.1f mm\n", mode, t.x_m,
+                  t.y_m, m.position_error_m * 1e3, m.cross_range_width_m * 1e3);
       ASSERT_TRUE(m.found);
       EXPECT_LT(m.position_error_m, 0.01);
       EXPECT_LT(m.cross_range_width_m, 1.5 * 1.3 * kTheoreticalCrossRangeM);
@@ -169,7 +170,8 @@ TEST(BackProjectionTest, IgnoringTheTurnDefocuses) {
   const tools::StripResult good = tools::ImageRun(config, run.odometry, run.scans);
   SyntheticPath straight;
   for (auto& o : run.odometry) {
-    o.T_world_robot = PathPose(straight, std::min(3.0, NsToSeconds(o.stamp_ns - straight.start_stamp_ns) * 0.2));
+    o.T_world_robot =
+        PathPose(straight, std::min(3.0, NsToSeconds(o.stamp_ns - straight.start_stamp_ns) * 0.2));
   }
   const tools::StripResult bad = tools::ImageRun(config, run.odometry, run.scans);
   double good_peak = 0, bad_peak = 0;

@@ -29,9 +29,9 @@ TEST(EnhanceTest, EnhancedEightBitSpansFullRange) {
 
 TEST(EnhanceTest, LogMagnitudeMapsDisplayRange) {
   cv::Mat img(1, 3, CV_32FC2);
-  img.at<cv::Vec2f>(0, 0) = {3.0f, 4.0f};      // |5|: the peak -> 255
-  img.at<cv::Vec2f>(0, 1) = {0.5f, 0.0f};      // -20 dB -> 255 * (1 - 20/30)
-  img.at<cv::Vec2f>(0, 2) = {0.0f, 0.0001f};   // below the range -> 0
+  img.at<cv::Vec2f>(0, 0) = {3.0f, 4.0f};     // |5|: the peak -> 255
+  img.at<cv::Vec2f>(0, 1) = {0.5f, 0.0f};     // -20 dB -> 255 * (1 - 20/30)
+  img.at<cv::Vec2f>(0, 2) = {0.0f, 0.0001f};  // below the range -> 0
   const cv::Mat d = LogMagnitude8U(img, 30.0);
   EXPECT_EQ(d.at<unsigned char>(0, 0), 255);
   EXPECT_NEAR(d.at<unsigned char>(0, 1), 85, 1);

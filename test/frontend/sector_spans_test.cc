@@ -19,7 +19,8 @@ bool InsideSector(const Point2& p, const Pose2& T, const SectorShape& s) {
 bool NearBoundary(const Point2& p, const Pose2& T, const SectorShape& s) {
   const Point2 q = T.Inverse() * p;
   const double r = std::hypot(q.x_m, q.y_m);
-  const double angle_margin = r * std::abs(std::abs(std::atan2(q.y_m, q.x_m)) - s.fov_half_angle_rad);
+  const double angle_margin =
+      r * std::abs(std::abs(std::atan2(q.y_m, q.x_m)) - s.fov_half_angle_rad);
   return std::abs(r - s.min_range_m) < 1e-9 || std::abs(r - s.max_range_m) < 1e-9 ||
          angle_margin < 1e-9;
 }

@@ -13,7 +13,9 @@
 namespace uwbsar {
 namespace {
 
-std::string SeedLab() { return std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_lab/my_map.yaml"; }
+std::string SeedLab() {
+  return std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_lab/my_map.yaml";
+}
 
 tools::MapRun MapSimulated(const Config& config, const std::string& map, const std::string& route,
                            std::uint64_t seed) {
@@ -41,7 +43,8 @@ TEST(SlamSystemTest, SeedLabDepartReturnBeatsOdometryByThreeTimes) {
   const Config config;
   const tools::MapRun run = MapSimulated(config, SeedLab(), "depart-return", 1);
   std::vector<std::pair<TimestampNs, Pose2>> odometry;
-  for (const OdometryEntry& e : run.slam->odometry()) odometry.push_back({e.stamp_ns, e.T_world_robot});
+  for (const OdometryEntry& e : run.slam->odometry())
+    odometry.push_back({e.stamp_ns, e.T_world_robot});
   const AteResult slam = tools::TrajectoryError(run.slam->CorrectedTrajectory(), run.ground_truth);
   const AteResult odom = tools::TrajectoryError(odometry, run.ground_truth);
   // True anchor poses: the anchor is rigidly attached to the robot at the tile's start.
@@ -72,12 +75,13 @@ TEST(SlamSystemTest, SeedLabDepartReturnBeatsOdometryByThreeTimes) {
                 l.rejected_by_backend ? "rejected" : "accepted", l.chi2);
   }
   const StageTimes& t = run.slam->times();
-  std::printf("keyframes %zu, candidates %zu, loops accepted %d; ATE %.2f cm, odometry %.2f cm; "
-              "log %.1f s processed in %.2f s (imaging %.2f, features %.2f, matching %.2f, "
-              "optimisation %.2f)\n",
-              run.slam->keyframes().size(), run.slam->loops().size(), accepted, slam.rmse_m * 100,
-              odom.rmse_m * 100, run.log_duration_s(), run.processing_s, t.imaging_s, t.features_s,
-              t.matching_s, t.optimization_s);
+  std::printf(
+      "keyframes %zu, candidates %zu, loops accepted %d; ATE %.2f cm, odometry %.2f cm; "
+      "log %.1f s processed in %.2f s (imaging %.2f, features %.2f, matching %.2f, "
+      "optimisation %.2f)\n",
+      run.slam->keyframes().size(), run.slam->loops().size(), accepted, slam.rmse_m * 100,
+      odom.rmse_m * 100, run.log_duration_s(), run.processing_s, t.imaging_s, t.features_s,
+      t.matching_s, t.optimization_s);
   EXPECT_GT(accepted, 0);
   EXPECT_LT(worst_loop_m, 0.03);  // every accepted loop within 3 cm of the truth
   EXPECT_LE(slam.rmse_m, 0.05);

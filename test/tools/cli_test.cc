@@ -42,9 +42,7 @@ TEST(CliTest, HelpDocumentsExitCodes) {
   EXPECT_NE(r.output.find("image"), std::string::npos);
 }
 
-TEST(CliTest, UnknownFlagIsUsageError) {
-  EXPECT_EQ(Uwbsar("image --no-such-flag").exit_code, 2);
-}
+TEST(CliTest, UnknownFlagIsUsageError) { EXPECT_EQ(Uwbsar("image --no-such-flag").exit_code, 2); }
 
 TEST(CliTest, ConfigWithUnknownKeyIsBadInputNamingKeyAndFile) {
   const std::string dir = TempDir("config");

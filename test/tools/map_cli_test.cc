@@ -99,9 +99,9 @@ TEST(MapCliTest, GoodBagWritesEveryOutputAndAReportThatRenders) {
   const std::string bag = WriteRunBag(dir, {});
   const CliRun r = Uwbsar("map " + bag + " --out " + dir + "/out");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  for (const char* f : {"map.png", "map_float.tif", "map_grid.yaml", "map.pgm", "map.yaml",
-                        "trajectory.tum", "odometry.tum", "graph.g2o", "loops.csv",
-                        "summary.json", "report.html"}) {
+  for (const char* f :
+       {"map.png", "map_float.tif", "map_grid.yaml", "map.pgm", "map.yaml", "trajectory.tum",
+        "odometry.tum", "graph.g2o", "loops.csv", "summary.json", "report.html"}) {
     EXPECT_TRUE(fs::exists(dir + "/out/" + f)) << f;
   }
   std::ifstream summary_file(dir + "/out/summary.json");
@@ -123,14 +123,16 @@ TEST(MapCliTest, GoodBagWritesEveryOutputAndAReportThatRenders) {
   const std::string flags =
       "--headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
       "--disable-background-networking --disable-component-update --disable-sync "
-      "--user-data-dir=" + dir + "/chromium-profile ";
-  ASSERT_EQ(std::system(("chromium " + flags + "--screenshot=" + shot +
-                         " --window-size=1200,1600 file://" + dir + "/out/report.html > /dev/null 2>&1")
-                            .c_str()),
-            0);
+      "--user-data-dir=" +
+      dir + "/chromium-profile ";
+  ASSERT_EQ(
+      std::system(("chromium " + flags + "--screenshot=" + shot +
+                   " --window-size=1200,1600 file://" + dir + "/out/report.html > /dev/null 2>&1")
+                      .c_str()),
+      0);
   EXPECT_GT(fs::file_size(shot), 10000u);
-  ASSERT_EQ(std::system(("chromium " + flags + "--dump-dom file://" + dir +
-                         "/out/report.html > " + dom + " 2> /dev/null")
+  ASSERT_EQ(std::system(("chromium " + flags + "--dump-dom file://" + dir + "/out/report.html > " +
+                         dom + " 2> /dev/null")
                             .c_str()),
             0);
   std::ifstream in(dom);
@@ -191,9 +193,9 @@ TEST(MapCliTest, AteEqualsEvoApeWithinOneMillimetre) {
   const std::string dir = TempDir("evo");
   // The loop route: depart-return is a straight line, which evo's 3-D Umeyama alignment
   // rejects as degenerate (ours aligns in 2-D and handles it).
-  const CliRun sim = Uwbsar("simulate --map " + std::string(UWBSAR_SOURCE_DIR) +
-                            "/config/maps/seed_lab/my_map.yaml --route loop --seed 3 --out " + dir +
-                            "/bag");
+  const CliRun sim =
+      Uwbsar("simulate --map " + std::string(UWBSAR_SOURCE_DIR) +
+             "/config/maps/seed_lab/my_map.yaml --route loop --seed 3 --out " + dir + "/bag");
   ASSERT_EQ(sim.exit_code, 0) << sim.output;
   const CliRun map = Uwbsar("map " + dir + "/bag --out " + dir + "/out");
   ASSERT_EQ(map.exit_code, 0) << map.output;
@@ -202,13 +204,14 @@ TEST(MapCliTest, AteEqualsEvoApeWithinOneMillimetre) {
   ASSERT_TRUE(summary.contains("ate"));
   const double ours = summary["ate"]["rmse_m"].get<double>();
   // evo: SE(3) Umeyama alignment (-a), association within 10 ms, as ours.
-  const std::string cmd = evo + " tum " + dir + "/bag/ground_truth.tum " + dir +
-                          "/out/trajectory.tum -a --no_warnings";
+  const std::string cmd =
+      evo + " tum " + dir + "/bag/ground_truth.tum " + dir + "/out/trajectory.tum -a --no_warnings";
   const CliRun e = [&] {
     CliRun run;
     FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
     std::array<char, 4096> buf{};
-    while (pipe != nullptr && fgets(buf.data(), buf.size(), pipe) != nullptr) run.output += buf.data();
+    while (pipe != nullptr && fgets(buf.data(), buf.size(), pipe) != nullptr)
+      run.output += buf.data();
     run.exit_code = pipe ? WEXITSTATUS(pclose(pipe)) : -1;
     return run;
   }();

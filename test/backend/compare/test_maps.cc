@@ -1,10 +1,10 @@
 #include "test_maps.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-
-#include <gtest/gtest.h>
 #include <fstream>
 
 #include "backend/compare/map_loading.h"
@@ -85,9 +85,9 @@ std::string WriteMapServer(const OccupancyGrid& grid, const std::string& dir,
 std::string FreshDir(const std::string& name) {
   // One folder per test: ctest runs test cases of one suite in parallel processes.
   const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::string unique = test != nullptr ? std::string(test->test_suite_name()) + "." +
-                                                   test->name()
-                                             : std::string("none");
+  const std::string unique = test != nullptr
+                                 ? std::string(test->test_suite_name()) + "." + test->name()
+                                 : std::string("none");
   const auto dir =
       std::filesystem::temp_directory_path() / ("uwbsar_compare_" + name + "_" + unique);
   std::filesystem::remove_all(dir);
