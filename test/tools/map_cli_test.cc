@@ -225,3 +225,29 @@ TEST(MapCliTest, AteEqualsEvoApeWithinOneMillimetre) {
 
 }  // namespace
 }  // namespace uwbsar
+
+namespace uwbsar {
+namespace {
+
+std::string FileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+TEST(MapCliTest, SameBagAndConfigGiveByteIdenticalResults) {
+  const std::string dir = TempDir("determinism");
+  const std::string bag = WriteRunBag(dir, {});
+  for (const char* out : {"/a", "/b"}) {
+    const CliRun r = Uwbsar("map " + bag + " --out " + dir + out);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
+  for (const char* f : {"trajectory.tum", "odometry.tum", "graph.g2o", "loops.csv", "map_float.tif",
+                        "map.pgm", "map.png"}) {
+    const std::string a = FileBytes(dir + "/a/" + f), b = FileBytes(dir + "/b/" + f);
+    EXPECT_FALSE(a.empty()) << f;
+    EXPECT_TRUE(a == b) << f << " differs between two runs";
+  }
+}
+
+}  // namespace
+}  // namespace uwbsar
