@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "drivers/sim/sim_stream.h"
 #include "tools/commands.h"
 #include "tools/map_outputs.h"
 
@@ -32,33 +31,7 @@ void AddDemoCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
     EnsureDirectory(opts->out_dir);
-    const sim::SimScenario scenario =
-        sim::MakeScenario(config, SeedLabMap(), "depart-return", opts->seed);
-    sim::SimStream stream(config, scenario, opts->seed);
-    sim::SimMessage msg;
-    MapRun run = MapStream(
-        config, "simulated seed_lab depart-return (seed " + std::to_string(opts->seed) + ")",
-        [&](MapRun* r) {
-          if (!stream.Next(&msg)) return false;
-          if (r->messages++ == 0) r->first_stamp_ns = msg.stamp_ns;
-          r->last_stamp_ns = msg.stamp_ns;
-          switch (msg.kind) {
-            case sim::SimMessage::Kind::kGroundTruth:
-              r->ground_truth.push_back(msg.pose);
-              break;
-            case sim::SimMessage::Kind::kOdometry:
-              ++r->odometry_messages;
-              r->slam->AddOdometry(msg.pose);
-              break;
-            case sim::SimMessage::Kind::kRadarScan:
-              ++r->radar_messages;
-              r->slam->AddScan(msg.scan);
-              break;
-            case sim::SimMessage::Kind::kLaserScan:
-              break;
-          }
-          return true;
-        });
+    MapRun run = MapSimulation(config, SeedLabMap(), "depart-return", opts->seed);
     const MapOutputs outputs = WriteMapOutputs(run, opts->out_dir);
     PrintMapSummary(run, outputs, opts->out_dir);
   });

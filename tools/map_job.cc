@@ -10,6 +10,7 @@
 
 #include "drivers/rosbag/bag_reader.h"
 #include "drivers/rosbag/robot_bag.h"
+#include "drivers/sim/sim_stream.h"
 #include "slam/errors.h"
 
 namespace uwbsar::tools {
@@ -138,6 +139,37 @@ MapRun MapStream(const Config& config, const std::string& description,
   run.processing_s = t.imaging_s + t.features_s + t.matching_s + t.optimization_s;
   CheckMappable(run);
   return run;
+}
+
+MapRun MapSimulation(const Config& config, const std::string& map_yaml, const std::string& route,
+                     std::uint64_t seed, const std::function<void(MapRun*)>& on_message) {
+  const sim::SimScenario scenario = sim::MakeScenario(config, map_yaml, route, seed);
+  sim::SimStream stream(config, scenario, seed);
+  sim::SimMessage msg;
+  const std::string description =
+      "simulated " + route + " in " + map_yaml + " (seed " + std::to_string(seed) + ")";
+  return MapStream(config, description, [&](MapRun* r) {
+    if (!stream.Next(&msg)) return false;
+    if (r->messages++ == 0) r->first_stamp_ns = msg.stamp_ns;
+    r->last_stamp_ns = msg.stamp_ns;
+    switch (msg.kind) {
+      case sim::SimMessage::Kind::kGroundTruth:
+        r->ground_truth.push_back(msg.pose);
+        break;
+      case sim::SimMessage::Kind::kOdometry:
+        ++r->odometry_messages;
+        r->slam->AddOdometry(msg.pose);
+        break;
+      case sim::SimMessage::Kind::kRadarScan:
+        ++r->radar_messages;
+        r->slam->AddScan(msg.scan);
+        break;
+      case sim::SimMessage::Kind::kLaserScan:
+        break;
+    }
+    if (on_message) on_message(r);
+    return true;
+  });
 }
 
 AteResult TrajectoryError(const std::vector<std::pair<TimestampNs, Pose2>>& estimate,

@@ -3,6 +3,7 @@
 // ground truth when there is one. Writing the outputs is map_outputs.h.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -40,6 +41,12 @@ MapRun MapBag(const Config& config, const std::string& bag_path, bool progress);
 /// processing_s counts only the time spent in the SlamSystem.
 MapRun MapStream(const Config& config, const std::string& description,
                  const std::function<bool(MapRun*)>& next);
+
+/// Maps a simulated run (drivers/sim: `map_yaml`, built-in route name or waypoints
+/// file, seed) in memory, with its ground truth: the demo, tests and benchmarks.
+/// `on_message` (optional) is called after each message, e.g. to time the run.
+MapRun MapSimulation(const Config& config, const std::string& map_yaml, const std::string& route,
+                     std::uint64_t seed, const std::function<void(MapRun*)>& on_message = nullptr);
 
 /// Checks that the run produced a map; throws InputError with the reason if not.
 void CheckMappable(const MapRun& run);

@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <map>
 
-#include "drivers/sim/sim_stream.h"
 #include "tools/map_job.h"
 
 namespace uwbsar {
@@ -17,31 +16,9 @@ std::string SeedLab() {
   return std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_lab/my_map.yaml";
 }
 
-tools::MapRun MapSimulated(const Config& config, const std::string& map, const std::string& route,
-                           std::uint64_t seed) {
-  const sim::SimScenario scenario = sim::MakeScenario(config, map, route, seed);
-  sim::SimStream stream(config, scenario, seed);
-  sim::SimMessage msg;
-  return tools::MapStream(config, route, [&](tools::MapRun* r) {
-    if (!stream.Next(&msg)) return false;
-    if (r->messages++ == 0) r->first_stamp_ns = msg.stamp_ns;
-    r->last_stamp_ns = msg.stamp_ns;
-    if (msg.kind == sim::SimMessage::Kind::kGroundTruth) r->ground_truth.push_back(msg.pose);
-    if (msg.kind == sim::SimMessage::Kind::kOdometry) {
-      ++r->odometry_messages;
-      r->slam->AddOdometry(msg.pose);
-    }
-    if (msg.kind == sim::SimMessage::Kind::kRadarScan) {
-      ++r->radar_messages;
-      r->slam->AddScan(msg.scan);
-    }
-    return true;
-  });
-}
-
 TEST(SlamSystemTest, SeedLabDepartReturnBeatsOdometryByThreeTimes) {
   const Config config;
-  const tools::MapRun run = MapSimulated(config, SeedLab(), "depart-return", 1);
+  const tools::MapRun run = tools::MapSimulation(config, SeedLab(), "depart-return", 1);
   std::vector<std::pair<TimestampNs, Pose2>> odometry;
   for (const OdometryEntry& e : run.slam->odometry())
     odometry.push_back({e.stamp_ns, e.T_world_robot});

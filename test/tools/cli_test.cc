@@ -7,24 +7,12 @@
 #include <fstream>
 #include <string>
 
+#include "test/cli_runner.h"
+
 namespace {
 
-struct CliRun {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
-
-CliRun Uwbsar(const std::string& args) {
-  CliRun run;
-  const std::string cmd = std::string(UWBSAR_BIN) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (pipe == nullptr) return run;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), pipe) != nullptr) run.output += buf.data();
-  const int status = pclose(pipe);
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
+using uwbsar::testing::CliRun;
+using uwbsar::testing::Uwbsar;
 
 std::string TempDir(const std::string& name) {
   const auto dir = std::filesystem::temp_directory_path() / ("uwbsar_cli_" + name);

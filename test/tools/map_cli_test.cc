@@ -15,27 +15,16 @@
 #include "drivers/rosbag/bag_writer.h"
 #include "drivers/rosbag/ros_codecs.h"
 #include "drivers/synthetic_run.h"
+#include "test/cli_runner.h"
 
 namespace uwbsar {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exit_code = -1;
-  std::string output;
-};
-
-CliRun Uwbsar(const std::string& args) {
-  CliRun run;
-  FILE* pipe = popen((std::string(UWBSAR_BIN) + " " + args + " 2>&1").c_str(), "r");
-  if (pipe == nullptr) return run;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), pipe) != nullptr) run.output += buf.data();
-  const int status = pclose(pipe);
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
+using testing::CliRun;
+using testing::RunCommand;
+using testing::Uwbsar;
 
 std::string TempDir(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / ("uwbsar_map_cli_" + name);
@@ -206,15 +195,7 @@ TEST(MapCliTest, AteEqualsEvoApeWithinOneMillimetre) {
   // evo: SE(3) Umeyama alignment (-a), association within 10 ms, as ours.
   const std::string cmd =
       evo + " tum " + dir + "/bag/ground_truth.tum " + dir + "/out/trajectory.tum -a --no_warnings";
-  const CliRun e = [&] {
-    CliRun run;
-    FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
-    std::array<char, 4096> buf{};
-    while (pipe != nullptr && fgets(buf.data(), buf.size(), pipe) != nullptr)
-      run.output += buf.data();
-    run.exit_code = pipe ? WEXITSTATUS(pclose(pipe)) : -1;
-    return run;
-  }();
+  const CliRun e = RunCommand(cmd);
   ASSERT_EQ(e.exit_code, 0) << e.output;
   const std::size_t at = e.output.find("rmse");
   ASSERT_NE(at, std::string::npos) << e.output;

@@ -9,21 +9,16 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "test/cli_runner.h"
 #include "test_maps.h"
 
 namespace uwbsar {
 namespace {
 
 std::string RunUwbsar(const std::string& args) {
-  const std::string cmd = std::string(UWBSAR_BIN) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  if (pipe == nullptr) return out;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), pipe) != nullptr) out += buf.data();
-  const int status = pclose(pipe);
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << args << "\n" << out;
-  return out;
+  const testing::CliRun run = testing::Uwbsar(args);
+  EXPECT_EQ(run.exit_code, 0) << args << "\n" << run.output;
+  return run.output;
 }
 
 nlohmann::json Compare(const std::string& map_yaml, const std::string& out_dir) {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "backend/compare/pcd_export.h"
+#include "test/cli_runner.h"
 #include "test_maps.h"
 
 namespace uwbsar {
@@ -17,23 +18,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
-
-CliRun Uwbsar(const std::string& args, bool merge_stderr = true) {
-  CliRun run;
-  const std::string cmd =
-      std::string(UWBSAR_BIN) + " " + args + (merge_stderr ? " 2>&1" : " 2>/dev/null");
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (pipe == nullptr) return run;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), pipe) != nullptr) run.output += buf.data();
-  const int status = pclose(pipe);
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
+using testing::CliRun;
+using testing::Uwbsar;
 
 TEST(CompareCliTest, GridAgainstItselfPrintsPerfectScoresAndWritesOutputs) {
   const std::string dir = testing::FreshDir("cli_self");

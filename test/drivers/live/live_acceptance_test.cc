@@ -21,24 +21,7 @@ namespace fs = std::filesystem;
 
 /// `uwbsar demo`'s pipeline on the same simulated run, without devices.
 tools::MapRun MapSimulated(const Config& config) {
-  const sim::SimScenario scenario = sim::MakeScenario(config, SeedLabMapPath(), "depart-return", 1);
-  sim::SimStream stream(config, scenario, 1);
-  sim::SimMessage msg;
-  return tools::MapStream(config, "sim", [&](tools::MapRun* r) {
-    if (!stream.Next(&msg)) return false;
-    if (r->messages++ == 0) r->first_stamp_ns = msg.stamp_ns;
-    r->last_stamp_ns = msg.stamp_ns;
-    if (msg.kind == sim::SimMessage::Kind::kGroundTruth) r->ground_truth.push_back(msg.pose);
-    if (msg.kind == sim::SimMessage::Kind::kOdometry) {
-      ++r->odometry_messages;
-      r->slam->AddOdometry(msg.pose);
-    }
-    if (msg.kind == sim::SimMessage::Kind::kRadarScan) {
-      ++r->radar_messages;
-      r->slam->AddScan(msg.scan);
-    }
-    return true;
-  });
+  return tools::MapSimulation(config, SeedLabMapPath(), "depart-return", 1);
 }
 
 int AcceptedLoops(const SlamSystem& slam) {
