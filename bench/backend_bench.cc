@@ -18,10 +18,7 @@
 namespace uwbsar {
 namespace {
 
-#ifndef UWBSAR_SHARED_DIR
-#define UWBSAR_SHARED_DIR "../shared"
-#endif
-const std::string kData = std::string(UWBSAR_SHARED_DIR) + "/data/posegraph/";
+const std::string kData = std::string(UWBSAR_SOURCE_DIR) + "/test/data/posegraph/";
 
 const G2oGraph* M3500() {
   static const G2oGraph* graph = [] {

@@ -15,7 +15,7 @@
 namespace uwbsar {
 namespace {
 
-const std::string kData = std::string(UWBSAR_SHARED_DIR) + "/data/posegraph/";
+const std::string kData = std::string(UWBSAR_SOURCE_DIR) + "/test/data/posegraph/";
 
 bool HaveData() { return std::filesystem::exists(kData + "manhattanOlson3500.g2o"); }
 
