@@ -77,6 +77,7 @@ class McapStorageReader final : public StorageReader {
   StorageStats Stats() override { return stats_; }
 
   bool Next(StorageMessage* msg) override {
+    reading_ = true;
     if (pending_) {
       if (Advance(pending_)) {
         heap_.push(pending_);
@@ -113,6 +114,14 @@ class McapStorageReader final : public StorageReader {
     if (heap_.empty()) return false;
     pending_ = heap_.top();
     heap_.pop();
+    // The merge is only as good as the file's time ranges: a segment whose messages start
+    // before its declared start would come out late. Refuse rather than mis-order.
+    if (pending_->head.log_time_ns < last_log_time_ns_) {
+      Fail("message at log time " + std::to_string(pending_->head.log_time_ns) +
+           " ns follows one at " + std::to_string(last_log_time_ns_) +
+           " ns: the file's chunk time ranges are inconsistent");
+    }
+    last_log_time_ns_ = pending_->head.log_time_ns;
     msg->topic = pending_->head.topic;
     msg->log_time_ns = pending_->head.log_time_ns;
     msg->data = pending_->buffer.data() + pending_->head.offset;
@@ -284,6 +293,13 @@ class McapStorageReader final : public StorageReader {
       t.definition_encoding = s->second.encoding;
     }
     if (channels_.count(id)) return;  // repeated in chunks and summary
+    // Readers list the topics once, when the file is opened: a channel that only shows up
+    // while messages are being read (in a chunk the summary does not account for) cannot
+    // be given to them.
+    if (reading_) {
+      c.Fail("channel " + std::to_string(id) + " (" + t.name +
+             ") appears in a chunk but not in the summary");
+    }
     channels_[id] = static_cast<int>(topics_.size());
     topics_.push_back(std::move(t));
   }
@@ -459,6 +475,8 @@ class McapStorageReader final : public StorageReader {
   StorageStats stats_;
   std::vector<Segment> segments_;
   std::size_t next_segment_ = 0;
+  TimestampNs last_log_time_ns_ = std::numeric_limits<TimestampNs>::min();
+  bool reading_ = false;  // Next() has been called: the topic list is final
   std::priority_queue<SegmentIterator*, std::vector<SegmentIterator*>, HeadLater> heap_;
   SegmentIterator* pending_ = nullptr;
 };
