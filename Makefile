@@ -64,11 +64,13 @@ sanitize-test: deps venv
 # the seed corpus; fails on any finding (crash, leak, timeout, out-of-memory).
 FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 20
+FUZZ_RUNS ?= 300000
 fuzz-smoke: deps
 	cmake -S fuzz -B $(FUZZ_DIR) -G Ninja -DCMAKE_CXX_COMPILER=clang++
 	cmake --build $(FUZZ_DIR) -j $(JOBS)
 	for f in cdr mcap; do mkdir -p $(FUZZ_DIR)/corpus_$$f && \
-	  $(FUZZ_DIR)/$${f}_fuzz -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=2048 \
+	  $(FUZZ_DIR)/$${f}_fuzz -seed=1 -runs=$(FUZZ_RUNS) -max_total_time=$(FUZZ_SECONDS) \
+	    -timeout=10 -rss_limit_mb=2048 \
 	    -artifact_prefix=$(FUZZ_DIR)/$${f}_ $(FUZZ_DIR)/corpus_$$f fuzz/corpus/$$f || exit 1; done
 
 format:
