@@ -135,7 +135,9 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
   record.keyframe = std::move(keyframe);
   keyframes_.push_back(std::move(record));
   times_.features_s += SecondsSince(start);
-  if (graph_dirty_ && config_.slam.optimize_after_each_loop) Optimize();
+  ++keyframes_since_solve_;
+  const int every = config_.slam.optimize_every_keyframes;
+  if (graph_dirty_ && every > 0 && keyframes_since_solve_ >= every) Optimize();
 }
 
 void SlamSystem::Optimize() {
@@ -144,6 +146,7 @@ void SlamSystem::Optimize() {
   for (const auto& [id, pose] : graph_->GetPoses()) recognizer_->UpdatePose(id, pose);
   times_.optimization_s += SecondsSince(start);
   graph_dirty_ = false;
+  keyframes_since_solve_ = 0;
 }
 
 std::map<int, Pose2> SlamSystem::KeyframePoses() const { return graph_->GetPoses(); }

@@ -93,6 +93,7 @@ class SlamSystem {
   OptimizeResult last_optimization_;
   StageTimes times_;
   bool graph_dirty_ = false;
+  int keyframes_since_solve_ = 0;
 };
 
 }  // namespace uwbsar

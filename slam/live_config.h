@@ -1,0 +1,87 @@
+// Configuration of live mode on the robot (`uwbsar run`).
+// Part of the configuration (slam/config.h includes it); fields are read and
+// written by the generic loader in slam/config_io.h.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace uwbsar {
+
+/// Live mode on the robot (`uwbsar run`): serial devices, GPIO wiring, threads and
+/// recording. Device paths and GPIO lines are the robot's; config/robot.yaml is the
+/// paper's robot. The LT102 command table is not public (REFERENCE.md section 4), so
+/// its command codes are configuration: each command is hex bytes, the first byte the
+/// command code and the rest its payload, sent framed (0xFF code payload 0x00).
+struct LiveConfig {
+  std::vector<std::string> radar_devices = {
+      "/dev/ttyACM0", "/dev/ttyACM1"};  ///< serial
+                                        ///< device of radars[i] (one per radar)
+  int radar_baud = 115200;              ///< LT102 baud rate (SDK default)
+  int lt102_raw_data_code = 82;         ///< command byte of the LT102 raw-data message
+  std::vector<std::string> lt102_start_commands = {"53 01"};  ///< sent after opening the port
+  std::vector<std::string> lt102_stop_commands = {"53 00"};   ///< sent before closing it
+  int lt102_channel = 0;                         ///< channel of a multi-channel scan that is used
+  std::string kobuki_device = "/dev/kobuki";     ///< Kobuki base serial device
+  int kobuki_baud = 115200;                      ///< Kobuki baud rate
+  double kobuki_wheel_radius_m = 0.035;          ///< Kobuki wheel radius
+  double kobuki_wheelbase_m = 0.230;             ///< Kobuki wheel separation
+  double kobuki_ticks_per_revolution = 2578.33;  ///< Kobuki encoder ticks per wheel turn
+  double max_wheel_speed_mps = 1.0;    ///< a wheel faster than this between two packets is
+                                       ///< an odometry jump: the step is not integrated
+  double odometry_stall_s = 0.5;       ///< no odometry for this long: reported as a stall
+  std::string gpio_chip = "";          ///< libgpiod chip (e.g. gpiochip0); "" = no GPIO
+  std::vector<int> radar_power_lines;  ///< power-enable line of radars[i]; [] = not wired
+  std::vector<int> radar_reset_lines;  ///< reset line (active low) of radars[i]; [] = not wired
+  int status_led_line = -1;            ///< status LED line; -1 = not wired
+  double reset_pulse_s = 0.1;          ///< reset held low this long
+  double power_settle_s = 0.5;         ///< wait after power-on and after reset
+  double power_off_s = 1.0;            ///< power held off this long in a power cycle
+  int power_cycle_after_failures = 3;  ///< reconnect failures before a radar is power cycled
+  double read_timeout_s = 1.0;         ///< a link silent this long is reconnected
+  double reconnect_initial_s = 0.2;    ///< first reconnect delay, doubled per failure
+  double reconnect_max_s = 5.0;        ///< reconnect delay cap
+  int processing_queue_size = 4000;    ///< messages waiting for SLAM; beyond, the oldest
+                                       ///< are dropped from processing (never from recording)
+  double snapshot_period_s = 10.0;     ///< map outputs are rewritten this often (0 = only at end)
+  std::string recording_storage = "sqlite3";  ///< recording bag storage: sqlite3 (survives a
+                                              ///< crash up to the last flush) or mcap
+  double recording_flush_period_s = 0.5;      ///< the recording is made durable this often
+  double clock_step_threshold_s = 0.1;        ///< host clock moving this much against the
+                                              ///< monotonic clock is reported as a clock step
+
+  template <class V>
+  void Visit(V& v) {
+    v("radar_devices", radar_devices);
+    v("radar_baud", radar_baud);
+    v("lt102_raw_data_code", lt102_raw_data_code);
+    v("lt102_start_commands", lt102_start_commands);
+    v("lt102_stop_commands", lt102_stop_commands);
+    v("lt102_channel", lt102_channel);
+    v("kobuki_device", kobuki_device);
+    v("kobuki_baud", kobuki_baud);
+    v("kobuki_wheel_radius_m", kobuki_wheel_radius_m);
+    v("kobuki_wheelbase_m", kobuki_wheelbase_m);
+    v("kobuki_ticks_per_revolution", kobuki_ticks_per_revolution);
+    v("max_wheel_speed_mps", max_wheel_speed_mps);
+    v("odometry_stall_s", odometry_stall_s);
+    v("gpio_chip", gpio_chip);
+    v("radar_power_lines", radar_power_lines);
+    v("radar_reset_lines", radar_reset_lines);
+    v("status_led_line", status_led_line);
+    v("reset_pulse_s", reset_pulse_s);
+    v("power_settle_s", power_settle_s);
+    v("power_off_s", power_off_s);
+    v("power_cycle_after_failures", power_cycle_after_failures);
+    v("read_timeout_s", read_timeout_s);
+    v("reconnect_initial_s", reconnect_initial_s);
+    v("reconnect_max_s", reconnect_max_s);
+    v("processing_queue_size", processing_queue_size);
+    v("snapshot_period_s", snapshot_period_s);
+    v("recording_storage", recording_storage);
+    v("recording_flush_period_s", recording_flush_period_s);
+    v("clock_step_threshold_s", clock_step_threshold_s);
+  }
+};
+
+}  // namespace uwbsar

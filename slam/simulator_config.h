@@ -1,0 +1,165 @@
+// Configuration of the environment and robot simulator (`uwbsar simulate`).
+// Part of the configuration (slam/config.h includes it); fields are read and
+// written by the generic loader in slam/config_io.h.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace uwbsar {
+
+/// A point target of the simulated environment (e.g. a metal pole), in the world (map) frame.
+struct PointTargetConfig {
+  double x_m = 0.0;     ///< world position
+  double y_m = 0.0;     ///< world position
+  double rcs_m2 = 0.5;  ///< radar cross-section (a metal pole: about 0.1 .. 1 m^2)
+
+  template <class V>
+  void Visit(V& v) {
+    v("x_m", x_m);
+    v("y_m", y_m);
+    v("rcs_m2", rcs_m2);
+  }
+};
+
+/// Simulated robot motion along a route (differential drive, trapezoidal speed profiles).
+struct SimRouteConfig {
+  double speed_mps = 0.2;          ///< cruise speed
+  double accel_mps2 = 0.3;         ///< linear acceleration and braking
+  double turn_rate_radps = 0.8;    ///< top rate of turns on the spot
+  double turn_accel_radps2 = 1.5;  ///< angular acceleration of turns on the spot
+  double corner_radius_m = 0.3;    ///< corners up to 120 deg are rounded with this radius;
+                                   ///< sharper ones (reversals) stop and turn on the spot
+  double pause_s = 1.0;            ///< standstill before the start and after the end
+  double start_x_m = 0.0;          ///< built-in routes start here (world frame) ...
+  double start_y_m = 0.0;          ///< ...
+  double start_yaw_deg = 0.0;      ///< ... heading this way
+  double depart_distance_m = 7.5;  ///< depart-return: distance driven out before turning back
+  double loop_length_m = 7.0;      ///< loop: rectangle this long along the start heading ...
+  double loop_width_m = 0.6;       ///< ... and this wide, turning left
+  double clearance_m = 0.15;       ///< a route passing closer to an occupied cell is an error
+
+  template <class V>
+  void Visit(V& v) {
+    v("speed_mps", speed_mps);
+    v("accel_mps2", accel_mps2);
+    v("turn_rate_radps", turn_rate_radps);
+    v("turn_accel_radps2", turn_accel_radps2);
+    v("corner_radius_m", corner_radius_m);
+    v("pause_s", pause_s);
+    v("start_x_m", start_x_m);
+    v("start_y_m", start_y_m);
+    v("start_yaw_deg", start_yaw_deg);
+    v("depart_distance_m", depart_distance_m);
+    v("loop_length_m", loop_length_m);
+    v("loop_width_m", loop_width_m);
+    v("clearance_m", clearance_m);
+  }
+};
+
+/// Simulated radar echoes from the occupancy grid and point targets.
+struct SimRadarConfig {
+  double rate_hz = 100.0;                 ///< scan rate of every radar
+  double cell_rcs_m2 = 0.01;              ///< mean radar cross-section of one occupied cell;
+                                          ///< each cell draws its own (exponential: speckle)
+  int scatterers_per_cell = 4;            ///< random scatterers per occupied cell
+  double penetration_depth_m = 0.05;      ///< occupied cells lit behind a ray's first hit
+  double max_angle_deg = 80.0;            ///< nothing farther off boresight is seen
+  double beam_3db_half_angle_deg = 30.0;  ///< two-way -3 dB angle of the Gaussian beam pattern
+  double coupling_amplitude = 0.3;        ///< direct antenna coupling pulse at range 0
+  double noise_std = 0.005;               ///< white thermal noise per sample
+  std::vector<PointTargetConfig> point_targets;  ///< e.g. metal poles, in the world frame
+
+  template <class V>
+  void Visit(V& v) {
+    v("rate_hz", rate_hz);
+    v("cell_rcs_m2", cell_rcs_m2);
+    v("scatterers_per_cell", scatterers_per_cell);
+    v("penetration_depth_m", penetration_depth_m);
+    v("max_angle_deg", max_angle_deg);
+    v("beam_3db_half_angle_deg", beam_3db_half_angle_deg);
+    v("coupling_amplitude", coupling_amplitude);
+    v("noise_std", noise_std);
+    v("point_targets", point_targets);
+  }
+};
+
+/// Simulated wheel odometry: encoder ticks with systematic and random errors, integrated
+/// like the base does (Kobuki figures by default).
+struct SimOdometryConfig {
+  std::string topic = "/odom";  ///< nav_msgs/Odometry topic of wheel odometry
+  std::string ground_truth_topic = "/ground_truth/odom";  ///< topic of the true poses
+
+  double rate_hz = 50.0;                  ///< wheel odometry rate
+  double ground_truth_rate_hz = 200.0;    ///< ground-truth pose rate
+  double wheel_radius_m = 0.035;          ///< wheel radius the base assumes
+  double wheelbase_m = 0.230;             ///< wheel separation the base assumes
+  double ticks_per_revolution = 2578.33;  ///< encoder ticks per wheel turn
+  double wheel_scale_error = 0.005;       ///< encoders over-report wheel travel by this
+                                          ///< fraction (true wheels smaller than assumed; a
+                                          ///< calibrated base). No loop on a there-and-back
+                                          ///< route can observe it: it bounds any ATE from below
+  double wheel_scale_asymmetry = 0.0007;  ///< right minus left scale error: heading drift
+                                          ///< of about 1.7 deg per 10 m straight
+  double wheelbase_error = 0.02;          ///< true wheelbase is this fraction shorter than
+                                          ///< assumed: turns are under-reported
+  double wheel_slip_std = 0.01;           ///< random error of each wheel's travel per step,
+                                          ///< as a fraction of that travel
+
+  template <class V>
+  void Visit(V& v) {
+    v("topic", topic);
+    v("ground_truth_topic", ground_truth_topic);
+    v("rate_hz", rate_hz);
+    v("ground_truth_rate_hz", ground_truth_rate_hz);
+    v("wheel_radius_m", wheel_radius_m);
+    v("wheelbase_m", wheelbase_m);
+    v("ticks_per_revolution", ticks_per_revolution);
+    v("wheel_scale_error", wheel_scale_error);
+    v("wheel_scale_asymmetry", wheel_scale_asymmetry);
+    v("wheelbase_error", wheelbase_error);
+    v("wheel_slip_std", wheel_slip_std);
+  }
+};
+
+/// Simulated 2-D LiDAR (sensor_msgs/LaserScan), ray cast in the occupancy grid.
+struct SimLaserConfig {
+  bool enabled = false;         ///< also write simulated laser scans (`simulate --laser`)
+  std::string topic = "/scan";  ///< sensor_msgs/LaserScan topic
+  double rate_hz = 10.0;        ///< scan rate
+  int num_beams = 360;          ///< beams over a full turn
+  double min_range_m = 0.15;    ///< closer returns are reported as invalid
+  double max_range_m = 12.0;    ///< farther returns are reported as +inf
+  double noise_std_m = 0.01;    ///< Gaussian range noise
+
+  template <class V>
+  void Visit(V& v) {
+    v("enabled", enabled);
+    v("topic", topic);
+    v("rate_hz", rate_hz);
+    v("num_beams", num_beams);
+    v("min_range_m", min_range_m);
+    v("max_range_m", max_range_m);
+    v("noise_std_m", noise_std_m);
+  }
+};
+
+/// The environment and robot simulator (`uwbsar simulate`).
+struct SimulatorConfig {
+  SimRouteConfig route;
+  SimRadarConfig radar;
+  SimOdometryConfig odometry;
+  SimLaserConfig laser;
+  double start_time_s = 1700000000.0;  ///< stamp of the first message (s since the Unix epoch)
+
+  template <class V>
+  void Visit(V& v) {
+    v("route", route);
+    v("radar", radar);
+    v("odometry", odometry);
+    v("laser", laser);
+    v("start_time_s", start_time_s);
+  }
+};
+
+}  // namespace uwbsar
