@@ -8,6 +8,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
+#include "slam/yaml_file.h"
+
 namespace uwbsar {
 namespace {
 
@@ -105,16 +107,7 @@ bool OccupancyGrid::CellOf(const Point2& p_world, int* row, int* col) const {
 }
 
 MapMetadata LoadMapMetadata(const std::string& yaml_path) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(yaml_path);
-  } catch (const YAML::BadFile&) {
-    throw InputError(yaml_path + ": cannot open map file");
-  } catch (const YAML::ParserException& e) {
-    throw InputError(yaml_path + ":" + std::to_string(e.mark.line + 1) +
-                     ": YAML syntax error: " + e.msg);
-  }
-  if (!root.IsMap()) throw InputError(yaml_path + ": a map file must be a YAML mapping");
+  const YAML::Node root = LoadYamlMappingFile(yaml_path, "map");
   MapMetadata m;
   auto require = [&](const char* key) {
     const YAML::Node node = root[key];

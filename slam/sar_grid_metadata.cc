@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "slam/errors.h"
+#include "slam/yaml_file.h"
 
 namespace uwbsar {
 namespace {
@@ -29,16 +30,7 @@ T Require(const std::string& file, const YAML::Node& root, const char* key) {
 }  // namespace
 
 SarGridMetadata LoadSarGridMetadata(const std::string& yaml_path) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(yaml_path);
-  } catch (const YAML::BadFile&) {
-    throw InputError(yaml_path + ": cannot open grid file");
-  } catch (const YAML::ParserException& e) {
-    throw InputError(yaml_path + ":" + std::to_string(e.mark.line + 1) +
-                     ": YAML syntax error: " + e.msg);
-  }
-  if (!root.IsMap()) throw InputError(yaml_path + ": a grid file must be a YAML mapping");
+  const YAML::Node root = LoadYamlMappingFile(yaml_path, "grid");
   SarGridMetadata g;
   g.x0_m = Require<double>(yaml_path, root, "x0_m");
   g.y0_m = Require<double>(yaml_path, root, "y0_m");

@@ -1,0 +1,29 @@
+// Reading a YAML file that must hold a mapping (map_server maps, grid files):
+// one place for the open / syntax / shape errors, each naming the file (and line).
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <string>
+
+#include "slam/errors.h"
+
+namespace uwbsar {
+
+/// The file's root mapping. `what` names the kind of file in messages ("map", "grid").
+/// Throws InputError when the file cannot be opened, is not valid YAML or is not a mapping.
+inline YAML::Node LoadYamlMappingFile(const std::string& path, const std::string& what) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw InputError(path + ": cannot open " + what + " file");
+  } catch (const YAML::ParserException& e) {
+    throw InputError(path + ":" + std::to_string(e.mark.line + 1) +
+                     ": YAML syntax error: " + e.msg);
+  }
+  if (!root.IsMap()) throw InputError(path + ": a " + what + " file must be a YAML mapping");
+  return root;
+}
+
+}  // namespace uwbsar
