@@ -13,25 +13,15 @@
 namespace uwbsar {
 namespace {
 
-std::string Where(const std::string& file, const YAML::Node& node) {
-  const YAML::Mark mark = node.Mark();
-  return mark.line >= 0 ? file + ":" + std::to_string(mark.line + 1) : file;
-}
-
 template <class T>
 T Get(const std::string& file, const YAML::Node& node, const char* key) {
-  try {
-    return node.as<T>();
-  } catch (const YAML::Exception&) {
-    throw InputError(Where(file, node) + ": map key '" + key + "' has invalid value '" +
-                     (node.IsScalar() ? node.Scalar() : std::string("<not a value>")) + "'");
-  }
+  return YamlValue<T>(file, node, key, "map");
 }
 
 double GetFinite(const std::string& file, const YAML::Node& node, const char* key) {
   const double v = Get<double>(file, node, key);
   if (!std::isfinite(v))
-    throw InputError(Where(file, node) + ": map key '" + key + "' must be finite");
+    throw InputError(YamlWhere(file, node) + ": map key '" + key + "' must be finite");
   return v;
 }
 
@@ -123,18 +113,18 @@ MapMetadata LoadMapMetadata(const std::string& yaml_path) {
   const YAML::Node resolution = require("resolution");
   m.resolution_m = GetFinite(yaml_path, resolution, "resolution");
   if (m.resolution_m <= 0.0) {
-    throw InputError(Where(yaml_path, resolution) + ": map key 'resolution' must be > 0");
+    throw InputError(YamlWhere(yaml_path, resolution) + ": map key 'resolution' must be > 0");
   }
   const YAML::Node origin = require("origin");
   if (!origin.IsSequence() || origin.size() != 3) {
-    throw InputError(Where(yaml_path, origin) + ": map key 'origin' must be [x, y, yaw]");
+    throw InputError(YamlWhere(yaml_path, origin) + ": map key 'origin' must be [x, y, yaw]");
   }
   m.origin = {GetFinite(yaml_path, origin[0], "origin"), GetFinite(yaml_path, origin[1], "origin"),
               NormalizeAngle(GetFinite(yaml_path, origin[2], "origin"))};
   if (const YAML::Node mode = root["mode"]) {
     m.mode = Get<std::string>(yaml_path, mode, "mode");
     if (m.mode != "trinary" && m.mode != "scale" && m.mode != "raw") {
-      throw InputError(Where(yaml_path, mode) + ": map key 'mode' is '" + m.mode +
+      throw InputError(YamlWhere(yaml_path, mode) + ": map key 'mode' is '" + m.mode +
                        "' (expected trinary, scale or raw)");
     }
   }
@@ -146,8 +136,8 @@ MapMetadata LoadMapMetadata(const std::string& yaml_path) {
     } else if (v == "1" || v == "true") {
       m.negate = true;
     } else {
-      throw InputError(Where(yaml_path, negate) + ": map key 'negate' must be 0 or 1, not '" + v +
-                       "'");
+      throw InputError(YamlWhere(yaml_path, negate) + ": map key 'negate' must be 0 or 1, not '" +
+                       v + "'");
     }
   }
   if (const YAML::Node occ = root["occupied_thresh"]) {

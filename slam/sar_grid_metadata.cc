@@ -10,21 +10,11 @@
 namespace uwbsar {
 namespace {
 
-std::string Where(const std::string& file, const YAML::Node& node) {
-  const YAML::Mark mark = node.Mark();
-  return mark.line >= 0 ? file + ":" + std::to_string(mark.line + 1) : file;
-}
-
 template <class T>
 T Require(const std::string& file, const YAML::Node& root, const char* key) {
   const YAML::Node node = root[key];
   if (!node) throw InputError(file + ": missing grid key '" + key + "'");
-  try {
-    return node.as<T>();
-  } catch (const YAML::Exception&) {
-    throw InputError(Where(file, node) + ": grid key '" + key + "' has invalid value '" +
-                     (node.IsScalar() ? node.Scalar() : std::string("<not a value>")) + "'");
-  }
+  return YamlValue<T>(file, node, key, "grid");
 }
 
 }  // namespace
@@ -42,7 +32,7 @@ SarGridMetadata LoadSarGridMetadata(const std::string& yaml_path) {
     throw InputError(yaml_path + ": grid keys 'x0_m' and 'y0_m' must be finite");
   }
   if (!(g.resolution_m > 0.0) || !std::isfinite(g.resolution_m)) {
-    throw InputError(Where(yaml_path, root["resolution_m"]) +
+    throw InputError(YamlWhere(yaml_path, root["resolution_m"]) +
                      ": grid key 'resolution_m' must be > 0");
   }
   if (g.rows < 1 || g.cols < 1) {

@@ -10,6 +10,25 @@
 
 namespace uwbsar {
 
+/// "file:line" of a node (just "file" when the node has no position).
+inline std::string YamlWhere(const std::string& file, const YAML::Node& node) {
+  const YAML::Mark mark = node.Mark();
+  return mark.line >= 0 ? file + ":" + std::to_string(mark.line + 1) : file;
+}
+
+/// The value of `node` as T; InputError naming file, line and "<what> key '<key>'" if not.
+template <class T>
+T YamlValue(const std::string& file, const YAML::Node& node, const char* key,
+            const std::string& what) {
+  try {
+    return node.as<T>();
+  } catch (const YAML::Exception&) {
+    throw InputError(YamlWhere(file, node) + ": " + what + " key '" + key +
+                     "' has invalid value '" +
+                     (node.IsScalar() ? node.Scalar() : std::string("<not a value>")) + "'");
+  }
+}
+
 /// The file's root mapping. `what` names the kind of file in messages ("map", "grid").
 /// Throws InputError when the file cannot be opened, is not valid YAML or is not a mapping.
 inline YAML::Node LoadYamlMappingFile(const std::string& path, const std::string& what) {
