@@ -1,0 +1,66 @@
+// Publishes uwbsar's results as ROS 2 topics over DDS for RViz2: the map
+// (nav_msgs/OccupancyGrid, latched like map_server's), the robot pose
+// (geometry_msgs/PoseStamped), the optimised trajectory (nav_msgs/Path) and the
+// accepted loop closures (visualization_msgs/MarkerArray: a DELETEALL, then one
+// LINE_LIST). Everything is in the frame dds.map_frame. Thread-safe.
+#pragma once
+
+#include <dds/dds.h>
+
+#include <mutex>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "drivers/dds/participant.h"
+#include "slam/dds_config.h"
+#include "slam/occupancy_grid.h"
+#include "slam/pose2.h"
+#include "slam/types.h"
+
+namespace uwbsar::dds {
+
+/// One loop closure drawn as a line between the two keyframe positions.
+using LoopSegment = std::pair<Point2, Point2>;
+
+class Ros2Publisher {
+ public:
+  /// Creates the four writers: map reliable + transient local, keep-last 1; the others
+  /// reliable, volatile, keep-last 10; all XCDR1. Throws InputError for a bad topic
+  /// name, DdsError when DDS refuses. `participant` must outlive this object.
+  Ros2Publisher(Participant& participant, const DdsConfig& config);
+  ~Ros2Publisher();
+  Ros2Publisher(const Ros2Publisher&) = delete;
+  Ros2Publisher& operator=(const Ros2Publisher&) = delete;
+
+  /// The grid with rows flipped to ROS order (bottom row first); origin = grid.origin.
+  void PublishMap(const OccupancyGrid& grid, TimestampNs stamp);
+  /// The robot pose in the map frame. At most one per dds.publish_pose_period_s of
+  /// `stamp` time: returns false (nothing sent) for a pose that comes sooner.
+  bool PublishPose(TimestampNs stamp, const Pose2& T_map_robot);
+  /// The trajectory: one PoseStamped per (stamp, pose), header stamp `stamp`.
+  void PublishPath(TimestampNs stamp, const std::vector<std::pair<TimestampNs, Pose2>>& poses);
+  /// DELETEALL, then one LINE_LIST marker (ns "loops", id 0) with two points per loop.
+  void PublishLoops(TimestampNs stamp, const std::vector<LoopSegment>& segments);
+
+  /// Subscribers currently matched by the writer of `ros_topic` (0 if not ours).
+  int MatchedSubscribers(const std::string& ros_topic) const;
+
+ private:
+  struct Writer {
+    std::string ros_topic;
+    dds_entity_t topic = 0;
+    dds_entity_t writer = 0;
+  };
+  Writer Create(dds_entity_t participant, const dds_topic_descriptor_t* desc,
+                const std::string& ros_topic, const dds_qos_t* qos);
+
+  std::string frame_;
+  double pose_period_s_;
+  Writer map_, pose_, path_, loops_;
+  std::mutex mutex_;
+  bool has_last_pose_ = false;
+  TimestampNs last_pose_ns_ = 0;
+};
+
+}  // namespace uwbsar::dds

@@ -1,0 +1,111 @@
+// Helpers for the drivers/dds tests: a loopback-only DDS configuration on a domain
+// of this test process (parallel ctest processes do not hear each other), waiting,
+// collecting events, and running the independent Python peer (ros2_peer.py).
+#pragma once
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "drivers/dds/dds_events.h"
+#include "drivers/dds/participant.h"
+#include "slam/dds_config.h"
+
+namespace uwbsar::dds::testing {
+
+/// Domain 1..230 derived from the process id: each ctest test is its own process.
+inline int TestDomainId() { return 1 + static_cast<int>(::getpid() % 230); }
+
+/// DDS restricted to the loopback interface (unicast discovery), on TestDomainId().
+inline DdsConfig LoopbackConfig() {
+  DdsConfig config;
+  config.domain_id = TestDomainId();
+  config.network_interface = "lo";
+  return config;
+}
+
+/// Polls `done` every 5 ms until it holds or `timeout_s` passes; returns its last value.
+inline bool WaitFor(const std::function<bool()>& done, double timeout_s = 10.0) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (!done()) {
+    if (std::chrono::steady_clock::now() > deadline) return done();
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return true;
+}
+
+/// Thread-safe record of the events a subscriber reported.
+class EventLog {
+ public:
+  void Add(const DdsEvent& e) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    events_.push_back(e);
+  }
+  int Count(DdsEventKind kind) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    int n = 0;
+    for (const DdsEvent& e : events_) n += e.kind == kind ? 1 : 0;
+    return n;
+  }
+  /// The detail of the first event of `kind`, "" if none.
+  std::string Detail(DdsEventKind kind) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const DdsEvent& e : events_) {
+      if (e.kind == kind) return e.detail;
+    }
+    return "";
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::vector<DdsEvent> events_;
+};
+
+/// $UWBSAR_VENV/bin/python, or "" when UWBSAR_VENV is unset (`make test` sets it).
+inline std::string VenvPython() {
+  const char* venv = std::getenv("UWBSAR_VENV");
+  if (venv == nullptr || *venv == '\0') return "";
+  return std::string(venv) + "/bin/python";
+}
+
+/// The shell command running ros2_peer.py in `mode` on the test domain, pinned to
+/// loopback with the same Cyclone configuration as LoopbackConfig().
+inline std::string PeerCommand(const std::string& python, const std::string& mode,
+                               const std::string& args = "") {
+  return "CYCLONEDDS_URI='" + CycloneXmlConfig("lo") + "' " + python +
+         " " UWBSAR_SOURCE_DIR "/test/drivers/dds/ros2_peer.py " + mode + " --domain " +
+         std::to_string(TestDomainId()) + " " + args + " 2>&1";
+}
+
+/// A command running in the background; Finish() waits for it and returns its output.
+class BackgroundCommand {
+ public:
+  explicit BackgroundCommand(const std::string& command) : pipe_(::popen(command.c_str(), "r")) {}
+  ~BackgroundCommand() {
+    if (pipe_ != nullptr) ::pclose(pipe_);
+  }
+  bool started() const { return pipe_ != nullptr; }
+  /// Reads everything the command prints, then its exit status (-1 if it did not exit).
+  std::string Finish(int* exit_status) {
+    std::string out;
+    char buf[4096];
+    std::size_t n;
+    while ((n = std::fread(buf, 1, sizeof(buf), pipe_)) > 0) out.append(buf, n);
+    const int status = ::pclose(pipe_);
+    pipe_ = nullptr;
+    *exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return out;
+  }
+
+ private:
+  FILE* pipe_;
+};
+
+}  // namespace uwbsar::dds::testing
