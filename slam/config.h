@@ -237,6 +237,11 @@ struct SlamConfig {
                                      ///< come since the last solve and a loop is waiting
                                      ///< (1: after every loop; 0: only at the end, like the
                                      ///< follow-on code). Bounds the solver's share of a long run
+  bool keyframe_thread = true;       ///< keyframe work (features, matching, solves) on its own
+                                     ///< thread, so scan imaging never waits for it; the result
+                                     ///< is the same either way (false: all on the caller's thread)
+  int keyframe_queue_size = 16;      ///< keyframes waiting for that thread; when full, the
+                                     ///< feeding thread waits (bounds memory in offline runs)
   double occupancy_resolution_m = 0.05;  ///< cell size of map.pgm (map_server format)
   double occupied_fraction = 0.3;        ///< a cell is occupied when its strongest map pixel
                                          ///< reaches this fraction of the reference level
@@ -250,6 +255,8 @@ struct SlamConfig {
     v("map_resolution_m", map_resolution_m);
     v("keep_tile_images", keep_tile_images);
     v("optimize_every_keyframes", optimize_every_keyframes);
+    v("keyframe_thread", keyframe_thread);
+    v("keyframe_queue_size", keyframe_queue_size);
     v("occupancy_resolution_m", occupancy_resolution_m);
     v("occupied_fraction", occupied_fraction);
     v("occupancy_reference_percentile", occupancy_reference_percentile);

@@ -242,6 +242,7 @@ void ValidateConfig(const Config& c, const std::string& src) {
   Require(c.slam.map_resolution_m > 0, src, "slam.map_resolution_m", "must be > 0");
   Require(c.slam.optimize_every_keyframes >= 0, src, "slam.optimize_every_keyframes",
           "must be >= 0");
+  Require(c.slam.keyframe_queue_size >= 1, src, "slam.keyframe_queue_size", "must be >= 1");
   Require(c.place_recognition.detectors.feature_resolution_m == 0 ||
               c.place_recognition.detectors.feature_resolution_m >= c.imaging.pixel_size_m,
           src, "place_recognition.detectors.feature_resolution_m",

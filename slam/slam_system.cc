@@ -41,30 +41,45 @@ SlamSystem::SlamSystem(const Config& config)
       frontend_(std::make_unique<ImagingFrontend>(config)),
       graph_(std::make_unique<PoseGraph>(config.backend)),
       recognizer_(std::make_unique<PlaceRecognizer>(config)) {
-  frontend_->SetOdometryObserver([this](const OdometryEntry& e) { odometry_.push_back(e); });
+  frontend_->SetOdometryObserver(
+      [this](const OdometryEntry& e) { pending_odometry_.push_back(e); });
+  if (config_.slam.keyframe_thread) worker_ = std::thread([this] { WorkerLoop(); });
 }
 
-SlamSystem::~SlamSystem() = default;
+SlamSystem::~SlamSystem() {
+  if (!worker_.joinable()) return;
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    stopping_ = true;
+  }
+  queue_changed_.notify_all();
+  worker_.join();
+}
 
 void SlamSystem::AddOdometry(const OdometrySample& sample) {
+  RethrowWorkerError();
   const auto start = Clock::now();
   frontend_->AddOdometry(sample);
-  times_.imaging_s += SecondsSince(start);
-  ProcessKeyframes();
+  PublishFeedingState(SecondsSince(start));
+  HandOver(false);
 }
 
 void SlamSystem::AddScan(const RadarScan& scan) {
+  RethrowWorkerError();
   const auto start = Clock::now();
   frontend_->AddScan(scan);
-  times_.imaging_s += SecondsSince(start);
-  ProcessKeyframes();
+  PublishFeedingState(SecondsSince(start));
+  HandOver(false);
 }
 
 void SlamSystem::Finish() {
+  RethrowWorkerError();
   const auto start = Clock::now();
   frontend_->Finish();
-  times_.imaging_s += SecondsSince(start);
-  ProcessKeyframes();
+  PublishFeedingState(SecondsSince(start));
+  HandOver(true);
+  WaitIdle();
+  std::lock_guard<std::mutex> lock(state_mutex_);
   if (graph_->NumNodes() > 0) Optimize();
   // Final state of every loop edge.
   const std::vector<EdgeReport> reports = graph_->EdgeReports();
@@ -75,28 +90,138 @@ void SlamSystem::Finish() {
   }
 }
 
-void SlamSystem::ProcessKeyframes() {
-  for (Keyframe& k : frontend_->TakeKeyframes()) AddKeyframe(std::move(k));
+void SlamSystem::WaitIdle() {
+  if (worker_.joinable()) {
+    std::unique_lock<std::mutex> lock(queue_mutex_);
+    queue_changed_.wait(lock, [this] { return (queue_.empty() && !busy_) || worker_error_; });
+  }
+  RethrowWorkerError();
+}
+
+FrontendStats SlamSystem::frontend_stats() const {
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  return frontend_stats_;
+}
+
+StageTimes SlamSystem::times() const {
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  StageTimes t = keyframe_times_;
+  t.imaging_s = imaging_s_;
+  return t;
+}
+
+void SlamSystem::PublishFeedingState(double imaging_s) {
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  imaging_s_ += imaging_s;
+  frontend_stats_ = frontend_->stats();
+}
+
+void SlamSystem::HandOver(bool force) {
+  // Odometry alone is handed over in batches, so that readers of odometry() see the
+  // trajectory grow between keyframes without a queue item per sample.
+  constexpr std::size_t kOdometryBatch = 64;
+  Work work;
+  work.keyframes = frontend_->TakeKeyframes();
+  if (work.keyframes.empty() && pending_odometry_.size() < kOdometryBatch &&
+      !(force && !pending_odometry_.empty())) {
+    return;
+  }
+  work.odometry.swap(pending_odometry_);
+  if (!worker_.joinable()) {
+    Process(std::move(work));
+    return;
+  }
+  const int n = static_cast<int>(work.keyframes.size());
+  {
+    std::unique_lock<std::mutex> lock(queue_mutex_);
+    // Back-pressure: a full queue makes the feeder wait (bounded memory offline).
+    queue_changed_.wait(lock, [this] {
+      return queued_keyframes_ < config_.slam.keyframe_queue_size || worker_error_;
+    });
+    queue_.push_back(std::move(work));
+    queued_keyframes_ += n;
+  }
+  queue_changed_.notify_all();
+}
+
+void SlamSystem::WorkerLoop() {
+  while (true) {
+    Work work;
+    {
+      std::unique_lock<std::mutex> lock(queue_mutex_);
+      queue_changed_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+      if (queue_.empty()) return;  // stopping with nothing left
+      work = std::move(queue_.front());
+      queue_.pop_front();
+      queued_keyframes_ -= static_cast<int>(work.keyframes.size());
+      busy_ = true;
+    }
+    queue_changed_.notify_all();
+    try {
+      Process(std::move(work));
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(queue_mutex_);
+      worker_error_ = std::current_exception();
+    }
+    {
+      std::lock_guard<std::mutex> lock(queue_mutex_);
+      busy_ = false;
+    }
+    queue_changed_.notify_all();
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    if (worker_error_) return;
+  }
+}
+
+void SlamSystem::RethrowWorkerError() {
+  std::exception_ptr error;
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    error = worker_error_;
+  }
+  if (error) std::rethrow_exception(error);
+}
+
+void SlamSystem::Process(Work&& work) {
+  {
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    odometry_.insert(odometry_.end(), work.odometry.begin(), work.odometry.end());
+  }
+  for (Keyframe& k : work.keyframes) AddKeyframe(std::move(k));
 }
 
 void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
   // The node starts on the corrected trajectory: the previous keyframe's estimate
   // composed with the odometry between the two.
   Pose2 estimate = keyframe.T_world_anchor;
-  if (!keyframes_.empty()) {
-    const Keyframe& prev = keyframes_.back().keyframe;
-    const Pose2 T_prev_this = Between(prev.T_world_anchor, keyframe.T_world_anchor);
-    estimate = graph_->GetPose(prev.id) * T_prev_this;
-    graph_->AddNode(keyframe.id, estimate, /*reseed_from_odometry=*/false);
-    graph_->AddOdometryEdge(prev.id, keyframe.id, T_prev_this);
-  } else {
-    graph_->AddNode(keyframe.id, estimate, false);
-    graph_->FixNode(keyframe.id);
+  {
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    if (!keyframes_.empty()) {
+      const Keyframe& prev = keyframes_.back().keyframe;
+      const Pose2 T_prev_this = Between(prev.T_world_anchor, keyframe.T_world_anchor);
+      estimate = graph_->GetPose(prev.id) * T_prev_this;
+      graph_->AddNode(keyframe.id, estimate, /*reseed_from_odometry=*/false);
+      graph_->AddOdometryEdge(prev.id, keyframe.id, T_prev_this);
+    } else {
+      graph_->AddNode(keyframe.id, estimate, false);
+      graph_->FixNode(keyframe.id);
+    }
   }
 
+  // The long part, without the lock: only this thread uses the recognizer.
   const PlaceRecognitionResult found = recognizer_->Process(keyframe, estimate);
-  times_.features_s += found.features_ms * 1e-3;
-  times_.matching_s += found.matching_ms * 1e-3;
+  const auto start = Clock::now();
+  KeyframeRecord record;
+  MakeDetected(keyframe, config_, &record.detected, &record.detected_grid);
+  if (!config_.slam.keep_tile_images) keyframe.image.release();
+  const double detected_s = SecondsSince(start);
+
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    keyframe_times_.features_s += found.features_ms * 1e-3 + detected_s;
+    keyframe_times_.matching_s += found.matching_ms * 1e-3;
+  }
+  std::lock_guard<std::mutex> lock(state_mutex_);
   for (const LoopAttempt& attempt : found.attempts) {
     LoopRecord loop;
     loop.query_id = keyframe.id;
@@ -127,14 +252,8 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
     }
     loops_.push_back(std::move(loop));
   }
-
-  const auto start = Clock::now();
-  KeyframeRecord record;
-  MakeDetected(keyframe, config_, &record.detected, &record.detected_grid);
-  if (!config_.slam.keep_tile_images) keyframe.image.release();
   record.keyframe = std::move(keyframe);
   keyframes_.push_back(std::move(record));
-  times_.features_s += SecondsSince(start);
   ++keyframes_since_solve_;
   const int every = config_.slam.optimize_every_keyframes;
   if (graph_dirty_ && every > 0 && keyframes_since_solve_ >= every) Optimize();
@@ -144,7 +263,10 @@ void SlamSystem::Optimize() {
   const auto start = Clock::now();
   last_optimization_ = graph_->Optimize();
   for (const auto& [id, pose] : graph_->GetPoses()) recognizer_->UpdatePose(id, pose);
-  times_.optimization_s += SecondsSince(start);
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    keyframe_times_.optimization_s += SecondsSince(start);
+  }
   graph_dirty_ = false;
   keyframes_since_solve_ = 0;
 }

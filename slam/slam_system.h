@@ -3,15 +3,30 @@
 // imaging frontend closes keyframe tiles; each new keyframe gets its AKAZE and
 // ORB features once, is matched against candidate keyframes near its pose
 // estimate, validated loops go into the Ceres pose graph, which is re-solved
-// incrementally after every accepted loop. Outputs are read from the accessors.
+// incrementally after accepted loops. Outputs are read from the accessors.
 //
-// Threading: the Add*/Finish methods are called from one thread (the feeding
-// thread); in offline use everything runs on it, so the same input always gives
-// the same result.
+// Threading: Add*/Finish are called from one thread (the feeding thread), which runs
+// the imaging frontend. With slam.keyframe_thread, each closed keyframe (with the
+// odometry that came before it) is handed through a bounded FIFO to a worker thread
+// that does the keyframe work: features, matching, graph edges and solves. The
+// frontend never reads the graph, and the worker takes keyframes in order, so the
+// result is the same as with everything on the feeding thread: the same input always
+// gives the same result. Only the feeding thread's latency changes (live mode).
+//
+// Reading results: the accessors returning references (keyframes, loops, odometry,
+// graph, last_optimization, KeyframePoses, Corrected*) read the worker's state. Read
+// them after Finish(), after WaitIdle() on the feeding thread, or from any thread
+// while holding LockState() (e.g. a live snapshot writer). frontend_stats() and
+// times() return copies and may be called from any thread at any time.
 #pragma once
 
+#include <condition_variable>
+#include <deque>
+#include <exception>
 #include <map>
 #include <memory>
+#include <mutex>
+#include <thread>
 #include <vector>
 
 #include "backend/pose_graph.h"
@@ -41,7 +56,8 @@ struct LoopRecord {
   bool accepted() const { return validation.accepted && !rejected_by_backend; }
 };
 
-/// Seconds spent per stage (wall clock, feeding thread).
+/// Seconds spent per stage (wall clock; imaging on the feeding thread, the rest on
+/// the keyframe thread when there is one).
 struct StageTimes {
   double imaging_s = 0.0;       ///< gating, range compression, back-projection
   double features_s = 0.0;      ///< feature images and AKAZE + ORB detection
@@ -54,23 +70,36 @@ class SlamSystem {
   explicit SlamSystem(const Config& config);
   ~SlamSystem();
 
+  SlamSystem(const SlamSystem&) = delete;
+  SlamSystem& operator=(const SlamSystem&) = delete;
+
+  /// Feeding thread. Rethrow an error the keyframe thread met (then the system is broken).
   void AddOdometry(const OdometrySample& sample);
   void AddScan(const RadarScan& scan);
-  /// Flushes the frontend, processes the last keyframe and solves the graph once more.
+  /// Flushes the frontend, processes the last keyframes and solves the graph once more.
   void Finish();
+  /// Feeding thread: waits until every keyframe handed over so far is processed.
+  void WaitIdle();
+
+  /// Locks the keyframe thread's state for reading from another thread; keep it short
+  /// enough not to stall keyframe processing (the feeding thread never waits on it).
+  std::unique_lock<std::mutex> LockState() const { return std::unique_lock(state_mutex_); }
 
   const Config& config() const { return config_; }
   const std::vector<KeyframeRecord>& keyframes() const { return keyframes_; }
   const std::vector<LoopRecord>& loops() const { return loops_; }
-  const FrontendStats& frontend_stats() const { return frontend_->stats(); }
+  /// The frontend's counters as of the last Add* call returned (any thread).
+  FrontendStats frontend_stats() const;
   const std::vector<SensorGeometry>& sensors() const { return frontend_->sensors(); }
   const OptimizeResult& last_optimization() const { return last_optimization_; }
-  const StageTimes& times() const { return times_; }
+  /// Stage times so far (any thread).
+  StageTimes times() const;
   const PoseGraph& graph() const { return *graph_; }
 
   /// Optimised T_world_anchor of every keyframe (odometry before the first solve).
   std::map<int, Pose2> KeyframePoses() const;
-  /// The odometry trajectory as the frontend used it (jumps corrected), every sample.
+  /// The odometry trajectory as the frontend used it (jumps corrected), every sample
+  /// handed to the keyframe thread (up to the last keyframe while running; all after Finish).
   const std::vector<OdometryEntry>& odometry() const { return odometry_; }
   /// The odometry trajectory corrected by the optimised keyframes: each sample's
   /// correction is interpolated in time between the two keyframes around it.
@@ -79,21 +108,48 @@ class SlamSystem {
   Pose2 CorrectionAt(TimestampNs stamp_ns) const;
 
  private:
-  void ProcessKeyframes();
+  /// What the feeding thread hands to the keyframe thread, in order.
+  struct Work {
+    std::vector<OdometryEntry> odometry;  ///< odometry since the previous hand-over
+    std::vector<Keyframe> keyframes;
+  };
+
+  void HandOver(bool force);
+  void PublishFeedingState(double imaging_s);
+  void WorkerLoop();
+  void Process(Work&& work);
   void AddKeyframe(Keyframe&& keyframe);
-  void Optimize();
+  void Optimize();  ///< caller holds state_mutex_
+  void RethrowWorkerError();
 
   Config config_;
+  // Feeding thread only.
   std::unique_ptr<ImagingFrontend> frontend_;
+  std::vector<OdometryEntry> pending_odometry_;
+  // Keyframe thread (or the feeding thread without one); written under state_mutex_.
   std::unique_ptr<PoseGraph> graph_;
   std::unique_ptr<PlaceRecognizer> recognizer_;
   std::vector<KeyframeRecord> keyframes_;
   std::vector<LoopRecord> loops_;
   std::vector<OdometryEntry> odometry_;
   OptimizeResult last_optimization_;
-  StageTimes times_;
   bool graph_dirty_ = false;
   int keyframes_since_solve_ = 0;
+  mutable std::mutex state_mutex_;
+  // Counters for readers on any thread (lock order: state_mutex_, then stats_mutex_).
+  mutable std::mutex stats_mutex_;
+  FrontendStats frontend_stats_;
+  double imaging_s_ = 0.0;
+  StageTimes keyframe_times_;  ///< features, matching, optimisation
+  // The hand-over queue.
+  std::mutex queue_mutex_;
+  std::condition_variable queue_changed_;
+  std::deque<Work> queue_;
+  int queued_keyframes_ = 0;
+  bool busy_ = false;
+  bool stopping_ = false;
+  std::exception_ptr worker_error_;
+  std::thread worker_;
 };
 
 }  // namespace uwbsar

@@ -203,17 +203,18 @@ double Percentile(std::vector<double> v, double p) {
   return v[std::min(k, v.size() - 1)];
 }
 
-/// The SLAM thread's state: feeds the SlamSystem, measures latency, writes snapshots.
+/// The SLAM feeding thread (imaging only: keyframe work runs on the SlamSystem's own
+/// thread) and the snapshot thread, which rewrites the outputs without ever making the
+/// feeding thread wait.
 class Processor {
  public:
   Processor(const Config& config, const LiveRunOptions& options, Dispatcher* dispatcher)
       : config_(config), options_(options), dispatcher_(dispatcher) {
     run_.input = "live run";
-    run_.slam = std::make_unique<SlamSystem>(config);
+    run_.slam = std::make_shared<SlamSystem>(config);
     start_ = SteadyClock::now();
-    last_snapshot_ = start_;
   }
-  /// Processes until `stop` and the queue is empty.
+  /// Feeds SLAM until `stop` and the queue is empty.
   void Loop(const std::atomic<bool>& stop) {
     LiveMessage msg;
     while (true) {
@@ -222,7 +223,18 @@ class Processor {
       } else if (stop) {
         break;
       }
-      MaybeSnapshot();
+    }
+  }
+  /// Writes a snapshot every live.snapshot_period_s until `stop`.
+  void SnapshotLoop(const std::atomic<bool>& stop) {
+    if (config_.live.snapshot_period_s <= 0) return;
+    const auto period = std::chrono::duration<double>(config_.live.snapshot_period_s);
+    auto next = SteadyClock::now() + period;
+    while (!stop) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      if (SteadyClock::now() < next) continue;
+      Snapshot();
+      next = SteadyClock::now() + period;
     }
   }
   MapRun& run() { return run_; }
@@ -230,13 +242,26 @@ class Processor {
   int snapshots() const { return snapshots_; }
   const MapOutputs& last_outputs() const { return last_outputs_; }
   double snapshot_max_s() const { return snapshot_max_s_; }
+  /// Writes the outputs of the state so far (any thread but the feeding one's callers').
   void Snapshot() {
-    if (run_.slam->keyframes().empty()) return;
     const auto t0 = SteadyClock::now();
-    if (options_.ground_truth) run_.ground_truth = options_.ground_truth();
-    run_.processing_s = std::chrono::duration<double>(t0 - start_).count();
+    MapRun view;  // the counters as of now, the same SlamSystem
+    {
+      std::lock_guard<std::mutex> lock(run_mutex_);
+      view.slam = run_.slam;
+      view.input = run_.input;
+      view.first_stamp_ns = run_.first_stamp_ns;
+      view.last_stamp_ns = run_.last_stamp_ns;
+      view.messages = run_.messages;
+      view.radar_messages = run_.radar_messages;
+      view.odometry_messages = run_.odometry_messages;
+    }
+    view.processing_s = std::chrono::duration<double>(t0 - start_).count();
+    if (options_.ground_truth) view.ground_truth = options_.ground_truth();
     try {
-      last_outputs_ = WriteMapOutputs(run_, options_.out_dir);
+      const auto state = view.slam->LockState();
+      if (view.slam->keyframes().empty()) return;
+      last_outputs_ = WriteMapOutputs(view, options_.out_dir);
       ++snapshots_;
     } catch (const std::exception& e) {
       Log(LogLevel::kWarning, std::string("snapshot not written: ") + e.what());
@@ -244,22 +269,34 @@ class Processor {
     snapshot_max_s_ =
         std::max(snapshot_max_s_, std::chrono::duration<double>(SteadyClock::now() - t0).count());
   }
+  /// After the threads stopped: the run with the last counters and the ground truth.
+  MapRun FinalRun() {
+    run_.processing_s = std::chrono::duration<double>(SteadyClock::now() - start_).count();
+    if (options_.ground_truth) run_.ground_truth = options_.ground_truth();
+    return std::move(run_);
+  }
 
  private:
   void Process(const LiveMessage& msg) {
-    if (run_.messages++ == 0) run_.first_stamp_ns = msg.stamp_ns;
-    run_.last_stamp_ns = msg.stamp_ns;
+    {
+      std::lock_guard<std::mutex> lock(run_mutex_);
+      if (run_.messages++ == 0) run_.first_stamp_ns = msg.stamp_ns;
+      run_.last_stamp_ns = msg.stamp_ns;
+      if (msg.kind == LiveMessage::Kind::kScan) {
+        ++run_.radar_messages;
+      } else {
+        ++run_.odometry_messages;
+      }
+    }
     if (msg.kind == LiveMessage::Kind::kScan) {
-      ++run_.radar_messages;
       pending_.push_back(msg.arrival);
       run_.slam->AddScan(msg.scan);
     } else {
-      ++run_.odometry_messages;
       run_.slam->AddOdometry(msg.odometry);
     }
     // A scan is resolved once the frontend imaged, gated or rejected it (it may wait for
     // the odometry after it); resolution is in arrival order.
-    const FrontendStats& s = run_.slam->frontend_stats();
+    const FrontendStats s = run_.slam->frontend_stats();
     const long long resolved = s.scans_imaged + s.scans_gated + s.scans_rejected();
     const auto now = SteadyClock::now();
     while (resolved_ < resolved && !pending_.empty()) {
@@ -269,23 +306,16 @@ class Processor {
       ++resolved_;
     }
   }
-  void MaybeSnapshot() {
-    if (config_.live.snapshot_period_s <= 0) return;
-    const auto now = SteadyClock::now();
-    if (now - last_snapshot_ < std::chrono::duration<double>(config_.live.snapshot_period_s))
-      return;
-    last_snapshot_ = now;
-    Snapshot();
-  }
 
   const Config& config_;
   const LiveRunOptions& options_;
   Dispatcher* dispatcher_;
+  std::mutex run_mutex_;  ///< run_'s counters, read by the snapshot thread
   MapRun run_;
   std::deque<SteadyClock::time_point> pending_;
   long long resolved_ = 0;
   std::vector<double> latencies_ms_;
-  SteadyClock::time_point start_, last_snapshot_;
+  SteadyClock::time_point start_;
   int snapshots_ = 0;
   double snapshot_max_s_ = 0.0;
   MapOutputs last_outputs_;
@@ -364,8 +394,9 @@ LiveRunResult RunLive(const Config& config, LiveRunOptions options) {
   }
 
   Processor processor(config, options, &dispatcher);
-  std::atomic<bool> processing_stop{false};
+  std::atomic<bool> processing_stop{false}, snapshot_stop{false};
   std::thread slam_thread([&] { processor.Loop(processing_stop); });
+  std::thread snapshot_thread([&] { processor.SnapshotLoop(snapshot_stop); });
   for (auto& link : links) link->Start();
   dispatcher.Event("run started");
   if (!options.quiet) {
@@ -405,11 +436,12 @@ LiveRunResult RunLive(const Config& config, LiveRunOptions options) {
   dispatcher.Event("run stopping");
   processing_stop = true;
   slam_thread.join();
+  snapshot_stop = true;
+  snapshot_thread.join();
   power.ShutDown();
 
   LiveRunResult result;
-  MapRun& run = processor.run();
-  run.slam->Finish();
+  processor.run().slam->Finish();
   result.faults = faults.Counts();
   result.dropped_from_processing = dispatcher.dropped();
   auto& lat = processor.latencies_ms();
@@ -418,7 +450,7 @@ LiveRunResult RunLive(const Config& config, LiveRunOptions options) {
   result.latency_p99_ms = Percentile(lat, 99);
   result.latency_max_ms = lat.empty() ? 0.0 : *std::max_element(lat.begin(), lat.end());
   for (const auto& r : radars) result.scans_received += r->scans();
-  result.odometry_received = run.odometry_messages;
+  result.odometry_received = processor.run().odometry_messages;
   recorder.Close();
   result.recorded_messages = recorder.written();
   result.recording_path = recorder.path();
@@ -444,7 +476,7 @@ LiveRunResult RunLive(const Config& config, LiveRunOptions options) {
                   live.dump(2) + "\n");
 
   result.outputs = processor.last_outputs();
-  result.run = std::move(run);
+  result.run = processor.FinalRun();
   return result;
 }
 

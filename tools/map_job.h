@@ -15,7 +15,7 @@
 namespace uwbsar::tools {
 
 struct MapRun {
-  std::unique_ptr<SlamSystem> slam;
+  std::shared_ptr<SlamSystem> slam;  ///< shared: a live snapshot writer reads it on its own thread
   std::vector<OdometrySample> ground_truth;  ///< from the bag's topic or --ground-truth
   std::string input;                         ///< what was mapped (path or description)
   TimestampNs first_stamp_ns = 0;

@@ -65,5 +65,34 @@ TEST(SlamSystemTest, SeedLabDepartReturnBeatsOdometryByThreeTimes) {
   EXPECT_LE(3.0 * slam.rmse_m, odom.rmse_m);
 }
 
+// The keyframe thread changes who does the work, not the result: the frontend never
+// reads the graph and the worker takes keyframes in order.
+TEST(SlamSystemTest, KeyframeThreadGivesTheSameResultAsOneThread) {
+  Config threaded;
+  threaded.slam.keyframe_thread = true;
+  threaded.slam.keyframe_queue_size = 2;  // the feeder also waits on a full queue
+  Config inline_config = threaded;
+  inline_config.slam.keyframe_thread = false;
+  const tools::MapRun a = tools::MapSimulation(threaded, SeedLab(), "depart-return", 1);
+  const tools::MapRun b = tools::MapSimulation(inline_config, SeedLab(), "depart-return", 1);
+  ASSERT_EQ(a.slam->keyframes().size(), b.slam->keyframes().size());
+  ASSERT_EQ(a.slam->loops().size(), b.slam->loops().size());
+  for (std::size_t i = 0; i < a.slam->loops().size(); ++i) {
+    EXPECT_EQ(a.slam->loops()[i].match_id, b.slam->loops()[i].match_id);
+    EXPECT_EQ(a.slam->loops()[i].query_id, b.slam->loops()[i].query_id);
+    EXPECT_EQ(a.slam->loops()[i].accepted(), b.slam->loops()[i].accepted());
+  }
+  const auto ta = a.slam->CorrectedTrajectory();
+  const auto tb = b.slam->CorrectedTrajectory();
+  ASSERT_EQ(ta.size(), tb.size());
+  ASSERT_FALSE(ta.empty());
+  for (std::size_t i = 0; i < ta.size(); ++i) {
+    ASSERT_EQ(ta[i].first, tb[i].first);
+    ASSERT_EQ(ta[i].second.x_m, tb[i].second.x_m) << i;
+    ASSERT_EQ(ta[i].second.y_m, tb[i].second.y_m) << i;
+    ASSERT_EQ(ta[i].second.yaw_rad, tb[i].second.yaw_rad) << i;
+  }
+}
+
 }  // namespace
 }  // namespace uwbsar

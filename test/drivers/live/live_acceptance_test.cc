@@ -7,9 +7,11 @@
 #include <signal.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <set>
 
 #include "drivers/rosbag/bag_reader.h"
 #include "live_test_util.h"
@@ -28,6 +30,36 @@ int AcceptedLoops(const SlamSystem& slam) {
   int n = 0;
   for (const LoopRecord& l : slam.loops()) n += l.accepted() ? 1 : 0;
   return n;
+}
+
+/// The accepted loops as (earlier keyframe, new keyframe) ids: keyframe ids are world-
+/// lattice segment numbers, so two runs over the same path number them alike.
+std::set<std::pair<int, int>> AcceptedPairs(const SlamSystem& slam) {
+  std::set<std::pair<int, int>> pairs;
+  for (const LoopRecord& l : slam.loops()) {
+    if (l.accepted()) pairs.insert({l.match_id, l.query_id});
+  }
+  return pairs;
+}
+
+/// Loops accepted by one run and not the other that are not marginal: a marginal loop
+/// had at most min_good_matches + 4 good matches for one detector where it was accepted,
+/// so a different noise draw can move it across the paper's threshold.
+std::vector<std::pair<int, int>> NonMarginalDifferences(const SlamSystem& a, const SlamSystem& b) {
+  const int marginal = a.config().place_recognition.validation.min_good_matches + 4;
+  std::vector<std::pair<int, int>> out;
+  for (const auto& pair : {std::make_pair(&a, &b), std::make_pair(&b, &a)}) {
+    const std::set<std::pair<int, int>> other = AcceptedPairs(*pair.second);
+    for (const LoopRecord& l : pair.first->loops()) {
+      if (!l.accepted() || other.count({l.match_id, l.query_id})) continue;
+      std::printf("A: loop %d-%d only in one run (good matches AKAZE %d, ORB %d)\n", l.match_id,
+                  l.query_id, l.akaze.good_matches, l.orb.good_matches);
+      if (std::min(l.akaze.good_matches, l.orb.good_matches) > marginal) {
+        out.push_back({l.match_id, l.query_id});
+      }
+    }
+  }
+  return out;
 }
 
 TEST(LiveAcceptanceTest, A_B_RealTimeRunMatchesOfflineMappingAndReportsLatency) {
@@ -51,12 +83,17 @@ TEST(LiveAcceptanceTest, A_B_RealTimeRunMatchesOfflineMappingAndReportsLatency) 
       r.latency_p50_ms, r.latency_p99_ms, r.latency_max_ms, r.latency_samples,
       r.dropped_from_processing, r.snapshot_max_s);
   EXPECT_EQ(r.dropped_from_processing, 0);
-  // Not asserted yet (measured 2026-11: live 15 loops vs 16 offline, p99 71 ms on a loaded
-  // 2-core machine): the live odometry is re-integrated from Kobuki ticks at host-clock
-  // stamps, which moves tile boundaries slightly; keyframe features and matching run on the
-  // SLAM thread between scans, which sets the p99. Both are printed above.
-  EXPECT_LE(std::abs(AcceptedLoops(*r.run.slam) - AcceptedLoops(*offline.slam)), 2);
-  EXPECT_EQ(AcceptedLoops(*r.run.slam), AcceptedLoops(*replay.slam));
+  // B: keyframe work runs on the SlamSystem's own thread and snapshots on another, so
+  // the feeding thread only images (measured p99 20.5 ms; it was 71 ms with both on it).
+  EXPECT_LE(r.latency_p99_ms, 50.0);
+  // A: the recording replays the live run exactly. Against `uwbsar map` of the simulated
+  // run the inputs are the same except for the host's sub-millisecond arrival jitter
+  // (p50 0.2 ms), which changes which scans the 3 mm travel gate keeps now and then and
+  // so the noise in a tile: every robust loop must agree; a loop at the paper's match
+  // threshold may flip (measured: 1 run in 2 differs by loop 5-9, 12 good matches).
+  EXPECT_TRUE(NonMarginalDifferences(*r.run.slam, *offline.slam).empty());
+  EXPECT_LE(std::abs(AcceptedLoops(*r.run.slam) - AcceptedLoops(*offline.slam)), 1);
+  EXPECT_EQ(AcceptedPairs(*r.run.slam), AcceptedPairs(*replay.slam));
   EXPECT_LT(std::abs(r.outputs.ate.rmse_m - offline_ate.rmse_m), 0.01);
   ASSERT_EQ(a.size(), b.size());
   double max_diff = 0.0;
