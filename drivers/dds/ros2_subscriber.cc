@@ -11,6 +11,7 @@
 #include "drivers/dds/ros2_convert.h"
 #include "drivers/dds/ros2_qos.h"
 #include "drivers/dds/ros2_types.h"
+#include "slam/errors.h"
 
 namespace uwbsar::dds {
 namespace {
@@ -92,6 +93,12 @@ Ros2Subscriber::Ros2Subscriber(Participant& participant, const DdsConfig& config
     Check(dds_waitset_attach(waitset_, stop_guard_, kStopAttach), "dds_waitset_attach(guard)");
 
     auto add = [&](Topic::Kind kind, int sensor_index, const std::string& ros_name) {
+      for (const auto& other : topics_) {
+        if (other->ros_name == ros_name) {
+          throw InputError("ROS topic " + ros_name + " is subscribed twice (radar and " +
+                           "odometry topics must all differ)");
+        }
+      }
       auto topic = std::make_unique<Topic>();
       topic->kind = kind;
       topic->sensor_index = sensor_index;

@@ -63,8 +63,8 @@ class Ros2Subscriber {
 
   /// Subscribes with the QoS of `config` (reliability, history_depth; XCDR1) to
   /// `radar_topics[i]` (sensor i) and `odometry_topic` (ROS 2 names, e.g. "/odom";
-  /// "" = none) and starts the thread. Throws InputError for a bad topic name or QoS
-  /// setting, DdsError when DDS refuses. `participant` must outlive this object.
+  /// "" = none) and starts the thread. Throws InputError for a bad or repeated topic
+  /// name or QoS setting, DdsError when DDS refuses. `participant` must outlive this object.
   Ros2Subscriber(Participant& participant, const DdsConfig& config,
                  const std::vector<std::string>& radar_topics, const std::string& odometry_topic,
                  Callbacks callbacks);

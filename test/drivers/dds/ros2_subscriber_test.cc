@@ -13,6 +13,7 @@
 #include "drivers/dds/ros2_convert.h"
 #include "drivers/dds/ros2_qos.h"
 #include "drivers/dds/ros2_types.h"
+#include "slam/errors.h"
 #include "test/drivers/dds/dds_test_util.h"
 
 namespace uwbsar::dds {
@@ -257,6 +258,14 @@ TEST_F(Ros2SubscriberTest, ThrowingCallbackIsCountedAndTheThreadGoesOn) {
   }
   ASSERT_TRUE(WaitFor([&] { return calls == 2; }));
   EXPECT_EQ(subscriber.Stats().callback_exceptions, 2u);
+}
+
+TEST_F(Ros2SubscriberTest, RepeatedOrBadTopicNamesAreInputErrors) {
+  EXPECT_THROW(Subscribe({"/radar", "/radar"}, "/odom"), InputError);
+  EXPECT_THROW(Subscribe({"/radar"}, "/radar"), InputError);
+  EXPECT_THROW(Subscribe({"/radar 0"}, "/odom"), InputError);
+  config_.reliability = "sometimes";
+  EXPECT_THROW(Subscribe({"/radar"}, "/odom"), InputError);
 }
 
 }  // namespace
