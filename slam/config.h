@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "slam/dds_config.h"
 #include "slam/live_config.h"
 #include "slam/place_recognition_config.h"
 #include "slam/simulator_config.h"
@@ -278,6 +279,7 @@ struct Config {
 
   SlamConfig slam;
   LiveConfig live;
+  DdsConfig dds;
 
   template <class V>
   void Visit(V& v) {
@@ -293,6 +295,7 @@ struct Config {
     v("place_recognition", place_recognition);
     v("compare", compare);
     v("live", live);
+    v("dds", dds);
   }
 };
 

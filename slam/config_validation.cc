@@ -149,6 +149,28 @@ void ValidateCompare(const CompareConfig& c, const std::string& src) {
   Require(c.pcd_peak_radius_m > 0, src, k + "pcd_peak_radius_m", "must be > 0");
 }
 
+void ValidateDds(const DdsConfig& d, const std::string& src) {
+  const std::string k = "dds.";
+  // DDS domain ids map to UDP ports; 232 is the largest that fits (ROS 2 documents 0-232).
+  Require(d.domain_id >= -1 && d.domain_id <= 232, src, k + "domain_id",
+          "must be -1 ($ROS_DOMAIN_ID) or in [0, 232]");
+  Require(d.reliability == "reliable" || d.reliability == "best_effort", src, k + "reliability",
+          "must be 'reliable' or 'best_effort'");
+  Require(d.history_depth >= 1, src, k + "history_depth", "must be >= 1");
+  for (const auto& [key, topic] :
+       {std::make_pair("map_topic", &d.map_topic), std::make_pair("pose_topic", &d.pose_topic),
+        std::make_pair("path_topic", &d.path_topic),
+        std::make_pair("loops_topic", &d.loops_topic)}) {
+    Require(!topic->empty() && (*topic)[0] == '/', src, k + key,
+            "must be an absolute ROS 2 topic name (starting with '/')");
+  }
+  Require(!d.map_frame.empty(), src, k + "map_frame", "must not be empty");
+  Require(d.publish_pose_period_s >= 0, src, k + "publish_pose_period_s", "must be >= 0");
+  Require(d.silence_timeout_s >= 0, src, k + "silence_timeout_s", "must be >= 0");
+  Require(d.reorder_window_s >= 0 && d.reorder_window_s <= 10, src, k + "reorder_window_s",
+          "must be in [0, 10]");
+}
+
 void ValidateLive(const LiveConfig& l, const std::string& src) {
   const std::string k = "live.";
   for (std::size_t i = 0; i < l.radar_devices.size(); ++i) {
@@ -221,6 +243,7 @@ void ValidateLive(const LiveConfig& l, const std::string& src) {
 void ValidateConfig(const Config& c, const std::string& src) {
   ValidateCompare(c.compare, src);
   ValidateLive(c.live, src);
+  ValidateDds(c.dds, src);
   ValidateSimulator(c.simulator, src);
   ValidatePlaceRecognition(c.place_recognition, src);
   Require(c.pulse.center_frequency_hz > 0, src, "pulse.center_frequency_hz", "must be > 0");

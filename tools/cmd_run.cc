@@ -33,6 +33,7 @@ void AddRunCommand(CLI::App& app, const GlobalOptions& globals) {
     double speed = 1.0;
     double duration_s = 0.0;
     std::uint64_t seed = 1;
+    std::string source = "serial";
   };
   auto opts = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -41,6 +42,11 @@ void AddRunCommand(CLI::App& app, const GlobalOptions& globals) {
       ->capture_default_str();
   cmd->add_option("--recording", opts->recording,
                   "Recording bag directory (default: <out>/rosbag2_<date>-<time>)");
+  cmd->add_option("--source", opts->source,
+                  "serial: the robot's LT102 radars, Kobuki base and GPIO (live.*); ros2: a ROS 2 "
+                  "robot's radar and odometry topics over DDS, results published for RViz2 (dds.*)")
+      ->check(CLI::IsMember({"serial", "ros2"}))
+      ->capture_default_str();
   cmd->add_flag("--emulate", opts->emulate,
                 "Emulated devices on pseudo-terminals playing the simulated seed_lab run");
   cmd->add_option("--speed", opts->speed, "--emulate: playback speed (1 = real time)")
@@ -55,6 +61,10 @@ void AddRunCommand(CLI::App& app, const GlobalOptions& globals) {
     LiveRunOptions options;
     options.out_dir = opts->out_dir;
     options.recording_dir = opts->recording;
+    options.source = opts->source;
+    if (opts->emulate && opts->source != "serial") {
+      throw InputError("--emulate plays serial devices: it needs --source serial");
+    }
     options.stop = &g_stop;
     options.quiet = globals.quiet;
     std::unique_ptr<live::SimDevicePlayer> player;

@@ -1,14 +1,16 @@
-// `uwbsar run`: SLAM live on the robot. Drivers (two LT102 radars, the Kobuki base)
-// read on their own threads and stamp every message on the host clock; a dispatcher
-// hands each message to the recorder (a ROS 2 bag, unbounded queue: nothing is ever
-// dropped from the recording, made durable at least every live.recording_flush_period_s)
-// and to the SLAM thread through a bounded queue (when SLAM falls behind the oldest
-// waiting messages are dropped from processing and counted). The SLAM thread runs the
-// same SlamSystem as `uwbsar map`, measures each scan's latency from arrival to its
-// inclusion in the open tile, and rewrites the map outputs atomically every
-// live.snapshot_period_s. Stop (SIGINT/SIGTERM, or the options' stop flag): drivers
-// stop, the queue is drained, the graph is solved a last time, the final outputs and
-// live.json are written and the recording is closed.
+// `uwbsar run`: SLAM live on the robot. A source (tools/live_source.h: the serial
+// drivers of two LT102 radars and the Kobuki base, stamping every message on the host
+// clock; or a ROS 2 robot over DDS, keeping the publisher's stamps) hands messages from
+// its own threads to a dispatcher (tools/live_recorder.h), which passes each to the
+// recorder (a ROS 2 bag, unbounded queue: nothing is ever dropped from the recording,
+// made durable at least every live.recording_flush_period_s) and to the SLAM feeding
+// thread through a bounded queue (when SLAM falls behind the oldest waiting messages are
+// dropped from processing and counted). The feeding thread (tools/live_processor.h) runs
+// the same SlamSystem as `uwbsar map` and measures each scan's latency from arrival to
+// its inclusion in the open tile; a snapshot thread rewrites the map outputs atomically
+// every live.snapshot_period_s. Stop (SIGINT/SIGTERM, or the options' stop flag): the
+// source stops, the queue is drained, the graph is solved a last time, the final outputs
+// and live.json are written and the recording is closed.
 #pragma once
 
 #include <atomic>
@@ -25,9 +27,10 @@
 namespace uwbsar::tools {
 
 struct LiveRunOptions {
-  std::string out_dir;        ///< snapshots, final outputs, live.json
-  std::string recording_dir;  ///< the bag; empty = <out_dir>/rosbag2_<date>-<time>
-  double time_scale = 1.0;    ///< host stamps advance this much faster than wall time (tests)
+  std::string source = "serial";  ///< serial (the robot's devices) or ros2 (DDS)
+  std::string out_dir;            ///< snapshots, final outputs, live.json
+  std::string recording_dir;      ///< the bag; empty = <out_dir>/rosbag2_<date>-<time>
+  double time_scale = 1.0;        ///< host stamps advance this much faster than wall time (tests)
   /// The GPIO chip; null = from live.gpio_chip (libgpiod, or none when it is empty).
   std::unique_ptr<live::GpioChip> gpio;
   const std::atomic<bool>* stop = nullptr;  ///< the run ends when it becomes true
@@ -55,7 +58,7 @@ struct LiveRunResult {
 };
 
 /// Runs until the stop flag is set. Throws InputError / GpioError on start-up problems
-/// (device list not matching the radars, GPIO chip or line missing).
+/// (device list not matching the radars, GPIO chip or line missing, DDS refusing).
 LiveRunResult RunLive(const Config& config, LiveRunOptions options);
 
 }  // namespace uwbsar::tools

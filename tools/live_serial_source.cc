@@ -1,0 +1,132 @@
+// The robot's own devices as a live source: LT102 radars and the Kobuki base on
+// reconnecting serial links, radar power and reset through GPIO.
+#include <algorithm>
+#include <cmath>
+
+#include "drivers/live/device_link.h"
+#include "drivers/live/kobuki_driver.h"
+#include "drivers/live/lt102_driver.h"
+#include "drivers/live/radar_power.h"
+#include "slam/errors.h"
+#include "tools/live_source.h"
+
+namespace uwbsar::tools {
+namespace {
+
+class SerialSource : public LiveSource {
+ public:
+  SerialSource(const Config& config, LiveRunOptions& options, Dispatcher* dispatcher,
+               live::FaultLog* faults, live::HostClock* clock)
+      : lc_(config.live), faults_(faults), clock_(clock) {
+    if (lc_.radar_devices.size() != config.radars.size()) {
+      throw InputError("live.radar_devices lists " + std::to_string(lc_.radar_devices.size()) +
+                       " devices for " + std::to_string(config.radars.size()) +
+                       " radars: give one serial device per radars[] entry");
+    }
+    // GPIO first: a missing chip or line stops the run before anything moves.
+    std::unique_ptr<live::GpioChip> chip =
+        options.gpio ? std::move(options.gpio) : live::OpenConfiguredChip(lc_);
+    power_ = std::make_unique<live::RadarPower>(
+        std::move(chip), lc_,
+        [dispatcher](const std::string& e) { dispatcher->Event("gpio: " + e); });
+    power_->StartUp();
+
+    live::LinkPolicy policy;
+    policy.read_timeout_s = lc_.read_timeout_s;
+    policy.reconnect_initial_s = lc_.reconnect_initial_s;
+    policy.reconnect_max_s = lc_.reconnect_max_s;
+    policy.power_cycle_after_failures = lc_.power_cycle_after_failures;
+    for (std::size_t i = 0; i < config.radars.size(); ++i) {
+      const std::string name = "radar " + config.radars[i].name;
+      radars_.push_back(std::make_unique<live::Lt102Driver>(name, static_cast<int>(i), lc_, faults,
+                                                            [dispatcher](RadarScan&& scan) {
+                                                              LiveMessage m;
+                                                              m.kind = LiveMessage::Kind::kScan;
+                                                              m.scan = std::move(scan);
+                                                              dispatcher->Publish(std::move(m));
+                                                            }));
+      live::LinkPolicy p = policy;
+      p.baud = lc_.radar_baud;
+      std::function<void()> cycle;
+      if (power_->can_power_cycle(static_cast<int>(i))) {
+        cycle = [power = power_.get(), i] { power->PowerCycle(static_cast<int>(i)); };
+      }
+      links_.push_back(std::make_unique<live::DeviceLink>(name, lc_.radar_devices[i], p,
+                                                          radars_.back().get(), faults, cycle));
+    }
+    kobuki_ = std::make_unique<live::KobukiDriver>(
+        lc_, faults, [clock] { return clock->Now(); },
+        [this, dispatcher](OdometrySample&& sample) {
+          LiveMessage m;
+          m.kind = LiveMessage::Kind::kOdometry;
+          m.odometry = sample;
+          dispatcher->Publish(std::move(m));
+          last_odometry_ns_ = clock_->Now();
+        });
+    live::LinkPolicy p = policy;
+    p.baud = lc_.kobuki_baud;
+    links_.push_back(
+        std::make_unique<live::DeviceLink>("kobuki", lc_.kobuki_device, p, kobuki_.get(), faults));
+  }
+
+  void Start() override {
+    for (auto& link : links_) link->Start();
+  }
+
+  // Odometry stalls, clock steps, status LED (on while every link is up).
+  void Poll() override {
+    const double step_s = clock_->CheckStep();
+    if (std::abs(step_s) >= lc_.clock_step_threshold_s) {
+      faults_->Report("host clock: steps", "system clock stepped by " + std::to_string(step_s) +
+                                               " s; stamps follow the monotonic clock");
+    }
+    const long long last = last_odometry_ns_;
+    const double silent_s = last == 0 ? 0.0 : NsToSeconds(clock_->Now() - last);
+    if (silent_s > lc_.odometry_stall_s && !stalled_) {
+      stalled_ = true;
+      faults_->Report("kobuki: odometry stalls",
+                      "no odometry for " + std::to_string(lc_.odometry_stall_s) +
+                          " s; SLAM waits, scans without odometry are not imaged");
+    } else if (silent_s <= lc_.odometry_stall_s) {
+      stalled_ = false;
+    }
+    const bool all_up =
+        std::all_of(links_.begin(), links_.end(), [](const auto& l) { return l->connected(); });
+    if (all_up != led_) {
+      power_->SetStatusLed(all_up);
+      led_ = all_up;
+    }
+  }
+
+  void Stop() override {
+    for (auto& link : links_) link->Stop();
+  }
+  void ShutDown() override { power_->ShutDown(); }
+
+  long long scans_received() const override {
+    long long n = 0;
+    for (const auto& r : radars_) n += r->scans();
+    return n;
+  }
+
+ private:
+  const LiveConfig& lc_;
+  live::FaultLog* faults_;
+  live::HostClock* clock_;
+  std::unique_ptr<live::RadarPower> power_;
+  std::vector<std::unique_ptr<live::Lt102Driver>> radars_;
+  std::unique_ptr<live::KobukiDriver> kobuki_;
+  std::vector<std::unique_ptr<live::DeviceLink>> links_;
+  std::atomic<long long> last_odometry_ns_{0};
+  bool stalled_ = false, led_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<LiveSource> MakeSerialSource(const Config& config, LiveRunOptions& options,
+                                             Dispatcher* dispatcher, live::FaultLog* faults,
+                                             live::HostClock* clock) {
+  return std::make_unique<SerialSource>(config, options, dispatcher, faults, clock);
+}
+
+}  // namespace uwbsar::tools

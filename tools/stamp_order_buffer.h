@@ -1,0 +1,85 @@
+// Puts messages from several independent streams (two radar topics and odometry, each
+// taken from its own DDS reader) back into stamp order before SLAM and the recording see
+// them, so a live ROS 2 run is fed in the order `uwbsar map` reads its recording.
+// A message is released once a message stamped `window_ns` later has arrived, or once it
+// has waited `window_ns` of wall time (a stream that stopped must not hold the rest).
+// A message older than one already released is "late": released at once, flagged.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <utility>
+#include <vector>
+
+namespace uwbsar::tools {
+
+template <class T>
+class StampOrderBuffer {
+ public:
+  /// `release(item, late)` is called in stamp order (under the buffer's lock: keep it short).
+  StampOrderBuffer(std::int64_t window_ns, std::function<void(T&&, bool late)> release)
+      : window_ns_(window_ns), release_(std::move(release)) {}
+
+  /// `stamp_ns`: the message's stamp; `now_ns`: a monotonic wall clock.
+  void Push(std::int64_t stamp_ns, std::int64_t now_ns, T&& item) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (released_any_ && stamp_ns < last_released_ns_) {
+      ++late_;
+      release_(std::move(item), true);
+      return;
+    }
+    newest_ns_ = std::max(newest_ns_, stamp_ns);
+    pending_.emplace(std::make_pair(stamp_ns, sequence_++), Entry{now_ns, std::move(item)});
+    ReleaseLocked(now_ns, false);
+  }
+  /// Releases what waited long enough (call periodically).
+  void Poll(std::int64_t now_ns) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ReleaseLocked(now_ns, false);
+  }
+  /// Releases everything (end of run).
+  void Flush() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ReleaseLocked(0, true);
+  }
+  long long late() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return late_;
+  }
+
+ private:
+  struct Entry {
+    std::int64_t arrival_ns;
+    T item;
+  };
+  void ReleaseLocked(std::int64_t now_ns, bool all) {
+    while (!pending_.empty()) {
+      auto it = pending_.begin();
+      const std::int64_t stamp = it->first.first;
+      const bool due =
+          all || stamp <= newest_ns_ - window_ns_ || now_ns - it->second.arrival_ns >= window_ns_;
+      if (!due) break;
+      last_released_ns_ = stamp;
+      released_any_ = true;
+      T item = std::move(it->second.item);
+      pending_.erase(it);
+      release_(std::move(item), false);
+    }
+  }
+
+  const std::int64_t window_ns_;
+  std::function<void(T&&, bool)> release_;
+  mutable std::mutex mutex_;
+  std::map<std::pair<std::int64_t, std::uint64_t>, Entry> pending_;  ///< (stamp, arrival seq)
+  std::uint64_t sequence_ = 0;
+  std::int64_t newest_ns_ = std::numeric_limits<std::int64_t>::min();
+  std::int64_t last_released_ns_ = 0;
+  bool released_any_ = false;
+  long long late_ = 0;
+};
+
+}  // namespace uwbsar::tools
