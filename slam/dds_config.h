@@ -23,6 +23,8 @@ struct DdsConfig {
   std::string loops_topic = "/uwbsar/loops";  ///< visualization_msgs/MarkerArray of accepted loops
   std::string map_frame = "map";              ///< frame_id of everything uwbsar publishes
   double publish_pose_period_s = 0.1;  ///< at most one pose per this much sensor time (0 = all)
+  double reorder_window_s = 0.05;      ///< radar and odometry samples are put back in stamp order
+                                       ///< within this window before SLAM and the recording
   double silence_timeout_s = 1.0;      ///< a matched topic without samples this long is reported
                                        ///< as silent (0 = never)
 
@@ -38,6 +40,7 @@ struct DdsConfig {
     v("loops_topic", loops_topic);
     v("map_frame", map_frame);
     v("publish_pose_period_s", publish_pose_period_s);
+    v("reorder_window_s", reorder_window_s);
     v("silence_timeout_s", silence_timeout_s);
   }
 };
