@@ -104,8 +104,9 @@ class Ros2Source : public LiveSource {
   void Release(LiveMessage&& m, bool late) {
     if (late) {
       faults_->Report("ros2: late samples",
-                      "stamped before a sample already passed on (more than "
-                      "dds.reorder_window_s out of order); recorded, not used by SLAM");
+                      "a sample stamped " + std::to_string(m.stamp_ns) +
+                          " ns came after later ones were passed on (more than "
+                          "dds.reorder_window_s out of order); recorded, not used by SLAM");
       m.for_slam = false;
     }
     dispatcher_->PublishStamped(std::move(m));
