@@ -95,7 +95,11 @@ void Dispatcher::Dispatch(LiveMessage&& msg, bool restamp) {
       if (msg.kind == LiveMessage::Kind::kScan) msg.scan.stamp_ns = msg.stamp_ns;
       if (msg.kind == LiveMessage::Kind::kOdometry) msg.odometry.stamp_ns = msg.stamp_ns;
     }
-    recorder_->Push(msg);
+    if (recorder_ != nullptr) {
+      recorder_->Push(msg);
+    } else {
+      held_.push_back(msg);
+    }
     if (msg.kind != LiveMessage::Kind::kEvent && msg.for_slam) {
       if (queue_.size() >= capacity_) {
         queue_.pop_front();
@@ -105,6 +109,13 @@ void Dispatcher::Dispatch(LiveMessage&& msg, bool restamp) {
     }
   }
   wake_.notify_one();
+}
+
+void Dispatcher::AttachRecorder(Recorder* recorder) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  recorder_ = recorder;
+  for (const LiveMessage& m : held_) recorder_->Push(m);
+  held_.clear();
 }
 
 void Dispatcher::Event(const std::string& text) {

@@ -72,9 +72,11 @@ class Recorder {
 /// Puts messages in one order and fans them out to the recorder and the SLAM queue.
 class Dispatcher {
  public:
-  Dispatcher(live::HostClock* clock, Recorder* recorder, std::size_t capacity)
-      : clock_(clock), recorder_(recorder), capacity_(capacity) {}
+  /// Messages dispatched before a recorder is attached are held and recorded first.
+  Dispatcher(live::HostClock* clock, std::size_t capacity) : clock_(clock), capacity_(capacity) {}
 
+  /// Attaches the recorder (once); what was held is pushed to it in order.
+  void AttachRecorder(Recorder* recorder);
   /// Stamps `msg` on the host clock (serial drivers) and dispatches it.
   void Publish(LiveMessage&& msg) { Dispatch(std::move(msg), true); }
   /// Dispatches `msg` with the stamp its source gave it (ROS 2: the publisher's clock).
@@ -90,7 +92,8 @@ class Dispatcher {
   void Dispatch(LiveMessage&& msg, bool restamp);
 
   live::HostClock* clock_;
-  Recorder* recorder_;
+  Recorder* recorder_ = nullptr;
+  std::vector<LiveMessage> held_;  ///< before the recorder was attached
   std::size_t capacity_;
   std::mutex mutex_;
   std::condition_variable wake_;

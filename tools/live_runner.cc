@@ -51,17 +51,19 @@ LiveRunResult RunLive(const Config& config, LiveRunOptions options) {
 
   live::FaultLog faults;
   live::HostClock clock(options.time_scale);
-  Recorder recorder(config, recording);
-  Dispatcher dispatcher(&clock, &recorder,
-                        static_cast<std::size_t>(config.live.processing_queue_size));
+  Dispatcher dispatcher(&clock, static_cast<std::size_t>(config.live.processing_queue_size));
   faults.set_listener([&](const std::string& kind, const std::string& detail) {
     dispatcher.Event("fault: " + kind + ": " + detail);
   });
 
+  // The source first: a missing GPIO chip or line, or DDS refusing, stops the run before
+  // a recording is created (its start-up events are held and recorded first).
   Processor processor(config, options, &dispatcher);
   std::unique_ptr<LiveSource> source =
       options.source == "ros2" ? MakeRos2Source(config, &dispatcher, &faults, &processor)
                                : MakeSerialSource(config, options, &dispatcher, &faults, &clock);
+  Recorder recorder(config, recording);
+  dispatcher.AttachRecorder(&recorder);
 
   std::atomic<bool> processing_stop{false}, snapshot_stop{false};
   std::thread slam_thread([&] { processor.Loop(processing_stop); });
