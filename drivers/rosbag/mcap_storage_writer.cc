@@ -4,6 +4,13 @@
 // writes the summary (schemas, channels, statistics, chunk indexes, metadata index),
 // summary offsets and a footer with CRCs, so indexed readers (Foxglove, `ros2 bag`,
 // `mcap info`) open the file without scanning it.
+//
+// Crash safety: a file cut short has no summary, and the reader recovers it by a
+// linear scan that keeps whole, CRC-checked chunks only (mcap_data_scan.h). So Flush()
+// closes the open chunk, writes it with its message indexes and fsyncs: after a crash
+// or power loss, every message written before the last Flush() is recoverable.
+#include <unistd.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -114,6 +121,7 @@ class McapStorageWriter final : public StorageWriter {
   void Flush() override {
     CloseChunk();
     if (std::fflush(file_) != 0) Fail("write");
+    if (::fsync(::fileno(file_)) != 0) Fail("sync");
   }
 
   void Close(const std::string& metadata_yaml) override {
