@@ -1,7 +1,8 @@
 // Acceptance D for the recording layer: a recording process killed with SIGKILL leaves
 // a `<dir>.partial` bag whose storage file opens and holds every message written up to
-// the last flush, which the live recorder makes at least every second. (sqlite3 only:
-// an MCAP file cut short has no footer, and the project's MCAP reader requires one.)
+// the last flush, which the live recorder makes at least every second. For both
+// storages: sqlite3 commits on flush; an MCAP file cut short has no footer, and the
+// reader recovers it by a linear scan up to the last chunk the flush closed.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -71,9 +72,19 @@ void KillMidRecordingAndCheck(const std::string& storage, const std::string& ext
   fs::remove_all(dir.string() + ".partial");
 }
 
-TEST(RecordingCrashTest, SqliteRecordingKilledWithSigkillHoldsEverythingUpToOneSecondBefore) {
-  KillMidRecordingAndCheck("sqlite3", "db3");
+struct Storage {
+  std::string id, extension;
+};
+
+class RecordingCrashTest : public ::testing::TestWithParam<Storage> {};
+
+TEST_P(RecordingCrashTest, RecordingKilledWithSigkillHoldsEverythingUpToOneSecondBefore) {
+  KillMidRecordingAndCheck(GetParam().id, GetParam().extension);
 }
+
+INSTANTIATE_TEST_SUITE_P(Storages, RecordingCrashTest,
+                         ::testing::Values(Storage{"sqlite3", "db3"}, Storage{"mcap", "mcap"}),
+                         [](const auto& p) { return p.param.id; });
 
 }  // namespace
 }  // namespace uwbsar::live
