@@ -165,6 +165,8 @@ void ValidateDds(const DdsConfig& d, const std::string& src) {
             "must be an absolute ROS 2 topic name (starting with '/')");
   }
   Require(!d.map_frame.empty(), src, k + "map_frame", "must not be empty");
+  Require(!d.odom_frame.empty() && d.odom_frame != d.map_frame, src, k + "odom_frame",
+          "must not be empty nor equal to dds.map_frame");
   Require(d.publish_pose_period_s >= 0, src, k + "publish_pose_period_s", "must be >= 0");
   Require(d.silence_timeout_s >= 0, src, k + "silence_timeout_s", "must be >= 0");
   Require(d.reorder_window_s >= 0 && d.reorder_window_s <= 10, src, k + "reorder_window_s",

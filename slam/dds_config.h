@@ -21,9 +21,11 @@ struct DdsConfig {
   std::string pose_topic = "/uwbsar/pose";  ///< geometry_msgs/PoseStamped of the robot
   std::string path_topic = "/uwbsar/path";  ///< nav_msgs/Path of the optimised keyframes
   std::string loops_topic = "/uwbsar/loops";  ///< visualization_msgs/MarkerArray of accepted loops
-  std::string map_frame = "map";              ///< frame_id of everything uwbsar publishes
+  bool publish_tf = true;                     ///< publish the map -> odom_frame correction on /tf
+  std::string odom_frame = "odom";     ///< the robot's odometry frame (child of the /tf transform)
+  std::string map_frame = "map";       ///< frame_id of everything uwbsar publishes
   double publish_pose_period_s = 0.1;  ///< at most one pose per this much sensor time (0 = all)
-  double reorder_window_s = 0.05;      ///< radar and odometry samples are put back in stamp order
+  double reorder_window_s = 0.1;       ///< radar and odometry samples are put back in stamp order
                                        ///< within this window before SLAM and the recording
   double silence_timeout_s = 1.0;      ///< a matched topic without samples this long is reported
                                        ///< as silent (0 = never)
@@ -38,6 +40,8 @@ struct DdsConfig {
     v("pose_topic", pose_topic);
     v("path_topic", path_topic);
     v("loops_topic", loops_topic);
+    v("publish_tf", publish_tf);
+    v("odom_frame", odom_frame);
     v("map_frame", map_frame);
     v("publish_pose_period_s", publish_pose_period_s);
     v("reorder_window_s", reorder_window_s);

@@ -101,13 +101,15 @@ class Ros2Source : public LiveSource {
   long long scans_received() const override { return scans_; }
 
  private:
+  // A late sample still goes to SLAM: each topic arrives in its own order, the frontend
+  // interpolates a scan between the odometry around it and closes a tile only metres
+  // later, so a sample overtaken by another topic's changes nothing unless it is very late.
   void Release(LiveMessage&& m, bool late) {
     if (late) {
       faults_->Report("ros2: late samples",
                       "a sample stamped " + std::to_string(m.stamp_ns) +
-                          " ns came after later ones were passed on (more than "
-                          "dds.reorder_window_s out of order); recorded, not used by SLAM");
-      m.for_slam = false;
+                          " ns came after later ones of another topic were passed on (more "
+                          "than dds.reorder_window_s apart); recorded and used with its own stamp");
     }
     dispatcher_->PublishStamped(std::move(m));
   }
@@ -139,7 +141,9 @@ class Ros2Source : public LiveSource {
       correction = processor->slam().CorrectionAt(odom->stamp_ns);
     }
     try {
-      publisher_.PublishPose(odom->stamp_ns, correction * odom->T_world_robot);
+      if (publisher_.PublishPose(odom->stamp_ns, correction * odom->T_world_robot)) {
+        publisher_.PublishMapToOdom(odom->stamp_ns, correction);
+      }
     } catch (const std::exception& e) {
       faults_->Report("ros2: publishing failed", e.what());
     }

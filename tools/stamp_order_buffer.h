@@ -1,15 +1,16 @@
 // Puts messages from several independent streams (two radar topics and odometry, each
 // taken from its own DDS reader) back into stamp order before SLAM and the recording see
 // them, so a live ROS 2 run is fed in the order `uwbsar map` reads its recording.
-// A message is released once a message stamped `window_ns` later has arrived, or once it
-// has waited `window_ns` of wall time (a stream that stopped must not hold the rest).
-// A message older than one already released is "late": released at once, flagged.
+// A message is released once it has waited `window_ns` of wall time, in stamp order: any
+// message of another stream that arrives within that time with an earlier stamp goes out
+// before it. Waiting in wall time (not "until a message stamped window_ns later came")
+// keeps bursts in order: after a stall, samples of all streams arrive together and are
+// sorted. A message older than one already released is "late": released at once, flagged.
 #pragma once
 
 #include <algorithm>
 #include <cstdint>
 #include <functional>
-#include <limits>
 #include <map>
 #include <mutex>
 #include <utility>
@@ -32,7 +33,6 @@ class StampOrderBuffer {
       release_(std::move(item), true);
       return;
     }
-    newest_ns_ = std::max(newest_ns_, stamp_ns);
     pending_.emplace(std::make_pair(stamp_ns, sequence_++), Entry{now_ns, std::move(item)});
     ReleaseLocked(now_ns, false);
   }
@@ -60,8 +60,8 @@ class StampOrderBuffer {
     while (!pending_.empty()) {
       auto it = pending_.begin();
       const std::int64_t stamp = it->first.first;
-      const bool due =
-          all || stamp <= newest_ns_ - window_ns_ || now_ns - it->second.arrival_ns >= window_ns_;
+      // The oldest stamp goes first, once it waited the window (`all`: end of run).
+      const bool due = all || now_ns - it->second.arrival_ns >= window_ns_;
       if (!due) break;
       last_released_ns_ = stamp;
       released_any_ = true;
@@ -76,7 +76,6 @@ class StampOrderBuffer {
   mutable std::mutex mutex_;
   std::map<std::pair<std::int64_t, std::uint64_t>, Entry> pending_;  ///< (stamp, arrival seq)
   std::uint64_t sequence_ = 0;
-  std::int64_t newest_ns_ = std::numeric_limits<std::int64_t>::min();
   std::int64_t last_released_ns_ = 0;
   bool released_any_ = false;
   long long late_ = 0;

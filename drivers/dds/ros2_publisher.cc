@@ -35,7 +35,10 @@ void Write(dds_entity_t writer, const void* sample, const std::string& topic) {
 }  // namespace
 
 Ros2Publisher::Ros2Publisher(Participant& participant, const DdsConfig& config)
-    : frame_(config.map_frame), pose_period_s_(config.publish_pose_period_s) {
+    : frame_(config.map_frame),
+      pose_period_s_(config.publish_pose_period_s),
+      odom_frame_(config.odom_frame),
+      publish_tf_(config.publish_tf) {
   const dds_entity_t pp = participant.handle();
   Qos latched, results;
   SetRos2Qos(latched.get(), "reliable", 1, Durability::kTransientLocal);
@@ -46,8 +49,13 @@ Ros2Publisher::Ros2Publisher(Participant& participant, const DdsConfig& config)
     path_ = Create(pp, &nav_msgs_msg_dds__Path__desc, config.path_topic, results.get());
     loops_ = Create(pp, &visualization_msgs_msg_dds__MarkerArray__desc, config.loops_topic,
                     results.get());
+    if (publish_tf_) {  // tf2_ros's QoS: reliable, volatile, keep-last 100
+      Qos tf;
+      SetRos2Qos(tf.get(), "reliable", 100, Durability::kVolatile);
+      tf_ = Create(pp, &tf2_msgs_msg_dds__TFMessage__desc, "/tf", tf.get());
+    }
   } catch (...) {
-    for (const Writer* w : {&loops_, &path_, &pose_, &map_}) {
+    for (const Writer* w : {&tf_, &loops_, &path_, &pose_, &map_}) {
       if (w->writer > 0) dds_delete(w->writer);
       if (w->topic > 0) dds_delete(w->topic);
     }
@@ -56,10 +64,29 @@ Ros2Publisher::Ros2Publisher(Participant& participant, const DdsConfig& config)
 }
 
 Ros2Publisher::~Ros2Publisher() {
-  for (const Writer* w : {&loops_, &path_, &pose_, &map_}) {
-    dds_delete(w->writer);
-    dds_delete(w->topic);
+  for (const Writer* w : {&tf_, &loops_, &path_, &pose_, &map_}) {
+    if (w->writer > 0) dds_delete(w->writer);
+    if (w->topic > 0) dds_delete(w->topic);
   }
+}
+
+void Ros2Publisher::PublishMapToOdom(TimestampNs stamp, const Pose2& T_map_odom) {
+  if (!publish_tf_) return;
+  geometry_msgs_msg_dds__TransformStamped_ t;
+  t.header_ = Header(stamp, frame_);
+  t.child_frame_id_ = Str(odom_frame_);
+  const geometry_msgs_msg_dds__Pose_ pose = PoseToDds(T_map_odom);
+  t.transform_.translation_.x_ = pose.position_.x_;
+  t.transform_.translation_.y_ = pose.position_.y_;
+  t.transform_.translation_.z_ = pose.position_.z_;
+  t.transform_.rotation_.x_ = pose.orientation_.x_;
+  t.transform_.rotation_.y_ = pose.orientation_.y_;
+  t.transform_.rotation_.z_ = pose.orientation_.z_;
+  t.transform_.rotation_.w_ = pose.orientation_.w_;
+  tf2_msgs_msg_dds__TFMessage_ msg;
+  View(&msg.transforms_, &t, 1);
+  std::lock_guard<std::mutex> lock(mutex_);
+  Write(tf_.writer, &msg, tf_.ros_topic);
 }
 
 Ros2Publisher::Writer Ros2Publisher::Create(dds_entity_t participant,

@@ -2,7 +2,8 @@
 // (nav_msgs/OccupancyGrid, latched like map_server's), the robot pose
 // (geometry_msgs/PoseStamped), the optimised trajectory (nav_msgs/Path) and the
 // accepted loop closures (visualization_msgs/MarkerArray: a DELETEALL, then one
-// LINE_LIST). Everything is in the frame dds.map_frame. Thread-safe.
+// LINE_LIST), and the map -> odom transform on /tf. Everything is in the frame
+// dds.map_frame. Thread-safe.
 #pragma once
 
 #include <dds/dds.h>
@@ -42,6 +43,10 @@ class Ros2Publisher {
   void PublishPath(TimestampNs stamp, const std::vector<std::pair<TimestampNs, Pose2>>& poses);
   /// DELETEALL, then one LINE_LIST marker (ns "loops", id 0) with two points per loop.
   void PublishLoops(TimestampNs stamp, const std::vector<LoopSegment>& segments);
+  /// The map -> odometry frame correction on /tf (tf2_msgs/TFMessage), as a ROS 2 SLAM
+  /// node publishes it, so RViz2 shows the robot's own frames in the map; no-op unless
+  /// dds.publish_tf.
+  void PublishMapToOdom(TimestampNs stamp, const Pose2& T_map_odom);
 
   /// Subscribers currently matched by the writer of `ros_topic` (0 if not ours).
   int MatchedSubscribers(const std::string& ros_topic) const;
@@ -57,7 +62,9 @@ class Ros2Publisher {
 
   std::string frame_;
   double pose_period_s_;
-  Writer map_, pose_, path_, loops_;
+  std::string odom_frame_;
+  bool publish_tf_ = true;
+  Writer map_, pose_, path_, loops_, tf_;
   std::mutex mutex_;
   bool has_last_pose_ = false;
   TimestampNs last_pose_ns_ = 0;

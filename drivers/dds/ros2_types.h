@@ -7,6 +7,7 @@
 #include "nav_msgs.h"
 #include "sensor_msgs.h"
 #include "std_msgs.h"
+#include "tf2_msgs.h"
 #include "visualization_msgs.h"
 
 namespace uwbsar::dds {

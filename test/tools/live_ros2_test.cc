@@ -181,6 +181,27 @@ TEST(LiveRos2Test, A_B_PeerDrivesALiveRunMatchingOfflineAndPublishesWhatIsOnDisk
   EXPECT_LT(worst_m, 1e-6);  // trajectory.tum keeps 9 decimals
   ASSERT_TRUE(heard.contains("loops"));
   EXPECT_GT(heard["counts"]["pose"].get<int>(), 10);
+  // /tf: map -> odom composed with the odometry at the pose's stamp is the published pose.
+  ASSERT_TRUE(heard.contains("tf"));
+  ASSERT_TRUE(heard.contains("pose"));
+  const nlohmann::json& tf = heard["tf"]["transforms"][0];
+  const nlohmann::json& pose = heard["pose"];
+  EXPECT_EQ(tf["frame"], "map");
+  EXPECT_EQ(tf["child"], "odom");
+  ASSERT_EQ(tf["sec"], pose["sec"]);
+  ASSERT_EQ(tf["nanosec"], pose["nanosec"]);
+  const TimestampNs pose_ns =
+      pose["sec"].get<TimestampNs>() * 1000000000 + pose["nanosec"].get<TimestampNs>();
+  const Pose2 T_map_odom{tf["pose"][0].get<double>(), tf["pose"][1].get<double>(),
+                         tf["pose"][2].get<double>()};
+  const OdometryEntry* odom = nullptr;
+  for (const OdometryEntry& e : live.run.slam->odometry()) {
+    if (e.stamp_ns == pose_ns) odom = &e;
+  }
+  ASSERT_NE(odom, nullptr);
+  const Pose2 composed = T_map_odom * odom->T_world_robot;
+  EXPECT_NEAR(composed.x_m, pose["pose"][0].get<double>(), 1e-9);
+  EXPECT_NEAR(composed.y_m, pose["pose"][1].get<double>(), 1e-9);
 }
 
 TEST(LiveRos2Test, C_PublisherGoneDuplicatesDisorderAndWrongTypeAreSurvived) {

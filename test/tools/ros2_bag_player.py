@@ -12,7 +12,7 @@ Modes:
            --duplicate-every N repeats every Nth odometry sample, --out-of-order-at K sends
            odometry sample K again after K+1); a publisher that goes away and comes back is
            two plays of consecutive parts of the bag with a gap between them
-  listen   keeps the LAST map, path and loop markers uwbsar publishes until --idle seconds
+  listen   keeps the LAST map, path, loop markers, pose and /tf uwbsar publishes until --idle seconds
            pass without a new one (after the first), then prints them
 Prints one JSON object on stdout.
 """
@@ -26,12 +26,48 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
                                 "dds"))
 import ros2_peer as peer  # noqa: E402  (the shared ROS 2 type definitions)
 
+from dataclasses import dataclass, field  # noqa: E402
+
 from cyclonedds.domain import DomainParticipant  # noqa: E402
+from cyclonedds.idl import IdlStruct  # noqa: E402
+from cyclonedds.idl.annotations import final  # noqa: E402
+from cyclonedds.idl.types import sequence  # noqa: E402
 from cyclonedds.pub import DataWriter  # noqa: E402
 from cyclonedds.sub import DataReader  # noqa: E402
 from cyclonedds.topic import Topic  # noqa: E402
 from rosbags.rosbag2 import Reader  # noqa: E402
 from rosbags.typesys import Stores, get_typestore  # noqa: E402
+
+
+@dataclass
+@final
+class Transform_(IdlStruct, typename="geometry_msgs::msg::dds_::Transform_"):
+    translation_: peer.Vector3_ = field(default_factory=peer.Vector3_)
+    rotation_: peer.Quaternion_ = field(default_factory=peer.Quaternion_)
+
+
+@dataclass
+@final
+class TransformStamped_(IdlStruct, typename="geometry_msgs::msg::dds_::TransformStamped_"):
+    header_: peer.Header_ = field(default_factory=peer.Header_)
+    child_frame_id_: str = ""
+    transform_: Transform_ = field(default_factory=Transform_)
+
+
+@dataclass
+@final
+class TFMessage_(IdlStruct, typename="tf2_msgs::msg::dds_::TFMessage_"):
+    transforms_: sequence[TransformStamped_] = field(default_factory=list)
+
+
+def describe(name, msg):
+    if name != "tf":
+        return peer.describe(name, msg)
+    return {"transforms": [{"frame": t.header_.frame_id_, "child": t.child_frame_id_,
+                            "sec": t.header_.stamp_.sec_, "nanosec": t.header_.stamp_.nanosec_,
+                            "pose": [t.transform_.translation_.x_, t.transform_.translation_.y_,
+                                     peer.yaw_of(t.transform_.rotation_)]}
+                           for t in msg.transforms_]}
 
 
 def to_dds_odometry(m):
@@ -126,6 +162,7 @@ def listen(args):
                             qos=peer.qos()),
         "pose": DataReader(dp, Topic(dp, peer.dds_topic(args.pose_topic), peer.PoseStamped_),
                            qos=peer.qos()),
+        "tf": DataReader(dp, Topic(dp, "rt/tf", TFMessage_), qos=peer.qos(True, 100)),
     }
     last, counts, last_new = {}, {k: 0 for k in readers}, None
     deadline = time.monotonic() + args.timeout
@@ -140,7 +177,7 @@ def listen(args):
         if last_new is not None and time.monotonic() - last_new > args.idle:
             break
         time.sleep(0.02)
-    out = {name: peer.describe(name, msg) for name, msg in last.items()}
+    out = {name: describe(name, msg) for name, msg in last.items()}
     out["counts"] = counts
     return out
 
