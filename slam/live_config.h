@@ -44,8 +44,8 @@ struct LiveConfig {
   int processing_queue_size = 4000;    ///< messages waiting for SLAM; beyond, the oldest
                                        ///< are dropped from processing (never from recording)
   double snapshot_period_s = 10.0;     ///< map outputs are rewritten this often (0 = only at end)
-  std::string recording_storage = "sqlite3";  ///< recording bag storage: sqlite3 (survives a
-                                              ///< crash up to the last flush) or mcap
+  std::string recording_storage = "sqlite3";  ///< recording bag storage: sqlite3 or mcap (both
+                                              ///< survive a crash up to the last flush)
   double recording_flush_period_s = 0.5;      ///< the recording is made durable this often
   double clock_step_threshold_s = 0.1;        ///< host clock moving this much against the
                                               ///< monotonic clock is reported as a clock step
