@@ -262,68 +262,72 @@ void Ros2Subscriber::CheckSilence(Topic& topic, std::chrono::steady_clock::time_
        "no sample on " + topic.ros_name + " for " + Seconds(silence_timeout_s_));
 }
 
-void Ros2Subscriber::TakeRadar(Topic& topic) {
+namespace {
+
+/// Takes everything waiting on `reader` in loaned batches and calls `each(sample, info)` for
+/// every sample that carries data (dispose/unregister notifications have none).
+template <class Message, class Each>
+void TakeAll(dds_entity_t reader, Each each) {
   void* samples[kTakeBatch];
   dds_sample_info_t infos[kTakeBatch];
   for (;;) {
     samples[0] = nullptr;
-    const dds_return_t n = dds_take(topic.reader, samples, infos, kTakeBatch, kTakeBatch);
+    const dds_return_t n = dds_take(reader, samples, infos, kTakeBatch, kTakeBatch);
     if (n <= 0) return;
     for (dds_return_t i = 0; i < n; ++i) {
-      if (!infos[i].valid_data) continue;
-      const auto* msg = static_cast<const std_msgs_msg_dds__Float32MultiArray_*>(samples[i]);
-      NoteActivity(topic);
-      if (msg->data_._length == 0) {
-        Emit(DdsEventKind::kInvalidSample, topic.ros_name, "empty radar scan on " + topic.ros_name);
-        continue;
-      }
-      RadarMessage out;
-      out.scan.sensor_id = topic.sensor_index;
-      out.scan.stamp_ns = infos[i].source_timestamp;
-      out.scan.samples.assign(msg->data_._buffer, msg->data_._buffer + msg->data_._length);
-      out.reception_ns = dds_time();
-      out.in_order = CheckOrder(&topic.has_last_stamp, &topic.last_stamp_ns, out.scan.stamp_ns,
-                                [&](DdsEventKind kind, const std::string& what) {
-                                  Emit(kind, topic.ros_name, what + " on " + topic.ros_name);
-                                });
-      Deliver(callbacks_.on_radar, std::move(out), &Ros2SubscriberStats::radar_samples);
+      if (infos[i].valid_data) each(*static_cast<const Message*>(samples[i]), infos[i]);
     }
-    dds_return_loan(topic.reader, samples, n);
+    dds_return_loan(reader, samples, n);
     if (n < kTakeBatch) return;
   }
 }
 
+}  // namespace
+
+void Ros2Subscriber::TakeRadar(Topic& topic) {
+  TakeAll<std_msgs_msg_dds__Float32MultiArray_>(
+      topic.reader,
+      [&](const std_msgs_msg_dds__Float32MultiArray_& msg, const dds_sample_info_t& info) {
+        NoteActivity(topic);
+        if (msg.data_._length == 0) {
+          Emit(DdsEventKind::kInvalidSample, topic.ros_name,
+               "empty radar scan on " + topic.ros_name);
+          return;
+        }
+        RadarMessage out;
+        out.scan.sensor_id = topic.sensor_index;
+        out.scan.stamp_ns = info.source_timestamp;
+        out.scan.samples.assign(msg.data_._buffer, msg.data_._buffer + msg.data_._length);
+        out.reception_ns = dds_time();
+        out.in_order = CheckOrder(&topic.has_last_stamp, &topic.last_stamp_ns, out.scan.stamp_ns,
+                                  [&](DdsEventKind kind, const std::string& what) {
+                                    Emit(kind, topic.ros_name, what + " on " + topic.ros_name);
+                                  });
+        Deliver(callbacks_.on_radar, std::move(out), &Ros2SubscriberStats::radar_samples);
+      });
+}
+
 void Ros2Subscriber::TakeOdometry(Topic& topic) {
-  void* samples[kTakeBatch];
-  dds_sample_info_t infos[kTakeBatch];
-  for (;;) {
-    samples[0] = nullptr;
-    const dds_return_t n = dds_take(topic.reader, samples, infos, kTakeBatch, kTakeBatch);
-    if (n <= 0) return;
-    for (dds_return_t i = 0; i < n; ++i) {
-      if (!infos[i].valid_data) continue;
-      const auto* msg = static_cast<const nav_msgs_msg_dds__Odometry_*>(samples[i]);
-      NoteActivity(topic);
-      OdometryMessage out;
-      std::string why;
-      if (!OdometryFromDds(*msg, &out.sample, &why)) {
-        Emit(DdsEventKind::kInvalidSample, topic.ros_name, why + " on " + topic.ros_name);
-        continue;
-      }
-      out.source_stamp_ns = infos[i].source_timestamp;
-      out.reception_ns = dds_time();
-      if (msg->header_.frame_id_ != nullptr) out.frame_id = msg->header_.frame_id_;
-      if (msg->child_frame_id_ != nullptr) out.child_frame_id = msg->child_frame_id_;
-      out.in_order =
-          CheckOrder(&topic.has_last_stamp, &topic.last_stamp_ns, out.sample.stamp_ns,
-                     [&](DdsEventKind kind, const std::string& what) {
-                       Emit(kind, topic.ros_name, "odometry " + what + " on " + topic.ros_name);
-                     });
-      Deliver(callbacks_.on_odometry, std::move(out), &Ros2SubscriberStats::odometry_samples);
-    }
-    dds_return_loan(topic.reader, samples, n);
-    if (n < kTakeBatch) return;
-  }
+  TakeAll<nav_msgs_msg_dds__Odometry_>(
+      topic.reader, [&](const nav_msgs_msg_dds__Odometry_& msg, const dds_sample_info_t& info) {
+        NoteActivity(topic);
+        OdometryMessage out;
+        std::string why;
+        if (!OdometryFromDds(msg, &out.sample, &why)) {
+          Emit(DdsEventKind::kInvalidSample, topic.ros_name, why + " on " + topic.ros_name);
+          return;
+        }
+        out.source_stamp_ns = info.source_timestamp;
+        out.reception_ns = dds_time();
+        if (msg.header_.frame_id_ != nullptr) out.frame_id = msg.header_.frame_id_;
+        if (msg.child_frame_id_ != nullptr) out.child_frame_id = msg.child_frame_id_;
+        out.in_order =
+            CheckOrder(&topic.has_last_stamp, &topic.last_stamp_ns, out.sample.stamp_ns,
+                       [&](DdsEventKind kind, const std::string& what) {
+                         Emit(kind, topic.ros_name, "odometry " + what + " on " + topic.ros_name);
+                       });
+        Deliver(callbacks_.on_odometry, std::move(out), &Ros2SubscriberStats::odometry_samples);
+      });
 }
 
 void Ros2Subscriber::NoteActivity(Topic& topic) {
