@@ -234,6 +234,8 @@ struct SlamConfig {
   double map_resolution_m = 0.01;    ///< pixel size of the global map (map.png, map_float.tif)
   bool keep_tile_images = false;     ///< keep every full-resolution tile in memory after its
                                      ///< features are computed (debugging; costs ~5 MB per metre)
+  bool keep_scan_profiles = false;   ///< keep every imaged scan's range profile (0.8 MB per
+                                     ///< metre) for the exact map; `uwbsar map --exact` sets it
   int optimize_every_keyframes = 5;  ///< re-solve the graph once this many keyframes have
                                      ///< come since the last solve and a loop is waiting
                                      ///< (1: after every loop; 0: only at the end, like the
@@ -255,6 +257,7 @@ struct SlamConfig {
     v("ground_truth_topic", ground_truth_topic);
     v("map_resolution_m", map_resolution_m);
     v("keep_tile_images", keep_tile_images);
+    v("keep_scan_profiles", keep_scan_profiles);
     v("optimize_every_keyframes", optimize_every_keyframes);
     v("keyframe_thread", keyframe_thread);
     v("keyframe_queue_size", keyframe_queue_size);

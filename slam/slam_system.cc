@@ -214,6 +214,9 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
   KeyframeRecord record;
   MakeDetected(keyframe, config_, &record.detected, &record.detected_grid);
   if (!config_.slam.keep_tile_images) keyframe.image.release();
+  if (!config_.slam.keep_scan_profiles) {  // the poses stay: they place the scans in time
+    for (ImagedScan& s : keyframe.scans) s.profile.reset();
+  }
   const double detected_s = SecondsSince(start);
 
   {

@@ -41,7 +41,8 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
                 "Also write map_exact.png / map_exact_float.tif: every scan back-projected again "
                 "at its corrected pose, at the imaging resolution");
   cmd->callback([opts, &globals] {
-    const Config config = LoadConfigFor(globals);
+    Config config = LoadConfigFor(globals);
+    if (opts->exact) config.slam.keep_scan_profiles = true;  // the exact map re-images them
     EnsureDirectory(opts->out_dir);
     MapRun run = MapBag(config, opts->bag, !globals.quiet);
     if (!opts->ground_truth.empty()) run.ground_truth = ReadTum(opts->ground_truth);

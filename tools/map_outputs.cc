@@ -10,6 +10,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
+#include <stdexcept>
 
 #include "backend/g2o_io.h"
 #include "backend/global_map.h"
@@ -332,6 +333,11 @@ std::vector<std::string> WriteExactMap(const MapRun& run, const std::string& out
   TimestampNs last_stamp = std::numeric_limits<TimestampNs>::min();
   for (const KeyframeRecord& k : slam.keyframes()) {
     for (const ImagedScan& s : k.keyframe.scans) {
+      if (!s.profile) {
+        throw std::logic_error(
+            "the exact map needs the scans' range profiles: map with "
+            "slam.keep_scan_profiles: true");
+      }
       if (s.stamp_ns < last_stamp ||
           (s.stamp_ns == last_stamp && !scans.empty() && s.sensor_id <= scans.back().sensor_id)) {
         continue;

@@ -26,7 +26,8 @@ MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir);
 /// The exact global map: every imaged scan back-projected again at its corrected pose
 /// (the keyframe correction interpolated in time and applied to its odometry pose), at the
 /// imaging resolution: map_exact_float.tif (raw values), map_exact_grid.yaml and
-/// map_exact.png (the paper's enhancement). Returns the files written.
+/// map_exact.png (the paper's enhancement). Returns the files written. Needs the run mapped
+/// with slam.keep_scan_profiles (std::logic_error otherwise).
 std::vector<std::string> WriteExactMap(const MapRun& run, const std::string& out_dir);
 
 /// The five-line summary printed by `uwbsar map` and `uwbsar demo`.
