@@ -19,7 +19,15 @@ void Processor::Loop(const std::atomic<bool>& stop) {
   LiveMessage msg;
   while (true) {
     if (dispatcher_->Pop(&msg, std::chrono::milliseconds(20))) {
-      Process(msg);
+      if (failed_) continue;  // keep draining: the recording goes on regardless
+      try {
+        Process(msg);
+      } catch (const std::exception& e) {
+        // A SLAM failure must not take the recording down; Finish() reports it again.
+        Log(LogLevel::kError, std::string("SLAM stopped: ") + e.what() +
+                                  "; recording continues, map it later with uwbsar map");
+        failed_ = true;
+      }
     } else if (stop) {
       break;
     }

@@ -60,6 +60,7 @@ class Processor {
   std::optional<OdometrySample> latest_odometry_;
   std::deque<SteadyClock::time_point> pending_;
   long long resolved_ = 0;
+  bool failed_ = false;  ///< SLAM threw: messages are no longer processed
   std::vector<double> latencies_ms_;
   SteadyClock::time_point start_;
   int snapshots_ = 0;

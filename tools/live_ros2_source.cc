@@ -50,7 +50,6 @@ class Ros2Source : public LiveSource {
     processor->set_hooks(
         {[this](const MapRun& view, const MapOutputs& outputs) { PublishSnapshot(view, outputs); },
          [this, processor] { PublishPose(processor); }});
-    processor_ = processor;
   }
 
   void Start() override {
@@ -152,7 +151,6 @@ class Ros2Source : public LiveSource {
   const Config& config_;
   Dispatcher* dispatcher_;
   live::FaultLog* faults_;
-  Processor* processor_ = nullptr;
   StampOrderBuffer<LiveMessage> order_;
   dds::Participant participant_;
   dds::Ros2Publisher publisher_;

@@ -68,25 +68,32 @@ LiveRunResult RunLive(const Config& config, LiveRunOptions options) {
   std::atomic<bool> processing_stop{false}, snapshot_stop{false};
   std::thread slam_thread([&] { processor.Loop(processing_stop); });
   std::thread snapshot_thread([&] { processor.SnapshotLoop(snapshot_stop); });
-  source->Start();
-  dispatcher.Event("run started (" + options.source + ")");
-  if (!options.quiet) {
-    Log(LogLevel::kInfo, "live run (" + options.source + "): recording to " + recording +
-                             ".partial, outputs in " + options.out_dir + "; Ctrl-C to finish");
+  // Shutdown order: the source first (no new input), then drain SLAM, then snapshots.
+  auto stop_all = [&] {
+    source->Stop();
+    dispatcher.Event("run stopping");
+    processing_stop = true;
+    if (slam_thread.joinable()) slam_thread.join();
+    snapshot_stop = true;
+    if (snapshot_thread.joinable()) snapshot_thread.join();
+    source->ShutDown();
+  };
+  try {
+    source->Start();
+    dispatcher.Event("run started (" + options.source + ")");
+    if (!options.quiet) {
+      Log(LogLevel::kInfo, "live run (" + options.source + "): recording to " + recording +
+                               ".partial, outputs in " + options.out_dir + "; Ctrl-C to finish");
+    }
+    while (!(options.stop && options.stop->load())) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      source->Poll();
+    }
+  } catch (...) {
+    stop_all();  // threads joined and the recording closed before the error leaves
+    throw;
   }
-  while (!(options.stop && options.stop->load())) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    source->Poll();
-  }
-
-  // Shutdown: the source first (no new input), then drain SLAM, then the final outputs.
-  source->Stop();
-  dispatcher.Event("run stopping");
-  processing_stop = true;
-  slam_thread.join();
-  snapshot_stop = true;
-  snapshot_thread.join();
-  source->ShutDown();
+  stop_all();
 
   LiveRunResult result;
   processor.slam().Finish();
