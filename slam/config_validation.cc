@@ -273,6 +273,15 @@ void ValidateConfig(const Config& c, const std::string& src) {
           src, "place_recognition.detectors.feature_resolution_m",
           "must be 0 or >= imaging.pixel_size_m");
   Require(!c.slam.odometry_topic.empty(), src, "slam.odometry_topic", "must not be empty");
+  for (std::size_t i = 0; i < c.radars.size(); ++i) {
+    const std::string key = "radars[" + std::to_string(i) + "].topic";
+    Require(c.radars[i].topic != c.slam.odometry_topic, src, key,
+            "must differ from slam.odometry_topic ('" + c.slam.odometry_topic + "')");
+    for (std::size_t j = 0; j < i; ++j) {
+      Require(c.radars[i].topic != c.radars[j].topic, src, key,
+              "must differ from radars[" + std::to_string(j) + "].topic");
+    }
+  }
   Require(c.slam.occupancy_resolution_m >= c.slam.map_resolution_m, src,
           "slam.occupancy_resolution_m", "must be >= slam.map_resolution_m");
   Require(c.slam.occupied_fraction > 0 && c.slam.occupied_fraction <= 1, src,

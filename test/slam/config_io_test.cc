@@ -64,6 +64,13 @@ TEST(ConfigIoTest, InvalidValuesAreRejected) {
   EXPECT_THROW(LoadConfigFromString("imaging:\n  pixel_size_m: .nan\n", "x.yaml"), ConfigError);
   EXPECT_THROW(LoadConfigFromString("radars: []\n", "x.yaml"), ConfigError);
   EXPECT_THROW(LoadConfigFromString("keyframe:\n  tile_spacing_m: 3\n", "x.yaml"), ConfigError);
+  // One topic per stream: a bag or DDS cannot carry two types on one name.
+  EXPECT_THROW(LoadConfigFromString("slam:\n  odometry_topic: /UWBradar0/readings\n", "x.yaml"),
+               ConfigError);
+  EXPECT_THROW(LoadConfigFromString("dds:\n  reliability: sometimes\n", "x.yaml"), ConfigError);
+  EXPECT_THROW(LoadConfigFromString("dds:\n  domain_id: 300\n", "x.yaml"), ConfigError);
+  EXPECT_THROW(LoadConfigFromString("dds:\n  map_topic: uwbsar/map\n", "x.yaml"), ConfigError);
+  EXPECT_THROW(LoadConfigFromString("slam:\n  keyframe_queue_size: 0\n", "x.yaml"), ConfigError);
 }
 
 TEST(ConfigIoTest, SyntaxErrorAndMissingFileAreReported) {
