@@ -21,6 +21,8 @@ struct DdsConfig {
   std::string pose_topic = "/uwbsar/pose";  ///< geometry_msgs/PoseStamped of the robot
   std::string path_topic = "/uwbsar/path";  ///< nav_msgs/Path of the optimised keyframes
   std::string loops_topic = "/uwbsar/loops";  ///< visualization_msgs/MarkerArray of accepted loops
+  bool publish_in_serial_mode = false;        ///< with --source serial too, publish the results
+                                              ///< (map, pose, path, loops, /tf) for RViz2
   bool publish_tf = true;                     ///< publish the map -> odom_frame correction on /tf
   std::string odom_frame = "odom";     ///< the robot's odometry frame (child of the /tf transform)
   std::string map_frame = "map";       ///< frame_id of everything uwbsar publishes
@@ -40,6 +42,7 @@ struct DdsConfig {
     v("pose_topic", pose_topic);
     v("path_topic", path_topic);
     v("loops_topic", loops_topic);
+    v("publish_in_serial_mode", publish_in_serial_mode);
     v("publish_tf", publish_tf);
     v("odom_frame", odom_frame);
     v("map_frame", map_frame);

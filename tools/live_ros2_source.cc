@@ -1,14 +1,12 @@
 // A ROS 2 robot as a live source, over DDS without ROS (drivers/dds): the radar and
 // odometry topics are subscribed, put back into stamp order and dispatched with the
-// publisher's stamps; the map, pose, path and loop closures are published for RViz2.
+// publisher's stamps; the results are published for RViz2 (tools/live_ros2_results.h).
 #include <chrono>
-#include <filesystem>
 
 #include "drivers/dds/participant.h"
-#include "drivers/dds/ros2_publisher.h"
 #include "drivers/dds/ros2_subscriber.h"
 #include "slam/log.h"
-#include "slam/occupancy_grid.h"
+#include "tools/live_ros2_results.h"
 #include "tools/live_source.h"
 #include "tools/stamp_order_buffer.h"
 
@@ -21,21 +19,6 @@ std::int64_t SteadyNs() {
       .count();
 }
 
-/// The accepted loops as lines between the two keyframes' corrected anchors (caller holds
-/// the SLAM state lock).
-std::vector<dds::LoopSegment> LoopSegments(const SlamSystem& slam) {
-  const std::map<int, Pose2> poses = slam.KeyframePoses();
-  std::vector<dds::LoopSegment> segments;
-  for (const LoopRecord& l : slam.loops()) {
-    if (!l.accepted()) continue;
-    const auto a = poses.find(l.match_id), b = poses.find(l.query_id);
-    if (a == poses.end() || b == poses.end()) continue;
-    segments.push_back(
-        {Point2{a->second.x_m, a->second.y_m}, Point2{b->second.x_m, b->second.y_m}});
-  }
-  return segments;
-}
-
 class Ros2Source : public LiveSource {
  public:
   Ros2Source(const Config& config, Dispatcher* dispatcher, live::FaultLog* faults,
@@ -46,11 +29,7 @@ class Ros2Source : public LiveSource {
         order_(static_cast<std::int64_t>(config.dds.reorder_window_s * 1e9),
                [this](LiveMessage&& m, bool late) { Release(std::move(m), late); }),
         participant_(config.dds),
-        publisher_(participant_, config.dds) {
-    processor->set_hooks(
-        {[this](const MapRun& view, const MapOutputs& outputs) { PublishSnapshot(view, outputs); },
-         [this, processor] { PublishPose(processor); }});
-  }
+        results_(participant_, config.dds, faults, processor) {}
 
   void Start() override {
     std::vector<std::string> radar_topics;
@@ -113,50 +92,14 @@ class Ros2Source : public LiveSource {
     dispatcher_->PublishStamped(std::move(m));
   }
 
-  // Snapshot thread, state lock held: what was just written to disk, to RViz2.
-  void PublishSnapshot(const MapRun& view, const MapOutputs& outputs) {
-    try {
-      const TimestampNs stamp = view.last_stamp_ns;
-      for (const std::string& file : outputs.files) {  // map.yaml, as written
-        if (std::filesystem::path(file).filename() == "map.yaml") {
-          publisher_.PublishMap(LoadOccupancyGrid(file), stamp);
-        }
-      }
-      publisher_.PublishPath(stamp, view.slam->CorrectedTrajectory());
-      publisher_.PublishLoops(stamp, LoopSegments(*view.slam));
-    } catch (const std::exception& e) {
-      faults_->Report("ros2: publishing failed", e.what());
-    }
-  }
-
-  // Snapshot thread: the corrected robot pose, at most every dds.publish_pose_period_s.
-  void PublishPose(Processor* processor) {
-    const std::optional<OdometrySample> odom = processor->LatestOdometry();
-    if (!odom || odom->stamp_ns == last_pose_stamp_ns_) return;
-    last_pose_stamp_ns_ = odom->stamp_ns;
-    Pose2 correction;
-    {
-      const auto state = processor->slam().LockState();
-      correction = processor->slam().CorrectionAt(odom->stamp_ns);
-    }
-    try {
-      if (publisher_.PublishPose(odom->stamp_ns, correction * odom->T_world_robot)) {
-        publisher_.PublishMapToOdom(odom->stamp_ns, correction);
-      }
-    } catch (const std::exception& e) {
-      faults_->Report("ros2: publishing failed", e.what());
-    }
-  }
-
   const Config& config_;
   Dispatcher* dispatcher_;
   live::FaultLog* faults_;
   StampOrderBuffer<LiveMessage> order_;
   dds::Participant participant_;
-  dds::Ros2Publisher publisher_;
+  LiveResultPublisher results_;
   std::unique_ptr<dds::Ros2Subscriber> subscriber_;
   std::atomic<long long> scans_{0};
-  TimestampNs last_pose_stamp_ns_ = 0;
 };
 
 }  // namespace

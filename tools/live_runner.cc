@@ -13,6 +13,7 @@
 #include "tools/commands.h"
 #include "tools/live_processor.h"
 #include "tools/live_recorder.h"
+#include "tools/live_ros2_results.h"
 #include "tools/live_source.h"
 
 namespace uwbsar::tools {
@@ -62,6 +63,9 @@ LiveRunResult RunLive(const Config& config, LiveRunOptions options) {
   std::unique_ptr<LiveSource> source =
       options.source == "ros2" ? MakeRos2Source(config, &dispatcher, &faults, &processor)
                                : MakeSerialSource(config, options, &dispatcher, &faults, &clock);
+  const SerialModePublishing serial_publishing =
+      options.source == "serial" ? MaybePublishInSerialMode(config, &faults, &processor)
+                                 : SerialModePublishing{};
   Recorder recorder(config, recording);
   dispatcher.AttachRecorder(&recorder);
 

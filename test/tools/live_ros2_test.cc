@@ -18,6 +18,7 @@
 #include "drivers/tum_reader.h"
 #include "slam/occupancy_grid.h"
 #include "test/drivers/dds/dds_test_util.h"
+#include "test/drivers/live/live_test_util.h"
 #include "tools/live_runner.h"
 #include "tools/map_job.h"
 
@@ -246,6 +247,31 @@ TEST(LiveRos2Test, C_PublisherGoneDuplicatesDisorderAndWrongTypeAreSurvived) {
   EXPECT_EQ(recorded["/UWBradar0/readings"] + recorded["/UWBradar1/readings"], radar_sent);
   EXPECT_EQ(recorded["/odom"], odometry_sent);
   EXPECT_FALSE(live.run.slam->keyframes().empty());
+}
+
+// The robot's own serial devices (emulated), results published for RViz2 on a second
+// machine: a subscriber hears the map that is on disk and poses.
+TEST(LiveRos2Test, SerialRunPublishesItsResultsWhenAsked) {
+  const std::string python = dds::testing::VenvPython();
+  if (python.empty()) GTEST_SKIP() << "UWBSAR_VENV not set (make test sets it)";
+  Config config;
+  const DdsConfig loopback = dds::testing::LoopbackConfig();
+  config.dds.domain_id = loopback.domain_id;
+  config.dds.network_interface = loopback.network_interface;
+  config.dds.publish_in_serial_mode = true;
+  config.live.snapshot_period_s = 2.0;
+  BackgroundCommand listener(PlayerCommand(python, "listen", "--idle 4 --timeout 120"));
+  const live::EmulatedRun run = live::RunEmulated(config, "ros2_serial", 2.0, 14.0);
+  int status = -1;
+  const nlohmann::json heard = LastJson(listener.Finish(&status));
+  ASSERT_FALSE(heard.contains("error")) << heard["error"].get<std::string>();
+  ASSERT_TRUE(heard.contains("map"));
+  const OccupancyGrid grid = LoadOccupancyGrid(run.out_dir + "/map.yaml");
+  EXPECT_EQ(heard["map"]["width"].get<int>(), grid.cols);
+  EXPECT_EQ(heard["map"]["height"].get<int>(), grid.rows);
+  EXPECT_GT(heard["counts"]["pose"].get<int>(), 5);
+  EXPECT_GT(heard["counts"]["tf"].get<int>(), 5);
+  std::printf("serial run published %s\n", heard["counts"].dump().c_str());
 }
 
 }  // namespace
