@@ -84,6 +84,8 @@ void BM_ScaleFloor50OneKm(benchmark::State& state) {
             if (ground_truth_seen++ % 4 == 0) ground_truth.push_back(g);
           }
           r->ground_truth.clear();
+          // The keyframe thread writes what is read below.
+          const auto state = r->slam->LockState();
           const auto& odometry = r->slam->odometry();
           if (odometry.empty()) return;
           const double path_m = odometry.back().path_m;
