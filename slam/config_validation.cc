@@ -122,6 +122,10 @@ void ValidatePlaceRecognition(const PlaceRecognitionConfig& p, const std::string
   Require(c.exclude_recent_path_m >= 0, src, k + "candidates.exclude_recent_path_m",
           "must be >= 0");
   Require(c.grid_cell_m > 0, src, k + "candidates.grid_cell_m", "must be > 0");
+  Require(c.global_search_after_m >= 0, src, k + "candidates.global_search_after_m",
+          "must be >= 0");
+  Require(c.global_search_every_m >= 0, src, k + "candidates.global_search_every_m",
+          "must be >= 0 (0 = never)");
 }
 
 void ValidateCompare(const CompareConfig& c, const std::string& src) {

@@ -97,16 +97,20 @@ struct LoopValidationConfig {
 
 /// Which past keyframes a new keyframe is matched against.
 struct CandidateSearchConfig {
-  bool use_pose_prior = true;          ///< false: every past keyframe is a candidate
-                                       ///< (re-localisation after large drift)
-  double base_radius_m = 1.0;          ///< search radius around the pose estimate after a loop
-  double radius_growth_per_m = 0.1;    ///< radius grows by this per metre of odometry travelled
-                                       ///< since the last accepted loop (drift)
-  double max_radius_m = 10.0;          ///< radius cap (follow-on: 10 m)
-  int max_candidates = 15;             ///< nearest candidates kept (follow-on: 15; 0 = all)
-  double exclude_recent_path_m = 3.0;  ///< keyframes that began less than this much path
-                                       ///< before the new one are skipped (they share scans)
-  double grid_cell_m = 2.0;            ///< cell size of the spatial hash of keyframe positions
+  bool use_pose_prior = true;           ///< false: every past keyframe is a candidate
+                                        ///< (re-localisation after large drift)
+  double base_radius_m = 1.0;           ///< search radius around the pose estimate after a loop
+  double radius_growth_per_m = 0.1;     ///< radius grows by this per metre of odometry travelled
+                                        ///< since the last accepted loop (drift)
+  double max_radius_m = 10.0;           ///< radius cap (follow-on: 10 m)
+  double global_search_after_m = 20.0;  ///< no accepted loop for this much odometry path: drift
+                                        ///< may exceed the radius, so ...
+  double global_search_every_m = 5.0;   ///< ... one keyframe per this much path is matched
+                                        ///< against every past keyframe (0 = never)
+  int max_candidates = 15;              ///< nearest candidates kept (follow-on: 15; 0 = all)
+  double exclude_recent_path_m = 3.0;   ///< keyframes that began less than this much path
+                                        ///< before the new one are skipped (they share scans)
+  double grid_cell_m = 2.0;             ///< cell size of the spatial hash of keyframe positions
 
   template <class V>
   void Visit(V& v) {
@@ -114,6 +118,8 @@ struct CandidateSearchConfig {
     v("base_radius_m", base_radius_m);
     v("radius_growth_per_m", radius_growth_per_m);
     v("max_radius_m", max_radius_m);
+    v("global_search_after_m", global_search_after_m);
+    v("global_search_every_m", global_search_every_m);
     v("max_candidates", max_candidates);
     v("exclude_recent_path_m", exclude_recent_path_m);
     v("grid_cell_m", grid_cell_m);

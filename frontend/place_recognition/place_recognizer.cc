@@ -102,7 +102,18 @@ PlaceRecognitionResult PlaceRecognizer::Process(KeyframeFeatures features, doubl
   query.position_world = CentreInWorld(features);
   query.path_begin_m = features.path_begin_m;
   query.travelled_since_loop_m = features.path_begin_m - path_at_last_loop_m_;
-  result.candidates = FindCandidates(index_, query, pr.candidates);
+  // Re-localisation: after a long stretch without a loop the odometry may have drifted
+  // farther than any search radius, so now and then a keyframe is matched against every
+  // past keyframe. Once a loop is found the solve corrects the estimates and the prior
+  // works again; matching everything on every keyframe would grow with the map.
+  CandidateSearchConfig search = pr.candidates;
+  if (search.use_pose_prior && search.global_search_every_m > 0 &&
+      query.travelled_since_loop_m >= search.global_search_after_m &&
+      features.path_begin_m - path_at_last_global_m_ >= search.global_search_every_m) {
+    search.use_pose_prior = false;
+    path_at_last_global_m_ = features.path_begin_m;
+  }
+  result.candidates = FindCandidates(index_, query, search);
   for (int id : result.candidates.ids) {
     const KeyframeFeatures& old = *database_.at(id);
     LoopAttempt attempt;

@@ -76,6 +76,7 @@ class PlaceRecognizer {
   KeyframeIndex index_;
   std::unordered_map<int, std::unique_ptr<KeyframeFeatures>> database_;
   double path_at_last_loop_m_ = 0.0;
+  double path_at_last_global_m_ = -1e300;  ///< path of the last query without a pose prior
   bool have_path_origin_ = false;
 };
 

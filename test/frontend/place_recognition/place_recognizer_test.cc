@@ -82,7 +82,8 @@ TEST(PlaceRecognizerTest, FarPriorFindsNothingButTheNoPriorModeDoes) {
   const World& w = TheWorld();
   Config config;
   const Pose2 first{1.0, -0.3, 0.0};
-  const Pose2 lost{40.0, 30.0, 0.0};  // odometry after large drift
+  const Pose2 lost{40.0, 30.0, 0.0};                              // odometry after large drift
+  config.place_recognition.candidates.global_search_every_m = 0;  // no re-localisation
   PlaceRecognizer with_prior(config);
   with_prior.Process(w.Tile(0, first, first, 0.0));
   EXPECT_TRUE(with_prior.Process(w.Tile(1, first, lost, 20.0)).candidates.ids.empty());
@@ -90,6 +91,21 @@ TEST(PlaceRecognizerTest, FarPriorFindsNothingButTheNoPriorModeDoes) {
   PlaceRecognizer relocalise(config);
   relocalise.Process(w.Tile(0, first, first, 0.0));
   EXPECT_EQ(relocalise.Process(w.Tile(1, first, lost, 20.0)).loops.size(), 1u);
+}
+
+TEST(PlaceRecognizerTest, AfterALoopDroughtOneKeyframePerIntervalIsMatchedAgainstAll) {
+  const World& w = TheWorld();
+  Config config;  // global_search_after_m 20, global_search_every_m 5
+  const Pose2 first{1.0, -0.3, 0.0};
+  const Pose2 lost{40.0, 30.0, 0.0};  // odometry after large drift
+  PlaceRecognizer pr(config);
+  pr.Process(w.Tile(0, first, first, 0.0));
+  // 10 m after the last loop (none yet): the prior holds, the far estimate finds nothing.
+  EXPECT_TRUE(pr.Process(w.Tile(1, first, lost, 10.0)).candidates.ids.empty());
+  // 20 m: no prior for this keyframe; it re-localises.
+  const PlaceRecognitionResult found = pr.Process(w.Tile(2, first, lost, 20.0));
+  EXPECT_FALSE(found.candidates.used_prior);
+  EXPECT_GE(found.loops.size(), 1u);
 }
 
 TEST(PlaceRecognizerTest, RecentKeyframesAreNeverCandidates) {
