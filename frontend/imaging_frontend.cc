@@ -85,7 +85,11 @@ void ImagingFrontend::ProcessPending(bool final) {
     RadarScan& scan = pending_[done];
     OdometryEntry odom;
     const auto result = odometry_.Lookup(scan.stamp_ns, &odom);
-    if (result == OdometryBuffer::LookupResult::kAfterLast) {
+    // No odometry yet counts as "after the last": in a live run the first odometry sample
+    // may arrive after scans stamped later than it (another topic, discovered later).
+    const bool no_odometry_yet =
+        result == OdometryBuffer::LookupResult::kBeforeFirst && odometry_.empty();
+    if (result == OdometryBuffer::LookupResult::kAfterLast || no_odometry_yet) {
       // Wait for odometry, unless it has stalled for too long.
       const bool stale =
           NsToSeconds(newest_scan - scan.stamp_ns) > config_.gating.max_scan_latency_s;

@@ -141,6 +141,33 @@ TEST(ImagingFrontendTest, ScansWithoutOdometryAreDroppedNotImaged) {
             f.stats().scans_received);
 }
 
+// Live over DDS the first odometry sample can come after scans stamped later than it:
+// they wait for it (as for any later odometry) and are imaged as in stamp order.
+TEST(ImagingFrontendTest, ScansThatArriveBeforeTheFirstOdometryWaitForIt) {
+  Fixture fx;
+  ImagingFrontend in_order(fx.config);
+  Feed(&in_order, fx.run);
+  ImagingFrontend late_odometry(fx.config);
+  std::size_t j = 0;  // the scans of the first 0.2 s before any odometry
+  const TimestampNs t0 = fx.run.odometry.front().stamp_ns;
+  for (; j < fx.run.scans.size() && fx.run.scans[j].stamp_ns < t0 + 200000000; ++j) {
+    late_odometry.AddScan(fx.run.scans[j]);
+  }
+  EXPECT_EQ(late_odometry.stats().scans_rejected(), 0);
+  std::size_t i = 0;
+  while (i < fx.run.odometry.size() || j < fx.run.scans.size()) {
+    if (j >= fx.run.scans.size() ||
+        (i < fx.run.odometry.size() && fx.run.odometry[i].stamp_ns <= fx.run.scans[j].stamp_ns)) {
+      late_odometry.AddOdometry(fx.run.odometry[i++]);
+    } else {
+      late_odometry.AddScan(fx.run.scans[j++]);
+    }
+  }
+  late_odometry.Finish();
+  EXPECT_EQ(late_odometry.stats().scans_imaged, in_order.stats().scans_imaged);
+  EXPECT_EQ(late_odometry.stats().scans_rejected(), in_order.stats().scans_rejected());
+}
+
 TEST(ImagingFrontendTest, TilesOverlapByHalfAndHoldTheirScanPoses) {
   Fixture fx(4.5);
   ImagingFrontend f(fx.config);
