@@ -30,9 +30,7 @@ using dds::testing::BackgroundCommand;
 
 std::string PlayerCommand(const std::string& python, const std::string& mode,
                           const std::string& args) {
-  return "CYCLONEDDS_URI='" + dds::CycloneXmlConfig("lo") + "' " + python +
-         " " UWBSAR_SOURCE_DIR "/test/tools/ros2_bag_player.py " + mode + " --domain " +
-         std::to_string(dds::testing::TestDomainId()) + " " + args + " 2>&1";
+  return dds::testing::PythonPeerCommand(python, "test/tools/ros2_bag_player.py", mode, args);
 }
 
 /// The JSON object a peer printed last; {"error": output} when there is none.

@@ -3,12 +3,14 @@
 // collecting events, and running the independent Python peer (ros2_peer.py).
 #pragma once
 
+#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -16,6 +18,7 @@
 
 #include "drivers/dds/dds_events.h"
 #include "drivers/dds/participant.h"
+#include "drivers/dds/ros2_subscriber.h"
 #include "slam/dds_config.h"
 
 namespace uwbsar::dds::testing {
@@ -68,6 +71,41 @@ class EventLog {
   std::vector<DdsEvent> events_;
 };
 
+/// A fixture whose Ros2Subscriber collects everything it delivers.
+class CollectingSubscriberTest : public ::testing::Test {
+ protected:
+  void SubscribeOn(Participant& participant, const DdsConfig& config,
+                   const std::vector<std::string>& radar, const std::string& odom) {
+    Ros2Subscriber::Callbacks callbacks;
+    callbacks.on_radar = [this](RadarMessage&& m) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      radar_.push_back(std::move(m));
+    };
+    callbacks.on_odometry = [this](OdometryMessage&& m) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      odometry_.push_back(std::move(m));
+    };
+    callbacks.on_event = [this](const DdsEvent& e) { events_.Add(e); };
+    subscriber_ = std::make_unique<Ros2Subscriber>(participant, config, radar, odom, callbacks);
+  }
+  // Before the derived fixture's participants go: the subscriber must not outlive them.
+  void TearDown() override { subscriber_.reset(); }
+  std::size_t NumRadar() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return radar_.size();
+  }
+  std::size_t NumOdometry() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return odometry_.size();
+  }
+
+  std::mutex mutex_;
+  std::vector<RadarMessage> radar_;
+  std::vector<OdometryMessage> odometry_;
+  EventLog events_;
+  std::unique_ptr<Ros2Subscriber> subscriber_;
+};
+
 /// $UWBSAR_VENV/bin/python, or "" when UWBSAR_VENV is unset (`make test` sets it).
 inline std::string VenvPython() {
   const char* venv = std::getenv("UWBSAR_VENV");
@@ -75,13 +113,19 @@ inline std::string VenvPython() {
   return std::string(venv) + "/bin/python";
 }
 
-/// The shell command running ros2_peer.py in `mode` on the test domain, pinned to
-/// loopback with the same Cyclone configuration as LoopbackConfig().
+/// The shell command running a Python DDS peer `script` (a path from the source root) in
+/// `mode` on the test domain, pinned to loopback with the same Cyclone configuration as
+/// LoopbackConfig().
+inline std::string PythonPeerCommand(const std::string& python, const std::string& script,
+                                     const std::string& mode, const std::string& args = "") {
+  return "CYCLONEDDS_URI='" + CycloneXmlConfig("lo") + "' " + python + " " UWBSAR_SOURCE_DIR "/" +
+         script + " " + mode + " --domain " + std::to_string(TestDomainId()) + " " + args + " 2>&1";
+}
+
+/// PythonPeerCommand for test/drivers/dds/ros2_peer.py.
 inline std::string PeerCommand(const std::string& python, const std::string& mode,
                                const std::string& args = "") {
-  return "CYCLONEDDS_URI='" + CycloneXmlConfig("lo") + "' " + python +
-         " " UWBSAR_SOURCE_DIR "/test/drivers/dds/ros2_peer.py " + mode + " --domain " +
-         std::to_string(TestDomainId()) + " " + args + " 2>&1";
+  return PythonPeerCommand(python, "test/drivers/dds/ros2_peer.py", mode, args);
 }
 
 /// A command running in the background; Finish() waits for it and returns its output.

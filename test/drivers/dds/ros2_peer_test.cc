@@ -17,24 +17,14 @@ using testing::BackgroundCommand;
 using testing::PeerCommand;
 using testing::WaitFor;
 
-class Ros2PeerTest : public ::testing::Test {
+class Ros2PeerTest : public testing::CollectingSubscriberTest {
  protected:
   void SetUp() override {
     python_ = testing::VenvPython();
     if (python_.empty()) GTEST_SKIP() << "UWBSAR_VENV is unset: cannot run ros2_peer.py";
   }
   void Subscribe(const std::vector<std::string>& radar, const std::string& odom) {
-    Ros2Subscriber::Callbacks callbacks;
-    callbacks.on_radar = [this](RadarMessage&& m) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      radar_.push_back(std::move(m));
-    };
-    callbacks.on_odometry = [this](OdometryMessage&& m) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      odometry_.push_back(std::move(m));
-    };
-    callbacks.on_event = [this](const DdsEvent& e) { events_.Add(e); };
-    subscriber_ = std::make_unique<Ros2Subscriber>(participant_, config_, radar, odom, callbacks);
+    SubscribeOn(participant_, config_, radar, odom);
   }
   /// Runs the peer to completion; its stdout's last line parsed as JSON.
   nlohmann::json RunPeer(const std::string& mode, const std::string& args = "") {
@@ -55,11 +45,6 @@ class Ros2PeerTest : public ::testing::Test {
   std::string python_;
   DdsConfig config_ = testing::LoopbackConfig();
   Participant participant_{config_};
-  std::mutex mutex_;
-  std::vector<RadarMessage> radar_;
-  std::vector<OdometryMessage> odometry_;
-  testing::EventLog events_;
-  std::unique_ptr<Ros2Subscriber> subscriber_;
 };
 
 TEST_F(Ros2PeerTest, RadarAndOdometryFromThePeerAreDecodedAndItsExitIsReported) {

@@ -63,38 +63,15 @@ nav_msgs_msg_dds__Odometry_ Odometry(TimestampNs stamp, double x, double y, doub
   return msg;
 }
 
-class Ros2SubscriberTest : public ::testing::Test {
+class Ros2SubscriberTest : public testing::CollectingSubscriberTest {
  protected:
   void Subscribe(const std::vector<std::string>& radar, const std::string& odom) {
-    Ros2Subscriber::Callbacks callbacks;
-    callbacks.on_radar = [this](RadarMessage&& m) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      radar_.push_back(std::move(m));
-    };
-    callbacks.on_odometry = [this](OdometryMessage&& m) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      odometry_.push_back(std::move(m));
-    };
-    callbacks.on_event = [this](const DdsEvent& e) { events_.Add(e); };
-    subscriber_ = std::make_unique<Ros2Subscriber>(ours_, config_, radar, odom, callbacks);
-  }
-  std::size_t NumRadar() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return radar_.size();
-  }
-  std::size_t NumOdometry() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return odometry_.size();
+    SubscribeOn(ours_, config_, radar, odom);
   }
 
   DdsConfig config_ = testing::LoopbackConfig();
   Participant ours_{config_};
   Participant robot_{config_};
-  std::mutex mutex_;
-  std::vector<RadarMessage> radar_;
-  std::vector<OdometryMessage> odometry_;
-  testing::EventLog events_;
-  std::unique_ptr<Ros2Subscriber> subscriber_;
 };
 
 TEST_F(Ros2SubscriberTest, RadarScansArriveWithSensorIndexSamplesAndSourceStamp) {
