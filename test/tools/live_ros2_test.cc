@@ -27,6 +27,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using dds::testing::BackgroundCommand;
+using live::AcceptedPairs;
 
 std::string PlayerCommand(const std::string& python, const std::string& mode,
                           const std::string& args) {
@@ -95,14 +96,6 @@ LiveRunResult RunWhilePlaying(const Fixture& f, const std::vector<std::string>& 
   LiveRunResult result = RunLive(f.config, std::move(options));
   driver.join();
   return result;
-}
-
-std::set<std::pair<int, int>> AcceptedPairs(const SlamSystem& slam) {
-  std::set<std::pair<int, int>> pairs;
-  for (const LoopRecord& l : slam.loops()) {
-    if (l.accepted()) pairs.insert({l.match_id, l.query_id});
-  }
-  return pairs;
 }
 
 TEST(LiveRos2Test, A_B_PeerDrivesALiveRunMatchingOfflineAndPublishesWhatIsOnDisk) {

@@ -32,16 +32,6 @@ int AcceptedLoops(const SlamSystem& slam) {
   return n;
 }
 
-/// The accepted loops as (earlier keyframe, new keyframe) ids: keyframe ids are world-
-/// lattice segment numbers, so two runs over the same path number them alike.
-std::set<std::pair<int, int>> AcceptedPairs(const SlamSystem& slam) {
-  std::set<std::pair<int, int>> pairs;
-  for (const LoopRecord& l : slam.loops()) {
-    if (l.accepted()) pairs.insert({l.match_id, l.query_id});
-  }
-  return pairs;
-}
-
 /// Loops accepted by one run and not the other that are not marginal: a marginal loop
 /// had at most min_good_matches + 4 good matches for one detector where it was accepted,
 /// so a different noise draw can move it across the paper's threshold.

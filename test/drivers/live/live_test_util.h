@@ -6,8 +6,10 @@
 
 #include <atomic>
 #include <filesystem>
+#include <set>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "drivers/live/host_clock.h"
 #include "drivers/live/sim_device_player.h"
@@ -21,6 +23,16 @@ struct EmulatedRun {
   EmulatorCounts emulator;
   std::string out_dir;
 };
+
+/// The accepted loops as (earlier keyframe, new keyframe) ids: keyframe ids are world-
+/// lattice segment numbers, so two runs over the same path number them alike.
+inline std::set<std::pair<int, int>> AcceptedPairs(const SlamSystem& slam) {
+  std::set<std::pair<int, int>> pairs;
+  for (const LoopRecord& l : slam.loops()) {
+    if (l.accepted()) pairs.insert({l.match_id, l.query_id});
+  }
+  return pairs;
+}
 
 inline std::string SeedLabMapPath() {
   return std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_lab/my_map.yaml";
