@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 
 #include "backend/false_loops.h"
@@ -18,7 +19,16 @@
 namespace uwbsar {
 namespace {
 
-const std::string kData = std::string(UWBSAR_SOURCE_DIR) + "/test/data/posegraph/";
+/// The public data sets are read where they lie: $UWBSAR_SHARED_DATA/posegraph, else
+/// <source>/../shared/data/posegraph (never copied into the repository).
+std::string DataDir() {
+  const char* env = std::getenv("UWBSAR_SHARED_DATA");
+  const std::string root = env != nullptr && *env != '\0'
+                               ? std::string(env)
+                               : std::string(UWBSAR_SOURCE_DIR) + "/../shared/data";
+  return root + "/posegraph/";
+}
+const std::string kData = DataDir();
 
 const G2oGraph* M3500() {
   static const G2oGraph* graph = [] {
@@ -59,13 +69,13 @@ void SolveFile(benchmark::State& state, const G2oGraph& file) {
 }
 
 void BM_M3500FromOdometry(benchmark::State& state) {
-  if (!M3500()) return state.SkipWithError("no M3500 data");
+  if (!M3500()) return state.SkipWithError(("no M3500 data in " + kData).c_str());
   SolveFile(state, *M3500());
 }
 BENCHMARK(BM_M3500FromOdometry)->Unit(benchmark::kMillisecond)->Iterations(5);
 
 void BM_M3500FalseLoops(benchmark::State& state) {
-  if (!M3500()) return state.SkipWithError("no M3500 data");
+  if (!M3500()) return state.SkipWithError(("no M3500 data in " + kData).c_str());
   G2oGraph file = *M3500();
   FalseLoopOptions options;
   options.count = static_cast<int>(state.range(0));
@@ -75,7 +85,7 @@ void BM_M3500FalseLoops(benchmark::State& state) {
 BENCHMARK(BM_M3500FalseLoops)->Arg(20)->Arg(100)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 void BM_IncrementalLoop1000(benchmark::State& state) {
-  if (!M3500()) return state.SkipWithError("no M3500 data");
+  if (!M3500()) return state.SkipWithError(("no M3500 data in " + kData).c_str());
   // The first 1,000 nodes of M3500 with their edges, less the last 150 loops, which are
   // then added one per iteration, each followed by a re-solve.
   constexpr int kNodes = 1000;

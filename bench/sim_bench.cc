@@ -1,6 +1,6 @@
-// Simulator benchmarks (issue 3, point 6): a 15 m seed_lab depart-return run with
-// two radars at 100 Hz, 1000 samples per scan, must simulate in well under a
-// minute on one core. Reports seconds of simulation per metre of route.
+// Simulator benchmarks (issue 3, point 6): a 15 m depart-return run in the bundled seed_hall room
+// with two radars at 100 Hz, 1000 samples per scan, must simulate in well under a minute on one
+// core. Reports seconds of simulation per metre of route.
 #include <benchmark/benchmark.h>
 
 #include <random>
@@ -12,19 +12,19 @@
 namespace uwbsar {
 namespace {
 
-std::string SeedLabMap() {
-  // This file is bench/sim_bench.cc in the source tree; the map is config/maps/seed_lab.
+std::string SeedHallMap() {
+  // This file is bench/sim_bench.cc in the source tree; the map is config/maps/seed_hall.
   const std::string here = __FILE__;
-  return here.substr(0, here.rfind("/bench/")) + "/config/maps/seed_lab/my_map.yaml";
+  return here.substr(0, here.rfind("/bench/")) + "/config/maps/seed_hall/seed_hall.yaml";
 }
 
 // The whole recording (ground truth 200 Hz, odometry 50 Hz, 2 radars at 100 Hz), in memory.
-void BM_SimulateSeedLabDepartReturn(benchmark::State& state) {
+void BM_SimulateSeedHallDepartReturn(benchmark::State& state) {
   const Config config;
   double metres = 0.0;
   long long scans = 0;
   for (auto _ : state) {
-    const sim::SimScenario scenario = sim::MakeScenario(config, SeedLabMap(), "depart-return", 1);
+    const sim::SimScenario scenario = sim::MakeScenario(config, SeedHallMap(), "depart-return", 1);
     sim::SimStream stream(config, scenario, 1);
     sim::SimMessage msg;
     while (stream.Next(&msg)) scans += msg.kind == sim::SimMessage::Kind::kRadarScan;
@@ -35,12 +35,12 @@ void BM_SimulateSeedLabDepartReturn(benchmark::State& state) {
   state.counters["scans_per_s"] =
       benchmark::Counter(static_cast<double>(scans), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_SimulateSeedLabDepartReturn)->Unit(benchmark::kSecond)->Iterations(2);
+BENCHMARK(BM_SimulateSeedHallDepartReturn)->Unit(benchmark::kSecond)->Iterations(2);
 
 // One radar scan in the middle of the room (ray casting + echoes + noise).
 void BM_SimulateOneScan(benchmark::State& state) {
   const Config config;
-  const sim::SimScenario scenario = sim::MakeScenario(config, SeedLabMap(), "depart-return", 1);
+  const sim::SimScenario scenario = sim::MakeScenario(config, SeedHallMap(), "depart-return", 1);
   const SensorGeometry sensor = SensorGeometry::FromConfig(config.radars[0], config.pulse);
   sim::RadarSimulator radar(*scenario.environment, config.pulse, sensor, config.simulator.radar);
   std::mt19937_64 rng(1);

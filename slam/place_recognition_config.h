@@ -16,6 +16,10 @@ struct DetectorConfig {
                                            ///< paper's 5 mm). Pixel thresholds of detection,
                                            ///< matching and validation are the paper's at the
                                            ///< tile resolution and scale with it
+  double white_percentile = 99.5;          ///< contrast of the 8-bit feature image: this
+                                           ///< percentile of the measured pixels maps to 255
+                                           ///< (brighter ones saturate; 100 = min-max, the
+                                           ///< paper, which leaves real scenes too dark)
   int max_keypoints = 200;                 ///< keep the strongest this many per tile and detector
   int mask_erode_px = 8;                   ///< detect only this far inside the imaged area
                                            ///< (the sector edges are not scene features)
@@ -32,6 +36,7 @@ struct DetectorConfig {
   template <class V>
   void Visit(V& v) {
     v("feature_resolution_m", feature_resolution_m);
+    v("white_percentile", white_percentile);
     v("max_keypoints", max_keypoints);
     v("mask_erode_px", mask_erode_px);
     v("sift_contrast_threshold", sift_contrast_threshold);
@@ -49,7 +54,9 @@ struct DetectorConfig {
 /// Descriptor matching and transform estimation (paper Fig. "matching pipeline").
 struct FeatureMatchConfig {
   double ratio = 0.8;                    ///< Lowe ratio test on the two nearest neighbours
-  double ransac_reprojection_px = 15.0;  ///< estimateAffinePartial2D RANSAC threshold (paper)
+  double ransac_reprojection_px = 10.0;  ///< estimateAffinePartial2D RANSAC threshold (paper:
+                                         ///< 15; 10 = 5 cm keeps detectors consistent on real
+                                         ///< walls, along which matches can slide)
   int ransac_max_iterations = 2000;      ///< RANSAC iterations (OpenCV default)
   double ransac_confidence = 0.99;       ///< RANSAC confidence (OpenCV default)
 

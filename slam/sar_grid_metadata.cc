@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "slam/errors.h"
 #include "slam/yaml_file.h"
@@ -25,9 +26,20 @@ SarGridMetadata LoadSarGridMetadata(const std::string& yaml_path) {
   g.x0_m = Require<double>(yaml_path, root, "x0_m");
   g.y0_m = Require<double>(yaml_path, root, "y0_m");
   g.resolution_m = Require<double>(yaml_path, root, "resolution_m");
-  g.rows = Require<int>(yaml_path, root, "rows");
-  g.cols = Require<int>(yaml_path, root, "cols");
+  const bool has_size = root["rows"] || root["cols"];
+  if (has_size) {
+    g.rows = Require<int>(yaml_path, root, "rows");
+    g.cols = Require<int>(yaml_path, root, "cols");
+  }
   if (root["mode"]) g.mode = Require<std::string>(yaml_path, root, "mode");
+  if (root["image"]) {
+    const std::filesystem::path image = Require<std::string>(yaml_path, root, "image");
+    if (image.empty())
+      throw InputError(YamlWhere(yaml_path, root["image"]) + ": grid key 'image' is empty");
+    g.image = image.is_absolute()
+                  ? image.string()
+                  : (std::filesystem::path(yaml_path).parent_path() / image).string();
+  }
   if (!std::isfinite(g.x0_m) || !std::isfinite(g.y0_m)) {
     throw InputError(yaml_path + ": grid keys 'x0_m' and 'y0_m' must be finite");
   }
@@ -35,7 +47,7 @@ SarGridMetadata LoadSarGridMetadata(const std::string& yaml_path) {
     throw InputError(YamlWhere(yaml_path, root["resolution_m"]) +
                      ": grid key 'resolution_m' must be > 0");
   }
-  if (g.rows < 1 || g.cols < 1) {
+  if (has_size && (g.rows < 1 || g.cols < 1)) {
     throw InputError(yaml_path + ": grid keys 'rows' and 'cols' must be >= 1");
   }
   return g;

@@ -1,5 +1,6 @@
-// `uwbsar compare`: scores a SAR occupancy map against a LiDAR grid (paper: cell-wise
-// difference 1397 / 16800 = 8.3 %) and writes overlay.png + metrics.json.
+// `uwbsar compare`: scores a SAR occupancy map, or a SAR intensity image described by a
+// grid YAML (turned into occupancy by the rule of `uwbsar map`), against a LiDAR grid
+// (paper: cell-wise difference 1397 / 16800 = 8.3 %) and writes overlay.png + metrics.json.
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -49,7 +50,12 @@ void AddCompareCommand(CLI::App& app, const GlobalOptions& globals) {
       "Score a SAR map against a LiDAR occupancy grid (both map_server YAML): cell-wise "
       "difference, precision/recall/F1 with a one-cell tolerance, IoU, distances; writes "
       "overlay.png and metrics.json");
-  cmd->add_option("SAR_MAP", opts->sar, "SAR occupancy map (map_server YAML)")->required();
+  cmd->add_option("SAR_MAP", opts->sar,
+                  "SAR occupancy map (map_server YAML), or a SAR image's grid YAML (keys image, "
+                  "x0_m, y0_m, resolution_m, as map_grid.yaml): occupancy by the rule of "
+                  "`uwbsar map` (slam.occupancy_resolution_m, slam.occupied_fraction, "
+                  "slam.occupancy_reference_percentile)")
+      ->required();
   cmd->add_option("LIDAR_MAP", opts->lidar, "LiDAR ground-truth grid (map_server YAML)")
       ->required();
   cmd->add_option("--out", opts->out_dir, "Output folder")->required();
@@ -81,8 +87,12 @@ void AddCompareCommand(CLI::App& app, const GlobalOptions& globals) {
       ParsePose(opts->init, &request.T_lidar_sar);
     }
     // Everything is computed before the output folder is touched: bad input leaves nothing.
+    SarOccupancyRule rule;
+    rule.cell_m = config.slam.occupancy_resolution_m;
+    rule.occupied_fraction = config.slam.occupied_fraction;
+    rule.reference_percentile = config.slam.occupancy_reference_percentile;
     const ComparisonReport report =
-        CompareMapFiles(opts->sar, opts->lidar, request, config.compare);
+        CompareMapFiles(opts->sar, opts->lidar, request, config.compare, rule);
     EnsureDirectory(opts->out_dir);
     const auto files = WriteComparisonOutputs(report, opts->out_dir, config.compare);
     if (opts->json) {

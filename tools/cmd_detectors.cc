@@ -16,6 +16,7 @@
 #include "frontend/place_recognition/region_study.h"
 #include "slam/errors.h"
 #include "tools/commands.h"
+#include "tools/image_match_report.h"
 
 namespace uwbsar::tools {
 namespace {
@@ -174,18 +175,7 @@ void AddDetectorsCommand(CLI::App& app, const GlobalOptions& globals) {
         throw InputError("--regions: length and step must be > 0");
       }
     }
-    if (!opts->detectors.empty()) {
-      options.detectors.clear();
-      std::stringstream list(opts->detectors);
-      std::string name;
-      while (std::getline(list, name, ',')) {
-        DetectorKind kind;
-        if (!ParseDetector(name, &kind))
-          throw InputError("--detectors: unknown detector '" + name + "'");
-        if (!DetectorAvailable(kind)) throw InputError("--detectors: " + name + " was not built");
-        options.detectors.push_back(kind);
-      }
-    }
+    if (!opts->detectors.empty()) options.detectors = ParseDetectorList(opts->detectors);
     const rosbag::RobotLog log =
         rosbag::LoadRobotBag(opts->bag, rosbag::RobotBagOptionsFromConfig(config));
     ImagingFrontend frontend(config);

@@ -1,61 +1,116 @@
-// `uwbsar loops --from-stats STATS.csv [--json]`: re-evaluates the paper's AKAZE+ORB
-// loop rule (with the configured thresholds) on recorded per-pair statistics, e.g. the
-// stats.csv that `uwbsar detectors` writes, and prints the D x R loop matrix of 0/1.
+// `uwbsar loops`: the D x R loop matrix of the paper's AKAZE+ORB rule, either re-evaluated
+// on recorded per-pair statistics (`--from-stats STATS.csv`, e.g. the stats.csv that
+// `uwbsar detectors` writes, to tune thresholds without images) or measured on a folder of
+// region images D<i>, R<j> (`--images DIR`, through the same matching as `uwbsar match`).
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "frontend/image_io.h"
 #include "frontend/place_recognition/loop_stats.h"
+#include "slam/errors.h"
 #include "tools/commands.h"
+#include "tools/image_loop_study.h"
+#include "tools/image_match_report.h"
 
 namespace uwbsar::tools {
+namespace {
+
+void PrintMatrix(const LoopMatrix& m) {
+  std::printf("d\\r");
+  for (int r : m.r_ids) std::printf(" %3d", r);
+  std::printf("\n");
+  for (std::size_t i = 0; i < m.d_ids.size(); ++i) {
+    std::printf("%3d", m.d_ids[i]);
+    for (int v : m.loops[i]) std::printf(" %3d", v);
+    std::printf("\n");
+  }
+}
+
+void PrintReasons(const LoopMatrix& m) {
+  for (std::size_t i = 0; i < m.d_ids.size(); ++i) {
+    for (std::size_t j = 0; j < m.r_ids.size(); ++j) {
+      if (!m.reasons[i][j].empty()) {
+        std::fprintf(stderr, "D%d -> R%d: %s\n", m.d_ids[i], m.r_ids[j], m.reasons[i][j].c_str());
+      }
+    }
+  }
+}
+
+nlohmann::json MatrixJson(const LoopMatrix& m) {
+  return {{"loops", m.loops}, {"d", m.d_ids}, {"r", m.r_ids}};
+}
+
+void WriteStudy(const ImageLoopStudy& study, const std::string& out_dir) {
+  EnsureDirectory(out_dir);
+  const std::filesystem::path dir(out_dir);
+  WriteTextAtomic((dir / "pairs.csv").string(), PairsCsv(study));
+  WriteTextAtomic((dir / "pairs.md").string(), PairsMarkdown(study));
+  WriteTextAtomic((dir / "loops.json").string(), ImageLoopStudyJson(study).dump(2) + "\n");
+  WriteImageAtomic((dir / "matrix.png").string(), DrawLoopMatrix(study));
+}
+
+}  // namespace
 
 void AddLoopsCommand(CLI::App& app, const GlobalOptions& globals) {
   struct Options {
-    std::string stats_path;
+    std::string stats_path, images_dir, out_dir, detectors = "akaze,orb";
+    double resolution_m = 0.005;
     bool json = false;
     bool reasons = false;
   };
   auto opts = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
-      "loops", "Loop matrix of the AKAZE+ORB rule on recorded per-pair statistics");
-  cmd->add_option("--from-stats", opts->stats_path,
-                  "CSV: d,r,n_akaze,scale_akaze,tx_akaze_px,ty_akaze_px,rot_akaze_deg,n_orb,"
-                  "scale_orb,tx_orb_px,ty_orb_px,rot_orb_deg")
-      ->required()
-      ->check(CLI::ExistingFile);
-  cmd->add_flag("--json", opts->json, "Print {\"loops\": [[...], ...]} (rows d, columns r)");
+      "loops", "Loop matrix of the AKAZE+ORB rule on recorded statistics or on D*/R* images");
+  auto* stats = cmd->add_option("--from-stats", opts->stats_path,
+                                "CSV: d,r,n_akaze,scale_akaze,tx_akaze_px,ty_akaze_px,"
+                                "rot_akaze_deg,n_orb,scale_orb,tx_orb_px,ty_orb_px,rot_orb_deg")
+                    ->check(CLI::ExistingFile);
+  auto* images = cmd->add_option("--images", opts->images_dir,
+                                 "Folder of region images D<i>, R<j> (.png/.pgm/.tif): every "
+                                 "D x R pair through `uwbsar match`");
+  stats->excludes(images);
+  cmd->add_option("--resolution", opts->resolution_m,
+                  "--images: metres per pixel when no grid YAML describes an image")
+      ->capture_default_str();
+  cmd->add_option("--detectors", opts->detectors, "--images: comma-separated detectors")
+      ->capture_default_str();
+  cmd->add_option("--out", opts->out_dir,
+                  "--images: write pairs.csv, pairs.md, loops.json and matrix.png here");
+  cmd->add_flag("--json", opts->json,
+                "Print {\"loops\": [[...], ...], \"d\": [...], \"r\": [...]} (rows d, columns r; "
+                "with --images also \"pairs\")");
   cmd->add_flag("--reasons", opts->reasons, "Also print why each listed pair was rejected");
   cmd->callback([opts, &globals] {
+    if (opts->stats_path.empty() == opts->images_dir.empty()) {
+      throw CLI::ValidationError("loops", "give exactly one of --from-stats or --images");
+    }
+    if (!opts->out_dir.empty() && opts->images_dir.empty()) {
+      throw CLI::ValidationError("--out", "needs --images");
+    }
     const Config config = LoadConfigFor(globals);
-    const LoopMatrix m = EvaluateLoopMatrix(ReadPairStatsFile(opts->stats_path),
-                                            config.place_recognition.validation);
-    if (opts->json) {
-      nlohmann::json out;
-      out["loops"] = m.loops;
-      out["d"] = m.d_ids;
-      out["r"] = m.r_ids;
-      std::cout << out.dump() << "\n";
+    LoopMatrix m;
+    nlohmann::json json;
+    if (!opts->stats_path.empty()) {
+      m = EvaluateLoopMatrix(ReadPairStatsFile(opts->stats_path),
+                             config.place_recognition.validation);
+      json = MatrixJson(m);
     } else {
-      std::printf("d\\r");
-      for (int r : m.r_ids) std::printf(" %3d", r);
-      std::printf("\n");
-      for (std::size_t i = 0; i < m.d_ids.size(); ++i) {
-        std::printf("%3d", m.d_ids[i]);
-        for (int v : m.loops[i]) std::printf(" %3d", v);
-        std::printf("\n");
-      }
+      const std::vector<DetectorKind> detectors = ParseDetectorList(opts->detectors);
+      if (!opts->out_dir.empty()) EnsureDirectory(opts->out_dir);
+      const ImageLoopStudy study =
+          RunImageLoopStudy(opts->images_dir, opts->resolution_m, detectors, config);
+      if (!opts->out_dir.empty()) WriteStudy(study, opts->out_dir);
+      m = study.matrix;
+      json = ImageLoopStudyJson(study);
     }
-    if (opts->reasons) {
-      for (std::size_t i = 0; i < m.d_ids.size(); ++i) {
-        for (std::size_t j = 0; j < m.r_ids.size(); ++j) {
-          if (!m.reasons[i][j].empty()) {
-            std::fprintf(stderr, "D%d -> R%d: %s\n", m.d_ids[i], m.r_ids[j],
-                         m.reasons[i][j].c_str());
-          }
-        }
-      }
+    if (opts->json) {
+      std::cout << json.dump() << "\n";
+    } else {
+      PrintMatrix(m);
     }
+    if (opts->reasons) PrintReasons(m);
   });
 }
 

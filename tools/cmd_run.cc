@@ -2,7 +2,8 @@
 // (tools/live_runner.h). SIGINT/SIGTERM finish the run cleanly: drivers stop, the
 // graph is solved once more, final outputs are written, exit 0.
 // `--emulate` replaces the hardware by emulated devices on pseudo-terminals that play
-// the simulated seed_lab run (drivers/live/sim_device_player.h); the run ends with it.
+// a simulated depart-and-return run in the bundled seed_hall room or in --map
+// (drivers/live/sim_device_player.h); the run ends with it.
 #include <unistd.h>
 
 #include <csignal>
@@ -18,7 +19,7 @@
 
 namespace uwbsar::tools {
 
-std::string SeedLabMap();  // cmd_demo.cc
+std::string BundledMap();  // cmd_demo.cc
 
 namespace {
 std::atomic<bool> g_stop{false};
@@ -34,6 +35,7 @@ void AddRunCommand(CLI::App& app, const GlobalOptions& globals) {
     double duration_s = 0.0;
     std::uint64_t seed = 1;
     std::string source = "serial";
+    std::string map_path;  ///< --emulate: the map to simulate in
   };
   auto opts = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -48,12 +50,15 @@ void AddRunCommand(CLI::App& app, const GlobalOptions& globals) {
       ->check(CLI::IsMember({"serial", "ros2"}))
       ->capture_default_str();
   cmd->add_flag("--emulate", opts->emulate,
-                "Emulated devices on pseudo-terminals playing the simulated seed_lab run");
+                "Emulated devices on pseudo-terminals playing a simulated depart-and-return run");
   cmd->add_option("--speed", opts->speed, "--emulate: playback speed (1 = real time)")
       ->check(CLI::Range(0.1, 20.0))
       ->capture_default_str();
   cmd->add_option("--duration", opts->duration_s, "--emulate: play only this many seconds");
   cmd->add_option("--seed", opts->seed, "--emulate: simulation seed")->capture_default_str();
+  cmd->add_option("--map", opts->map_path,
+                  "--emulate: map_server map to simulate in (default: the bundled seed_hall)")
+      ->check(CLI::ExistingFile);
   cmd->callback([opts, &globals] {
     Config config = LoadConfigFor(globals);
     std::signal(SIGINT, OnStopSignal);
@@ -85,7 +90,8 @@ void AddRunCommand(CLI::App& app, const GlobalOptions& globals) {
       config.live.status_led_line = -1;
       options.time_scale = opts->speed;
       const sim::SimScenario scenario =
-          sim::MakeScenario(config, SeedLabMap(), "depart-return", opts->seed);
+          sim::MakeScenario(config, opts->map_path.empty() ? BundledMap() : opts->map_path,
+                            "depart-return", opts->seed);
       // Ground truth on a clock started with the run's: the same timeline within microseconds.
       truth_clock = std::make_unique<live::HostClock>(opts->speed);
       player = std::make_unique<live::SimDevicePlayer>(

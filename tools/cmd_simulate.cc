@@ -71,7 +71,7 @@ void AddSimulateCommand(CLI::App& app, const GlobalOptions& globals) {
       "Simulate a recording: the robot drives a route in a map_server map; writes a ROS 2 bag "
       "(radar scans, wheel odometry, ground truth) and BAG/ground_truth.tum");
   cmd->add_option("--map", o->map_path,
-                  "map_server map (YAML + PGM), e.g. config/maps/seed_lab/my_map.yaml")
+                  "map_server map (YAML + PGM), e.g. config/maps/seed_hall/seed_hall.yaml")
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--route", o->route,

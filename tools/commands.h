@@ -34,6 +34,7 @@ void AddImageCommand(CLI::App& app, const GlobalOptions& globals);
 void AddDemoCommand(CLI::App& app, const GlobalOptions& globals);
 void AddOptimizeCommand(CLI::App& app, const GlobalOptions& globals);
 void AddLoopsCommand(CLI::App& app, const GlobalOptions& globals);
+void AddMatchCommand(CLI::App& app, const GlobalOptions& globals);
 void AddDetectorsCommand(CLI::App& app, const GlobalOptions& globals);
 void AddMapCommand(CLI::App& app, const GlobalOptions& globals);
 void AddInfoCommand(CLI::App& app, const GlobalOptions& globals);

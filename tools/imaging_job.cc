@@ -68,6 +68,7 @@ std::vector<std::string> WriteStripOutputs(const std::string& dir, const std::st
   std::ostringstream yaml;
   yaml.precision(10);
   yaml << "# Pixel geometry of " << prefix << "_float.tif: column = +x, row = -y (world frame)\n"
+       << "image: " << prefix << "_float.tif\n"
        << "x0_m: " << strip.grid.x0_m << "  # x of the centre of column 0\n"
        << "y0_m: " << strip.grid.y0_m << "  # y of the centre of row 0 (top row)\n"
        << "resolution_m: " << strip.grid.resolution_m << "\n"

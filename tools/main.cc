@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   AddDemoCommand(app, globals);
   AddOptimizeCommand(app, globals);
   AddLoopsCommand(app, globals);
+  AddMatchCommand(app, globals);
   AddDetectorsCommand(app, globals);
   AddMapCommand(app, globals);
   AddInfoCommand(app, globals);

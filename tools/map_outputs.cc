@@ -113,10 +113,11 @@ nlohmann::json AteJson(const AteResult& a) {
           {"yaw_rmse_deg", a.yaw_rmse_rad * 180.0 / M_PI}};
 }
 
-std::string GridYaml(const ImageGrid& grid, const std::string& what) {
+std::string GridYaml(const ImageGrid& grid, const std::string& what, const std::string& image) {
   std::ostringstream yaml;
   yaml.precision(12);
   yaml << "# Pixel geometry of " << what << ": column = +x, row = -y (world frame)\n"
+       << "image: " << image << "  # the float map this file describes (uwbsar compare reads it)\n"
        << "x0_m: " << grid.x0_m << "  # x of the centre of column 0\n"
        << "y0_m: " << grid.y0_m << "  # y of the centre of row 0 (top row)\n"
        << "resolution_m: " << grid.resolution_m << "\nrows: " << grid.rows
@@ -175,7 +176,8 @@ MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir) {
     cv::Mat observed;
     const cv::Mat map = global.Render(&grid, &observed);
     WriteFloatTiff(staged("map_float.tif"), map);
-    WriteTextAtomic(staged("map_grid.yaml"), GridYaml(grid, "map_float.tif and map.png"));
+    WriteTextAtomic(staged("map_grid.yaml"),
+                    GridYaml(grid, "map_float.tif and map.png", "map_float.tif"));
     WriteImageAtomic(staged("map.png"),
                      RenderMapPng(map, observed, grid, run, trajectory, config.enhance.colormap));
     const OccupancyGrid occupancy =
@@ -354,7 +356,8 @@ std::vector<std::string> WriteExactMap(const MapRun& run, const std::string& out
       [&](const ImagedScan& s) { return corrected[&s - scans.data()]; });
   const std::string base = out_dir + "/map_exact";
   WriteFloatTiff(base + "_float.tif", exact.image);
-  WriteTextAtomic(base + "_grid.yaml", GridYaml(grid, "map_exact_float.tif and map_exact.png"));
+  WriteTextAtomic(base + "_grid.yaml",
+                  GridYaml(grid, "map_exact_float.tif and map_exact.png", "map_exact_float.tif"));
   WriteImageAtomic(base + ".png",
                    Colorize(Enhance8U(exact.image, config.enhance), config.enhance.colormap));
   return {base + "_float.tif", base + "_grid.yaml", base + ".png"};

@@ -6,6 +6,7 @@
 
 #include "backend/compare/grid_alignment.h"
 #include "backend/compare/map_metrics.h"
+#include "backend/compare/sar_image_occupancy.h"
 #include "slam/config.h"
 #include "slam/occupancy_grid.h"
 
@@ -31,11 +32,14 @@ struct ComparisonReport {
   double seconds = 0.0;  ///< loading, alignment and scoring
 };
 
-/// Loads both maps (InputError naming the file on bad input), aligns and scores.
-/// Throws InputError when the maps do not overlap: no observed SAR cell falls on a known
-/// LiDAR cell, before or after alignment. Writes nothing.
+/// Loads both maps (InputError naming the file on bad input), aligns and scores. The SAR
+/// map is a map_server YAML, or a SAR grid YAML naming an intensity image, which becomes
+/// occupancy by `rule` (sar_image_occupancy.h). Throws InputError when the maps do not
+/// overlap: no observed SAR cell falls on a known LiDAR cell, before or after alignment.
+/// Writes nothing.
 ComparisonReport CompareMapFiles(const std::string& sar_yaml, const std::string& lidar_yaml,
-                                 const AlignRequest& request, const CompareConfig& config);
+                                 const AlignRequest& request, const CompareConfig& config,
+                                 const SarOccupancyRule& rule = {});
 
 /// Writes `dir`/overlay.png then `dir`/metrics.json (each to a temporary name, renamed);
 /// returns the paths. `dir` must exist.

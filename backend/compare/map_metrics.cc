@@ -74,14 +74,16 @@ GridComparison CompareOnLidarGrid(const OccupancyGrid& sar, const OccupancyGrid&
       m.lidar_matched += lo && sar_near.at<std::uint8_t>(r, c) != 0;
     }
   }
-  // The paper's rule: every cell of the SAR rectangle, unknown counted as not occupied.
-  const Pose2 T_sar_lidar = T_lidar_sar.Inverse();
-  for (int r = 0; r < lidar.rows; ++r) {
-    for (int c = 0; c < lidar.cols; ++c) {
-      int sr = 0, sc = 0;
-      if (!sar.CellOf(T_sar_lidar * lidar.CellCenter(r, c), &sr, &sc)) continue;
+  // The paper's rule: every cell of the SAR rectangle (the paper: all 140 x 120 cells of its
+  // 7 m x 6 m image, also those beyond the LiDAR grid), unknown counted as not occupied; the
+  // LiDAR cell under each SAR cell centre, none (= not occupied) outside the LiDAR grid.
+  for (int sr = 0; sr < sar.rows; ++sr) {
+    for (int sc = 0; sc < sar.cols; ++sc) {
+      int r = 0, c = 0;
+      const bool lidar_occupied =
+          lidar.CellOf(T_lidar_sar * sar.CellCenter(sr, sc), &r, &c) && lidar.IsOccupied(r, c);
       ++m.rectangle_cells;
-      m.rectangle_differing += (sar_occ.at<std::uint8_t>(r, c) != 0) != lidar.IsOccupied(r, c);
+      m.rectangle_differing += sar.IsOccupied(sr, sc) != lidar_occupied;
     }
   }
   m.paper_difference_ratio = Ratio(m.rectangle_differing, m.rectangle_cells);

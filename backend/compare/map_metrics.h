@@ -14,10 +14,11 @@
 //  - precision: SAR-occupied evaluated cells with a LiDAR-occupied cell within
 //    `tolerance_cells` (Chebyshev: the (2t+1)^2 square) / SAR-occupied evaluated cells;
 //    recall: the same from the LiDAR side; F1 = 2 P R / (P + R).
-//  - paper_difference_ratio: the paper's literal rule, over EVERY LiDAR cell inside the SAR
-//    map's rectangle (observed or not, the LiDAR's unknown included), occupied vs not occupied:
-//    the paper counted all 140 x 120 cells of its 7 m x 6 m SAR image. Reported next to the
-//    observed-cells ratio because it rewards the never-observed (mostly empty) cells.
+//  - paper_difference_ratio: the paper's literal rule, over EVERY cell of the SAR map's
+//    rectangle (observed or not; the LiDAR cell under its centre, unknown or outside the LiDAR
+//    grid counting as not occupied), occupied vs not occupied: the paper counted all
+//    140 x 120 cells of its 7 m x 6 m SAR image. Reported next to the observed-cells ratio
+//    because it rewards the never-observed (mostly empty) cells.
 //  - iou: |SAR occ AND LiDAR occ| / |SAR occ OR LiDAR occ| (strict, no tolerance).
 //  - distances: from every SAR-occupied cell centre (moved by T_lidar_sar, original
 //    resolution) on an evaluated cell to the nearest LiDAR-occupied cell centre anywhere in the
@@ -42,7 +43,7 @@ struct MapMetrics {
   long long evaluated_cells = 0;
   long long differing_cells = 0;
   double difference_ratio = 0.0;
-  long long rectangle_cells = 0;      ///< LiDAR cells inside the SAR map's rectangle
+  long long rectangle_cells = 0;      ///< cells of the SAR map's rectangle
   long long rectangle_differing = 0;  ///< ... occupied in one map and not in the other
   double paper_difference_ratio = 0.0;
   long long sar_occupied = 0;     ///< on evaluated cells

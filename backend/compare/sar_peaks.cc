@@ -32,11 +32,13 @@ FloatSarMap LoadFloatSarMap(const std::string& tiff_path, const std::string& gri
                        "images of one size");
     }
   }
-  if (pages[0].rows != map.grid.rows || pages[0].cols != map.grid.cols) {
+  if (map.grid.rows > 0 && (pages[0].rows != map.grid.rows || pages[0].cols != map.grid.cols)) {
     throw InputError(tiff_path + ": image is " + std::to_string(pages[0].cols) + " x " +
                      std::to_string(pages[0].rows) + " pixels but " + grid_yaml_path + " says " +
                      std::to_string(map.grid.cols) + " x " + std::to_string(map.grid.rows));
   }
+  map.grid.rows = pages[0].rows;
+  map.grid.cols = pages[0].cols;
   if (pages.size() == 2) {
     cv::merge(pages, map.image);
   } else {

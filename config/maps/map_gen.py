@@ -73,8 +73,9 @@ class Grid:
                 if self.cells[base + col] == OCCUPIED:
                     yield (col + 0.5) * self.res, (row + 0.5) * self.res
 
-    def write(self, folder, stem):
-        """Writes stem.pgm (binary P5, top row first) and stem.yaml (map_server, trinary)."""
+    def write(self, folder, stem, origin=(0.0, 0.0)):
+        """Writes stem.pgm (binary P5, top row first) and stem.yaml (map_server, trinary);
+        `origin` is the world position of the map's bottom-left corner."""
         pgm = os.path.join(folder, stem + ".pgm")
         with open(pgm + ".tmp", "wb") as f:
             f.write(b"P5\n%d %d\n255\n" % (self.cols, self.rows))
@@ -83,8 +84,9 @@ class Grid:
         os.replace(pgm + ".tmp", pgm)
         yaml = os.path.join(folder, stem + ".yaml")
         with open(yaml + ".tmp", "w") as f:
-            f.write("image: %s.pgm\nmode: trinary\nresolution: %.2f\norigin: [0.0, 0.0, 0]\n"
-                    "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.25\n" % (stem, self.res))
+            f.write("image: %s.pgm\nmode: trinary\nresolution: %.2f\norigin: [%r, %r, 0]\n"
+                    "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.25\n"
+                    % (stem, self.res, float(origin[0]), float(origin[1])))
         os.replace(yaml + ".tmp", yaml)
 
 

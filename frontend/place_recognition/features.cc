@@ -1,8 +1,11 @@
 #include "frontend/place_recognition/features.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <numeric>
 #include <opencv2/imgproc.hpp>
 
@@ -118,6 +121,55 @@ FeatureImage MakeFeatureImage(const cv::Mat& sar, const EnhanceConfig& enhance, 
     cv::erode(out.mask, out.mask, kernel, cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
   }
   return out;
+}
+
+FeatureImage DownsampleFeatureImage(FeatureImage image, double factor, double white_percentile,
+                                    ImageGrid* grid) {
+  if (factor > 1.0 && !image.gray.empty()) {
+    const int cols = std::max(1, static_cast<int>(std::lround(image.gray.cols / factor)));
+    const int rows = std::max(1, static_cast<int>(std::lround(image.gray.rows / factor)));
+    cv::Mat gray, mask;
+    cv::resize(image.gray, gray, cv::Size(cols, rows), 0, 0, cv::INTER_AREA);
+    cv::resize(image.mask, mask, cv::Size(cols, rows), 0, 0, cv::INTER_AREA);
+    image.gray = gray;
+    image.mask = mask >= 255;
+    if (grid != nullptr) *grid = grid->Resized(cols, rows);
+  }
+  NormalizeFeatureContrast(&image, white_percentile);
+  return image;
+}
+
+void NormalizeFeatureContrast(FeatureImage* image, double white_percentile) {
+  if (image->gray.empty()) return;
+  if (white_percentile >= 100.0 || cv::countNonZero(image->mask) == 0) {
+    cv::normalize(image->gray, image->gray, 0, 255, cv::NORM_MINMAX, CV_8U);
+    return;
+  }
+  // Percentile of the measured pixels from their 8-bit histogram.
+  std::array<long long, 256> hist{};
+  long long total = 0;
+  for (int r = 0; r < image->gray.rows; ++r) {
+    const std::uint8_t* g = image->gray.ptr<std::uint8_t>(r);
+    const std::uint8_t* m = image->mask.ptr<std::uint8_t>(r);
+    for (int c = 0; c < image->gray.cols; ++c) {
+      if (m[c]) ++hist[g[c]], ++total;
+    }
+  }
+  int lo = 0;
+  while (hist[lo] == 0) ++lo;
+  const double target = static_cast<double>(total) * std::max(0.0, white_percentile) / 100.0;
+  long long seen = 0;
+  int hi = lo;
+  for (int v = 0; v < 256; ++v) {
+    seen += hist[v];
+    hi = v;
+    if (static_cast<double>(seen) >= target) break;
+  }
+  if (hi <= lo) {
+    cv::normalize(image->gray, image->gray, 0, 255, cv::NORM_MINMAX, CV_8U);
+    return;
+  }
+  image->gray.convertTo(image->gray, CV_8U, 255.0 / (hi - lo), -255.0 * lo / (hi - lo));
 }
 
 FeatureSet ComputeFeatures(const FeatureImage& image, DetectorKind kind,

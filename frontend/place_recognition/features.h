@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "frontend/image_grid.h"
 #include "slam/config.h"
 
 namespace uwbsar {
@@ -39,6 +40,17 @@ struct FeatureImage {
 /// From a tile (CV_32FC1 paper mode, CV_32FC2 coherent). Non-finite pixels count as
 /// not imaged.
 FeatureImage MakeFeatureImage(const cv::Mat& sar, const EnhanceConfig& enhance, int erode_px);
+
+/// Averages a feature image down by `factor` (> 1; otherwise unchanged); keeps only pixels
+/// whose whole footprint was inside the mask. `grid`, when given, is resized to match
+/// (ImageGrid::Resized). Then stretches the contrast (NormalizeFeatureContrast).
+FeatureImage DownsampleFeatureImage(FeatureImage image, double factor, double white_percentile,
+                                    ImageGrid* grid = nullptr);
+/// Maps the darkest measured (mask) pixel to 0 and the `white_percentile` percentile of the
+/// measured pixels to 255, saturating brighter ones (100 = min-max normalisation). A few
+/// very bright scatterers would otherwise leave the rest of the scene in a handful of gray
+/// levels, below the detectors' contrast thresholds.
+void NormalizeFeatureContrast(FeatureImage* image, double white_percentile);
 
 struct FeatureSet {
   DetectorKind detector = DetectorKind::kAkaze;

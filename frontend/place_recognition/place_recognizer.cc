@@ -20,20 +20,9 @@ KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe, const Config&
   k.grid = keyframe.grid;
   k.path_begin_m = keyframe.path_begin_m;
   k.T_world_anchor = keyframe.T_world_anchor;
-  FeatureImage image = MakeFeatureImage(keyframe.image, config.enhance, d.mask_erode_px);
-  const double factor = FeatureDownsampling(config);
-  if (factor > 1.0 && !image.gray.empty()) {
-    // Average the enhanced tile down to the feature resolution; keep only pixels whose
-    // whole footprint was inside the (eroded) imaged area.
-    const int cols = std::max(1, static_cast<int>(std::lround(image.gray.cols / factor)));
-    const int rows = std::max(1, static_cast<int>(std::lround(image.gray.rows / factor)));
-    cv::Mat gray, mask;
-    cv::resize(image.gray, gray, cv::Size(cols, rows), 0, 0, cv::INTER_AREA);
-    cv::resize(image.mask, mask, cv::Size(cols, rows), 0, 0, cv::INTER_AREA);
-    image.mask = mask >= 255;
-    cv::normalize(gray, image.gray, 0, 255, cv::NORM_MINMAX, CV_8U);
-    k.grid = keyframe.grid.Resized(cols, rows);
-  }
+  const FeatureImage image =
+      DownsampleFeatureImage(MakeFeatureImage(keyframe.image, config.enhance, d.mask_erode_px),
+                             FeatureDownsampling(config), d.white_percentile, &k.grid);
   k.akaze = ComputeFeatures(image, DetectorKind::kAkaze, d);
   k.orb = ComputeFeatures(image, DetectorKind::kOrb, d);
   // Where the robot drove while imaging the tile: a better "position" of the tile than
@@ -59,17 +48,21 @@ double FeatureDownsampling(const Config& config) {
   return r > config.imaging.pixel_size_m ? r / config.imaging.pixel_size_m : 1.0;
 }
 
-PlaceRecognizer::PlaceRecognizer(const Config& config)
-    : config_(config), index_(config.place_recognition.candidates.grid_cell_m) {
+PlaceRecognitionConfig AtFeatureResolution(PlaceRecognitionConfig pr, double factor) {
   // The pixel thresholds are the paper's at the tile resolution: at a coarser feature
   // resolution they shrink in pixels so that they keep their size in metres.
-  const double f = FeatureDownsampling(config);
-  PlaceRecognitionConfig& pr = config_.place_recognition;
-  pr.matching.ransac_reprojection_px /= f;
-  pr.validation.max_tx_difference_px /= f;
-  pr.validation.max_ty_difference_px /= f;
-  pr.validation.min_inlier_spread_px /= f;
-  pr.validation.min_residual_px /= f;
+  pr.matching.ransac_reprojection_px /= factor;
+  pr.validation.max_tx_difference_px /= factor;
+  pr.validation.max_ty_difference_px /= factor;
+  pr.validation.min_inlier_spread_px /= factor;
+  pr.validation.min_residual_px /= factor;
+  return pr;
+}
+
+PlaceRecognizer::PlaceRecognizer(const Config& config)
+    : config_(config), index_(config.place_recognition.candidates.grid_cell_m) {
+  config_.place_recognition =
+      AtFeatureResolution(config.place_recognition, FeatureDownsampling(config));
 }
 
 Point2 PlaceRecognizer::CentreInWorld(const KeyframeFeatures& k) const {

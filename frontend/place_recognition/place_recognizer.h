@@ -32,6 +32,11 @@ struct KeyframeFeatures {
 /// Tile pixels per feature pixel (detectors.feature_resolution_m / imaging.pixel_size_m, >= 1).
 double FeatureDownsampling(const Config& config);
 
+/// `pr` with its pixel thresholds (RANSAC, AKAZE/ORB agreement, inlier spread, residual
+/// floor), which are the paper's at the tile resolution, divided by `factor` (feature pixel
+/// size / tile pixel size) so that they keep their size in metres.
+PlaceRecognitionConfig AtFeatureResolution(PlaceRecognitionConfig pr, double factor);
+
 /// Computes a keyframe's cached features (AKAZE and ORB) from its tile, at
 /// detectors.feature_resolution_m (`grid` is then the downsampled tile's grid).
 KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe, const Config& config);

@@ -11,13 +11,13 @@
 #include "backend/graph_plot.h"
 #include "backend/pose_graph.h"
 #include "backend/trajectory_metrics.h"
+#include "test/shared_data.h"
 
 namespace uwbsar {
 namespace {
 
-const std::string kData = std::string(UWBSAR_SOURCE_DIR) + "/test/data/posegraph/";
-
-bool HaveData() { return std::filesystem::exists(kData + "manhattanOlson3500.g2o"); }
+// The public data sets are read where they lie (test/shared_data.h), never copied.
+const std::string kData = testing::SharedDataPath("posegraph/");
 
 double AteOf(const PoseGraph& g, const std::vector<Pose2>& truth) {
   std::vector<Pose2> est;
@@ -36,7 +36,8 @@ BackendConfig PlainLeastSquares() {
 class M3500Test : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!HaveData()) GTEST_SKIP() << "no " << kData;
+    UWBSAR_NEED_SHARED_DATA("posegraph/manhattanOlson3500.g2o");
+    UWBSAR_NEED_SHARED_DATA("posegraph/manhattanOlson3500_groundtruth.txt");
     file_ = ReadG2o(kData + "manhattanOlson3500.g2o");
     truth_ = ReadGroundTruthChain(kData + "manhattanOlson3500_groundtruth.txt");
   }
@@ -118,7 +119,7 @@ TEST_F(M3500Test, HundredFalseLoopsAreAllRejected) {
 }
 
 TEST(MitBTest, ChordalStartReachesTheBasinThatSatisfiesEveryLoop) {
-  if (!HaveData()) GTEST_SKIP() << "no " << kData;
+  UWBSAR_NEED_SHARED_DATA("posegraph/input_MITb_g2o.g2o");
   const G2oGraph file = ReadG2o(kData + "input_MITb_g2o.g2o");
   // From the file's guess, plain Levenberg-Marquardt ends in a wrong basin.
   PoseGraph from_guess(PlainLeastSquares());

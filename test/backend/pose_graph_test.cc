@@ -9,11 +9,34 @@
 #include "backend/g2o_io.h"
 #include "backend/trajectory_metrics.h"
 #include "slam/errors.h"
+#include "test/shared_data.h"
 
 namespace uwbsar {
 namespace {
 
-const std::string kFixture = std::string(UWBSAR_SOURCE_DIR) + "/test/data/backend/m3500_first300";
+/// The first 300 poses of M3500 (public data set, read in place, see test/shared_data.h):
+/// their vertices, the edges among them and the ground-truth chain.
+struct M3500Prefix {
+  G2oGraph graph;
+  std::vector<Pose2> truth;
+};
+M3500Prefix LoadM3500Prefix(int num_poses) {
+  M3500Prefix out;
+  const G2oGraph full = ReadG2o(testing::SharedDataPath("posegraph/manhattanOlson3500.g2o"));
+  for (const G2oVertex& v : full.vertices) {
+    if (v.id < num_poses) out.graph.vertices.push_back(v);
+  }
+  for (const G2oEdge& e : full.edges) {
+    if (e.from_id < num_poses && e.to_id < num_poses) out.graph.edges.push_back(e);
+  }
+  for (int id : full.fixed_ids) {
+    if (id < num_poses) out.graph.fixed_ids.push_back(id);
+  }
+  out.truth =
+      ReadGroundTruthChain(testing::SharedDataPath("posegraph/manhattanOlson3500_groundtruth.txt"));
+  out.truth.resize(static_cast<std::size_t>(num_poses));
+  return out;
+}
 
 /// A robot driving around a 10-node square twice: truth, and odometry with a yaw bias.
 struct SquareRun {
@@ -255,9 +278,12 @@ TEST(PoseGraphTest, FrontendThreadCanAddWhileABackgroundThreadOptimises) {
   EXPECT_LT(AteOf(g, run.truth), 0.05);
 }
 
-TEST(PoseGraphTest, FixtureFromOdometryConvergesToPlainLeastSquares) {
-  const G2oGraph file = ReadG2o(kFixture + ".g2o");
-  const std::vector<Pose2> truth = ReadGroundTruthChain(kFixture + "_groundtruth.txt");
+TEST(PoseGraphTest, M3500PrefixFromOdometryConvergesToPlainLeastSquares) {
+  UWBSAR_NEED_SHARED_DATA("posegraph/manhattanOlson3500.g2o");
+  UWBSAR_NEED_SHARED_DATA("posegraph/manhattanOlson3500_groundtruth.txt");
+  const M3500Prefix prefix = LoadM3500Prefix(300);
+  const G2oGraph& file = prefix.graph;
+  const std::vector<Pose2>& truth = prefix.truth;
   PoseGraph robust;
   LoadIntoPoseGraph(file, &robust);
   const OptimizeResult r = robust.Optimize();

@@ -15,6 +15,7 @@
 #include "drivers/sim/sim_recorder.h"
 #include "slam/config_io.h"
 #include "test/drivers/sim_test_util.h"
+#include "test/shared_data.h"
 
 namespace uwbsar::sim {
 namespace {
@@ -50,6 +51,7 @@ std::string ReadFile(const fs::path& path) {
 }
 
 TEST(SimStreamTest, MessagesAreTimeOrderedAtTheirRates) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const Config config = ShortRunConfig();
   const SimScenario scenario = MakeScenario(config, testing::SeedLabMap(), "depart-return", 1);
   SimStream stream(config, scenario, 1);
@@ -82,6 +84,7 @@ TEST(SimStreamTest, MessagesAreTimeOrderedAtTheirRates) {
 }
 
 TEST(SimStreamTest, ScansSeeTheRoomWallsAtTheirRange) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   // At the start (0, 0) the left radar (y = +0.18 m) faces the wall at y = 1.6 m and the
   // right radar the one at y = -1.8 m: both walls are lit straight ahead, and each scan's
   // leading edge sits at the range of its nearest lit scatterer (less half a pulse).
@@ -122,6 +125,7 @@ TEST(SimStreamTest, ScansSeeTheRoomWallsAtTheirRange) {
 }
 
 TEST(SimStreamTest, SameSeedSameMessagesOtherSeedOtherNoise) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const Config config = ShortRunConfig();
   const SimScenario a_scenario = MakeScenario(config, testing::SeedLabMap(), "depart-return", 3);
   const SimScenario c_scenario = MakeScenario(config, testing::SeedLabMap(), "depart-return", 4);
@@ -139,6 +143,7 @@ TEST(SimStreamTest, SameSeedSameMessagesOtherSeedOtherNoise) {
 }
 
 TEST(SimStreamTest, OdometryAndTruthStartTogetherAndDrift) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   Config config = ShortRunConfig();
   config.simulator.odometry.wheel_scale_error = 0.05;
   const SimScenario scenario = MakeScenario(config, testing::SeedLabMap(), "depart-return", 1);
@@ -153,6 +158,7 @@ TEST(SimStreamTest, OdometryAndTruthStartTogetherAndDrift) {
 }
 
 TEST(SimStreamTest, LaserMeasuresTheWallsWhenEnabled) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   Config config = ShortRunConfig();
   config.simulator.laser.enabled = true;
   config.simulator.laser.noise_std_m = 0.0;
@@ -175,6 +181,7 @@ TEST(SimRecorderTest, TumLinesHoldExactStampsAndQuaternions) {
 }
 
 TEST(SimRecorderTest, TextLogAndTumAreWrittenAndReadBack) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const Config config = ShortRunConfig();
   const SimScenario scenario = MakeScenario(config, testing::SeedLabMap(), "depart-return", 1);
   SimStream stream(config, scenario, 1);
@@ -195,6 +202,7 @@ TEST(SimRecorderTest, TextLogAndTumAreWrittenAndReadBack) {
 }
 
 TEST(SimBagTest, BagReadsBackAsTheStreamAndIsReproducible) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   for (const std::string storage : {"sqlite3", "mcap"}) {
     Config config = ShortRunConfig();
     config.simulator.laser.enabled = true;
@@ -245,6 +253,7 @@ TEST(SimBagTest, BagReadsBackAsTheStreamAndIsReproducible) {
 }
 
 TEST(SimScenarioTest, BadRouteOrMapIsAnInputError) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const Config config = ShortRunConfig();
   EXPECT_THROW(MakeScenario(config, testing::SeedLabMap(), "spiral", 1), InputError);
   EXPECT_THROW(MakeScenario(config, "/nonexistent/map.yaml", "loop", 1), InputError);
@@ -257,6 +266,7 @@ TEST(SimScenarioTest, BadRouteOrMapIsAnInputError) {
 }
 
 TEST(SimScenarioTest, PointTargetsComeFromConfigAndFile) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const fs::path dir = TempDir("targets");
   std::ofstream(dir / "poles.yaml") << "point_targets:\n  - {x_m: 2.0, y_m: 1.0, rcs_m2: 0.5}\n"
                                        "  - {x_m: 4.0, y_m: -1.0}\n";

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "slam/occupancy_grid.h"
+#include "test/shared_data.h"
 
 namespace uwbsar::sim::testing {
 
@@ -39,8 +40,6 @@ inline std::vector<int> WallAlongX(OccupancyGrid* g, double y_m, double x0_m, do
   return cells;
 }
 
-inline std::string SeedLabMap() {
-  return std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_lab/my_map.yaml";
-}
+inline std::string SeedLabMap() { return ::uwbsar::testing::SeedLabLidarMap(); }
 
 }  // namespace uwbsar::sim::testing

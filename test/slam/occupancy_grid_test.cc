@@ -6,6 +6,8 @@
 #include <fstream>
 #include <string>
 
+#include "test/shared_data.h"
+
 namespace uwbsar {
 namespace {
 
@@ -169,8 +171,8 @@ TEST_F(OccupancyGridTest, BadYamlValuesNameKeyAndLine) {
 }
 
 TEST(SeedLabMapTest, LoadsTheRoomWithItsOrigin) {
-  const OccupancyGrid g =
-      LoadOccupancyGrid(std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_lab/my_map.yaml");
+  UWBSAR_NEED_SEED_LAB_MAP();
+  const OccupancyGrid g = LoadOccupancyGrid(testing::SeedLabLidarMap());
   EXPECT_EQ(g.cols, 320);
   EXPECT_EQ(g.rows, 82);
   EXPECT_DOUBLE_EQ(g.origin.x_m, -4.82);

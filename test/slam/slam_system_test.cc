@@ -7,16 +7,16 @@
 #include <cstdio>
 #include <map>
 
+#include "test/shared_data.h"
 #include "tools/map_job.h"
 
 namespace uwbsar {
 namespace {
 
-std::string SeedLab() {
-  return std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_lab/my_map.yaml";
-}
+std::string SeedLab() { return ::uwbsar::testing::SeedLabLidarMap(); }
 
 TEST(SlamSystemTest, SeedLabDepartReturnBeatsOdometryByThreeTimes) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const Config config;
   const tools::MapRun run = tools::MapSimulation(config, SeedLab(), "depart-return", 1);
   std::vector<std::pair<TimestampNs, Pose2>> odometry;
@@ -68,6 +68,7 @@ TEST(SlamSystemTest, SeedLabDepartReturnBeatsOdometryByThreeTimes) {
 // The keyframe thread changes who does the work, not the result: the frontend never
 // reads the graph and the worker takes keyframes in order.
 TEST(SlamSystemTest, KeyframeThreadGivesTheSameResultAsOneThread) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   Config threaded;
   threaded.slam.keyframe_thread = true;
   threaded.slam.keyframe_queue_size = 2;  // the feeder also waits on a full queue

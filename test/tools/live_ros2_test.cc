@@ -19,6 +19,7 @@
 #include "slam/occupancy_grid.h"
 #include "test/drivers/dds/dds_test_util.h"
 #include "test/drivers/live/live_test_util.h"
+#include "test/shared_data.h"
 #include "tools/live_runner.h"
 #include "tools/map_job.h"
 
@@ -58,10 +59,9 @@ bool Prepare(const std::string& name, Fixture* f) {
   fs::remove_all(f->dir);
   fs::create_directories(f->dir);
   f->bag = f->dir + "/sim";
-  const std::string cmd = std::string(UWBSAR_BIN) +
-                          " --quiet simulate --map " UWBSAR_SOURCE_DIR
-                          "/config/maps/seed_lab/my_map.yaml --out " +
-                          f->bag + " > /dev/null";
+  const std::string cmd = std::string(UWBSAR_BIN) + " --quiet simulate --map " +
+                          ::uwbsar::testing::SeedLabLidarMap() + " --out " + f->bag +
+                          " > /dev/null";
   if (std::system(cmd.c_str()) != 0) throw std::runtime_error("simulate failed: " + cmd);
   const DdsConfig loopback = dds::testing::LoopbackConfig();
   f->config.dds.domain_id = loopback.domain_id;
@@ -99,6 +99,7 @@ LiveRunResult RunWhilePlaying(const Fixture& f, const std::vector<std::string>& 
 }
 
 TEST(LiveRos2Test, A_B_PeerDrivesALiveRunMatchingOfflineAndPublishesWhatIsOnDisk) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   Fixture f;
   if (!Prepare("ab", &f)) GTEST_SKIP() << "UWBSAR_VENV not set (make test sets it)";
   BackgroundCommand listener(PlayerCommand(f.python, "listen", "--idle 6 --timeout 300"));
@@ -197,6 +198,7 @@ TEST(LiveRos2Test, A_B_PeerDrivesALiveRunMatchingOfflineAndPublishesWhatIsOnDisk
 }
 
 TEST(LiveRos2Test, C_PublisherGoneDuplicatesDisorderAndWrongTypeAreSurvived) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   Fixture f;
   if (!Prepare("c", &f)) GTEST_SKIP() << "UWBSAR_VENV not set (make test sets it)";
   // A wrong type on the odometry topic while the bag plays.
@@ -243,6 +245,7 @@ TEST(LiveRos2Test, C_PublisherGoneDuplicatesDisorderAndWrongTypeAreSurvived) {
 // The robot's own serial devices (emulated), results published for RViz2 on a second
 // machine: a subscriber hears the map that is on disk and poses.
 TEST(LiveRos2Test, SerialRunPublishesItsResultsWhenAsked) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const std::string python = dds::testing::VenvPython();
   if (python.empty()) GTEST_SKIP() << "UWBSAR_VENV not set (make test sets it)";
   Config config;

@@ -184,7 +184,7 @@ TEST(MapCliTest, AteEqualsEvoApeWithinOneMillimetre) {
   // rejects as degenerate (ours aligns in 2-D and handles it).
   const CliRun sim =
       Uwbsar("simulate --map " + std::string(UWBSAR_SOURCE_DIR) +
-             "/config/maps/seed_lab/my_map.yaml --route loop --seed 3 --out " + dir + "/bag");
+             "/config/maps/seed_hall/seed_hall.yaml --route loop --seed 3 --out " + dir + "/bag");
   ASSERT_EQ(sim.exit_code, 0) << sim.output;
   const CliRun map = Uwbsar("map " + dir + "/bag --out " + dir + "/out");
   ASSERT_EQ(map.exit_code, 0) << map.output;

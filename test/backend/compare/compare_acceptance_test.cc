@@ -10,6 +10,7 @@
 #include <string>
 
 #include "test/cli_runner.h"
+#include "test/shared_data.h"
 #include "test_maps.h"
 
 namespace uwbsar {
@@ -28,6 +29,7 @@ nlohmann::json Compare(const std::string& map_yaml, const std::string& out_dir) 
 }
 
 TEST(CompareAcceptanceTest, SeedLabSlamMapMatchesLidarAndBeatsOdometryOnly) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const std::string dir = testing::FreshDir("acceptance_b");
   RunUwbsar("simulate --map " + testing::SeedLabYaml() + " --route depart-return --out " + dir +
             "/bag");

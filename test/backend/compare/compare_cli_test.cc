@@ -11,6 +11,7 @@
 
 #include "backend/compare/pcd_export.h"
 #include "test/cli_runner.h"
+#include "test/shared_data.h"
 #include "test_maps.h"
 
 namespace uwbsar {
@@ -22,6 +23,7 @@ using testing::CliRun;
 using testing::Uwbsar;
 
 TEST(CompareCliTest, GridAgainstItselfPrintsPerfectScoresAndWritesOutputs) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const std::string dir = testing::FreshDir("cli_self");
   const std::string map = testing::SeedLabYaml();
   const CliRun r = Uwbsar("compare " + map + " " + map + " --out " + dir + "/out");
@@ -34,6 +36,7 @@ TEST(CompareCliTest, GridAgainstItselfPrintsPerfectScoresAndWritesOutputs) {
 }
 
 TEST(CompareCliTest, JsonFlagPrintsTheMetricsDocument) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const std::string dir = testing::FreshDir("cli_json");
   const std::string map = testing::SeedLabYaml();
   const CliRun r =
@@ -45,6 +48,7 @@ TEST(CompareCliTest, JsonFlagPrintsTheMetricsDocument) {
 }
 
 TEST(CompareCliTest, FixedAlignmentAndInitAreParsedInMetresAndDegrees) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const std::string dir = testing::FreshDir("cli_fixed");
   const std::string map = testing::SeedLabYaml();
   CliRun r = Uwbsar("compare " + map + " " + map + " --align 0.05,0,0 --json --out " + dir, false);
@@ -61,6 +65,7 @@ TEST(CompareCliTest, FixedAlignmentAndInitAreParsedInMetresAndDegrees) {
 }
 
 TEST(CompareCliTest, MalformedTransformIsUsageError) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const std::string map = testing::SeedLabYaml();
   EXPECT_EQ(Uwbsar("compare " + map + " " + map + " --out /tmp/x --align 1,2").exit_code, 2);
   EXPECT_EQ(Uwbsar("compare " + map + " " + map + " --out /tmp/x --align icp,1,2").exit_code, 2);
@@ -70,6 +75,7 @@ TEST(CompareCliTest, MalformedTransformIsUsageError) {
 }
 
 TEST(CompareCliTest, BadInputIsExitCode3NamingTheFileAndWritesNothing) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const std::string dir = testing::FreshDir("cli_bad");
   std::ofstream(dir + "/missing.yaml") << "image: gone.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n";
   std::ofstream(dir + "/zero.yaml") << "image: gone.pgm\nresolution: 0\norigin: [0, 0, 0]\n";
@@ -90,6 +96,7 @@ TEST(CompareCliTest, BadInputIsExitCode3NamingTheFileAndWritesNothing) {
 }
 
 TEST(ExportPcdCliTest, WritesOccupiedCellsThatPclReadsBack) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const std::string dir = testing::FreshDir("cli_pcd");
   const CliRun r = Uwbsar("export-pcd " + testing::SeedLabYaml() + " --out " + dir + "/lab.pcd");
   ASSERT_EQ(r.exit_code, 0) << r.output;

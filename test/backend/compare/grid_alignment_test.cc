@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "backend/compare/map_metrics.h"
+#include "test/shared_data.h"
 #include "test_maps.h"
 
 namespace uwbsar {
@@ -23,6 +24,7 @@ void ExpectWithinOneCell(const Pose2& T, const Pose2& expected) {
 }
 
 TEST(GridAlignmentTest, IdenticalGridsAlignToIdentity) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const OccupancyGrid lidar = testing::SeedLabGrid();
   const std::vector<Point2> points = OccupiedCellCenters(lidar);
   const AlignmentResult a = AlignPointSets(points, points, Pose2{}, CompareConfig{});
@@ -62,6 +64,7 @@ INSTANTIATE_TEST_SUITE_P(Methods, MovedCopyTest,
                          ::testing::Values("point_to_point", "point_to_plane"));
 
 TEST(GridAlignmentTest, PointToPlaneRealignsExactCopyExactly) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   // The same cells, declared with a moved and rotated origin: an exact rigid copy. (Point-to-
   // point ICP can lock up to a cell off here: cell centres along a wall alias each other.)
   const OccupancyGrid lidar = testing::SeedLabGrid();
@@ -81,6 +84,7 @@ TEST(GridAlignmentTest, PointToPlaneRealignsExactCopyExactly) {
 }
 
 TEST(GridAlignmentTest, UserInitialTransformIsWhereIcpStarts) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   // 40 deg is beyond ICP's reach from the origins but fine from a close user guess.
   const OccupancyGrid lidar = testing::SeedLabGrid();
   const Pose2 far{0.3, 0.2, 40.0 * kDeg};
@@ -103,6 +107,7 @@ TEST(GridAlignmentTest, TooFewPointsAreReportedNotAligned) {
 }
 
 TEST(GridAlignmentTest, DistantPointSetsAreRejected) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const OccupancyGrid lidar = testing::SeedLabGrid();
   const auto target = OccupiedCellCenters(lidar);
   std::vector<Point2> source = target;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "test/shared_data.h"
 #include "test_maps.h"
 
 namespace uwbsar {
@@ -10,6 +11,7 @@ namespace {
 using testing::FreeGrid;
 
 TEST(GridResampleTest, IdentityCopiesAnEqualGridExactly) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const OccupancyGrid lidar = testing::SeedLabGrid();
   const ResampledGrid r = ResampleOnto(lidar, Pose2{}, lidar);
   EXPECT_EQ(r.grid.cells, lidar.cells);

@@ -10,6 +10,7 @@
 
 #include "backend/compare/overlay.h"
 #include "slam/errors.h"
+#include "test/shared_data.h"
 #include "test_maps.h"
 
 namespace uwbsar {
@@ -34,6 +35,7 @@ void WriteText(const std::string& path, const std::string& text) {
 }
 
 TEST(MapComparisonTest, SeedLabAgainstItselfScoresPerfectAndWritesOutputs) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const std::string yaml = testing::SeedLabYaml();
   const ComparisonReport r = CompareMapFiles(yaml, yaml, AlignRequest{}, CompareConfig{});
   ASSERT_TRUE(r.alignment.accepted) << r.alignment.reason;
@@ -72,6 +74,7 @@ TEST(MapComparisonTest, SeedLabAgainstItselfScoresPerfectAndWritesOutputs) {
 }
 
 TEST(MapComparisonTest, MovedCopyAtCoarserResolutionIsRealignedThroughFiles) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   // Acceptance A through the files: shifted (0.4, -0.25) m, rotated 7 deg, and stored at
   // 0.1 m cells, so resampling is exercised too.
   const std::string dir = testing::FreshDir("moved");
@@ -95,6 +98,7 @@ TEST(MapComparisonTest, MovedCopyAtCoarserResolutionIsRealignedThroughFiles) {
 }
 
 TEST(MapComparisonTest, FixedTransformIsUsedAsGiven) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   AlignRequest fixed;
   fixed.mode = "fixed";
   fixed.T_lidar_sar = {0.05, 0.0, 0.0};  // one cell
@@ -118,6 +122,7 @@ class BadInputTest : public ::testing::Test {
 };
 
 TEST_F(BadInputTest, YamlPointingToMissingImageNamesBothFiles) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const std::string yaml = Yaml("missing.yaml", "nowhere.pgm");
   const std::string msg = CompareError(yaml, testing::SeedLabYaml());
   EXPECT_NE(msg.find("missing.yaml"), std::string::npos) << msg;
@@ -125,6 +130,7 @@ TEST_F(BadInputTest, YamlPointingToMissingImageNamesBothFiles) {
 }
 
 TEST_F(BadInputTest, PgmWithWrongHeaderIsNamed) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   WriteText(dir_ + "/bad.pgm", "P6\n2 2\n255\n" + std::string(12, '\0'));
   const std::string msg = CompareError(testing::SeedLabYaml(), Yaml("bad.yaml", "bad.pgm"));
   EXPECT_NE(msg.find("bad.pgm"), std::string::npos) << msg;
@@ -132,6 +138,7 @@ TEST_F(BadInputTest, PgmWithWrongHeaderIsNamed) {
 }
 
 TEST_F(BadInputTest, PgmShorterThanItsHeaderIsNamed) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   WriteText(dir_ + "/short.pgm", "P5\n100 100\n255\n" + std::string(50, '\xfe'));
   const std::string msg = CompareError(Yaml("short.yaml", "short.pgm"), testing::SeedLabYaml());
   EXPECT_NE(msg.find("short.pgm"), std::string::npos) << msg;
@@ -139,6 +146,7 @@ TEST_F(BadInputTest, PgmShorterThanItsHeaderIsNamed) {
 }
 
 TEST_F(BadInputTest, NonPositiveResolutionIsNamed) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   WriteText(dir_ + "/ok.pgm", "P5\n2 2\n255\n" + std::string(4, '\xfe'));
   for (double resolution : {0.0, -0.05}) {
     const std::string msg =
@@ -149,6 +157,7 @@ TEST_F(BadInputTest, NonPositiveResolutionIsNamed) {
 }
 
 TEST_F(BadInputTest, MapsThatDoNotOverlapAreRefusedInEveryAlignMode) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   OccupancyGrid far = testing::SeedLabGrid();
   far.origin.x_m += 100.0;
   const std::string far_yaml = testing::WriteMapServer(far, dir_, "far");

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "test/shared_data.h"
 #include "test_maps.h"
 
 namespace uwbsar {
@@ -19,6 +20,7 @@ void SetUnknown(OccupancyGrid& g, int row, int col) {
 }
 
 TEST(MapMetricsTest, SeedLabAgainstItselfIsPerfect) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const OccupancyGrid lidar = testing::SeedLabGrid();
   const MapMetrics m = CompareOnLidarGrid(lidar, lidar, Pose2{}, 1).metrics;
   EXPECT_GT(m.evaluated_cells, 10000);
@@ -37,6 +39,7 @@ TEST(MapMetricsTest, SeedLabAgainstItselfIsPerfect) {
 }
 
 TEST(MapMetricsTest, OneCellShiftIsWithinToleranceButNotStrictlyEqual) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const OccupancyGrid lidar = testing::SeedLabGrid();
   const Pose2 one_cell{0.05, 0.0, 0.0};
   const MapMetrics tolerant = CompareOnLidarGrid(lidar, lidar, one_cell, 1).metrics;

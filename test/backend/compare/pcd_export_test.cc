@@ -70,7 +70,7 @@ TEST(PcdExportErrorTest, UnwritablePathAndUnreadableFileAreInputErrors) {
 /// A float SAR map with Gaussian blobs (positive) and a negative lobe.
 FloatSarMap BlobMap() {
   FloatSarMap map;
-  map.grid = {-1.0, 2.0, 0.01, 100, 200, "paper"};
+  map.grid = {-1.0, 2.0, 0.01, 100, 200, "paper", ""};
   map.image = cv::Mat(100, 200, CV_32F, cv::Scalar(0));
   auto blob = [&](int row, int col, float amplitude) {
     for (int r = 0; r < map.image.rows; ++r) {

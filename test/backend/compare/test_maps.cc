@@ -8,12 +8,11 @@
 #include <fstream>
 
 #include "backend/compare/map_loading.h"
+#include "test/shared_data.h"
 
 namespace uwbsar::testing {
 
-std::string SeedLabYaml() {
-  return std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_lab/my_map.yaml";
-}
+std::string SeedLabYaml() { return ::uwbsar::testing::SeedLabLidarMap(); }
 
 OccupancyGrid SeedLabGrid() { return LoadMapForComparison(SeedLabYaml(), true); }
 

@@ -7,8 +7,8 @@
 
 namespace uwbsar::testing {
 
-/// config/maps/seed_lab/my_map.yaml (the paper's LiDAR grid, 320 x 82 cells at 0.05 m), as the
-/// comparison reads it (grey 205 unknown).
+/// ../shared/data/maps/seed_lab/my_map.yaml (the paper's LiDAR grid, 320 x 82 cells at 0.05 m), as
+/// the comparison reads it (grey 205 unknown).
 std::string SeedLabYaml();
 OccupancyGrid SeedLabGrid();
 

@@ -15,6 +15,7 @@
 
 #include "drivers/rosbag/bag_reader.h"
 #include "live_test_util.h"
+#include "test/shared_data.h"
 
 namespace uwbsar::live {
 namespace {
@@ -53,6 +54,7 @@ std::vector<std::pair<int, int>> NonMarginalDifferences(const SlamSystem& a, con
 }
 
 TEST(LiveAcceptanceTest, A_B_RealTimeRunMatchesOfflineMappingAndReportsLatency) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   Config config;
   const EmulatedRun live = RunEmulated(config, "accept_a", 1.0, 0.0);
   const tools::LiveRunResult& r = live.result;
@@ -97,6 +99,7 @@ TEST(LiveAcceptanceTest, A_B_RealTimeRunMatchesOfflineMappingAndReportsLatency) 
 }
 
 TEST(LiveAcceptanceTest, C_FaultsAreReportedAndTheRunCompletesWithoutFalseLoops) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   Config config;
   EmulatorFaults faults;
   faults.unplug_radar = 1;

@@ -6,11 +6,13 @@
 #include <nlohmann/json.hpp>
 
 #include "live_test_util.h"
+#include "test/shared_data.h"
 
 namespace uwbsar::live {
 namespace {
 
 TEST(LiveRunTest, RecordingMappedOfflineReproducesTheLiveTrajectory) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   Config config;
   config.live.snapshot_period_s = 2.0;
   const EmulatedRun live = RunEmulated(config, "short", 2.0, 14.0);

@@ -13,6 +13,7 @@
 
 #include "drivers/live/host_clock.h"
 #include "drivers/live/sim_device_player.h"
+#include "test/shared_data.h"
 #include "tools/live_runner.h"
 
 namespace uwbsar::live {
@@ -34,9 +35,7 @@ inline std::set<std::pair<int, int>> AcceptedPairs(const SlamSystem& slam) {
   return pairs;
 }
 
-inline std::string SeedLabMapPath() {
-  return std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_lab/my_map.yaml";
-}
+inline std::string SeedLabMapPath() { return ::uwbsar::testing::SeedLabLidarMap(); }
 
 inline EmulatedRun RunEmulated(Config config, const std::string& name, double speed,
                                double duration_s, const EmulatorFaults& faults = {}) {

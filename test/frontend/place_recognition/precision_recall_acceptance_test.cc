@@ -11,6 +11,7 @@
 
 #include "frontend/place_recognition/place_recognizer.h"
 #include "test/frontend/place_recognition/sim_run.h"
+#include "test/shared_data.h"
 
 namespace uwbsar::testing {
 namespace {
@@ -100,6 +101,7 @@ void Print(const std::string& run, const Scores& s) {
 }
 
 TEST(PrecisionRecallAcceptanceTest, AkazeOrbRuleHasPrecisionOneOnSimulatedRuns) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   Config config;
   Scores total;
   auto add = [&](const std::string& name, const Scores& s) {

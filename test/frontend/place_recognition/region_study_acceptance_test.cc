@@ -7,6 +7,7 @@
 
 #include "frontend/place_recognition/region_study.h"
 #include "test/frontend/place_recognition/sim_run.h"
+#include "test/shared_data.h"
 
 namespace uwbsar::testing {
 namespace {
@@ -28,6 +29,7 @@ const ImagedScan& ScanNear(const std::vector<ImagedScan>& pass, const StudyRegio
 }
 
 TEST(RegionStudyAcceptanceTest, SeedLabDepartReturnFindsEveryLoopAndNoFalseOne) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   Config config;
   const SimulatedRun run = SimulateAndImage(config, SeedLabMap(), "depart-return", 4);
   const std::size_t turn = TurnaroundIndex(run.scans);

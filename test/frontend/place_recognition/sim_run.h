@@ -8,6 +8,7 @@
 #include "drivers/sim/sim_stream.h"
 #include "frontend/imaging_frontend.h"
 #include "test/frontend/place_recognition/sar_scene.h"
+#include "test/shared_data.h"
 
 namespace uwbsar::testing {
 
@@ -17,9 +18,7 @@ struct SimulatedRun {
   std::vector<OdometrySample> ground_truth;
 };
 
-inline std::string SeedLabMap() {
-  return std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_lab/my_map.yaml";
-}
+inline std::string SeedLabMap() { return ::uwbsar::testing::SeedLabLidarMap(); }
 
 inline SimulatedRun SimulateAndImage(const Config& config, const std::string& map_yaml,
                                      const std::string& route, std::uint64_t seed) {

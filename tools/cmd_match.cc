@@ -1,0 +1,108 @@
+// `uwbsar match A B`: two SAR images (from uwbsar or another tool) matched as place
+// recognition matches two keyframe tiles, with the AKAZE+ORB rule and the fused metric
+// transform. A rejection is an outcome (exit 0); bad input exits 3 with one line.
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <opencv2/imgproc.hpp>
+
+#include "frontend/image_io.h"
+#include "frontend/place_recognition/image_match.h"
+#include "slam/errors.h"
+#include "tools/commands.h"
+#include "tools/image_match_report.h"
+
+namespace uwbsar::tools {
+namespace {
+
+constexpr double kMaxExtentRatio = 4.0;  ///< larger differences in metric size are refused
+
+void CheckComparable(const SarImageFile& a, const SarImageFile& b) {
+  const double wa = a.grid.width_m(), wb = b.grid.width_m();
+  const double ha = a.grid.height_m(), hb = b.grid.height_m();
+  if (std::max(wa, wb) > kMaxExtentRatio * std::min(wa, wb) ||
+      std::max(ha, hb) > kMaxExtentRatio * std::min(ha, hb)) {
+    char buf[256];
+    std::snprintf(buf, sizeof(buf),
+                  "%s is %.2f m x %.2f m but %s is %.2f m x %.2f m: sizes differ by more than "
+                  "%.0fx (check --resolution)",
+                  a.path.c_str(), wa, ha, b.path.c_str(), wb, hb, kMaxExtentRatio);
+    throw InputError(buf);
+  }
+}
+
+void PrintText(const ImageMatch& m) {
+  for (const auto& [kind, r] : m.matches) {
+    std::printf("%-6s keypoints %d / %d, ratio matches %d, good %d", DetectorName(kind),
+                r.keypoints_b, r.keypoints_a, r.ratio_matches, r.good_matches);
+    const auto t = m.detector_transforms.find(kind);
+    if (t != m.detector_transforms.end()) {
+      std::printf(", scale %.3f, x %+.3f m, y %+.3f m, yaw %+.2f deg", r.scale, t->second.x_m,
+                  t->second.y_m, t->second.yaw_deg);
+    }
+    std::printf("\n");
+  }
+  if (m.accepted()) {
+    std::printf("accepted: x %+.3f m, y %+.3f m, yaw %+.2f deg\n", m.transform.x_m, m.transform.y_m,
+                m.transform.yaw_deg);
+  } else {
+    std::printf("rejected: %s\n", m.validation.reason.c_str());
+  }
+}
+
+}  // namespace
+
+void AddMatchCommand(CLI::App& app, const GlobalOptions& globals) {
+  struct Options {
+    std::string a, b, out_dir, detectors = "akaze,orb";
+    double resolution_m = 0.005;
+    bool json = false;
+  };
+  auto opts = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand(
+      "match",
+      "Match two SAR images as place recognition matches keyframe tiles (AKAZE+ORB rule).\n"
+      "Prints the transform that maps A's scene onto B: a scatterer at (x, y) in A (metres; x\n"
+      "along columns to the right, y upwards) is found in B at R(yaw) ((x, y) - c) + c +\n"
+      "(x_m, y_m), with c the centre of A (the centre of its middle pixel) and yaw\n"
+      "counter-clockwise. Inputs: 8/16-bit PNG/PGM (an enhanced SAR image), a float TIFF as\n"
+      "`uwbsar image` writes it, or a grid YAML with an `image` key; a `<stem>_grid.yaml`\n"
+      "beside the image gives its resolution.");
+  cmd->add_option("A", opts->a, "First SAR image")->required();
+  cmd->add_option("B", opts->b, "Second SAR image")->required();
+  cmd->add_option("--resolution", opts->resolution_m,
+                  "Metres per pixel when no grid YAML describes an image")
+      ->capture_default_str();
+  cmd->add_option("--detectors", opts->detectors,
+                  "Comma-separated detectors (akaze,orb are needed for the loop rule; also "
+                  "sift,surf,brisk)")
+      ->capture_default_str();
+  cmd->add_flag("--json", opts->json, "Print the result as one JSON document");
+  cmd->add_option("--out", opts->out_dir, "Also write match.png (good matches) and match.json");
+  cmd->callback([opts, &globals] {
+    const Config config = LoadConfigFor(globals);
+    const std::vector<DetectorKind> detectors = ParseDetectorList(opts->detectors);
+    if (!opts->out_dir.empty()) EnsureDirectory(opts->out_dir);
+    const SarImageFile a = ReadSarImageFile(opts->a, opts->resolution_m);
+    const SarImageFile b = ReadSarImageFile(opts->b, opts->resolution_m);
+    CheckComparable(a, b);
+    const double feature_m =
+        ImageFeatureResolution(a.grid.resolution_m, b.grid.resolution_m, config);
+    const ImageFeatures fa = ExtractImageFeatures(a, detectors, config, feature_m);
+    const ImageFeatures fb = ExtractImageFeatures(b, detectors, config, feature_m);
+    const ImageMatch m = MatchImages(fa, fb, config);
+    const nlohmann::json json = ImageMatchJson(m);
+    if (!opts->out_dir.empty()) {
+      const std::filesystem::path dir(opts->out_dir);
+      WriteImageAtomic((dir / "match.png").string(), DrawImageMatch(fa, fb, m));
+      WriteTextAtomic((dir / "match.json").string(), json.dump(2) + "\n");
+    }
+    if (opts->json) {
+      std::cout << json.dump() << "\n";
+    } else if (!globals.quiet) {
+      PrintText(m);
+    }
+  });
+}
+
+}  // namespace uwbsar::tools
