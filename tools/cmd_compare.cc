@@ -81,8 +81,8 @@ void AddCompareCommand(CLI::App& app, const GlobalOptions& globals) {
       ParsePose(opts->init, &request.T_lidar_sar);
     }
     // Everything is computed before the output folder is touched: bad input leaves nothing.
-    const ComparisonReport report =
-        CompareMapFiles(opts->sar, opts->lidar, request, config.compare);
+    const ComparisonReport report = CompareMapFiles(opts->sar, opts->lidar, request, config.compare,
+                                                    config.limits.max_map_image_pixels);
     EnsureDirectory(opts->out_dir);
     const auto files = WriteComparisonOutputs(report, opts->out_dir, config.compare);
     if (opts->json) {

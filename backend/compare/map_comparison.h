@@ -34,8 +34,10 @@ struct ComparisonReport {
 /// Loads both maps (InputError naming the file on bad input), aligns and scores.
 /// Throws InputError when the maps do not overlap: no observed SAR cell falls on a known
 /// LiDAR cell, before or after alignment. Writes nothing.
+/// Map images declaring more than `max_image_pixels` are refused before decoding.
 ComparisonReport CompareMapFiles(const std::string& sar_yaml, const std::string& lidar_yaml,
-                                 const AlignRequest& request, const CompareConfig& config);
+                                 const AlignRequest& request, const CompareConfig& config,
+                                 double max_image_pixels = LimitsConfig{}.max_map_image_pixels);
 
 /// Writes `dir`/overlay.png then `dir`/metrics.json (each to a temporary name, renamed);
 /// returns the paths. `dir` must exist.
