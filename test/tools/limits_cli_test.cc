@@ -39,8 +39,7 @@ std::string SeedLab() {
 TEST(LimitsCliTest, ConfigFromADeviceIsRefused) {
   const CliRun r = Capped("--config /dev/zero config");
   EXPECT_EQ(r.exit_code, 3) << r.output;
-  EXPECT_NE(r.output.find("/dev/zero: configuration file is not a regular file"),
-            std::string::npos)
+  EXPECT_NE(r.output.find("/dev/zero: configuration file is not a regular file"), std::string::npos)
       << r.output;
 }
 
