@@ -74,7 +74,9 @@ TEST(ConfigLimitsTest, BudgetsAreConfigurable) {
 class BoundedFileTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() / "uwbsar_bounded_file_test";
+    dir_ = std::filesystem::temp_directory_path() /
+           ("uwbsar_bounded_file_test_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
   }

@@ -22,7 +22,9 @@ namespace fs = std::filesystem;
 class ImageHeaderTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / "uwbsar_image_header_test";
+    dir_ = fs::temp_directory_path() /
+           ("uwbsar_image_header_test_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
