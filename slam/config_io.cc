@@ -8,6 +8,8 @@
 #include <sstream>
 #include <type_traits>
 
+#include "slam/bounded_file.h"
+
 namespace uwbsar {
 namespace {
 
@@ -156,11 +158,13 @@ Config LoadConfigFromString(const std::string& yaml_text, const std::string& sou
 }
 
 Config LoadConfig(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot open configuration file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return LoadConfigFromString(text.str(), path);
+  std::string text;
+  try {
+    text = ReadBoundedFile(path, "configuration");
+  } catch (const InputError& e) {
+    throw ConfigError(e.what());
+  }
+  return LoadConfigFromString(text, path);
 }
 
 std::string ConfigToYaml(const Config& config) {
@@ -172,13 +176,15 @@ std::string ConfigToYaml(const Config& config) {
 }
 
 std::vector<PointTargetConfig> LoadPointTargets(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot open point-target file");
-  std::stringstream text;
-  text << in.rdbuf();
+  std::string text;
+  try {
+    text = ReadBoundedFile(path, "point-target");
+  } catch (const InputError& e) {
+    throw ConfigError(e.what());
+  }
   YAML::Node root;
   try {
-    root = YAML::Load(text.str());
+    root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw ConfigError(path + ":" + std::to_string(e.mark.line + 1) +
                       ": YAML syntax error: " + e.msg);

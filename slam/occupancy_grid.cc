@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
+#include "slam/image_header.h"
 #include "slam/yaml_file.h"
 
 namespace uwbsar {
@@ -180,14 +181,15 @@ std::vector<std::int8_t> PixelsToCells(const std::vector<double>& pixels, double
   return cells;
 }
 
-OccupancyGrid LoadOccupancyGrid(const std::string& yaml_path) {
+OccupancyGrid LoadOccupancyGrid(const std::string& yaml_path, double max_image_pixels) {
   const MapMetadata m = LoadMapMetadata(yaml_path);
   if (!std::filesystem::is_regular_file(m.image_path)) {
     throw InputError(yaml_path + ": map image '" + m.image_path + "' does not exist");
   }
   std::string extension = std::filesystem::path(m.image_path).extension().string();
   for (char& c : extension) c = static_cast<char>(std::tolower(c));
-  if (extension == ".pgm") CheckPgm(m.image_path);
+  if (extension == ".pgm") CheckPgm(m.image_path);  // reads the header only, names the field
+  CheckImageSize(m.image_path, max_image_pixels, "map image");
   cv::Mat image;
   try {
     image = cv::imread(m.image_path, cv::IMREAD_UNCHANGED);

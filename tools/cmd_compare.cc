@@ -91,8 +91,8 @@ void AddCompareCommand(CLI::App& app, const GlobalOptions& globals) {
     rule.cell_m = config.slam.occupancy_resolution_m;
     rule.occupied_fraction = config.slam.occupied_fraction;
     rule.reference_percentile = config.slam.occupancy_reference_percentile;
-    const ComparisonReport report =
-        CompareMapFiles(opts->sar, opts->lidar, request, config.compare, rule);
+    const ComparisonReport report = CompareMapFiles(opts->sar, opts->lidar, request, config.compare,
+                                                    rule, config.limits.max_map_image_pixels);
     EnsureDirectory(opts->out_dir);
     const auto files = WriteComparisonOutputs(report, opts->out_dir, config.compare);
     if (opts->json) {

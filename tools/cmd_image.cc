@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "drivers/text_log.h"
+#include "slam/config_io.h"
 #include "tools/commands.h"
 #include "tools/imaging_job.h"
 
@@ -30,7 +31,10 @@ void AddImageCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->callback([opts, &globals] {
     Config config = LoadConfigFor(globals);
     if (!opts->mode.empty()) config.imaging.mode = opts->mode;
-    if (opts->resolution_m > 0) config.imaging.pixel_size_m = opts->resolution_m;
+    if (opts->resolution_m > 0) {
+      config.imaging.pixel_size_m = opts->resolution_m;
+      ValidateConfig(config, "--resolution");  // the sizes it implies, before any work
+    }
     std::vector<OdometrySample> odometry;
     std::vector<RadarScan> scans;
     if (!opts->log_path.empty()) {

@@ -19,6 +19,7 @@
 #include "frontend/image_io.h"
 #include "frontend/strip_renderer.h"
 #include "slam/errors.h"
+#include "tools/imaging_job.h"
 #include "tools/report_html.h"
 
 namespace uwbsar::tools {
@@ -217,7 +218,9 @@ MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir) {
     s["odometry"] = {{"received", fs_stats.odometry_received},
                      {"jumps_corrected", fs_stats.odometry_jumps_corrected},
                      {"rejected", fs_stats.odometry_rejected_out_of_order +
-                                      fs_stats.odometry_rejected_nonfinite}};
+                                      fs_stats.odometry_rejected_nonfinite +
+                                      fs_stats.odometry_rejected_implausible},
+                     {"rejected_implausible", fs_stats.odometry_rejected_implausible}};
     const StageTimes& t = slam.times();
     s["time_s"] = {{"imaging", t.imaging_s},
                    {"features", t.features_s},
@@ -351,6 +354,7 @@ std::vector<std::string> WriteExactMap(const MapRun& run, const std::string& out
   }
   const ImageGrid grid =
       WorldGridCovering(corrected, slam.sensors(), 0.1, config.imaging.pixel_size_m);
+  CheckWholeRunImage(grid, config.limits, "the exact map");
   const StripImage exact = RenderScans(
       scans, slam.sensors(), grid, config.imaging.mode == "coherent", config.imaging.num_threads,
       [&](const ImagedScan& s) { return corrected[&s - scans.data()]; });

@@ -4,8 +4,9 @@
 
 namespace uwbsar {
 
-OccupancyGrid LoadMapForComparison(const std::string& yaml_path, bool grey_205_unknown) {
-  OccupancyGrid grid = LoadOccupancyGrid(yaml_path);
+OccupancyGrid LoadMapForComparison(const std::string& yaml_path, bool grey_205_unknown,
+                                   double max_image_pixels) {
+  OccupancyGrid grid = LoadOccupancyGrid(yaml_path, max_image_pixels);
   if (!grey_205_unknown) return grid;
   const MapMetadata m = LoadMapMetadata(yaml_path);
   if (m.mode != "trinary" || m.negate) return grid;

@@ -16,6 +16,7 @@ namespace uwbsar {
 /// LoadOccupancyGrid (InputError on bad input), then, when `grey_205_unknown` is set and the
 /// map is trinary, not negated and stored as 8-bit grey, every cell whose pixel is exactly
 /// 205 becomes unknown.
-OccupancyGrid LoadMapForComparison(const std::string& yaml_path, bool grey_205_unknown);
+OccupancyGrid LoadMapForComparison(const std::string& yaml_path, bool grey_205_unknown,
+                                   double max_image_pixels = LimitsConfig{}.max_map_image_pixels);
 
 }  // namespace uwbsar

@@ -2,9 +2,11 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "slam/bounded_file.h"
 #include "slam/errors.h"
 
 namespace uwbsar::rosbag {
@@ -136,11 +138,11 @@ BagMetadata ParseBagMetadata(const std::string& text, const std::string& name) {
 }
 
 BagMetadata ReadBagMetadata(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": missing or unreadable (no bag metadata)");
-  std::stringstream text;
-  text << in.rdbuf();
-  return ParseBagMetadata(text.str(), path);
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) {
+    throw InputError(path + ": missing or unreadable (no bag metadata)");
+  }
+  return ParseBagMetadata(ReadBoundedFile(path, "bag metadata"), path);
 }
 
 std::string BagMetadataToYaml(const BagMetadata& m) {
