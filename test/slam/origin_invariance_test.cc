@@ -12,13 +12,12 @@
 #include "drivers/sim/sim_stream.h"
 #include "slam/slam_system.h"
 #include "tools/map_job.h"
+#include "test/shared_data.h"
 
 namespace uwbsar {
 namespace {
 
-std::string SeedLab() {
-  return std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_lab/my_map.yaml";
-}
+std::string SeedLab() { return testing::SeedLabLidarMap(); }
 
 struct Outcome {
   std::set<std::pair<int, int>> accepted_loops;  ///< (match_id, query_id)
@@ -67,6 +66,7 @@ Outcome MapShifted(const Config& config, const std::vector<sim::SimMessage>& mes
 }
 
 TEST(OriginInvarianceTest, ShiftedWorldOriginGivesTheSameLoopsAndAte) {
+  UWBSAR_NEED_SEED_LAB_MAP();
   const Config config;
   // One simulated run, recorded once and replayed at every offset.
   const sim::SimScenario scenario = sim::MakeScenario(config, SeedLab(), "depart-return", 1);

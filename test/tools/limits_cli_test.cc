@@ -32,8 +32,9 @@ CliRun Capped(const std::string& args) {
   return RunCommand("ulimit -v 3000000; " + std::string(UWBSAR_BIN) + " " + args);
 }
 
-std::string SeedLab() {
-  return std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_lab/my_map.yaml";
+/// The bundled room (our own map), as the map every comparison needs.
+std::string SeedHall() {
+  return std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_hall/seed_hall.yaml";
 }
 
 TEST(LimitsCliTest, ConfigFromADeviceIsRefused) {
@@ -72,7 +73,7 @@ TEST(LimitsCliTest, MapImageDeclaringHugeSizeIsRefusedBeforeDecoding) {
   WriteFile(yaml, "image: bomb.png\nresolution: 0.05\norigin: [0, 0, 0]\n");
   for (const std::string& args :
        {"export-pcd " + yaml + " --out " + dir + "/m.pcd",
-        "compare " + yaml + " " + SeedLab() + " --out " + dir + "/cmp",
+        "compare " + yaml + " " + SeedHall() + " --out " + dir + "/cmp",
         "simulate --map " + yaml + " --route depart-return --out " + dir + "/bag"}) {
     const CliRun r = Capped(args);
     EXPECT_EQ(r.exit_code, 3) << args << "\n" << r.output;
