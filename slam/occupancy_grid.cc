@@ -44,8 +44,9 @@ bool NextToken(std::istream& in, std::string* token) {
 }
 
 /// Checks a PGM header and that the file holds width * height samples, since
-/// cv::imread silently accepts some truncated files.
-void CheckPgm(const std::string& path) {
+/// cv::imread silently accepts some truncated files. Returns maxval: OpenCV hands out the
+/// raw samples without scaling them by it.
+long CheckPgm(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open map image");
   std::string magic, token;
@@ -83,6 +84,7 @@ void CheckPgm(const std::string& path) {
                        " samples but the file holds " + std::to_string(n));
     }
   }
+  return values[2];
 }
 
 }  // namespace
@@ -180,14 +182,14 @@ std::vector<std::int8_t> PixelsToCells(const std::vector<double>& pixels, double
   return cells;
 }
 
-OccupancyGrid LoadOccupancyGrid(const std::string& yaml_path) {
+OccupancyGrid LoadOccupancyGrid(const std::string& yaml_path, MapPixels* pixels_out) {
   const MapMetadata m = LoadMapMetadata(yaml_path);
   if (!std::filesystem::is_regular_file(m.image_path)) {
     throw InputError(yaml_path + ": map image '" + m.image_path + "' does not exist");
   }
   std::string extension = std::filesystem::path(m.image_path).extension().string();
   for (char& c : extension) c = static_cast<char>(std::tolower(c));
-  if (extension == ".pgm") CheckPgm(m.image_path);
+  const long pgm_maxval = extension == ".pgm" ? CheckPgm(m.image_path) : 0;
   cv::Mat image;
   try {
     image = cv::imread(m.image_path, cv::IMREAD_UNCHANGED);
@@ -198,7 +200,10 @@ OccupancyGrid LoadOccupancyGrid(const std::string& yaml_path) {
   if (image.depth() != CV_8U && image.depth() != CV_16U) {
     throw InputError(m.image_path + ": map image must have 8 or 16 bits per sample");
   }
-  const double max_value = image.depth() == CV_8U ? 255.0 : 65535.0;
+  // A PGM's samples run 0..maxval (any value 1..65535, Netpbm); other formats use the
+  // whole range of their depth.
+  const double max_value =
+      pgm_maxval > 0 ? static_cast<double>(pgm_maxval) : (image.depth() == CV_8U ? 255.0 : 65535.0);
   const int channels = image.channels();
   const int colour = channels >= 3 ? 3 : 1;  // grey, grey+alpha, BGR or BGRA
   const bool has_alpha = channels == 2 || channels == 4;
@@ -224,6 +229,10 @@ OccupancyGrid LoadOccupancyGrid(const std::string& yaml_path) {
   grid.resolution_m = m.resolution_m;
   grid.origin = m.origin;
   grid.cells = PixelsToCells(pixels, max_value, m);
+  if (pixels_out != nullptr) {
+    pixels_out->grey = std::move(pixels);
+    pixels_out->max_value = max_value;
+  }
   return grid;
 }
 

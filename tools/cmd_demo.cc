@@ -27,12 +27,14 @@ void AddDemoCommand(CLI::App& app, const GlobalOptions& globals) {
   CLI::App* cmd = app.add_subcommand(
       "demo", "Simulate the paper's seed_lab run, map it and compare with ground truth");
   cmd->add_option("--out", opts->out_dir, "Output folder")->capture_default_str();
-  cmd->add_option("--seed", opts->seed, "Simulation seed")->capture_default_str();
+  cmd->add_option("--seed", opts->seed, "Simulation seed")
+      ->check(CheckSeed, "integer 0..2^64-1")
+      ->capture_default_str();
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
-    EnsureDirectory(opts->out_dir);
+    MapOutputStage stage(opts->out_dir);
     MapRun run = MapSimulation(config, SeedLabMap(), "depart-return", opts->seed);
-    const MapOutputs outputs = WriteMapOutputs(run, opts->out_dir);
+    const MapOutputs outputs = stage.Commit(run);
     PrintMapSummary(run, outputs, opts->out_dir);
   });
 }

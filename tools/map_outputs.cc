@@ -1,8 +1,12 @@
 #include "tools/map_outputs.h"
 
+#include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -19,6 +23,7 @@
 #include "frontend/image_io.h"
 #include "frontend/strip_renderer.h"
 #include "slam/errors.h"
+#include "tools/commands.h"
 #include "tools/report_html.h"
 
 namespace uwbsar::tools {
@@ -124,6 +129,32 @@ std::string GridYaml(const ImageGrid& grid, const std::string& what) {
   return yaml.str();
 }
 
+constexpr const char* kStagePrefix = ".uwbsar-partial-";
+
+/// Removes the staging folders in `out_dir` whose process is gone (an interrupted run's).
+void RemoveStaleStagingFolders(const std::string& out_dir) {
+  std::error_code ec;
+  for (fs::directory_iterator it(out_dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(kStagePrefix, 0) != 0) continue;
+    const std::string digits = name.substr(std::strlen(kStagePrefix));
+    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos ||
+        digits.size() > 9) {
+      continue;
+    }
+    const pid_t pid = static_cast<pid_t>(std::stol(digits));
+    if (pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH) continue;
+    std::error_code rm;
+    fs::remove_all(it->path(), rm);
+  }
+}
+
+void RemoveOutput(const fs::path& path) {
+  std::error_code ec;
+  fs::remove(path, ec);
+  if (ec) throw std::runtime_error(path.string() + ": cannot remove: " + ec.message());
+}
+
 std::string ReadFileBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream s;
@@ -133,16 +164,56 @@ std::string ReadFileBytes(const std::string& path) {
 
 }  // namespace
 
-MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir) {
+const std::vector<std::string>& AllMapOutputNames() {
+  static const std::vector<std::string> names = {"trajectory.tum",
+                                                 "odometry.tum",
+                                                 "graph.g2o",
+                                                 "loops.csv",
+                                                 "map_float.tif",
+                                                 "map_grid.yaml",
+                                                 "map.png",
+                                                 "map.yaml",
+                                                 "map.pgm",
+                                                 "report.html",
+                                                 "ground_truth.tum",
+                                                 "map_exact_float.tif",
+                                                 "map_exact_grid.yaml",
+                                                 "map_exact.png",
+                                                 "summary.json"};
+  return names;
+}
+
+MapOutputStage::MapOutputStage(const std::string& out_dir) : out_dir_(out_dir) {
+  EnsureDirectory(out_dir);  // InputError naming DIR when it is not a writable folder
+  RemoveStaleStagingFolders(out_dir);
+  stage_ = (fs::path(out_dir) / (std::string(kStagePrefix) + std::to_string(::getpid()))).string();
+  guard_ = std::make_unique<RemoveOnInterrupt>(stage_);
+  std::error_code ec;
+  fs::remove_all(stage_, ec);
+  if (!fs::create_directory(stage_, ec)) {
+    throw InputError(out_dir + ": cannot write into the output folder: " + ec.message());
+  }
+}
+
+MapOutputStage::~MapOutputStage() {
+  std::error_code ec;
+  fs::remove_all(stage_, ec);
+}
+
+MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir,
+                           const MapOutputOptions& options) {
+  MapOutputStage stage(out_dir);
+  return stage.Commit(run, options);
+}
+
+MapOutputs MapOutputStage::Commit(const MapRun& run, const MapOutputOptions& options) {
   const SlamSystem& slam = *run.slam;
   const Config& config = slam.config();
+  const std::string& out_dir = out_dir_;
   MapOutputs result;
-  fs::create_directories(out_dir);
-  const fs::path stage = fs::path(out_dir) / (".uwbsar-partial-" + std::to_string(::getpid()));
-  fs::remove_all(stage);
-  fs::create_directories(stage);
+  const fs::path stage = stage_;
   auto staged = [&](const char* name) { return (stage / name).string(); };
-  try {
+  {
     // Trajectories.
     const auto trajectory = slam.CorrectedTrajectory();
     std::vector<std::pair<TimestampNs, Pose2>> odometry;
@@ -305,21 +376,29 @@ MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir) {
     }
     report.tables.push_back(loops);
     WriteTextAtomic(staged("report.html"), RenderReportHtml(report));
+    if (options.exact) {
+      for (const std::string& f : WriteExactMap(run, stage.string())) {
+        names.push_back(fs::path(f).filename().string());
+      }
+    }
     WriteTextAtomic(staged("summary.json"), s.dump(2) + "\n");
 
-    // Commit: drop a previous run's summary first, then everything else, the summary last.
-    fs::remove(fs::path(out_dir) / "summary.json");
+    // Commit: drop a previous run's summary first, then the outputs this run does not
+    // write (a committed folder holds one run's files), then rename, the summary last.
+    RemoveOutput(fs::path(out_dir) / "summary.json");
+    for (const std::string& name : AllMapOutputNames()) {
+      if (std::find(names.begin(), names.end(), name) == names.end()) {
+        RemoveOutput(fs::path(out_dir) / name);
+      }
+    }
     names.push_back("summary.json");
     for (const std::string& name : names) {
       const fs::path target = fs::path(out_dir) / name;
-      fs::rename(stage / name, target);
+      std::error_code ec;
+      fs::rename(stage / name, target, ec);
+      if (ec) throw std::runtime_error(target.string() + ": cannot commit: " + ec.message());
       result.files.push_back(target.string());
     }
-    fs::remove_all(stage);
-  } catch (...) {
-    std::error_code ec;
-    fs::remove_all(stage, ec);
-    throw;
   }
   return result;
 }

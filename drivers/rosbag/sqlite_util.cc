@@ -17,7 +17,19 @@ SqliteDb::SqliteDb(const std::string& path, int flags) : path_(path) {
 SqliteDb::~SqliteDb() { sqlite3_close(db_); }
 
 void SqliteDb::Fail(const std::string& what) const {
-  throw InputError(path_ + ": sqlite3 " + what + ": " + sqlite3_errmsg(db_));
+  const int code = sqlite3_extended_errcode(db_);
+  const std::string message = path_ + ": sqlite3 " + what + ": " + sqlite3_errmsg(db_);
+  // A failing disk is an I/O failure naming its cause, not a bad input file.
+  switch (code & 0xff) {
+    case SQLITE_FULL:
+      throw std::runtime_error(message + " (no space left on device)");
+    case SQLITE_IOERR:
+    case SQLITE_READONLY:
+    case SQLITE_PERM:
+      throw std::runtime_error(message + " (" + sqlite3_errstr(code) + ")");
+    default:
+      throw InputError(message);
+  }
 }
 
 void SqliteDb::Exec(const std::string& sql) {
