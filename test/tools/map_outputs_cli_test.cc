@@ -3,6 +3,7 @@
 // files, staging folders of dead processes are cleaned and Ctrl-C cleans its own, the
 // output folder and the ground truth are checked before the work, and the summary's
 // durations come from the data actually used.
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
