@@ -35,7 +35,7 @@ void AddDemoCommand(CLI::App& app, const GlobalOptions& globals) {
     MapOutputStage stage(opts->out_dir);
     MapRun run = MapSimulation(config, SeedLabMap(), "depart-return", opts->seed);
     const MapOutputs outputs = stage.Commit(run);
-    PrintMapSummary(run, outputs, opts->out_dir);
+    if (!globals.quiet) PrintMapSummary(run, outputs, opts->out_dir);
   });
 }
 
