@@ -49,7 +49,8 @@ class Reader {
     for (const auto& kv : node_) {
       if (!kv.first.IsScalar()) {
         throw ConfigError(Where(source_, kv.first) + ": a key in '" +
-                          (prefix_.empty() ? std::string("the top level") : prefix_) +
+                          (prefix_.empty() ? std::string("the top level")
+                                           : prefix_.substr(0, prefix_.size() - 1)) +
                           "' is not a plain name (complex key)");
       }
       const std::string key = kv.first.Scalar();

@@ -88,7 +88,7 @@ TEST(ConfigIoTest, WrongShapeIsBadInputNamingFileLineAndKey) {
     const char* expect;
   } cases[] = {
       {"imaging:\n  mode: paper\n? [a, b]\n: 1\n", "x.yaml:3: a key in 'the top level'"},
-      {"imaging:\n  ? {a: 1}\n  : 2\n", "x.yaml:2: a key in 'imaging.'"},
+      {"imaging:\n  ? {a: 1}\n  : 2\n", "x.yaml:2: a key in 'imaging' is not a plain name"},
       {"slam: 5\n", "x.yaml:1: 'slam' must be a mapping"},
       {"radars:\n  - 7\n", "x.yaml:2: 'radars[0]' must be a mapping"},
       {"imaging:\n  pixel_size_m: [1, 2]\n", "x.yaml:2: 'imaging.pixel_size_m' must be a value"},
