@@ -200,11 +200,13 @@ bool Catalog::LoadChunkOrSkip(const Segment& s, ChunkMessages* out) {
     out->entries.clear();
     ++skipped_chunks;
     const long long n = IndexedMessages(s);
+    std::string damage = e.what();
+    if (damage.rfind(Path() + ": ", 0) == 0) damage.erase(0, Path().size() + 2);
     Log(LogLevel::kWarning, Path() + ": skipping the damaged chunk at offset " +
                                 std::to_string(s.offset) + " (" +
                                 (n >= 0 ? std::to_string(n) : std::string("an unknown number of")) +
                                 " messages, log time " + std::to_string(s.start_ns) + ".." +
-                                std::to_string(s.end_ns) + " ns): " + e.what());
+                                std::to_string(s.end_ns) + " ns): " + damage);
     return false;
   }
 }
