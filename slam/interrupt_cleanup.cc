@@ -72,8 +72,13 @@ RemoveOnInterrupt::~RemoveOnInterrupt() {
 void InstallInterruptCleanup() {
   sigset_t set;
   sigemptyset(&set);
-  sigaddset(&set, SIGINT);
-  sigaddset(&set, SIGTERM);
+  for (const int sig : {SIGINT, SIGTERM}) {
+    // A signal the process was started with ignored (a background job of a script, nohup)
+    // stays ignored, as without the watcher.
+    struct sigaction current {};
+    if (sigaction(sig, nullptr, &current) == 0 && current.sa_handler == SIG_IGN) continue;
+    sigaddset(&set, sig);
+  }
   pthread_sigmask(SIG_BLOCK, &set, nullptr);
   std::thread(WatchSignals, set).detach();
 }

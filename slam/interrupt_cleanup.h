@@ -26,7 +26,8 @@ class RemoveOnInterrupt {
 /// and starts a thread that waits for them. On a signal it calls the handler set with
 /// SetInterruptHandler when there is one; otherwise it removes every registered path and
 /// ends the process with the signal (exit status 128 + signal, as without the watcher).
-/// Call once, first thing in main(). Without it registrations are harmless no-ops.
+/// A signal that was ignored when the process started stays ignored. Call once, first thing
+/// in main(). Without it registrations are harmless no-ops.
 void InstallInterruptCleanup();
 
 /// Replaces the default action (clean up and end) by `handler`, e.g. to stop a live run.
