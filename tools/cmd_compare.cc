@@ -74,6 +74,7 @@ void AddCompareCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_flag("--json", opts->json, "Print metrics.json to stdout instead of the summary");
   cmd->callback([opts, &globals] {
     Config config = LoadConfigFor(globals);
+    CheckOutputFolder(opts->out_dir);  // before the work, creating nothing
     if (opts->tolerance_cells >= 0) config.compare.tolerance_cells = opts->tolerance_cells;
     AlignRequest request;
     request.mode = opts->align.empty() ? config.compare.align : opts->align;
@@ -99,6 +100,7 @@ void AddCompareCommand(CLI::App& app, const GlobalOptions& globals) {
       std::cout << ComparisonToJson(report) << "\n";
       return;
     }
+    if (globals.quiet) return;
     for (const std::string& line : ComparisonSummaryLines(report))
       std::printf("%s\n", line.c_str());
     for (const std::string& f : files) std::printf("wrote %s\n", f.c_str());

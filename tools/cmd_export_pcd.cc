@@ -47,6 +47,7 @@ void AddExportPcdCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_flag("--ascii", opts->ascii, "ASCII PCD instead of binary");
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
+    CheckOutputFile(opts->out);  // before the work
     std::vector<IntensityPoint> points;
     const char* what = "occupied cells";
     if (HasTiffExtension(opts->map)) {
@@ -59,7 +60,7 @@ void AddExportPcdCommand(CLI::App& app, const GlobalOptions& globals) {
       points = OccupiedCellPoints(LoadOccupancyGrid(opts->map, config.limits.max_map_image_pixels));
     }
     WritePcd(opts->out, points, !opts->ascii);
-    std::printf("wrote %s: %zu %s\n", opts->out.c_str(), points.size(), what);
+    if (!globals.quiet) std::printf("wrote %s: %zu %s\n", opts->out.c_str(), points.size(), what);
   });
 }
 

@@ -14,6 +14,7 @@
 #include "drivers/live/host_clock.h"
 #include "drivers/live/sim_device_player.h"
 #include "drivers/sim/sim_stream.h"
+#include "slam/interrupt_cleanup.h"
 #include "tools/commands.h"
 #include "tools/live_runner.h"
 
@@ -52,15 +53,22 @@ void AddRunCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_flag("--emulate", opts->emulate,
                 "Emulated devices on pseudo-terminals playing a simulated depart-and-return run");
   cmd->add_option("--speed", opts->speed, "--emulate: playback speed (1 = real time)")
+      ->check(CheckPositiveFinite, "finite > 0")
       ->check(CLI::Range(0.1, 20.0))
       ->capture_default_str();
-  cmd->add_option("--duration", opts->duration_s, "--emulate: play only this many seconds");
-  cmd->add_option("--seed", opts->seed, "--emulate: simulation seed")->capture_default_str();
+  cmd->add_option("--duration", opts->duration_s, "--emulate: play only this many seconds (> 0)")
+      ->check(CheckPositiveFinite, "finite > 0");
+  cmd->add_option("--seed", opts->seed, "--emulate: simulation seed")
+      ->check(CheckSeed, "integer 0..2^64-1")
+      ->capture_default_str();
   cmd->add_option("--map", opts->map_path,
                   "--emulate: map_server map to simulate in (default: the bundled seed_hall)")
       ->check(CLI::ExistingFile);
   cmd->callback([opts, &globals] {
     Config config = LoadConfigFor(globals);
+    // SIGINT/SIGTERM finish the run cleanly (slam/interrupt_cleanup.h's watcher calls this;
+    // the plain handler serves callers that did not install the watcher).
+    SetInterruptHandler([] { g_stop = true; });
     std::signal(SIGINT, OnStopSignal);
     std::signal(SIGTERM, OnStopSignal);
     LiveRunOptions options;
