@@ -25,7 +25,9 @@ std::string TempDir(const std::string& name) {
 
 void WriteFile(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
-const std::string kSeedLab = std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_lab/my_map.yaml";
+/// The bundled room (our own map): these tests need a map, not the paper's room.
+const std::string kMap =
+    std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_hall/seed_hall.yaml";
 
 // README: `uwbsar run --config config/robot.yaml --emulate` (rule 11). Every subcommand takes
 // --config after its name, and a bad configuration is refused before any work (exit 3).
@@ -74,7 +76,7 @@ TEST(CliRefusalTest, YamlOfTheWrongShapeIsBadInputNamingFileAndLine) {
 TEST(CliRefusalTest, OutOfRangeValuesAreRefused) {
   const std::string dir = TempDir("values");
   for (const char* seed : {"-1", "18446744073709551616", "1e3", "0x10"}) {
-    const CliRun r = Uwbsar("simulate --map " + kSeedLab + " --out " + dir + "/b --seed " + seed);
+    const CliRun r = Uwbsar("simulate --map " + kMap + " --out " + dir + "/b --seed " + seed);
     EXPECT_EQ(r.exit_code, 2) << seed << ": " << r.output;
     EXPECT_NE(r.output.find("--seed"), std::string::npos) << r.output;
   }
@@ -114,13 +116,13 @@ TEST(CliRefusalTest, OptimizeWritesNothingAfterAFailedSolve) {
 // Rule 14: -q leaves only errors.
 TEST(CliRefusalTest, QuietQuietsEveryCommand) {
   const std::string dir = TempDir("quiet");
-  CliRun r = Uwbsar("simulate -q --map " + kSeedLab + " --route loop --out " + dir + "/bag");
+  CliRun r = Uwbsar("simulate -q --map " + kMap + " --route loop --out " + dir + "/bag");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.output, "");
-  r = Uwbsar("compare " + kSeedLab + " " + kSeedLab + " --align origin --out " + dir + "/cmp -q");
+  r = Uwbsar("compare " + kMap + " " + kMap + " --align origin --out " + dir + "/cmp -q");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.output, "");
-  r = Uwbsar("export-pcd " + kSeedLab + " --out " + dir + "/m.pcd -q");
+  r = Uwbsar("export-pcd " + kMap + " --out " + dir + "/m.pcd -q");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.output, "");
   r = Uwbsar("image --synthetic straight --out " + dir + "/img -q");
@@ -141,14 +143,14 @@ TEST(CliRefusalTest, UnwritableOutputIsRefusedBeforeTheWorkWithOneExitCode) {
     std::string command, message;
   } cases[] = {
       {"optimize " + dir + "/graph.g2o --out " + dir + "/folder", "output file is a folder"},
-      {"export-pcd " + kSeedLab + " --out " + dir + "/folder", "output file is a folder"},
+      {"export-pcd " + kMap + " --out " + dir + "/folder", "output file is a folder"},
       {"image --synthetic straight --out " + dir + "/file", "output folder is a file"},
       {"detectors " + dir + " --out " + dir + "/file", "output folder is a file"},
-      {"compare " + kSeedLab + " " + kSeedLab + " --out " + dir + "/file",
+      {"compare " + kMap + " " + kMap + " --out " + dir + "/file",
        "output folder is a file"},
       {"demo --out " + dir + "/file", "output folder is a file"},
-      {"simulate --map " + kSeedLab + " --out " + dir + "/file/bag", "is a file"},
-      {"simulate --map " + kSeedLab + " --out " + dir + "/b --text-log " + dir + "/folder",
+      {"simulate --map " + kMap + " --out " + dir + "/file/bag", "is a file"},
+      {"simulate --map " + kMap + " --out " + dir + "/b --text-log " + dir + "/folder",
        "output file is a folder"},
   };
   for (const Case& c : cases) {
@@ -169,7 +171,7 @@ TEST(CliRefusalTest, FailedSimulateCleansItsPartialAndNamesTheCause) {
   const std::string dir = TempDir("full");
   const CliRun r =
       uwbsar::testing::RunCommand("trap '' XFSZ; ulimit -f 512; " + std::string(UWBSAR_BIN) +
-                                  " simulate --map " + kSeedLab + " --out " + dir + "/bag");
+                                  " simulate --map " + kMap + " --out " + dir + "/bag");
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find(dir + "/bag.partial/bag_0.db3"), std::string::npos) << r.output;
   // (On a full disk the cause reads "no space left on device"; checked by hand on a 2 MB
@@ -177,7 +179,7 @@ TEST(CliRefusalTest, FailedSimulateCleansItsPartialAndNamesTheCause) {
   EXPECT_EQ(r.output.find("no transaction is active"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir + "/bag.partial"));
   EXPECT_FALSE(fs::exists(dir + "/bag"));
-  const CliRun retry = Uwbsar("simulate -q --map " + kSeedLab + " --out " + dir + "/bag");
+  const CliRun retry = Uwbsar("simulate -q --map " + kMap + " --out " + dir + "/bag");
   EXPECT_EQ(retry.exit_code, 0) << retry.output;
 }
 
@@ -185,7 +187,7 @@ TEST(CliRefusalTest, FailedSimulateCleansItsPartialAndNamesTheCause) {
 // still claims a duration: refused naming the field, never an end in 1677 (signed overflow).
 TEST(CliRefusalTest, InfoRefusesTimesThatWouldOverflow) {
   const std::string dir = TempDir("int64");
-  const CliRun sim = Uwbsar("simulate -q --map " + kSeedLab + " --out " + dir + "/bag");
+  const CliRun sim = Uwbsar("simulate -q --map " + kMap + " --out " + dir + "/bag");
   ASSERT_EQ(sim.exit_code, 0) << sim.output;
   std::ifstream in(dir + "/bag/metadata.yaml");
   std::string text((std::istreambuf_iterator<char>(in)), {});
