@@ -84,13 +84,14 @@ void AddRunCommand(CLI::App& app, const GlobalOptions& globals) {
       config.live.radar_reset_lines.clear();
       config.live.status_led_line = -1;
       options.time_scale = opts->speed;
+      live::ConfigureLiveForEmulation(&config, opts->speed);
       const sim::SimScenario scenario =
           sim::MakeScenario(config, SeedLabMap(), "depart-return", opts->seed);
       // Ground truth on a clock started with the run's: the same timeline within microseconds.
       truth_clock = std::make_unique<live::HostClock>(opts->speed);
       player = std::make_unique<live::SimDevicePlayer>(
           config, scenario, opts->seed, config.live.radar_devices, config.live.kobuki_device,
-          opts->speed, 3, live::EmulatorFaults{}, [c = truth_clock.get()] { return c->Now(); },
+          opts->speed, live::EmulatorFaults{}, [c = truth_clock.get()] { return c->Now(); },
           opts->duration_s);
       options.ground_truth = [p = player.get()] { return p->ground_truth(); };
       player->Start();
