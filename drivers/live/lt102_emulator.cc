@@ -173,6 +173,14 @@ void Lt102Emulator::SendValue(const Lt102Command& command, double value) {
 }
 
 void Lt102Emulator::SendAnswer(std::uint8_t code, std::vector<std::uint8_t> payload) {
+  const Lt102Command* command = FindLt102Command(code);
+  if (!wrong_code_sent_ && options_.wrong_code_code >= 0 &&
+      (code == options_.wrong_code_code ||
+       (command && command->code == options_.wrong_code_code) ||
+       (code == lt102::kStarted && options_.wrong_code_code == lt102::kStart))) {
+    wrong_code_sent_ = true;
+    code ^= 0x20;  // e.g. 'R' for 'r'
+  }
   if (options_.crc) {
     std::vector<std::uint8_t> body = {code};
     body.insert(body.end(), payload.begin(), payload.end());

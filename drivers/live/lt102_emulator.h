@@ -33,6 +33,7 @@ struct Lt102EmulatorOptions {
   int wrong_echo_code = -1;       ///< this command's echo is off by one (or one bin)
   int missing_answer_code = -1;   ///< this command goes unanswered ...
   int missing_answer_times = 1;   ///< ... this many times
+  int wrong_code_code = -1;       ///< this command's first answer starts with the wrong byte
   int bad_size_every = 0;         ///< every n-th `d` answer is two bytes short (0: never)
   double corrupt_fraction = 0.0;  ///< fraction of `d` answers garbled on the wire
   std::uint64_t seed = 7;
@@ -88,6 +89,7 @@ class Lt102Emulator {
   int format_ = 1, channel_ = 0, frame_rate_ = 100, processing_ = 0, output_ = 0;
   int decimation_ = 0;
   int withheld_ = 0;
+  bool wrong_code_sent_ = false;
   mutable std::mutex mutex_;  ///< counts_ and received_
   Lt102EmulatorCounts counts_;
   std::vector<std::uint8_t> received_;

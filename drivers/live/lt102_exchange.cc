@@ -1,6 +1,7 @@
 #include "drivers/live/lt102_exchange.h"
 
 #include <chrono>
+#include <cstdio>
 
 namespace uwbsar::live {
 
@@ -63,8 +64,9 @@ bool Lt102Exchange::Await(SerialPort& port, const Lt102Command& command,
     const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
     if (left <= 0) {
       ++counts_.missing_answers;
-      *why = "no answer to " + Lt102CommandLabel(command.code) + " within " +
-             std::to_string(timeout_s_) + " s";
+      char within[32];
+    std::snprintf(within, sizeof(within), " within %g s", timeout_s_);
+    *why = "no answer to " + Lt102CommandLabel(command.code) + within;
       faults_->Report(name_ + ": missing answers", *why);
       return false;
     }
@@ -88,10 +90,11 @@ bool Lt102Exchange::Await(SerialPort& port, const Lt102Command& command,
                  Lt102CommandLabel(command.answer_code));
   }
   const std::size_t size = Lt102ValueSize(command.answer);
+  bool detecting = false;
   if (!crc_known_) {  // auto: the first answer's length tells whether a CRC byte follows
     if (answer.payload.size() == size || answer.payload.size() == size + 1) {
       crc_.enabled = answer.payload.size() == size + 1;
-      crc_known_ = true;
+      crc_known_ = detecting = true;
     }
   }
   const std::size_t expected = size + (crc_.enabled ? 1 : 0);
@@ -107,7 +110,10 @@ bool Lt102Exchange::Await(SerialPort& port, const Lt102Command& command,
     return wrong(text);
   }
   std::string error;
-  if (!StripCrc(answer, payload, &error)) return wrong(error);
+  if (!StripCrc(answer, payload, &error)) {
+    if (detecting) crc_known_ = crc_.enabled = false;  // the retry asks as the first try did
+    return wrong(error);
+  }
   return true;
 }
 

@@ -95,7 +95,8 @@ TEST(Lt102RawDataTest, RejectsPayloadSizeMismatchAndBadHeaders) {
 
 TEST(Lt102CrcTest, CrcOverBodyAndItsCrcIsZeroForAnyInit) {
   const std::vector<std::uint8_t> body = {0x01, 0x34, 0x12, 0x66, 0x00, 0xFF, 0x80};
-  for (const std::uint8_t init : {0x00, 0xFF, 0x5A}) {
+  for (const int init_value : {0x00, 0xFF, 0x5A}) {
+    const auto init = static_cast<std::uint8_t>(init_value);
     std::vector<std::uint8_t> with = body;
     with.push_back(Lt102Crc8(body.data(), body.size(), 0x07, init));
     EXPECT_EQ(Lt102Crc8(with.data(), with.size(), 0x07, init), 0);
