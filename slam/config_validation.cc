@@ -192,8 +192,8 @@ void ValidateLive(const LiveConfig& l, const std::string& src) {
           "must be in [0, 4] (0 Q7, 1 Q15, 2 Q31, 3 F32, 4 F16)");
   Require(std::isfinite(t.range_min_m) && t.range_min_m >= 0, src, kt + "range_min_m",
           "must be >= 0");
-  Require(std::isfinite(t.range_max_m) && t.range_max_m > t.range_min_m, src,
-          kt + "range_max_m", "must be > live.lt102.range_min_m");
+  Require(std::isfinite(t.range_max_m) && t.range_max_m > t.range_min_m, src, kt + "range_max_m",
+          "must be > live.lt102.range_min_m");
   Require(t.frame_rate_fps >= 1 && t.frame_rate_fps <= 32767, src, kt + "frame_rate_fps",
           "must be in [1, 32767]");
   Require(t.crc == "auto" || t.crc == "off" || t.crc == "on", src, kt + "crc",

@@ -13,14 +13,14 @@ namespace uwbsar {
 /// The radar's echoed range, not radars[].range_offset_m / num_samples, sets the range of
 /// sample 0 and the sample count that imaging uses in a live run.
 struct Lt102Config {
-  std::string crc = "auto";   ///< trailing CRC-8 byte: auto (from the version answer), off, on
-  int channel = 0;            ///< `$` data channel: 0-3 one receive channel, 4 combined
-  int sample_format = 1;      ///< 0x0A: 0 Q7, 1 Q15, 2 Q31, 3 F32, 4 F16
-  double range_min_m = 0.0;   ///< `x`: range of the first sample asked for
-  double range_max_m = 6.42;  ///< `X`: range of the last sample asked for
-  int frame_rate_fps = 100;   ///< `f`: acquisition rate; `d` is polled at this rate
-  int crc_polynomial = 0x07;  ///< CRC-8 polynomial (not public; default CRC-8/SMBUS)
-  int crc_init = 0x00;        ///< CRC-8 initial value
+  std::string crc = "auto";       ///< trailing CRC-8 byte: auto (from the version answer), off, on
+  int channel = 0;                ///< `$` data channel: 0-3 one receive channel, 4 combined
+  int sample_format = 1;          ///< 0x0A: 0 Q7, 1 Q15, 2 Q31, 3 F32, 4 F16
+  double range_min_m = 0.0;       ///< `x`: range of the first sample asked for
+  double range_max_m = 6.42;      ///< `X`: range of the last sample asked for
+  int frame_rate_fps = 100;       ///< `f`: acquisition rate; `d` is polled at this rate
+  int crc_polynomial = 0x07;      ///< CRC-8 polynomial (not public; default CRC-8/SMBUS)
+  int crc_init = 0x00;            ///< CRC-8 initial value
   double answer_timeout_s = 0.5;  ///< start-up and stop: wait for an answer this long
   double frame_timeout_s = 0.1;   ///< acquisition: a `d` unanswered this long is lost
   double startup_wait_s = 10.0;   ///< `uwbsar run` waits this long for every radar's start-up
@@ -47,9 +47,9 @@ struct Lt102Config {
 /// paper's robot.
 struct LiveConfig {
   std::vector<std::string> radar_devices = {
-      "/dev/ttyACM0", "/dev/ttyACM1"};  ///< serial
-                                        ///< device of radars[i] (one per radar)
-  int radar_baud = 115200;              ///< LT102 baud rate (SDK default)
+      "/dev/ttyACM0", "/dev/ttyACM1"};           ///< serial
+                                                 ///< device of radars[i] (one per radar)
+  int radar_baud = 115200;                       ///< LT102 baud rate (SDK default)
   std::string kobuki_device = "/dev/kobuki";     ///< Kobuki base serial device
   int kobuki_baud = 115200;                      ///< Kobuki baud rate
   double kobuki_wheel_radius_m = 0.035;          ///< Kobuki wheel radius

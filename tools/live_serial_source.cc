@@ -105,11 +105,11 @@ class SerialSource : public LiveSource {
   // Every radar's first start-up (all wait in parallel, up to live.lt102.startup_wait_s in
   // all): its echoed range sets the range of sample 0 and the sample count imaging uses.
   void ConfigureImaging(Config* config) override {
-    const auto end = std::chrono::steady_clock::now() +
-                     std::chrono::duration<double>(lc_.lt102.startup_wait_s);
+    const auto end =
+        std::chrono::steady_clock::now() + std::chrono::duration<double>(lc_.lt102.startup_wait_s);
     for (std::size_t i = 0; i < radars_.size(); ++i) {
-      const double left_s =
-          std::max(0.0, std::chrono::duration<double>(end - std::chrono::steady_clock::now()).count());
+      const double left_s = std::max(
+          0.0, std::chrono::duration<double>(end - std::chrono::steady_clock::now()).count());
       live::Lt102Setup setup;
       std::string error;
       RadarConfig& radar = config->radars[i];
@@ -130,6 +130,7 @@ class SerialSource : public LiveSource {
   }
 
   void Stop() override {
+    for (auto& link : links_) link->RequestStop();  // the radars' `o` exchanges run together
     for (auto& link : links_) link->Stop();
   }
 

@@ -32,9 +32,7 @@ class LiveSource {
   virtual void ShutDown() {}
   virtual long long scans_received() const = 0;
   /// Per-radar link counts (serial LT102 radars; after Stop).
-  virtual std::vector<std::pair<std::string, live::Lt102Stats>> radar_stats() const {
-    return {};
-  }
+  virtual std::vector<std::pair<std::string, live::Lt102Stats>> radar_stats() const { return {}; }
 };
 
 /// Serial devices: GPIO power-up and reset (throws GpioError when a configured chip or

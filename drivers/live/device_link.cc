@@ -22,12 +22,16 @@ void DeviceLink::Start() {
   thread_ = std::thread([this] { Loop(); });
 }
 
-void DeviceLink::Stop() {
+void DeviceLink::RequestStop() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     stop_ = true;
   }
   wake_.notify_all();
+}
+
+void DeviceLink::Stop() {
+  RequestStop();
   if (thread_.joinable()) thread_.join();
 }
 

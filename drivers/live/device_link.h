@@ -62,6 +62,8 @@ class DeviceLink {
   ~DeviceLink() { Stop(); }
 
   void Start();
+  /// Asks the thread to stop without waiting (stop several links at once, then Stop()).
+  void RequestStop();
   /// Stops the thread (sends the protocol's stop commands if connected); idempotent.
   void Stop();
   bool connected() const { return connected_; }

@@ -26,8 +26,7 @@ const std::vector<Lt102Command>& Lt102Commands() {
       {"start acquisition", lt102::kStart, V::kNone, lt102::kStarted, V::kNone, E::kNone},
       {"stop acquisition", lt102::kStop, V::kNone, lt102::kStop, V::kNone, E::kNone},
       {"reset to defaults", lt102::kReset, V::kNone, lt102::kReset, V::kNone, E::kNone},
-      {"read one raw frame", lt102::kReadFrame, V::kNone, lt102::kReadFrame, V::kRawData,
-       E::kNone},
+      {"read one raw frame", lt102::kReadFrame, V::kNone, lt102::kReadFrame, V::kRawData, E::kNone},
       {"range minimum", lt102::kRangeMin, V::kF32, lt102::kRangeMin, V::kF32, E::kActual},
       {"range maximum", lt102::kRangeMax, V::kF32, lt102::kRangeMax, V::kF32, E::kActual},
       {"first-sample offset", lt102::kOffset, V::kF32, lt102::kOffset, V::kF32, E::kActual},
@@ -59,6 +58,8 @@ std::string Lt102CommandLabel(std::uint8_t code) {
   char hex[8];
   std::snprintf(hex, sizeof(hex), "0x%02X", code);
   std::string label = c ? std::string(c->name) + " (" : std::string("unknown command (");
+  if (code == lt102::kStarted) label = "acquisition started (";  // the answer to 's'
+
   if (code >= 0x21 && code < 0x7F) label += std::string("'") + static_cast<char>(code) + "' ";
   return label + hex + ")";
 }
@@ -163,8 +164,8 @@ std::vector<std::uint8_t> EncodeLt102Body(const std::vector<std::uint8_t>& body,
 
 std::string Lt102Version::ToString() const {
   return "customer " + std::to_string(customer) + ", hardware " + std::to_string(hardware) +
-         ", firmware " + std::to_string(firmware) + ", feature set " +
-         std::to_string(feature_set) + ", sub-version " + std::to_string(sub_version);
+         ", firmware " + std::to_string(firmware) + ", feature set " + std::to_string(feature_set) +
+         ", sub-version " + std::to_string(sub_version);
 }
 
 Lt102Version ReadLt102Version(const std::uint8_t* p) {

@@ -106,9 +106,9 @@ void Lt102Driver::OnBytes(const std::uint8_t* data, std::size_t size) {
 
 void Lt102Driver::HandleFrame(const Lt102Frame& frame) {
   if (frame.code != lt102::kReadFrame) {
-    faults_->Report(name_ + ": other frames",
-                    "a frame starting with " + Lt102CommandLabel(frame.code) +
-                        " during acquisition ignored");
+    faults_->Report(
+        name_ + ": other frames",
+        "a frame starting with " + Lt102CommandLabel(frame.code) + " during acquisition ignored");
     return;
   }
   const auto now = Clock::now();
@@ -151,8 +151,9 @@ void Lt102Driver::HandleFrame(const Lt102Frame& frame) {
 void Lt102Driver::OnStop(SerialPort& port) {
   if (!port.is_open()) return;
   // Let the answer in flight arrive first, so that the first frame after `o` is its echo.
-  const auto end = sent_at_ + std::chrono::duration_cast<Clock::duration>(
-                                  std::chrono::duration<double>(config_.live.lt102.frame_timeout_s));
+  const auto end =
+      sent_at_ + std::chrono::duration_cast<Clock::duration>(
+                     std::chrono::duration<double>(config_.live.lt102.frame_timeout_s));
   std::uint8_t buffer[4096];
   while (acquiring_ && in_flight_ && Clock::now() < end) {
     std::size_t n = 0;
@@ -160,6 +161,7 @@ void Lt102Driver::OnStop(SerialPort& port) {
     if (status == SerialPort::ReadStatus::kDisconnected) return;
     if (status == SerialPort::ReadStatus::kData) OnBytes(buffer, n);
   }
+  if (acquiring_ && in_flight_) ++stats_.unanswered_at_stop;
   acquiring_ = false;
   in_flight_ = false;
   try {
@@ -195,7 +197,8 @@ Lt102Stats Lt102Driver::stats() const {
   s.exchange = exchange_.counts();
   s.answer_p50_ms = PercentileMs(answer_ms_, 50);
   s.answer_p99_ms = PercentileMs(answer_ms_, 99);
-  s.answer_max_ms = answer_ms_.empty() ? 0.0 : *std::max_element(answer_ms_.begin(), answer_ms_.end());
+  s.answer_max_ms =
+      answer_ms_.empty() ? 0.0 : *std::max_element(answer_ms_.begin(), answer_ms_.end());
   return s;
 }
 

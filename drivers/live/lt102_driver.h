@@ -26,16 +26,17 @@ namespace uwbsar::live {
 
 /// Counts of one radar's link, for live.json.
 struct Lt102Stats {
-  long long startups = 0;        ///< completed start-up sequences
+  long long startups = 0;  ///< completed start-up sequences
   long long startup_failures = 0;
   long long config_errors = 0;
-  long long requests = 0;        ///< `d` requests sent
-  long long answers = 0;         ///< `d` answers to a request in flight
-  long long lost = 0;            ///< `d` requests unanswered within frame_timeout_s
-  long long late_answers = 0;    ///< `d` answers after their request was given up
-  long long invalid_frames = 0;  ///< answers failing validation (size, samples, CRC)
-  long long stops = 0;           ///< `o` sent
-  Lt102ExchangeCounts exchange;  ///< start-up and stop requests, wrong / missing answers
+  long long requests = 0;            ///< `d` requests sent
+  long long answers = 0;             ///< `d` answers to a request in flight
+  long long lost = 0;                ///< `d` requests unanswered within frame_timeout_s
+  long long late_answers = 0;        ///< `d` answers after their request was given up
+  long long unanswered_at_stop = 0;  ///< a `d` still in flight when the link stopped
+  long long invalid_frames = 0;      ///< answers failing validation (size, samples, CRC)
+  long long stops = 0;               ///< `o` sent
+  Lt102ExchangeCounts exchange;      ///< start-up and stop requests, wrong / missing answers
   double answer_p50_ms = 0.0, answer_p99_ms = 0.0, answer_max_ms = 0.0;  ///< `d` to answer
   bool configured = false;
   Lt102Setup setup;  ///< of the last start-up

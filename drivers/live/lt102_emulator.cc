@@ -84,9 +84,8 @@ void Lt102Emulator::Serve() {
 void Lt102Emulator::Handle(const Lt102Frame& request) {
   const Lt102Command& command = *FindLt102Command(request.code);
   const std::size_t size = Lt102ValueSize(command.request);
-  const bool query =
-      size > 0 && std::all_of(request.payload.begin(), request.payload.end(),
-                              [](std::uint8_t b) { return b == 0xFF; });
+  const bool query = size > 0 && std::all_of(request.payload.begin(), request.payload.end(),
+                                             [](std::uint8_t b) { return b == 0xFF; });
   const double value = size > 0 ? ReadLt102Value(command.request, request.payload.data()) : 0.0;
   auto setting = [&](int* field) {
     if (!query) *field = static_cast<int>(value);
@@ -175,8 +174,7 @@ void Lt102Emulator::SendValue(const Lt102Command& command, double value) {
 void Lt102Emulator::SendAnswer(std::uint8_t code, std::vector<std::uint8_t> payload) {
   const Lt102Command* command = FindLt102Command(code);
   if (!wrong_code_sent_ && options_.wrong_code_code >= 0 &&
-      (code == options_.wrong_code_code ||
-       (command && command->code == options_.wrong_code_code) ||
+      (code == options_.wrong_code_code || (command && command->code == options_.wrong_code_code) ||
        (code == lt102::kStarted && options_.wrong_code_code == lt102::kStart))) {
     wrong_code_sent_ = true;
     code ^= 0x20;  // e.g. 'R' for 'r'
@@ -184,7 +182,8 @@ void Lt102Emulator::SendAnswer(std::uint8_t code, std::vector<std::uint8_t> payl
   if (options_.crc) {
     std::vector<std::uint8_t> body = {code};
     body.insert(body.end(), payload.begin(), payload.end());
-    payload.push_back(Lt102Crc8(body.data(), body.size(), options_.crc_polynomial, options_.crc_init));
+    payload.push_back(
+        Lt102Crc8(body.data(), body.size(), options_.crc_polynomial, options_.crc_init));
   }
   std::vector<std::uint8_t> frame;
   EncodeLt102Frame(code, payload.data(), payload.size(), &frame);
@@ -228,7 +227,8 @@ void Lt102Emulator::SendFrame() {
   if (options_.crc) {
     std::vector<std::uint8_t> body = {lt102::kReadFrame};
     body.insert(body.end(), payload.begin(), payload.end());
-    payload.push_back(Lt102Crc8(body.data(), body.size(), options_.crc_polynomial, options_.crc_init));
+    payload.push_back(
+        Lt102Crc8(body.data(), body.size(), options_.crc_polynomial, options_.crc_init));
   }
   std::vector<std::uint8_t> frame;
   EncodeLt102Frame(lt102::kReadFrame, payload.data(), payload.size(), &frame);

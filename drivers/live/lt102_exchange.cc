@@ -65,8 +65,8 @@ bool Lt102Exchange::Await(SerialPort& port, const Lt102Command& command,
     if (left <= 0) {
       ++counts_.missing_answers;
       char within[32];
-    std::snprintf(within, sizeof(within), " within %g s", timeout_s_);
-    *why = "no answer to " + Lt102CommandLabel(command.code) + within;
+      std::snprintf(within, sizeof(within), " within %g s", timeout_s_);
+      *why = "no answer to " + Lt102CommandLabel(command.code) + within;
       faults_->Report(name_ + ": missing answers", *why);
       return false;
     }

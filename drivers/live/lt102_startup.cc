@@ -21,8 +21,8 @@ std::string Lt102Setup::Describe() const {
                 "LT102 %s; CRC %s; range %.4f-%.4f m (%d samples); frame rate %d fps; carrier "
                 "%d MHz, bandwidth %d MHz, PRF divider %d, TX power %d, ADC frequency %d",
                 version.ToString().c_str(), crc ? "on" : "off", range_min_m, range_max_m,
-                samples_per_scan, frame_rate_fps, carrier_mhz, bandwidth_mhz, prf_divider,
-                tx_power, adc_frequency);
+                samples_per_scan, frame_rate_fps, carrier_mhz, bandwidth_mhz, prf_divider, tx_power,
+                adc_frequency);
   return text;
 }
 
@@ -68,9 +68,8 @@ Lt102Setup RunLt102Startup(SerialPort& port, Lt102Exchange& exchange, const Conf
       AppendLt102Value(command.request, request.value, &sent);
       AppendLt102Value(command.request, value, &got);
       if (sent != got) {
-        throw Lt102ConfigError(name + ": configuration error: " +
-                               Lt102CommandLabel(request.code) + " sent " +
-                               FormatLt102Value(command.request, request.value) +
+        throw Lt102ConfigError(name + ": configuration error: " + Lt102CommandLabel(request.code) +
+                               " sent " + FormatLt102Value(command.request, request.value) +
                                ", the radar echoed " + FormatLt102Value(command.answer, value));
       }
     }
@@ -107,13 +106,13 @@ Lt102Setup RunLt102Startup(SerialPort& port, Lt102Exchange& exchange, const Conf
       setup.samples_per_scan = Lt102SampleCount(setup.range_min_m, setup.range_max_m, bin_m);
       if (!std::isfinite(setup.range_min_m) || !std::isfinite(setup.range_max_m) ||
           setup.samples_per_scan < 2) {
-        throw Lt102ConfigError(
-            name + ": configuration error: the radar echoed range " +
-            FormatLt102Value(Lt102Value::kF32, setup.range_min_m) + "-" +
-            FormatLt102Value(Lt102Value::kF32, setup.range_max_m) + " m for " +
-            FormatLt102Value(Lt102Value::kF32, config.live.lt102.range_min_m) + "-" +
-            FormatLt102Value(Lt102Value::kF32, config.live.lt102.range_max_m) +
-            " m asked (live.lt102.range_min_m / range_max_m)");
+        throw Lt102ConfigError(name + ": configuration error: the radar echoed range " +
+                               FormatLt102Value(Lt102Value::kF32, setup.range_min_m) + "-" +
+                               FormatLt102Value(Lt102Value::kF32, setup.range_max_m) + " m for " +
+                               FormatLt102Value(Lt102Value::kF32, config.live.lt102.range_min_m) +
+                               "-" +
+                               FormatLt102Value(Lt102Value::kF32, config.live.lt102.range_max_m) +
+                               " m asked (live.lt102.range_min_m / range_max_m)");
       }
     }
     if (request.code == lt102::kCarrier) {

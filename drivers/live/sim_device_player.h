@@ -46,7 +46,7 @@ struct EmulatorFaults {
 };
 
 struct EmulatorCounts {
-  long long scans_sent = 0;  ///< LT102 frames answered to `d` requests
+  long long scans_sent = 0;          ///< LT102 frames answered to `d` requests
   long long frames_acquired = 0;     ///< simulated scans while the radars were started
   long long frames_overwritten = 0;  ///< acquired but replaced before a `d` asked for them
   long long packets_sent = 0;

@@ -63,7 +63,8 @@ class DriverHarness {
 };
 
 bool EndsWith(const std::vector<std::uint8_t>& bytes, const std::vector<std::uint8_t>& tail) {
-  return bytes.size() >= tail.size() && std::equal(tail.begin(), tail.end(), bytes.end() - tail.size());
+  return bytes.size() >= tail.size() &&
+         std::equal(tail.begin(), tail.end(), bytes.end() - tail.size());
 }
 
 TEST(Lt102DriverTest, PollsOneFrameAtATimeAndStopsTheRadarWithO) {
@@ -72,11 +73,12 @@ TEST(Lt102DriverTest, PollsOneFrameAtATimeAndStopsTheRadarWithO) {
   ASSERT_TRUE(WaitUntil([&] { return h.scans() >= 100; }));
   const DriverRun run = h.Stop();
   const Lt102EmulatorCounts emulated = radar.counts();
-  std::printf("polled: %lld requests, %lld answers, %lld lost; request-to-answer p50 %.2f ms, "
-              "p99 %.2f ms; emulator acquired %lld, answered %lld, overwritten %lld\n",
-              run.stats.requests, run.stats.answers, run.stats.lost, run.stats.answer_p50_ms,
-              run.stats.answer_p99_ms, emulated.frames_acquired, emulated.frames_answered,
-              emulated.frames_overwritten);
+  std::printf(
+      "polled: %lld requests, %lld answers, %lld lost; request-to-answer p50 %.2f ms, "
+      "p99 %.2f ms; emulator acquired %lld, answered %lld, overwritten %lld\n",
+      run.stats.requests, run.stats.answers, run.stats.lost, run.stats.answer_p50_ms,
+      run.stats.answer_p99_ms, emulated.frames_acquired, emulated.frames_answered,
+      emulated.frames_overwritten);
   EXPECT_EQ(run.stats.lost, 0);
   EXPECT_EQ(run.stats.answers, run.stats.requests);  // the stop waits for the one in flight
   EXPECT_EQ(run.stats.answers, emulated.frames_answered);

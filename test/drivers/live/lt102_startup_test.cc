@@ -45,20 +45,20 @@ StartupRun Startup(const EmulatedLt102& radar, const Config& config, FaultLog* f
 TEST(Lt102StartupTest, DefaultSequenceSendsExactlyTheseBytes) {
   // Hand-written: 0xFF, command, payload (0xFF/0x00/0x80 escaped as 0x80 0xFE/0x01/0x81), 0x00.
   const std::vector<std::uint8_t> expected = {
-      0xFF, 0x01, 0x00,                                      // firmware version
-      0xFF, 0x6F, 0x00,                                      // 'o' stop
-      0xFF, 0x65, 0x80, 0x01, 0x00,                          // 'e' 0: raw output
-      0xFF, 0x24, 0x80, 0x01, 0x00,                          // '$' 0: channel 0
-      0xFF, 0x0A, 0x01, 0x00,                                // 0x0A 1: Q15
+      0xFF, 0x01, 0x00,                                                  // firmware version
+      0xFF, 0x6F, 0x00,                                                  // 'o' stop
+      0xFF, 0x65, 0x80, 0x01, 0x00,                                      // 'e' 0: raw output
+      0xFF, 0x24, 0x80, 0x01, 0x00,                                      // '$' 0: channel 0
+      0xFF, 0x0A, 0x01, 0x00,                                            // 0x0A 1: Q15
       0xFF, 0x78, 0x80, 0x01, 0x80, 0x01, 0x80, 0x01, 0x80, 0x01, 0x00,  // 'x' 0.0f
-      0xFF, 0x58, 0xA4, 0x70, 0xCD, 0x40, 0x00,              // 'X' 6.42f
-      0xFF, 0x66, 0x64, 0x80, 0x01, 0x00,                    // 'f' 100 (u16)
-      0xFF, 0x0B, 0x80, 0xFE, 0x80, 0xFE, 0x00,              // 0x0B query (0xFFFF): carrier
-      0xFF, 0x0C, 0x80, 0xFE, 0x80, 0xFE, 0x00,              // 0x0C query: bandwidth
-      0xFF, 0x76, 0x80, 0xFE, 0x00,                          // 'v' query (0xFF): PRF divider
-      0xFF, 0x70, 0x80, 0xFE, 0x00,                          // 'p' query: TX power
-      0xFF, 0x05, 0x80, 0xFE, 0x80, 0xFE, 0x00,              // 0x05 query: ADC frequency
-      0xFF, 0x73, 0x00,                                      // 's' start
+      0xFF, 0x58, 0xA4, 0x70, 0xCD, 0x40, 0x00,                          // 'X' 6.42f
+      0xFF, 0x66, 0x64, 0x80, 0x01, 0x00,                                // 'f' 100 (u16)
+      0xFF, 0x0B, 0x80, 0xFE, 0x80, 0xFE, 0x00,  // 0x0B query (0xFFFF): carrier
+      0xFF, 0x0C, 0x80, 0xFE, 0x80, 0xFE, 0x00,  // 0x0C query: bandwidth
+      0xFF, 0x76, 0x80, 0xFE, 0x00,              // 'v' query (0xFF): PRF divider
+      0xFF, 0x70, 0x80, 0xFE, 0x00,              // 'p' query: TX power
+      0xFF, 0x05, 0x80, 0xFE, 0x80, 0xFE, 0x00,  // 0x05 query: ADC frequency
+      0xFF, 0x73, 0x00,                          // 's' start
   };
   EmulatedLt102 radar("transcript");
   FaultLog faults;
@@ -124,8 +124,12 @@ TEST_P(Lt102StartupStepTest, AWrongEchoIsAConfigurationErrorOrTheActualValue) {
     case lt102::kFormat:
     case lt102::kFrameRate: {
       ASSERT_TRUE(run.config_error) << run.error;
-      const std::string sent = code == lt102::kFormat ? "1" : code == lt102::kFrameRate ? "100" : "0";
-      const std::string echoed = code == lt102::kFormat ? "2" : code == lt102::kFrameRate ? "101" : "1";
+      const std::string sent = code == lt102::kFormat      ? "1"
+                               : code == lt102::kFrameRate ? "100"
+                                                           : "0";
+      const std::string echoed = code == lt102::kFormat      ? "2"
+                                 : code == lt102::kFrameRate ? "101"
+                                                             : "1";
       EXPECT_EQ(run.error, "radar left: configuration error: " + Lt102CommandLabel(code) +
                                " sent " + sent + ", the radar echoed " + echoed);
       EXPECT_FALSE(radar.started());
