@@ -124,8 +124,10 @@ void Lt102Driver::HandleFrame(const Lt102Frame& frame) {
   std::string error;
   const Lt102Setup& setup = stats_.setup;
   const int format = config_.live.lt102.sample_format;
-  if (!exchange_.StripCrc(frame, &payload, &error) ||
-      !DecodeLt102RawData(payload.data(), payload.size(), &raw_, &error)) {
+  const bool decoded = exchange_.StripCrc(frame, &payload, &error) &&
+                       DecodeLt102RawData(payload.data(), payload.size(), &raw_, &error);
+  if (!decoded) {
+    // `error` says why
   } else if (raw_.samples_per_scan != setup.samples_per_scan) {
     error = "raw-data samples_per_scan " + std::to_string(raw_.samples_per_scan) +
             ", the echoed range gives " + std::to_string(setup.samples_per_scan);
