@@ -77,8 +77,7 @@ double Lt102Driver::OnPoll(SerialPort& port) {
     faults_->Report(name_ + ": lost frames",
                     "no answer to 'd' within live.lt102.frame_timeout_s; resynchronising on the "
                     "next 0xFF");
-    in_flight_ = false;
-    decoder_.Reset();
+    in_flight_ = false;  // a partial answer is dropped (counted broken) at the next 0xFF
     next_due_ = now;
   }
   if (!in_flight_ && now >= next_due_) {
