@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <set>
-#include <sstream>
 #include <string>
 
 #include "slam/config_io.h"
@@ -187,26 +186,26 @@ void ValidateLive(const LiveConfig& l, const std::string& src) {
   }
   Require(l.radar_baud > 0, src, k + "radar_baud", "must be > 0");
   Require(l.kobuki_baud > 0, src, k + "kobuki_baud", "must be > 0");
-  Require(l.lt102_raw_data_code > 0 && l.lt102_raw_data_code < 255 && l.lt102_raw_data_code != 0x80,
-          src, k + "lt102_raw_data_code", "must be in [1, 254] and not 128 (0x80, the escape)");
-  for (const auto* list : {&l.lt102_start_commands, &l.lt102_stop_commands}) {
-    for (const std::string& command : *list) {
-      std::istringstream in(command);
-      std::string byte;
-      int n = 0;
-      while (in >> byte) {
-        const bool hex = byte.size() <= 2 &&
-                         byte.find_first_not_of("0123456789abcdefABCDEF") == std::string::npos;
-        Require(
-            hex, src,
-            k + (list == &l.lt102_start_commands ? "lt102_start_commands" : "lt102_stop_commands"),
-            "entries must be hex bytes separated by spaces (got '" + command + "')");
-        ++n;
-      }
-      Require(n > 0, src, k + "lt102_start_commands", "entries must not be empty");
-    }
-  }
-  Require(l.lt102_channel >= 0, src, k + "lt102_channel", "must be >= 0");
+  const Lt102Config& t = l.lt102;
+  const std::string kt = k + "lt102.";
+  Require(t.channel >= 0 && t.channel <= 4, src, kt + "channel",
+          "must be in [0, 4] (0-3 one channel, 4 combined; 5 = all is not supported)");
+  Require(t.sample_format >= 0 && t.sample_format <= 4, src, kt + "sample_format",
+          "must be in [0, 4] (0 Q7, 1 Q15, 2 Q31, 3 F32, 4 F16)");
+  Require(std::isfinite(t.range_min_m) && t.range_min_m >= 0, src, kt + "range_min_m",
+          "must be >= 0");
+  Require(std::isfinite(t.range_max_m) && t.range_max_m > t.range_min_m, src, kt + "range_max_m",
+          "must be > live.lt102.range_min_m");
+  Require(t.frame_rate_fps >= 1 && t.frame_rate_fps <= 32767, src, kt + "frame_rate_fps",
+          "must be in [1, 32767]");
+  Require(t.crc == "auto" || t.crc == "off" || t.crc == "on", src, kt + "crc",
+          "must be auto, off or on");
+  Require(t.crc_polynomial >= 0 && t.crc_polynomial <= 255, src, kt + "crc_polynomial",
+          "must be in [0, 255]");
+  Require(t.crc_init >= 0 && t.crc_init <= 255, src, kt + "crc_init", "must be in [0, 255]");
+  Require(t.answer_timeout_s > 0, src, kt + "answer_timeout_s", "must be > 0");
+  Require(t.frame_timeout_s > 0, src, kt + "frame_timeout_s", "must be > 0");
+  Require(t.startup_wait_s >= 0, src, kt + "startup_wait_s", "must be >= 0");
   Require(!l.kobuki_device.empty(), src, k + "kobuki_device", "must not be empty");
   Require(l.kobuki_wheel_radius_m > 0, src, k + "kobuki_wheel_radius_m", "must be > 0");
   Require(l.kobuki_wheelbase_m > 0, src, k + "kobuki_wheelbase_m", "must be > 0");

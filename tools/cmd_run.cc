@@ -97,6 +97,7 @@ void AddRunCommand(CLI::App& app, const GlobalOptions& globals) {
       config.live.radar_reset_lines.clear();
       config.live.status_led_line = -1;
       options.time_scale = opts->speed;
+      live::ConfigureLiveForEmulation(&config, opts->speed);
       const sim::SimScenario scenario =
           sim::MakeScenario(config, opts->map_path.empty() ? BundledMap() : opts->map_path,
                             "depart-return", opts->seed);
@@ -104,7 +105,7 @@ void AddRunCommand(CLI::App& app, const GlobalOptions& globals) {
       truth_clock = std::make_unique<live::HostClock>(opts->speed);
       player = std::make_unique<live::SimDevicePlayer>(
           config, scenario, opts->seed, config.live.radar_devices, config.live.kobuki_device,
-          opts->speed, 3, live::EmulatorFaults{}, [c = truth_clock.get()] { return c->Now(); },
+          opts->speed, live::EmulatorFaults{}, [c = truth_clock.get()] { return c->Now(); },
           opts->duration_s);
       options.ground_truth = [p = player.get()] { return p->ground_truth(); };
       player->Start();
