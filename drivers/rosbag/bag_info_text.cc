@@ -26,10 +26,14 @@ std::string HumanBytes(std::uint64_t bytes) {
 }
 
 std::string FormatBagTime(TimestampNs t) {
-  // Floor division without negating t (-INT64_MIN overflows).
+  // Floor division without negating t (-INT64_MIN overflows) or multiplying back
+  // (sec * 1e9 overflows for the earliest seconds).
   std::int64_t sec = t / 1000000000;
-  if (t % 1000000000 < 0) --sec;
-  const auto nsec = static_cast<long>(t - sec * 1000000000);
+  long nsec = static_cast<long>(t % 1000000000);
+  if (nsec < 0) {
+    --sec;
+    nsec += 1000000000;
+  }
   const std::time_t tt = static_cast<std::time_t>(sec);
   std::tm tm{};
   localtime_r(&tt, &tm);

@@ -20,10 +20,15 @@ TEST(LiveRunTest, RecordingMappedOfflineReproducesTheLiveTrajectory) {
   ASSERT_TRUE(r.run.slam);
   ASSERT_FALSE(r.run.slam->keyframes().empty());
   EXPECT_EQ(r.dropped_from_processing, 0);
-  EXPECT_GT(r.scans_received, 2000);
+  // How many scans 14 s of wall time hold depends on how fast the machine starts the radars
+  // and polls them (1952 under ASan, about 2400 in Release): every frame the emulator
+  // answered must have arrived (one per radar may be in flight at the stop), and the run
+  // must have flowed.
+  EXPECT_GE(r.scans_received, live.emulator.scans_sent - 2);
+  EXPECT_GT(r.scans_received, 1000);
   // Every scan and odometry sample is recorded (plus GPIO / fault / run events).
   EXPECT_GE(r.recorded_messages, r.scans_received + r.odometry_received);
-  EXPECT_GT(r.latency_samples, 2000);
+  EXPECT_GE(r.latency_samples, r.scans_received * 9 / 10);
   EXPECT_GT(r.latency_p99_ms, 0.0);
   EXPECT_GE(r.snapshots, 2);
   // Offline, from the recording: the same trajectory, pose by pose.
