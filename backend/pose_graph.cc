@@ -18,7 +18,9 @@
 namespace uwbsar {
 
 struct PoseGraph::SolverNode {
-  std::array<double, 3> x{};  // the Ceres parameter block [x_m, y_m, yaw_rad]
+  // The Ceres parameter block [x_m, y_m, yaw_rad] in the solver frame: the world frame
+  // moved to the first node's initial position (see solver_origin_).
+  std::array<double, 3> x{};
 };
 
 struct PoseGraph::SolverEdge {
@@ -150,8 +152,9 @@ void PoseGraph::InsertPending(std::vector<PendingNode> nodes, const std::vector<
                               const std::vector<int>& fixed) {
   std::unordered_map<int, bool> reseed;  // new nodes that may still be re-seeded
   for (const PendingNode& n : nodes) {
+    if (solver_nodes_.empty()) solver_origin_ = {n.guess.x_m, n.guess.y_m};
     auto node = std::make_unique<SolverNode>();
-    node->x = {n.guess.x_m, n.guess.y_m, n.guess.yaw_rad};
+    node->x = {n.guess.x_m - solver_origin_.x_m, n.guess.y_m - solver_origin_.y_m, n.guess.yaw_rad};
     problem_->AddParameterBlock(node->x.data(), 3);
     if (first_node_id_ < 0) {
       first_node_id_ = n.id;
@@ -260,7 +263,7 @@ void PoseGraph::ChordalStart() {
     if (!se->held_back) edges.push_back(se->edge);
   }
   for (const auto& [id, pose] : ChordalInitialization(guess, edges, anchor_id)) {
-    solver_nodes_.at(id)->x = {pose.x_m, pose.y_m, pose.yaw_rad};
+    solver_nodes_.at(id)->x = {pose.x_m, pose.y_m, pose.yaw_rad};  // solver frame in and out
   }
 }
 
@@ -359,7 +362,8 @@ OptimizeResult PoseGraph::Optimize() {
   std::lock_guard<std::mutex> lock(data_mutex_);
   for (auto& [id, node] : solver_nodes_) {
     node->x[2] = NormalizeAngle(node->x[2]);
-    estimates_[id] = Pose2{node->x[0], node->x[1], node->x[2]};
+    estimates_[id] =
+        Pose2{node->x[0] + solver_origin_.x_m, node->x[1] + solver_origin_.y_m, node->x[2]};
   }
   for (const auto& se : solver_edges_) {
     EdgeReport& r = reports_[static_cast<std::size_t>(se->index)];

@@ -168,6 +168,11 @@ class PoseGraph {
   std::unordered_map<int, std::unique_ptr<SolverNode>> solver_nodes_;
   std::vector<std::unique_ptr<SolverEdge>> solver_edges_;
   int first_node_id_ = -1;
+  // The solver works in the world frame translated to the first node's initial position,
+  // so that poses far from the world origin (UTM, building coordinates) keep their
+  // precision: Ceres' relative parameter tolerance and the residuals see local values.
+  // Estimates in and out are in the world frame.
+  Point2 solver_origin_;
   bool explicit_gauge_ = false;
   bool solved_once_ = false;
 };

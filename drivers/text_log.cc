@@ -1,19 +1,36 @@
 #include "drivers/text_log.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
 namespace uwbsar {
 namespace {
 
+/// One whitespace-separated field, parsed whole ("12abc" is not 12).
 template <class T>
 T Field(std::istringstream& in, const std::string& where, const char* name) {
+  std::string token;
+  if (!(in >> token)) throw InputError(where + ": missing field '" + name + "'");
+  std::istringstream parse(token);
   T value{};
-  if (!(in >> value)) throw InputError(where + ": missing or invalid field '" + name + "'");
+  if (!(parse >> value) || parse.peek() != std::char_traits<char>::eof()) {
+    throw InputError(where + ": field '" + name + "' has invalid value '" + token + "'");
+  }
   return value;
+}
+
+/// A record ends with its last field: anything after it makes the line malformed.
+void ExpectEnd(std::istringstream& in, const std::string& where, const char* record) {
+  std::string extra;
+  if (in >> extra) {
+    throw InputError(where + ": unexpected '" + extra + "' after the last field of the " + record +
+                     " record");
+  }
 }
 
 }  // namespace
@@ -36,6 +53,7 @@ TextLog ReadTextLog(const std::string& path) {
       s.T_world_robot.x_m = Field<double>(in, where, "x_m");
       s.T_world_robot.y_m = Field<double>(in, where, "y_m");
       s.T_world_robot.yaw_rad = Field<double>(in, where, "yaw_rad");
+      ExpectEnd(in, where, "odom");
       log.odometry.push_back(s);
     } else if (kind == "scan") {
       RadarScan s;
@@ -87,11 +105,16 @@ void WriteTextLog(const std::string& path, const TextLog& log) {
       }
       out << "\n";
     }
-    if (!out.flush()) throw InputError(path + ": cannot write log");
+    if (!out.flush()) {
+      const int error = errno;
+      out.close();
+      std::remove(tmp.c_str());
+      throw std::runtime_error(path + ": cannot write: " + std::strerror(error));
+    }
   }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {
     std::remove(tmp.c_str());
-    throw InputError(path + ": cannot rename temporary file into place");
+    throw std::runtime_error(path + ": cannot rename temporary file into place");
   }
 }
 

@@ -8,7 +8,10 @@ namespace uwbsar {
 namespace {
 
 struct LookupFrame {
-  float sx, sy;       // sensor position in the grid frame
+  // Sensor position in the grid frame, in double: grids may sit far from their frame's
+  // origin (world coordinates of 1e5 m have a float spacing of 8 mm), so each span's
+  // offset from the sensor is formed in double and only the small difference is float.
+  double sx, sy;
   float inv_step;     // 1 / range step
   float start_index;  // range_start / step
   int last_index;     // table size - 2 (the highest i with i + 1 valid)
@@ -21,9 +24,9 @@ void AccumulateRealSpans(const RowSpan* begin, const RowSpan* end, const ImageGr
   const float res = static_cast<float>(grid.resolution_m);
   for (const RowSpan* s = begin; s != end; ++s) {
     float* row = image->ptr<float>(s->row);
-    const float dy = static_cast<float>(grid.RowToY(s->row)) - f.sy;
+    const float dy = static_cast<float>(grid.RowToY(s->row) - f.sy);
     const float dy2 = dy * dy;
-    const float dx0 = static_cast<float>(grid.ColToX(s->col_begin)) - f.sx;
+    const float dx0 = static_cast<float>(grid.ColToX(s->col_begin) - f.sx);
     const int n = s->col_end - s->col_begin;
     float* __restrict out = row + s->col_begin;
     for (int k = 0; k < n; ++k) {
@@ -42,9 +45,9 @@ void AccumulateComplexSpans(const RowSpan* begin, const RowSpan* end, const Imag
   const float res = static_cast<float>(grid.resolution_m);
   for (const RowSpan* s = begin; s != end; ++s) {
     float* row = image->ptr<float>(s->row);
-    const float dy = static_cast<float>(grid.RowToY(s->row)) - f.sy;
+    const float dy = static_cast<float>(grid.RowToY(s->row) - f.sy);
     const float dy2 = dy * dy;
-    const float dx0 = static_cast<float>(grid.ColToX(s->col_begin)) - f.sx;
+    const float dx0 = static_cast<float>(grid.ColToX(s->col_begin) - f.sx);
     const int n = s->col_end - s->col_begin;
     float* __restrict out = row + 2 * s->col_begin;
     for (int k = 0; k < n; ++k) {
@@ -88,8 +91,8 @@ long long BackProjector::Accumulate(const RangeProfile& profile, const Pose2& T_
   }
 
   LookupFrame f;
-  f.sx = static_cast<float>(T_grid_sensor.x_m);
-  f.sy = static_cast<float>(T_grid_sensor.y_m);
+  f.sx = T_grid_sensor.x_m;
+  f.sy = T_grid_sensor.y_m;
   f.inv_step = static_cast<float>(1.0 / profile.range_step_m);
   f.start_index = static_cast<float>(profile.range_start_m / profile.range_step_m);
   f.last_index = static_cast<int>(profile.size()) - 2;

@@ -21,14 +21,11 @@ ImagingFrontend::~ImagingFrontend() = default;
 
 void ImagingFrontend::AddOdometry(const OdometrySample& sample) {
   ++stats_.odometry_received;
-  switch (odometry_.Add(sample)) {
+  const OdometryBuffer::AddReport report = odometry_.Add(sample);
+  if (report.outlier_dropped) CountImplausible();
+  switch (report.result) {
     case OdometryBuffer::AddResult::kAccepted:
-      break;
-    case OdometryBuffer::AddResult::kJumpCorrected:
-      ++stats_.odometry_jumps_corrected;
-      log_once_.Warn("odom_jump", "odometry jumped more than gating.max_odom_jump_m at t=" +
-                                      std::to_string(NsToSeconds(sample.stamp_ns)) +
-                                      " s; treated as no motion");
+    case OdometryBuffer::AddResult::kHeld:
       break;
     case OdometryBuffer::AddResult::kOutOfOrder:
       ++stats_.odometry_rejected_out_of_order;
@@ -36,11 +33,35 @@ void ImagingFrontend::AddOdometry(const OdometrySample& sample) {
       return;
     case OdometryBuffer::AddResult::kNonFinite:
       ++stats_.odometry_rejected_nonfinite;
-      log_once_.Warn("odom_nan", "odometry sample with NaN/Inf pose dropped");
+      log_once_.Warn("odom_nan",
+                     "odometry sample with a NaN/Inf pose or a coordinate beyond 1e9 m dropped");
       return;
   }
-  if (odometry_observer_) odometry_observer_(odometry_.entries().back());
+  if (report.jumps > 0) {
+    stats_.odometry_jumps_corrected += report.jumps;
+    log_once_.Warn("odom_jump",
+                   "odometry jumped (a step longer than gating.max_odom_jump_m, or "
+                   "faster than gating.max_odom_speed_mps / max_odom_turn_rate_radps "
+                   "and confirmed by the next sample) at t=" +
+                       std::to_string(NsToSeconds(sample.stamp_ns)) + " s; treated as no motion");
+  }
+  if (report.appended == 0) return;
+  const auto& entries = odometry_.entries();
+  if (odometry_observer_) {
+    for (std::size_t i = entries.size() - static_cast<std::size_t>(report.appended);
+         i < entries.size(); ++i) {
+      odometry_observer_(entries[i]);
+    }
+  }
   ProcessPending(false);
+}
+
+void ImagingFrontend::CountImplausible() {
+  ++stats_.odometry_rejected_implausible;
+  log_once_.Warn("odom_implausible",
+                 "odometry sample implying a speed above gating.max_odom_speed_mps or a turn "
+                 "rate above gating.max_odom_turn_rate_radps, not confirmed by the next "
+                 "sample, dropped as an outlier");
 }
 
 void ImagingFrontend::AddScan(const RadarScan& scan) {
@@ -136,6 +157,7 @@ void ImagingFrontend::ImageScan(RadarScan&& scan, const OdometryEntry& odom) {
 }
 
 void ImagingFrontend::Finish() {
+  if (odometry_.DropHeld()) CountImplausible();
   ProcessPending(true);
   builder_->Finish();
 }

@@ -31,7 +31,8 @@ struct FrontendStats {
   long long odometry_received = 0;
   long long odometry_jumps_corrected = 0;
   long long odometry_rejected_out_of_order = 0;
-  long long odometry_rejected_nonfinite = 0;
+  long long odometry_rejected_nonfinite = 0;    ///< NaN/Inf, or beyond kMaxOdomCoordinateM
+  long long odometry_rejected_implausible = 0;  ///< impossible speed/turn rate, not confirmed
   long long pixel_updates = 0;
   long long keyframes = 0;
 
@@ -70,6 +71,7 @@ class ImagingFrontend {
  private:
   void ProcessPending(bool final);
   void ImageScan(RadarScan&& scan, const OdometryEntry& odom);
+  void CountImplausible();
 
   Config config_;
   std::vector<SensorGeometry> sensors_;

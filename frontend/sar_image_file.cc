@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "slam/errors.h"
+#include "slam/image_header.h"
 #include "slam/sar_grid_metadata.h"
 
 namespace uwbsar {
@@ -24,8 +25,9 @@ std::string Lower(std::string s) {
 }
 
 /// All pages of the file, decoded as stored.
-std::vector<cv::Mat> DecodePages(const std::string& path) {
+std::vector<cv::Mat> DecodePages(const std::string& path, double max_pixels) {
   if (!fs::is_regular_file(path)) throw InputError(path + ": SAR image does not exist");
+  CheckImageSize(path, max_pixels, "SAR image");
   std::vector<cv::Mat> pages;
   try {
     const std::string ext = Lower(fs::path(path).extension().string());
@@ -84,7 +86,8 @@ std::string FindGridYaml(const std::string& image_path) {
   return {};
 }
 
-SarImageFile ReadSarImageFile(const std::string& path, double default_resolution_m) {
+SarImageFile ReadSarImageFile(const std::string& path, double default_resolution_m,
+                              double max_pixels) {
   SarImageFile out;
   SarGridMetadata meta;
   const std::string ext = Lower(fs::path(path).extension().string());
@@ -98,7 +101,7 @@ SarImageFile ReadSarImageFile(const std::string& path, double default_resolution
     out.grid_yaml = FindGridYaml(path);
     if (!out.grid_yaml.empty()) meta = LoadSarGridMetadata(out.grid_yaml);
   }
-  out.image = ToSarImage(out.path, DecodePages(out.path), &out.enhanced);
+  out.image = ToSarImage(out.path, DecodePages(out.path, max_pixels), &out.enhanced);
   if (out.grid_yaml.empty()) {
     if (!(default_resolution_m > 0.0) || !std::isfinite(default_resolution_m)) {
       throw InputError(path + ": resolution must be > 0 metres per pixel");

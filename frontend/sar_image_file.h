@@ -9,6 +9,7 @@
 #include <string>
 
 #include "frontend/image_grid.h"
+#include "slam/config.h"
 
 namespace uwbsar {
 
@@ -30,6 +31,9 @@ std::string FindGridYaml(const std::string& image_path);
 /// InputError naming the file on a missing or undecodable file, an unsupported pixel type,
 /// a size that disagrees with the grid YAML, an image without any measurement (all 0), or
 /// a uniform one.
-SarImageFile ReadSarImageFile(const std::string& path, double default_resolution_m);
+/// An image declaring more than `max_pixels` (limits.max_map_image_pixels) is refused from
+/// its header, before decoding.
+SarImageFile ReadSarImageFile(const std::string& path, double default_resolution_m,
+                              double max_pixels = LimitsConfig{}.max_map_image_pixels);
 
 }  // namespace uwbsar

@@ -2,7 +2,8 @@
 // recovery of files without a footer, chunk decompression none/zstd/lz4, CRCs, k-way
 // chunk merge) on arbitrary bytes. Contract under test: bad input throws InputError
 // or is recovered up to the first damaged record; nothing else happens, and the
-// messages that come out are in time order (and as many as recovery reported).
+// messages that come out are in time order (and as many as recovery reported); the same
+// holds when damaged chunks are skipped (--skip-damaged).
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -11,12 +12,17 @@
 #include "slam/errors.h"
 #include "slam/log.h"
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+namespace {
+
+// One pass over the file; `skip` reads as `uwbsar map --skip-damaged` does.
+void ReadAll(const std::uint8_t* data, std::size_t size, bool skip) {
   using namespace uwbsar::rosbag;
-  uwbsar::SetLogLevel(uwbsar::LogLevel::kSilent);  // recovery warnings on most inputs
   try {
     McapOpenReport report;
-    auto reader = OpenMcapStorage(MakeMemorySource("fuzz.mcap", {data, data + size}), &report);
+    BagReadOptions options;
+    options.skip_damaged_chunks = skip;
+    auto reader =
+        OpenMcapStorage(MakeMemorySource("fuzz.mcap", {data, data + size}), &report, options);
     reader->Stats();
     const std::size_t topics = reader->Topics().size();
     StorageMessage m;
@@ -34,5 +40,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (report.recovered && count != report.recovered_messages) __builtin_trap();
   } catch (const uwbsar::InputError&) {
   }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  uwbsar::SetLogLevel(uwbsar::LogLevel::kSilent);  // recovery warnings on most inputs
+  ReadAll(data, size, false);
+  ReadAll(data, size, true);
   return 0;
 }

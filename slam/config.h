@@ -94,7 +94,9 @@ struct GatingConfig {
   double min_travel_m = 0.003;   ///< accept a scan after this much robot travel (paper: 3 mm)
   double max_odom_jump_m = 0.5;  ///< a larger step between consecutive odometry samples is rejected
   double max_odom_gap_s = 0.5;   ///< scans farther than this from odometry samples are rejected
-  double max_scan_latency_s = 1.0;  ///< scans waiting longer than this for odometry are dropped
+  double max_scan_latency_s = 1.0;   ///< scans waiting longer than this for odometry are dropped
+  double max_odom_speed_mps = 10.0;  ///< a step implying a faster speed is an outlier or a reset
+  double max_odom_turn_rate_radps = 12.0;  ///< a step implying a faster turn likewise
 
   template <class V>
   void Visit(V& v) {
@@ -102,6 +104,8 @@ struct GatingConfig {
     v("max_odom_jump_m", max_odom_jump_m);
     v("max_odom_gap_s", max_odom_gap_s);
     v("max_scan_latency_s", max_scan_latency_s);
+    v("max_odom_speed_mps", max_odom_speed_mps);
+    v("max_odom_turn_rate_radps", max_odom_turn_rate_radps);
   }
 };
 
@@ -270,6 +274,32 @@ struct SlamConfig {
   }
 };
 
+/// Budgets on the sizes the other settings imply (README "What uwbsar refuses"): the
+/// configuration is refused before any work starts when a setting would exceed them, and
+/// input files declaring larger images are refused before they are decoded.
+struct LimitsConfig {
+  double max_tile_pixels = 3.2e7;         ///< one keyframe image: the segment canvas at
+                                          ///< imaging.pixel_size_m, a tile's footprint at
+                                          ///< slam.map_resolution_m (defaults: 3.2e6 and 1.0e6)
+  double max_imaging_memory_mb = 2048.0;  ///< segment canvases alive at once (tile_length_m /
+                                          ///< tile_spacing_m + 1) x canvas bytes (default 39)
+  double max_keyframes_per_m = 20.0;      ///< 1 / keyframe.tile_spacing_m (default 1)
+  double max_range_samples = 1.0e6;     ///< radars[].num_samples x coherent_oversampling (coherent)
+  double max_image_pixels = 2.0e8;      ///< a whole-run image: `image` strips, `map --exact`
+  double max_map_image_pixels = 5.0e7;  ///< declared size of an image read from a file (map_server
+                                        ///< maps for simulate / compare / export-pcd, float maps)
+
+  template <class V>
+  void Visit(V& v) {
+    v("max_tile_pixels", max_tile_pixels);
+    v("max_imaging_memory_mb", max_imaging_memory_mb);
+    v("max_keyframes_per_m", max_keyframes_per_m);
+    v("max_range_samples", max_range_samples);
+    v("max_image_pixels", max_image_pixels);
+    v("max_map_image_pixels", max_map_image_pixels);
+  }
+};
+
 /// The whole configuration; config/default.yaml mirrors it field by field.
 struct Config {
   PulseConfig pulse;
@@ -286,6 +316,7 @@ struct Config {
   SlamConfig slam;
   LiveConfig live;
   DdsConfig dds;
+  LimitsConfig limits;
 
   template <class V>
   void Visit(V& v) {
@@ -302,6 +333,7 @@ struct Config {
     v("compare", compare);
     v("live", live);
     v("dds", dds);
+    v("limits", limits);
   }
 };
 

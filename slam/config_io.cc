@@ -8,6 +8,8 @@
 #include <sstream>
 #include <type_traits>
 
+#include "slam/bounded_file.h"
+
 namespace uwbsar {
 namespace {
 
@@ -47,7 +49,13 @@ class Reader {
   /// Throws if the mapping holds a key that no field claimed.
   void CheckUnknownKeys() const {
     for (const auto& kv : node_) {
-      const std::string key = kv.first.as<std::string>();
+      if (!kv.first.IsScalar()) {
+        throw ConfigError(Where(source_, kv.first) + ": a key in '" +
+                          (prefix_.empty() ? std::string("the top level")
+                                           : prefix_.substr(0, prefix_.size() - 1)) +
+                          "' is not a plain name (complex key)");
+      }
+      const std::string key = kv.first.Scalar();
       if (!known_.count(key)) {
         throw ConfigError(Where(source_, kv.first) + ": unknown key '" + prefix_ + key + "'");
       }
@@ -141,26 +149,35 @@ Config LoadConfigFromString(const std::string& yaml_text, const std::string& sou
   YAML::Node root;
   try {
     root = YAML::Load(yaml_text);
-  } catch (const YAML::ParserException& e) {
+  } catch (const YAML::Exception& e) {
     throw ConfigError(source_name + ":" + std::to_string(e.mark.line + 1) +
                       ": YAML syntax error: " + e.msg);
   }
   Config config;
   if (root.IsNull()) return config;  // an empty file means all defaults
   if (!root.IsMap()) throw ConfigError(source_name + ": the top level must be a mapping");
-  Reader reader(root, source_name, "");
-  config.Visit(reader);
-  reader.CheckUnknownKeys();
+  try {
+    Reader reader(root, source_name, "");
+    config.Visit(reader);
+    reader.CheckUnknownKeys();
+  } catch (const YAML::Exception& e) {
+    // A shape the reader did not foresee is still bad input naming the file and line.
+    throw ConfigError(source_name +
+                      (e.mark.line >= 0 ? ":" + std::to_string(e.mark.line + 1) : "") +
+                      ": unexpected YAML shape: " + e.msg);
+  }
   ValidateConfig(config, source_name);
   return config;
 }
 
 Config LoadConfig(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot open configuration file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return LoadConfigFromString(text.str(), path);
+  std::string text;
+  try {
+    text = ReadBoundedFile(path, "configuration");
+  } catch (const InputError& e) {
+    throw ConfigError(e.what());
+  }
+  return LoadConfigFromString(text, path);
 }
 
 std::string ConfigToYaml(const Config& config) {
@@ -172,13 +189,15 @@ std::string ConfigToYaml(const Config& config) {
 }
 
 std::vector<PointTargetConfig> LoadPointTargets(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot open point-target file");
-  std::stringstream text;
-  text << in.rdbuf();
+  std::string text;
+  try {
+    text = ReadBoundedFile(path, "point-target");
+  } catch (const InputError& e) {
+    throw ConfigError(e.what());
+  }
   YAML::Node root;
   try {
-    root = YAML::Load(text.str());
+    root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw ConfigError(path + ":" + std::to_string(e.mark.line + 1) +
                       ": YAML syntax error: " + e.msg);

@@ -8,20 +8,48 @@
 
 namespace uwbsar {
 
+/// The LT102 settings sent at start-up (the vendor toolbox's command protocol,
+/// REFERENCE.md section 4a; drivers/live/lt102_commands.h holds the command table).
+/// The radar's echoed range, not radars[].range_offset_m / num_samples, sets the range of
+/// sample 0 and the sample count that imaging uses in a live run.
+struct Lt102Config {
+  std::string crc = "auto";       ///< trailing CRC-8 byte: auto (from the version answer), off, on
+  int channel = 0;                ///< `$` data channel: 0-3 one receive channel, 4 combined
+  int sample_format = 1;          ///< 0x0A: 0 Q7, 1 Q15, 2 Q31, 3 F32, 4 F16
+  double range_min_m = 0.0;       ///< `x`: range of the first sample asked for
+  double range_max_m = 6.42;      ///< `X`: range of the last sample asked for
+  int frame_rate_fps = 100;       ///< `f`: acquisition rate; `d` is polled at this rate
+  int crc_polynomial = 0x07;      ///< CRC-8 polynomial (not public; default CRC-8/SMBUS)
+  int crc_init = 0x00;            ///< CRC-8 initial value
+  double answer_timeout_s = 0.5;  ///< start-up and stop: wait for an answer this long
+  double frame_timeout_s = 0.1;   ///< acquisition: a `d` unanswered this long is lost
+  double startup_wait_s = 10.0;   ///< `uwbsar run` waits this long for every radar's start-up
+                                  ///< (its echoed range) before SLAM starts
+
+  template <class V>
+  void Visit(V& v) {
+    v("channel", channel);
+    v("sample_format", sample_format);
+    v("range_min_m", range_min_m);
+    v("range_max_m", range_max_m);
+    v("frame_rate_fps", frame_rate_fps);
+    v("crc", crc);
+    v("crc_polynomial", crc_polynomial);
+    v("crc_init", crc_init);
+    v("answer_timeout_s", answer_timeout_s);
+    v("frame_timeout_s", frame_timeout_s);
+    v("startup_wait_s", startup_wait_s);
+  }
+};
+
 /// Live mode on the robot (`uwbsar run`): serial devices, GPIO wiring, threads and
 /// recording. Device paths and GPIO lines are the robot's; config/robot.yaml is the
-/// paper's robot. The LT102 command table is not public (REFERENCE.md section 4), so
-/// its command codes are configuration: each command is hex bytes, the first byte the
-/// command code and the rest its payload, sent framed (0xFF code payload 0x00).
+/// paper's robot.
 struct LiveConfig {
   std::vector<std::string> radar_devices = {
-      "/dev/ttyACM0", "/dev/ttyACM1"};  ///< serial
-                                        ///< device of radars[i] (one per radar)
-  int radar_baud = 115200;              ///< LT102 baud rate (SDK default)
-  int lt102_raw_data_code = 82;         ///< command byte of the LT102 raw-data message
-  std::vector<std::string> lt102_start_commands = {"53 01"};  ///< sent after opening the port
-  std::vector<std::string> lt102_stop_commands = {"53 00"};   ///< sent before closing it
-  int lt102_channel = 0;                         ///< channel of a multi-channel scan that is used
+      "/dev/ttyACM0", "/dev/ttyACM1"};           ///< serial
+                                                 ///< device of radars[i] (one per radar)
+  int radar_baud = 115200;                       ///< LT102 baud rate (SDK default)
   std::string kobuki_device = "/dev/kobuki";     ///< Kobuki base serial device
   int kobuki_baud = 115200;                      ///< Kobuki baud rate
   double kobuki_wheel_radius_m = 0.035;          ///< Kobuki wheel radius
@@ -49,15 +77,12 @@ struct LiveConfig {
   double recording_flush_period_s = 0.5;      ///< the recording is made durable this often
   double clock_step_threshold_s = 0.1;        ///< host clock moving this much against the
                                               ///< monotonic clock is reported as a clock step
+  Lt102Config lt102;                          ///< LT102 start-up settings and link timing
 
   template <class V>
   void Visit(V& v) {
     v("radar_devices", radar_devices);
     v("radar_baud", radar_baud);
-    v("lt102_raw_data_code", lt102_raw_data_code);
-    v("lt102_start_commands", lt102_start_commands);
-    v("lt102_stop_commands", lt102_stop_commands);
-    v("lt102_channel", lt102_channel);
     v("kobuki_device", kobuki_device);
     v("kobuki_baud", kobuki_baud);
     v("kobuki_wheel_radius_m", kobuki_wheel_radius_m);
@@ -81,6 +106,7 @@ struct LiveConfig {
     v("recording_storage", recording_storage);
     v("recording_flush_period_s", recording_flush_period_s);
     v("clock_step_threshold_s", clock_step_threshold_s);
+    v("lt102", lt102);
   }
 };
 

@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
+#include "slam/image_header.h"
 #include "slam/yaml_file.h"
 
 namespace uwbsar {
@@ -43,9 +44,10 @@ bool NextToken(std::istream& in, std::string* token) {
   return !token->empty();
 }
 
-/// Checks a PGM header and that the file holds width * height samples, since
-/// cv::imread silently accepts some truncated files.
-void CheckPgm(const std::string& path) {
+/// Reads a PGM (P2 or P5) with its header checked and exactly width * height samples (cv::imread
+/// silently accepts some truncated files). The samples are returned raw, 0..maxval, as 16-bit:
+/// OpenCV scales some maxvals and not others (P2 below 256 to 255, P5 never).
+cv::Mat ReadPgm(const std::string& path, double max_pixels, long* maxval) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open map image");
   std::string magic, token;
@@ -65,8 +67,14 @@ void CheckPgm(const std::string& path) {
     }
   }
   const long long count = static_cast<long long>(values[0]) * values[1];
+  // The declared size against the budget before the samples are allocated (image_header.h).
+  if (static_cast<double>(count) > max_pixels) CheckImageSize(path, max_pixels, "map image");
+  *maxval = values[2];
+  cv::Mat image(static_cast<int>(values[1]), static_cast<int>(values[0]), CV_16UC1);
+  auto* out = image.ptr<std::uint16_t>(0);  // continuous
   if (magic == "P5") {
-    const long long bytes = count * (values[2] > 255 ? 2 : 1);
+    const int width = values[2] > 255 ? 2 : 1;  // Netpbm: big-endian when 2 bytes
+    const long long bytes = count * width;
     const std::streamoff data_start = in.tellg();
     in.seekg(0, std::ios::end);
     const std::streamoff available = in.tellg() - data_start;
@@ -75,14 +83,32 @@ void CheckPgm(const std::string& path) {
                        std::to_string(values[1]) + " (" + std::to_string(bytes) +
                        " bytes) but the file holds " + std::to_string(available));
     }
+    in.seekg(data_start);
+    std::vector<unsigned char> raw(static_cast<std::size_t>(bytes));
+    in.read(reinterpret_cast<char*>(raw.data()), static_cast<std::streamsize>(raw.size()));
+    for (long long i = 0; i < count; ++i) {
+      out[i] = width == 1 ? raw[static_cast<std::size_t>(i)]
+                          : static_cast<std::uint16_t>(raw[static_cast<std::size_t>(2 * i)] << 8 |
+                                                       raw[static_cast<std::size_t>(2 * i + 1)]);
+    }
   } else {
     long long n = 0;
-    while (NextToken(in, &token)) ++n;
+    while (NextToken(in, &token)) {
+      char* end = nullptr;
+      const long v = std::strtol(token.c_str(), &end, 10);
+      if (*end != '\0' || v < 0 || v > values[2]) {
+        throw InputError(path + ": bad PGM sample '" + token.substr(0, 12) + "' (sample " +
+                         std::to_string(n) + ", maxval " + std::to_string(values[2]) + ")");
+      }
+      if (n < count) out[n] = static_cast<std::uint16_t>(v);
+      ++n;
+    }
     if (n != count) {
       throw InputError(path + ": bad PGM size: header says " + std::to_string(count) +
                        " samples but the file holds " + std::to_string(n));
     }
   }
+  return image;
 }
 
 }  // namespace
@@ -180,25 +206,34 @@ std::vector<std::int8_t> PixelsToCells(const std::vector<double>& pixels, double
   return cells;
 }
 
-OccupancyGrid LoadOccupancyGrid(const std::string& yaml_path) {
+OccupancyGrid LoadOccupancyGrid(const std::string& yaml_path, double max_image_pixels,
+                                MapPixels* pixels_out) {
   const MapMetadata m = LoadMapMetadata(yaml_path);
   if (!std::filesystem::is_regular_file(m.image_path)) {
     throw InputError(yaml_path + ": map image '" + m.image_path + "' does not exist");
   }
   std::string extension = std::filesystem::path(m.image_path).extension().string();
   for (char& c : extension) c = static_cast<char>(std::tolower(c));
-  if (extension == ".pgm") CheckPgm(m.image_path);
+  long pgm_maxval = 0;
   cv::Mat image;
-  try {
-    image = cv::imread(m.image_path, cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception& e) {
-    throw InputError(m.image_path + ": cannot decode map image: " + e.err);
+  if (extension == ".pgm") {
+    image = ReadPgm(m.image_path, max_image_pixels, &pgm_maxval);
+  } else {
+    CheckImageSize(m.image_path, max_image_pixels, "map image");
+    try {
+      image = cv::imread(m.image_path, cv::IMREAD_UNCHANGED);
+    } catch (const cv::Exception& e) {
+      throw InputError(m.image_path + ": cannot decode map image: " + e.err);
+    }
   }
   if (image.empty()) throw InputError(m.image_path + ": cannot decode map image");
   if (image.depth() != CV_8U && image.depth() != CV_16U) {
     throw InputError(m.image_path + ": map image must have 8 or 16 bits per sample");
   }
-  const double max_value = image.depth() == CV_8U ? 255.0 : 65535.0;
+  // A PGM's samples run 0..maxval (any value 1..65535, Netpbm); other formats use the
+  // whole range of their depth.
+  const double max_value =
+      pgm_maxval > 0 ? static_cast<double>(pgm_maxval) : (image.depth() == CV_8U ? 255.0 : 65535.0);
   const int channels = image.channels();
   const int colour = channels >= 3 ? 3 : 1;  // grey, grey+alpha, BGR or BGRA
   const bool has_alpha = channels == 2 || channels == 4;
@@ -224,6 +259,10 @@ OccupancyGrid LoadOccupancyGrid(const std::string& yaml_path) {
   grid.resolution_m = m.resolution_m;
   grid.origin = m.origin;
   grid.cells = PixelsToCells(pixels, max_value, m);
+  if (pixels_out != nullptr) {
+    pixels_out->grey = std::move(pixels);
+    pixels_out->max_value = max_value;
+  }
   return grid;
 }
 

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "slam/config.h"
 #include "slam/errors.h"
 #include "slam/pose2.h"
 
@@ -68,7 +69,17 @@ struct MapMetadata {
 /// grey or colour image OpenCV reads). Throws InputError naming the file, line
 /// and key on a missing/unreadable image, bad PGM header or size, resolution <= 0,
 /// bad thresholds, unknown mode or malformed origin.
-OccupancyGrid LoadOccupancyGrid(const std::string& yaml_path);
+/// PGM samples are scaled by the header's maxval (any 1..65535), so thresholds apply to the
+/// same normalised value in 8 and 16 bits. `pixels` (optional) receives the grey values.
+/// An image declaring more than `max_image_pixels` (limits.max_map_image_pixels) is refused
+/// from its header, before it is decoded.
+struct MapPixels {
+  std::vector<double> grey;  ///< per cell, row 0 = top; NaN = transparent
+  double max_value = 255.0;  ///< the value of white (PGM maxval, else 255 or 65535)
+};
+OccupancyGrid LoadOccupancyGrid(const std::string& yaml_path,
+                                double max_image_pixels = LimitsConfig{}.max_map_image_pixels,
+                                MapPixels* pixels = nullptr);
 /// The YAML part only (no image is read).
 MapMetadata LoadMapMetadata(const std::string& yaml_path);
 /// Converts grey pixel values (0..max_value, row 0 = top) to cell values as map_server does:

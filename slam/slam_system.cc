@@ -291,7 +291,16 @@ Pose2 SlamSystem::CorrectionAt(TimestampNs stamp_ns) const {
   const TimestampNs t0 = keyframes_[i - 1].keyframe.stamp_ns, t1 = after->keyframe.stamp_ns;
   const double t =
       t1 > t0 ? static_cast<double>(stamp_ns - t0) / static_cast<double>(t1 - t0) : 0.0;
-  return Interpolate(correction(i - 1), correction(i), t);
+  // Interpolate the two corrections as rotations about the earlier anchor, not about the
+  // world origin: a correction's translation depends on its pivot, and with a pivot far
+  // away (a map frame 1e6 m from the robot) the linear blend of translations would move
+  // the samples between keyframes by metres. About a nearby pivot the result does not
+  // depend on where the world origin is.
+  const Pose2& a = keyframes_[i - 1].keyframe.T_world_anchor;
+  const Pose2 to_pivot{-a.x_m, -a.y_m, 0.0}, from_pivot{a.x_m, a.y_m, 0.0};
+  const Pose2 blend = Interpolate(to_pivot * correction(i - 1) * from_pivot,
+                                  to_pivot * correction(i) * from_pivot, t);
+  return from_pivot * blend * to_pivot;
 }
 
 std::vector<std::pair<TimestampNs, Pose2>> SlamSystem::CorrectedTrajectory() const {

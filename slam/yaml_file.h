@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "slam/bounded_file.h"
 #include "slam/errors.h"
 
 namespace uwbsar {
@@ -30,13 +31,13 @@ T YamlValue(const std::string& file, const YAML::Node& node, const char* key,
 }
 
 /// The file's root mapping. `what` names the kind of file in messages ("map", "grid").
-/// Throws InputError when the file cannot be opened, is not valid YAML or is not a mapping.
+/// Throws InputError when the file cannot be opened, is not a regular file, is larger than
+/// kMaxYamlFileBytes, is not valid YAML or is not a mapping.
 inline YAML::Node LoadYamlMappingFile(const std::string& path, const std::string& what) {
+  const std::string text = ReadBoundedFile(path, what);
   YAML::Node root;
   try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw InputError(path + ": cannot open " + what + " file");
+    root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw InputError(path + ":" + std::to_string(e.mark.line + 1) +
                      ": YAML syntax error: " + e.msg);

@@ -74,6 +74,7 @@ void AddCompareCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_flag("--json", opts->json, "Print metrics.json to stdout instead of the summary");
   cmd->callback([opts, &globals] {
     Config config = LoadConfigFor(globals);
+    CheckOutputFolder(opts->out_dir);  // before the work, creating nothing
     if (opts->tolerance_cells >= 0) config.compare.tolerance_cells = opts->tolerance_cells;
     AlignRequest request;
     request.mode = opts->align.empty() ? config.compare.align : opts->align;
@@ -91,14 +92,15 @@ void AddCompareCommand(CLI::App& app, const GlobalOptions& globals) {
     rule.cell_m = config.slam.occupancy_resolution_m;
     rule.occupied_fraction = config.slam.occupied_fraction;
     rule.reference_percentile = config.slam.occupancy_reference_percentile;
-    const ComparisonReport report =
-        CompareMapFiles(opts->sar, opts->lidar, request, config.compare, rule);
+    const ComparisonReport report = CompareMapFiles(opts->sar, opts->lidar, request, config.compare,
+                                                    rule, config.limits.max_map_image_pixels);
     EnsureDirectory(opts->out_dir);
     const auto files = WriteComparisonOutputs(report, opts->out_dir, config.compare);
     if (opts->json) {
       std::cout << ComparisonToJson(report) << "\n";
       return;
     }
+    if (globals.quiet) return;
     for (const std::string& line : ComparisonSummaryLines(report))
       std::printf("%s\n", line.c_str());
     for (const std::string& f : files) std::printf("wrote %s\n", f.c_str());

@@ -29,18 +29,20 @@ void AddDemoCommand(CLI::App& app, const GlobalOptions& globals) {
   CLI::App* cmd = app.add_subcommand(
       "demo", "Simulate the paper's depart-and-return run, map it and compare with ground truth");
   cmd->add_option("--out", opts->out_dir, "Output folder")->capture_default_str();
-  cmd->add_option("--seed", opts->seed, "Simulation seed")->capture_default_str();
+  cmd->add_option("--seed", opts->seed, "Simulation seed")
+      ->check(CheckSeed, "integer 0..2^64-1")
+      ->capture_default_str();
   cmd->add_option("--map", opts->map_path,
                   "map_server map (YAML + PGM) to simulate in; default: the bundled "
                   "config/maps/seed_hall/seed_hall.yaml")
       ->check(CLI::ExistingFile);
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
-    EnsureDirectory(opts->out_dir);
+    MapOutputStage stage(opts->out_dir);
     MapRun run = MapSimulation(config, opts->map_path.empty() ? BundledMap() : opts->map_path,
                                "depart-return", opts->seed);
-    const MapOutputs outputs = WriteMapOutputs(run, opts->out_dir);
-    PrintMapSummary(run, outputs, opts->out_dir);
+    const MapOutputs outputs = stage.Commit(run);
+    if (!globals.quiet) PrintMapSummary(run, outputs, opts->out_dir);
   });
 }
 

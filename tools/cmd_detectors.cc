@@ -163,10 +163,12 @@ void AddDetectorsCommand(CLI::App& app, const GlobalOptions& globals) {
                   "Comma-separated subset of sift,surf,brisk,akaze,orb (default: all built)");
   cmd->add_option("--split-path-m", opts->split_path_m,
                   "Path length where the returning pass starts (default: farthest point)")
-      ->check(CLI::PositiveNumber);
+      ->check(CheckPositiveFinite, "finite > 0");
   cmd->add_flag("--no-images", opts->no_images, "Do not write match images");
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
+    EnsureDirectory(opts->out_dir);  // every output is checked before the work
+    if (!opts->no_images) EnsureDirectory(opts->out_dir + "/matches");
     RegionStudyOptions options;
     if (!opts->regions.empty()) {
       options.region_length_m = opts->regions[0];
@@ -204,7 +206,6 @@ void AddDetectorsCommand(CLI::App& app, const GlobalOptions& globals) {
     const std::vector<ImagedScan> back(scans.begin() + static_cast<long>(turn), scans.end());
     const RegionStudy study = RunRegionStudy(depart, back, frontend.sensors(), config, options);
     if (study.d_regions.empty()) throw InputError(opts->bag + ": the passes share no region");
-    EnsureDirectory(opts->out_dir);
     Outputs out;
     WriteTables(study, options, config.imaging.pixel_size_m, &out);
     const std::string dir = opts->out_dir + "/";
@@ -216,7 +217,6 @@ void AddDetectorsCommand(CLI::App& app, const GlobalOptions& globals) {
     WriteTextAtomic(dir + "loops.csv", out.loops_csv.str());
     WriteTextAtomic(dir + "loops.md", out.loops_md.str());
     if (!opts->no_images) {
-      EnsureDirectory(dir + "matches");
       for (std::size_t k = 0; k < study.d_regions.size(); ++k) {
         const StudyRegion& d = study.d_regions[k];
         const RegionPair* p = study.Find(d.index, d.index);
@@ -227,6 +227,7 @@ void AddDetectorsCommand(CLI::App& app, const GlobalOptions& globals) {
         }
       }
     }
+    if (globals.quiet) return;
     std::printf("%zu scans (%zu departing, %zu returning), %zu regions of %.2f m every %.2f m\n\n",
                 scans.size(), depart.size(), back.size(), study.d_regions.size(),
                 options.region_length_m, options.region_step_m);

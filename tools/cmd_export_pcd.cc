@@ -47,19 +47,20 @@ void AddExportPcdCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_flag("--ascii", opts->ascii, "ASCII PCD instead of binary");
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
+    CheckOutputFile(opts->out);  // before the work
     std::vector<IntensityPoint> points;
     const char* what = "occupied cells";
     if (HasTiffExtension(opts->map)) {
       const std::string grid = opts->grid.empty() ? DefaultGridYaml(opts->map) : opts->grid;
-      points = SarPeaks(LoadFloatSarMap(opts->map, grid), config.compare.pcd_peak_fraction,
-                        config.compare.pcd_peak_radius_m);
+      points = SarPeaks(LoadFloatSarMap(opts->map, grid, config.limits.max_map_image_pixels),
+                        config.compare.pcd_peak_fraction, config.compare.pcd_peak_radius_m);
       what = "SAR peaks";
     } else {
       if (!opts->grid.empty()) throw CLI::ValidationError("--grid", "only for a float TIFF MAP");
-      points = OccupiedCellPoints(LoadOccupancyGrid(opts->map));
+      points = OccupiedCellPoints(LoadOccupancyGrid(opts->map, config.limits.max_map_image_pixels));
     }
     WritePcd(opts->out, points, !opts->ascii);
-    std::printf("wrote %s: %zu %s\n", opts->out.c_str(), points.size(), what);
+    if (!globals.quiet) std::printf("wrote %s: %zu %s\n", opts->out.c_str(), points.size(), what);
   });
 }
 

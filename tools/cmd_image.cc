@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "drivers/text_log.h"
+#include "slam/config_io.h"
 #include "tools/commands.h"
 #include "tools/imaging_job.h"
 
@@ -25,12 +26,16 @@ void AddImageCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--mode", opts->mode, "paper or coherent (overrides imaging.mode)")
       ->check(CLI::IsMember({"paper", "coherent"}));
   cmd->add_option("--resolution", opts->resolution_m, "Pixel size in metres")
-      ->check(CLI::PositiveNumber);
+      ->check(CheckPositiveFinite, "finite > 0");
   cmd->add_option("--prefix", opts->prefix, "Output file prefix")->capture_default_str();
   cmd->callback([opts, &globals] {
     Config config = LoadConfigFor(globals);
+    EnsureDirectory(opts->out_dir);  // every output is checked before the work
     if (!opts->mode.empty()) config.imaging.mode = opts->mode;
-    if (opts->resolution_m > 0) config.imaging.pixel_size_m = opts->resolution_m;
+    if (opts->resolution_m > 0) {
+      config.imaging.pixel_size_m = opts->resolution_m;
+      ValidateConfig(config, "--resolution");  // the sizes it implies, before any work
+    }
     std::vector<OdometrySample> odometry;
     std::vector<RadarScan> scans;
     if (!opts->log_path.empty()) {
@@ -46,9 +51,9 @@ void AddImageCommand(CLI::App& app, const GlobalOptions& globals) {
     } else {
       throw CLI::RequiredError("--log or --synthetic");
     }
-    EnsureDirectory(opts->out_dir);
     const StripResult result = ImageRun(config, odometry, scans);
     const auto files = WriteStripOutputs(opts->out_dir, opts->prefix, result.strip, config.enhance);
+    if (globals.quiet) return;
     const FrontendStats& s = result.stats;
     std::printf("scans: %lld received, %lld imaged, %lld gated, %lld rejected\n", s.scans_received,
                 s.scans_imaged, s.scans_gated, s.scans_rejected());

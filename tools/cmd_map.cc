@@ -29,6 +29,7 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
   struct Options {
     std::string bag, out_dir, ground_truth;
     bool exact = false;
+    bool skip_damaged = false;
   };
   auto opts = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("map", "Map a ROS 2 bag: trajectory, loops, global SAR map");
@@ -40,14 +41,24 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_flag("--exact", opts->exact,
                 "Also write map_exact.png / map_exact_float.tif: every scan back-projected again "
                 "at its corrected pose, at the imaging resolution");
+  cmd->add_flag("--skip-damaged", opts->skip_damaged,
+                "MCAP: skip a chunk that fails its CRC or cannot be decompressed (warns with its "
+                "offset and message count) instead of failing the whole run");
   cmd->callback([opts, &globals] {
     Config config = LoadConfigFor(globals);
     if (opts->exact) config.slam.keep_scan_profiles = true;  // the exact map re-images them
-    EnsureDirectory(opts->out_dir);
-    MapRun run = MapBag(config, opts->bag, !globals.quiet);
-    if (!opts->ground_truth.empty()) run.ground_truth = ReadTum(opts->ground_truth);
-    const MapOutputs outputs = WriteMapOutputs(run, opts->out_dir);
-    if (opts->exact) WriteExactMap(run, opts->out_dir);
+    // Every input and output is checked before the work: the ground truth is read and the
+    // output folder's staging folder created first.
+    std::vector<OdometrySample> ground_truth;
+    if (!opts->ground_truth.empty()) ground_truth = ReadTum(opts->ground_truth);
+    MapOutputStage stage(opts->out_dir);
+    rosbag::BagReadOptions read_options;
+    read_options.skip_damaged_chunks = opts->skip_damaged;
+    MapRun run = MapBag(config, opts->bag, !globals.quiet, read_options);
+    if (!opts->ground_truth.empty()) run.ground_truth = std::move(ground_truth);
+    MapOutputOptions output_options;
+    output_options.exact = opts->exact;
+    const MapOutputs outputs = stage.Commit(run, output_options);
     if (!globals.quiet) PrintMapSummary(run, outputs, opts->out_dir);
   });
 }

@@ -1,6 +1,7 @@
 // `uwbsar optimize IN.g2o --out OUT.g2o [--json]`: solves a pose graph file with the
 // backend (robust loss, loop rejection, support gate; backend.* configuration) and
 // prints iterations, costs, solve time, termination and the rejected loops.
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -37,6 +38,9 @@ void AddOptimizeCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_flag("--drop-rejected", opts->drop_rejected, "Leave rejected loops out of --out");
   cmd->callback([opts, &globals] {
     Config config = LoadConfigFor(globals);
+    for (const std::string* out : {&opts->out, &opts->tum, &opts->png}) {
+      if (!out->empty()) CheckOutputFile(*out);  // before the work
+    }
     if (!opts->init.empty()) config.backend.initialization = opts->init;
     G2oReadOptions read;
     read.skip_bad_lines = opts->skip_bad_lines;
@@ -45,6 +49,26 @@ void AddOptimizeCommand(CLI::App& app, const GlobalOptions& globals) {
     PoseGraph graph(config.backend);
     LoadIntoPoseGraph(file, &graph);
     const OptimizeResult r = graph.Optimize();
+    // A failed solve writes nothing: a graph that did not converge, or poses that are not
+    // finite, would look like a result.
+    std::string failure;
+    if (!r.converged) failure = "the solver did not converge: " + r.termination;
+    if (failure.empty() && !std::isfinite(r.final_cost)) {
+      failure = "the final cost is not finite (" + std::to_string(r.final_cost) + ")";
+    }
+    for (const auto& [id, pose] : graph.GetPoses()) {
+      if (failure.empty() &&
+          !(std::isfinite(pose.x_m) && std::isfinite(pose.y_m) && std::isfinite(pose.yaw_rad))) {
+        failure = "the solution is not finite (vertex " + std::to_string(id) + ")";
+      }
+    }
+    if (!failure.empty()) {
+      if (!opts->json) {
+        std::printf("termination: %s\ncost: %.6g -> %.6g\n", r.termination.c_str(), r.initial_cost,
+                    r.final_cost);
+      }
+      throw std::runtime_error(failure + "; no output written");
+    }
     if (!opts->out.empty()) WriteG2o(opts->out, graph, opts->drop_rejected);
     if (!opts->tum.empty()) {
       std::vector<std::pair<double, Pose2>> trajectory;
@@ -91,7 +115,6 @@ void AddOptimizeCommand(CLI::App& app, const GlobalOptions& globals) {
       }
       if (!opts->out.empty()) std::printf("wrote %s\n", opts->out.c_str());
     }
-    if (!r.converged) throw std::runtime_error("the solver did not converge: " + r.termination);
   });
 }
 

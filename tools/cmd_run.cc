@@ -14,6 +14,7 @@
 #include "drivers/live/host_clock.h"
 #include "drivers/live/sim_device_player.h"
 #include "drivers/sim/sim_stream.h"
+#include "slam/interrupt_cleanup.h"
 #include "tools/commands.h"
 #include "tools/live_runner.h"
 
@@ -52,15 +53,22 @@ void AddRunCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_flag("--emulate", opts->emulate,
                 "Emulated devices on pseudo-terminals playing a simulated depart-and-return run");
   cmd->add_option("--speed", opts->speed, "--emulate: playback speed (1 = real time)")
+      ->check(CheckPositiveFinite, "finite > 0")
       ->check(CLI::Range(0.1, 20.0))
       ->capture_default_str();
-  cmd->add_option("--duration", opts->duration_s, "--emulate: play only this many seconds");
-  cmd->add_option("--seed", opts->seed, "--emulate: simulation seed")->capture_default_str();
+  cmd->add_option("--duration", opts->duration_s, "--emulate: play only this many seconds (> 0)")
+      ->check(CheckPositiveFinite, "finite > 0");
+  cmd->add_option("--seed", opts->seed, "--emulate: simulation seed")
+      ->check(CheckSeed, "integer 0..2^64-1")
+      ->capture_default_str();
   cmd->add_option("--map", opts->map_path,
                   "--emulate: map_server map to simulate in (default: the bundled seed_hall)")
       ->check(CLI::ExistingFile);
   cmd->callback([opts, &globals] {
     Config config = LoadConfigFor(globals);
+    // SIGINT/SIGTERM finish the run cleanly (slam/interrupt_cleanup.h's watcher calls this;
+    // the plain handler serves callers that did not install the watcher).
+    SetInterruptHandler([] { g_stop = true; });
     std::signal(SIGINT, OnStopSignal);
     std::signal(SIGTERM, OnStopSignal);
     LiveRunOptions options;
@@ -89,6 +97,7 @@ void AddRunCommand(CLI::App& app, const GlobalOptions& globals) {
       config.live.radar_reset_lines.clear();
       config.live.status_led_line = -1;
       options.time_scale = opts->speed;
+      live::ConfigureLiveForEmulation(&config, opts->speed);
       const sim::SimScenario scenario =
           sim::MakeScenario(config, opts->map_path.empty() ? BundledMap() : opts->map_path,
                             "depart-return", opts->seed);
@@ -96,7 +105,7 @@ void AddRunCommand(CLI::App& app, const GlobalOptions& globals) {
       truth_clock = std::make_unique<live::HostClock>(opts->speed);
       player = std::make_unique<live::SimDevicePlayer>(
           config, scenario, opts->seed, config.live.radar_devices, config.live.kobuki_device,
-          opts->speed, 3, live::EmulatorFaults{}, [c = truth_clock.get()] { return c->Now(); },
+          opts->speed, live::EmulatorFaults{}, [c = truth_clock.get()] { return c->Now(); },
           opts->duration_s);
       options.ground_truth = [p = player.get()] { return p->ground_truth(); };
       player->Start();

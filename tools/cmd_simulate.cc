@@ -8,12 +8,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include "drivers/sim/sim_bag_writer.h"
 #include "drivers/sim/sim_recorder.h"
 #include "drivers/sim/sim_stream.h"
 #include "slam/config_io.h"
+#include "slam/interrupt_cleanup.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -35,17 +37,44 @@ void RunSimulate(const SimulateOptions& o, const GlobalOptions& globals) {
   if (o.laser) config.simulator.laser.enabled = true;
   const std::vector<PointTargetConfig> targets =
       o.targets_path.empty() ? std::vector<PointTargetConfig>{} : LoadPointTargets(o.targets_path);
+  // Every output is checked before the work: the bag folder's parent is writable and
+  // neither the bag nor an interrupted attempt (BAG.partial) is in the way.
+  namespace fs = std::filesystem;
+  const std::string bag_dir = fs::path(o.out_dir).lexically_normal().string();
+  const std::string partial =
+      (bag_dir.back() == '/' ? bag_dir.substr(0, bag_dir.size() - 1) : bag_dir) + ".partial";
+  std::error_code ec;
+  if (fs::exists(bag_dir, ec)) throw InputError(bag_dir + ": exists already, not overwriting");
+  if (fs::exists(partial, ec)) {
+    throw InputError(partial + ": exists (an interrupted recording?); remove it first");
+  }
+  const std::string parent = fs::path(partial).parent_path().string();
+  CheckOutputFolder(parent.empty() ? "." : parent);
+  if (!o.text_log_path.empty()) CheckOutputFile(o.text_log_path);
   const auto start = std::chrono::steady_clock::now();
   const sim::SimScenario scenario = sim::MakeScenario(config, o.map_path, o.route, o.seed, targets);
   sim::SimStream stream(config, scenario, o.seed);
-  const sim::SimBagSummary summary =
-      sim::WriteSimBag(&stream, config, o.out_dir, o.storage, o.out_dir + "/ground_truth.tum");
+  sim::SimBagSummary summary;
+  {
+    const RemoveOnInterrupt guard(partial);  // Ctrl-C leaves no BAG.partial behind
+    try {
+      summary =
+          sim::WriteSimBag(&stream, config, o.out_dir, o.storage, o.out_dir + "/ground_truth.tum");
+    } catch (...) {
+      // A failed simulation (disk full) leaves nothing that blocks a retry (neither existed
+      // before: checked above).
+      fs::remove_all(partial, ec);
+      fs::remove_all(bag_dir, ec);
+      throw;
+    }
+  }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!o.text_log_path.empty()) {
     sim::SimStream again(config, scenario, o.seed);  // same seed: the same messages
     WriteTextLog(o.text_log_path, sim::ToTextLog(sim::RecordStream(&again)));
   }
+  if (globals.quiet) return;
   const double length = scenario.trajectory.length_m();
   const Pose2& odom = summary.last_odometry.T_world_robot;
   const Pose2& truth = summary.last_ground_truth.T_world_robot;
@@ -81,7 +110,9 @@ void AddSimulateCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--storage", o->storage, "Bag storage: sqlite3 (Humble) or mcap")
       ->check(CLI::IsMember({"sqlite3", "mcap"}))
       ->capture_default_str();
-  cmd->add_option("--seed", o->seed, "Random seed (same seed, same bytes)")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Random seed (same seed, same bytes)")
+      ->check(CheckSeed, "integer 0..2^64-1")
+      ->capture_default_str();
   cmd->add_option("--targets", o->targets_path,
                   "Point targets file (YAML: point_targets: [{x_m, y_m, rcs_m2}, ...])")
       ->check(CLI::ExistingFile);

@@ -7,6 +7,7 @@
 
 #include "frontend/enhance.h"
 #include "frontend/image_io.h"
+#include "slam/errors.h"
 
 namespace uwbsar::tools {
 
@@ -31,10 +32,24 @@ StripResult ImageRun(const Config& config, const std::vector<OdometrySample>& od
   for (const ImagedScan& s : result.scans) poses.push_back(s.T_world_robot);
   const ImageGrid grid =
       WorldGridCovering(poses, frontend.sensors(), 0.1, config.imaging.pixel_size_m);
+  CheckWholeRunImage(grid, config.limits, "the strip image");
   result.strip = RenderScans(result.scans, frontend.sensors(), grid,
                              config.imaging.mode == "coherent", config.imaging.num_threads);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+void CheckWholeRunImage(const ImageGrid& grid, const LimitsConfig& limits,
+                        const std::string& what) {
+  const double pixels = static_cast<double>(grid.rows) * static_cast<double>(grid.cols);
+  if (grid.rows >= 0 && grid.cols >= 0 && pixels <= limits.max_image_pixels) return;
+  std::ostringstream msg;
+  msg.precision(3);
+  msg << what << " of this run would be " << grid.cols << " x " << grid.rows << " pixels ("
+      << pixels << ") at " << grid.resolution_m
+      << " m (imaging.pixel_size_m / --resolution), more than limits.max_image_pixels ("
+      << limits.max_image_pixels << ")";
+  throw InputError(msg.str());
 }
 
 std::vector<std::string> WriteStripOutputs(const std::string& dir, const std::string& prefix,

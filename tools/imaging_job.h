@@ -23,6 +23,10 @@ struct StripResult {
 StripResult ImageRun(const Config& config, const std::vector<OdometrySample>& odometry,
                      const std::vector<RadarScan>& scans);
 
+/// Throws InputError when a whole-run image on `grid` (`what`: "the strip image", "the
+/// exact map") exceeds limits.max_image_pixels: checked before the image is allocated.
+void CheckWholeRunImage(const ImageGrid& grid, const LimitsConfig& limits, const std::string& what);
+
 /// Writes <prefix>_raw.png, _positive.png, _enhanced.png, (_logmag.png), _float.tif, _grid.yaml.
 std::vector<std::string> WriteStripOutputs(const std::string& dir, const std::string& prefix,
                                            const StripImage& strip, const EnhanceConfig& enhance);

@@ -35,6 +35,33 @@ void WriteLiveJson(const LiveRunResult& result, const std::string& source,
   live["snapshots"] = result.snapshots;
   live["snapshot_max_s"] = result.snapshot_max_s;
   live["faults"] = result.faults;
+  nlohmann::json radars = nlohmann::json::object();
+  for (const auto& [name, s] : result.radars) {
+    radars[name] = {
+        {"startups", s.startups},
+        {"startup_failures", s.startup_failures},
+        {"config_errors", s.config_errors},
+        {"frame_requests", s.requests},
+        {"frame_answers", s.answers},
+        {"frames_lost", s.lost},
+        {"late_answers", s.late_answers},
+        {"unanswered_at_stop", s.unanswered_at_stop},
+        {"invalid_frames", s.invalid_frames},
+        {"request_to_answer_ms",
+         {{"p50", s.answer_p50_ms}, {"p99", s.answer_p99_ms}, {"max", s.answer_max_ms}}},
+        {"command_requests", s.exchange.requests},
+        {"wrong_answers", s.exchange.wrong_answers},
+        {"missing_answers", s.exchange.missing_answers},
+        {"retries", s.exchange.retries},
+        {"stops_sent", s.stops},
+        {"configured", s.configured},
+        {"setup", s.configured ? s.setup.Describe() : std::string()},
+        {"range_min_m", s.setup.range_min_m},
+        {"range_max_m", s.setup.range_max_m},
+        {"samples_per_scan", s.setup.samples_per_scan},
+    };
+  }
+  live["radars"] = radars;
   WriteTextAtomic((std::filesystem::path(out_dir) / "live.json").string(), live.dump(2) + "\n");
 }
 
@@ -57,17 +84,32 @@ LiveRunResult RunLive(const Config& config, LiveRunOptions options) {
     dispatcher.Event("fault: " + kind + ": " + detail);
   });
 
-  // The source first: a missing GPIO chip or line, or DDS refusing, stops the run before
-  // a recording is created (its start-up events are held and recorded first).
-  Processor processor(config, options, &dispatcher);
-  std::unique_ptr<LiveSource> source =
-      options.source == "ros2" ? MakeRos2Source(config, &dispatcher, &faults, &processor)
-                               : MakeSerialSource(config, options, &dispatcher, &faults, &clock);
+  // The source first: a missing GPIO chip or line, a radar refusing its settings, or DDS
+  // refusing, stops the run before a recording is created (its start-up events are held
+  // and recorded first). Serial radars start before SLAM is built: their echoed range sets
+  // the imaging geometry of `run_config`.
+  const bool serial = options.source == "serial";
+  Config run_config = config;
+  std::unique_ptr<LiveSource> source;
+  struct StopOnThrow {  // the serial links run from here until stop_all takes over
+    LiveSource* source = nullptr;
+    ~StopOnThrow() {
+      if (source) source->Stop(), source->ShutDown();
+    }
+  } guard;
+  if (serial) {
+    source = MakeSerialSource(config, options, &dispatcher, &faults, &clock);
+    guard.source = source.get();
+    source->Start();
+    source->ConfigureImaging(&run_config);
+  }
+  Processor processor(run_config, options, &dispatcher);
+  if (!serial) source = MakeRos2Source(run_config, &dispatcher, &faults, &processor);
   const SerialModePublishing serial_publishing =
-      options.source == "serial" ? MaybePublishInSerialMode(config, &faults, &processor)
-                                 : SerialModePublishing{};
-  Recorder recorder(config, recording);
+      serial ? MaybePublishInSerialMode(run_config, &faults, &processor) : SerialModePublishing{};
+  Recorder recorder(run_config, recording);
   dispatcher.AttachRecorder(&recorder);
+  guard.source = nullptr;
 
   std::atomic<bool> processing_stop{false}, snapshot_stop{false};
   std::thread slam_thread([&] { processor.Loop(processing_stop); });
@@ -83,7 +125,7 @@ LiveRunResult RunLive(const Config& config, LiveRunOptions options) {
     source->ShutDown();
   };
   try {
-    source->Start();
+    if (!serial) source->Start();
     dispatcher.Event("run started (" + options.source + ")");
     if (!options.quiet) {
       Log(LogLevel::kInfo, "live run (" + options.source + "): recording to " + recording +
@@ -109,6 +151,7 @@ LiveRunResult RunLive(const Config& config, LiveRunOptions options) {
   result.latency_p99_ms = Percentile(lat, 99);
   result.latency_max_ms = lat.empty() ? 0.0 : *std::max_element(lat.begin(), lat.end());
   result.scans_received = source->scans_received();
+  result.radars = source->radar_stats();
   result.odometry_received = processor.odometry_messages();
   recorder.Close();
   result.recorded_messages = recorder.written();

@@ -10,7 +10,9 @@
 // its inclusion in the open tile; a snapshot thread rewrites the map outputs atomically
 // every live.snapshot_period_s. Stop (SIGINT/SIGTERM, or the options' stop flag): the
 // source stops, the queue is drained, the graph is solved a last time, the final outputs
-// and live.json are written and the recording is closed.
+// and live.json are written and the recording is closed. With serial devices the radars
+// start (and report their range) before SLAM is built: the echoed range, not the YAML,
+// sets each radar's range of sample 0 and sample count for imaging.
 #pragma once
 
 #include <atomic>
@@ -21,6 +23,7 @@
 #include <vector>
 
 #include "drivers/live/gpio.h"
+#include "drivers/live/lt102_driver.h"
 #include "tools/map_job.h"
 #include "tools/map_outputs.h"
 
@@ -55,6 +58,9 @@ struct LiveRunResult {
   int snapshots = 0;
   double snapshot_max_s = 0.0;
   std::map<std::string, long long> faults;
+  /// Serial: each radar's LT102 link (start-up, polled `d` requests vs answers, p99
+  /// request-to-answer time, what the radar reported), by name ("radar left").
+  std::vector<std::pair<std::string, live::Lt102Stats>> radars;
 };
 
 /// Runs until the stop flag is set. Throws InputError / GpioError on start-up problems

@@ -1,6 +1,7 @@
 // The robot's own devices as a live source: LT102 radars and the Kobuki base on
 // reconnecting serial links, radar power and reset through GPIO.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "drivers/live/device_link.h"
@@ -17,7 +18,7 @@ class SerialSource : public LiveSource {
  public:
   SerialSource(const Config& config, LiveRunOptions& options, Dispatcher* dispatcher,
                live::FaultLog* faults, live::HostClock* clock)
-      : lc_(config.live), faults_(faults), clock_(clock) {
+      : lc_(config.live), dispatcher_(dispatcher), faults_(faults), clock_(clock) {
     if (lc_.radar_devices.size() != config.radars.size()) {
       throw InputError("live.radar_devices lists " + std::to_string(lc_.radar_devices.size()) +
                        " devices for " + std::to_string(config.radars.size()) +
@@ -38,13 +39,16 @@ class SerialSource : public LiveSource {
     policy.power_cycle_after_failures = lc_.power_cycle_after_failures;
     for (std::size_t i = 0; i < config.radars.size(); ++i) {
       const std::string name = "radar " + config.radars[i].name;
-      radars_.push_back(std::make_unique<live::Lt102Driver>(name, static_cast<int>(i), lc_, faults,
-                                                            [dispatcher](RadarScan&& scan) {
-                                                              LiveMessage m;
-                                                              m.kind = LiveMessage::Kind::kScan;
-                                                              m.scan = std::move(scan);
-                                                              dispatcher->Publish(std::move(m));
-                                                            }));
+      radar_names_.push_back(name);
+      radars_.push_back(std::make_unique<live::Lt102Driver>(
+          name, static_cast<int>(i), config, faults,
+          [dispatcher](RadarScan&& scan) {
+            LiveMessage m;
+            m.kind = LiveMessage::Kind::kScan;
+            m.scan = std::move(scan);
+            dispatcher->Publish(std::move(m));
+          },
+          [dispatcher](const std::string& event) { dispatcher->Event(event); }));
       live::LinkPolicy p = policy;
       p.baud = lc_.radar_baud;
       std::function<void()> cycle;
@@ -98,8 +102,44 @@ class SerialSource : public LiveSource {
     }
   }
 
+  // Every radar's first start-up (all wait in parallel, up to live.lt102.startup_wait_s in
+  // all): its echoed range sets the range of sample 0 and the sample count imaging uses.
+  void ConfigureImaging(Config* config) override {
+    const auto end =
+        std::chrono::steady_clock::now() + std::chrono::duration<double>(lc_.lt102.startup_wait_s);
+    for (std::size_t i = 0; i < radars_.size(); ++i) {
+      const double left_s = std::max(
+          0.0, std::chrono::duration<double>(end - std::chrono::steady_clock::now()).count());
+      live::Lt102Setup setup;
+      std::string error;
+      RadarConfig& radar = config->radars[i];
+      if (radars_[i]->WaitConfigured(left_s, &setup, &error)) {
+        radar.range_offset_m = setup.range_min_m;
+        radar.num_samples = setup.samples_per_scan;
+        dispatcher_->Event(radar_names_[i] + ": imaging uses the echoed range: sample 0 at " +
+                           std::to_string(radar.range_offset_m) + " m, " +
+                           std::to_string(radar.num_samples) + " samples");
+      } else if (!error.empty()) {
+        throw InputError(error);
+      } else {
+        faults_->Report(radar_names_[i] + ": not configured before SLAM started",
+                        "no start-up within live.lt102.startup_wait_s; imaging uses "
+                        "radars[].range_offset_m and num_samples");
+      }
+    }
+  }
+
   void Stop() override {
+    for (auto& link : links_) link->RequestStop();  // the radars' `o` exchanges run together
     for (auto& link : links_) link->Stop();
+  }
+
+  std::vector<std::pair<std::string, live::Lt102Stats>> radar_stats() const override {
+    std::vector<std::pair<std::string, live::Lt102Stats>> out;
+    for (std::size_t i = 0; i < radars_.size(); ++i) {
+      out.emplace_back(radar_names_[i], radars_[i]->stats());
+    }
+    return out;
   }
   void ShutDown() override { power_->ShutDown(); }
 
@@ -111,10 +151,12 @@ class SerialSource : public LiveSource {
 
  private:
   const LiveConfig& lc_;
+  Dispatcher* dispatcher_;
   live::FaultLog* faults_;
   live::HostClock* clock_;
   std::unique_ptr<live::RadarPower> power_;
   std::vector<std::unique_ptr<live::Lt102Driver>> radars_;
+  std::vector<std::string> radar_names_;
   std::unique_ptr<live::KobukiDriver> kobuki_;
   std::vector<std::unique_ptr<live::DeviceLink>> links_;
   std::atomic<long long> last_odometry_ns_{0};

@@ -5,8 +5,12 @@
 #pragma once
 
 #include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "drivers/live/fault_log.h"
+#include "drivers/live/lt102_driver.h"
 #include "tools/live_processor.h"
 
 namespace uwbsar::tools {
@@ -16,6 +20,10 @@ class LiveSource {
   virtual ~LiveSource() = default;
   /// Starts delivering messages.
   virtual void Start() = 0;
+  /// After Start, before SLAM is built: adapts `config` to what the devices reported
+  /// (serial: each radar's echoed range sets radars[i].range_offset_m and num_samples).
+  /// Throws InputError when a device refused its configuration.
+  virtual void ConfigureImaging(Config* /*config*/) {}
   /// Watchdog work (stalls, clock steps, status LED); main thread, every 50 ms.
   virtual void Poll() = 0;
   /// Stops delivering: no message is dispatched after it returns.
@@ -23,6 +31,8 @@ class LiveSource {
   /// Stops what must outlive the drain of the SLAM queue (e.g. radar power); after Stop.
   virtual void ShutDown() {}
   virtual long long scans_received() const = 0;
+  /// Per-radar link counts (serial LT102 radars; after Stop).
+  virtual std::vector<std::pair<std::string, live::Lt102Stats>> radar_stats() const { return {}; }
 };
 
 /// Serial devices: GPIO power-up and reset (throws GpioError when a configured chip or

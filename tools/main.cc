@@ -4,17 +4,22 @@
 #include <iostream>
 
 #include "slam/errors.h"
+#include "slam/interrupt_cleanup.h"
 #include "slam/log.h"
 #include "tools/commands.h"
 
 int main(int argc, char** argv) {
   using namespace uwbsar;
   using namespace uwbsar::tools;
+  InstallInterruptCleanup();  // before any thread starts: they inherit the blocked signals
   CLI::App app{
       "uwbsar - pose-graph SLAM with UWB synthetic-aperture radar.\n"
       "Exit codes: 0 success, 1 internal or I/O failure, 2 bad command line,\n"
       "3 bad input file or configuration (the message names the file and field)."};
   app.require_subcommand(1);
+  // Global options are accepted before or after the subcommand (`uwbsar run --config F`):
+  // a subcommand hands the options it does not know to the app.
+  app.fallthrough();
   GlobalOptions globals;
   app.add_option("--config", globals.config_path, "YAML configuration (default: built-in)")
       ->check(CLI::ExistingFile);
@@ -23,6 +28,7 @@ int main(int argc, char** argv) {
   app.parse_complete_callback([&] {
     SetLogLevel(globals.quiet ? LogLevel::kError
                               : (globals.verbose ? LogLevel::kDebug : LogLevel::kInfo));
+    LoadGlobalConfig(&globals);
   });
 
   AddConfigCommand(app, globals);

@@ -31,13 +31,13 @@ class ProgressBar {
     if (drawn_ && now - last_ < std::chrono::milliseconds(200)) return;
     last_ = now;
     drawn_ = true;
-    const double f = std::clamp(
-        static_cast<double>(now_ns - start_ns_) / static_cast<double>(end_ns_ - start_ns_), 0.0,
-        1.0);
+    // In doubles: a damaged bag's stamps can be anything, and must not overflow.
+    const double span = static_cast<double>(end_ns_) - static_cast<double>(start_ns_);
+    const double f =
+        std::clamp((static_cast<double>(now_ns) - static_cast<double>(start_ns_)) / span, 0.0, 1.0);
     const int filled = static_cast<int>(f * 30);
     std::fprintf(stderr, "\r[%.*s%*s] %3.0f%% of %.0f s of log", filled,
-                 "##############################", 30 - filled, "", 100 * f,
-                 NsToSeconds(end_ns_ - start_ns_));
+                 "##############################", 30 - filled, "", 100 * f, span * 1e-9);
     std::fflush(stderr);
   }
 
@@ -79,6 +79,26 @@ class Feeder : public rosbag::RobotBagVisitor {
 
 }  // namespace
 
+double MapRun::log_duration_s() const {
+  double first = 0.0, last = 0.0;
+  bool any = false;
+  if (slam) {
+    for (const KeyframeRecord& k : slam->keyframes()) {
+      for (const ImagedScan& s : k.keyframe.scans) {
+        const double t = static_cast<double>(s.stamp_ns);
+        first = any ? std::min(first, t) : t;
+        last = any ? std::max(last, t) : t;
+        any = true;
+      }
+    }
+  }
+  if (!any) {
+    first = static_cast<double>(first_stamp_ns);
+    last = static_cast<double>(last_stamp_ns);
+  }
+  return std::max(0.0, (last - first) * 1e-9);
+}
+
 void CheckMappable(const MapRun& run) {
   const FrontendStats& s = run.slam->frontend_stats();
   if (run.odometry_messages == 0) {
@@ -101,16 +121,15 @@ void CheckMappable(const MapRun& run) {
   }
 }
 
-MapRun MapBag(const Config& config, const std::string& bag_path, bool progress) {
+MapRun MapBag(const Config& config, const std::string& bag_path, bool progress,
+              const rosbag::BagReadOptions& read_options) {
   MapRun run;
   run.input = bag_path;
-  TimestampNs start = 0, end = 0;
-  {
-    rosbag::BagReader probe(bag_path);
-    start = probe.Info().start_ns;
-    end = probe.Info().end_ns;
-  }
   const auto t0 = std::chrono::steady_clock::now();
+  // One reader for the progress range and the messages: a file-compressed bag is
+  // decompressed once.
+  rosbag::BagReader reader(bag_path, read_options);
+  const TimestampNs start = reader.Info().start_ns, end = reader.Info().end_ns;
   run.slam = std::make_unique<SlamSystem>(config);
   rosbag::RobotBagOptions options = rosbag::RobotBagOptionsFromConfig(config);
   options.odometry_topic = config.slam.odometry_topic;
@@ -118,7 +137,7 @@ MapRun MapBag(const Config& config, const std::string& bag_path, bool progress) 
   {
     ProgressBar bar(progress, start, end);
     Feeder feeder(&run, &bar);
-    rosbag::ReadRobotBag(bag_path, options, feeder);
+    rosbag::ReadRobotBag(reader, options, feeder);
   }
   run.slam->Finish();
   run.processing_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "backend/trajectory_metrics.h"
+#include "drivers/rosbag/bag_storage.h"
 #include "slam/slam_system.h"
 
 namespace uwbsar::tools {
@@ -25,7 +26,10 @@ struct MapRun {
   long long odometry_messages = 0;
   double processing_s = 0.0;  ///< MapBag: wall time of bag reading + SLAM; MapStream: SLAM's
                               ///< own time (the source, e.g. the simulator, is not counted)
-  double log_duration_s() const { return NsToSeconds(last_stamp_ns - first_stamp_ns); }
+  /// The span of log the map was built from: first to last scan imaged into a keyframe
+  /// (a stray message stamped far away does not count), else of the messages read;
+  /// computed in doubles, so no stamps overflow it.
+  double log_duration_s() const;
 };
 
 /// Emits one message of a log into a SlamSystem; returns false at the end.
@@ -35,7 +39,8 @@ using MessageSource = std::function<bool(MapRun* run)>;
 /// Maps a ROS 2 bag (directory, .db3 or .mcap). `progress` draws a bar on stderr.
 /// Throws InputError for bags that cannot be mapped (no odometry or radar topic,
 /// no scan overlapping the odometry, too short for one keyframe).
-MapRun MapBag(const Config& config, const std::string& bag_path, bool progress);
+MapRun MapBag(const Config& config, const std::string& bag_path, bool progress,
+              const rosbag::BagReadOptions& read_options = {});
 
 /// Maps what `next` emits (it calls run->slam->Add*), with the same checks;
 /// processing_s counts only the time spent in the SlamSystem.

@@ -2,7 +2,10 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -19,6 +22,8 @@
 #include "frontend/image_io.h"
 #include "frontend/strip_renderer.h"
 #include "slam/errors.h"
+#include "tools/imaging_job.h"
+#include "tools/commands.h"
 #include "tools/report_html.h"
 
 namespace uwbsar::tools {
@@ -125,6 +130,12 @@ std::string GridYaml(const ImageGrid& grid, const std::string& what, const std::
   return yaml.str();
 }
 
+void RemoveOutput(const fs::path& path) {
+  std::error_code ec;
+  fs::remove(path, ec);
+  if (ec) throw std::runtime_error(path.string() + ": cannot remove: " + ec.message());
+}
+
 std::string ReadFileBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream s;
@@ -134,16 +145,14 @@ std::string ReadFileBytes(const std::string& path) {
 
 }  // namespace
 
-MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir) {
+MapOutputs MapOutputStage::Commit(const MapRun& run, const MapOutputOptions& options) {
   const SlamSystem& slam = *run.slam;
   const Config& config = slam.config();
+  const std::string& out_dir = out_dir_;
   MapOutputs result;
-  fs::create_directories(out_dir);
-  const fs::path stage = fs::path(out_dir) / (".uwbsar-partial-" + std::to_string(::getpid()));
-  fs::remove_all(stage);
-  fs::create_directories(stage);
+  const fs::path stage = stage_;
   auto staged = [&](const char* name) { return (stage / name).string(); };
-  try {
+  {
     // Trajectories.
     const auto trajectory = slam.CorrectedTrajectory();
     std::vector<std::pair<TimestampNs, Pose2>> odometry;
@@ -217,7 +226,9 @@ MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir) {
     s["odometry"] = {{"received", fs_stats.odometry_received},
                      {"jumps_corrected", fs_stats.odometry_jumps_corrected},
                      {"rejected", fs_stats.odometry_rejected_out_of_order +
-                                      fs_stats.odometry_rejected_nonfinite}};
+                                      fs_stats.odometry_rejected_nonfinite +
+                                      fs_stats.odometry_rejected_implausible},
+                     {"rejected_implausible", fs_stats.odometry_rejected_implausible}};
     const StageTimes& t = slam.times();
     s["time_s"] = {{"imaging", t.imaging_s},
                    {"features", t.features_s},
@@ -307,21 +318,29 @@ MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir) {
     }
     report.tables.push_back(loops);
     WriteTextAtomic(staged("report.html"), RenderReportHtml(report));
+    if (options.exact) {
+      for (const std::string& f : WriteExactMap(run, stage.string())) {
+        names.push_back(fs::path(f).filename().string());
+      }
+    }
     WriteTextAtomic(staged("summary.json"), s.dump(2) + "\n");
 
-    // Commit: drop a previous run's summary first, then everything else, the summary last.
-    fs::remove(fs::path(out_dir) / "summary.json");
+    // Commit: drop a previous run's summary first, then the outputs this run does not
+    // write (a committed folder holds one run's files), then rename, the summary last.
+    RemoveOutput(fs::path(out_dir) / "summary.json");
+    for (const std::string& name : AllMapOutputNames()) {
+      if (std::find(names.begin(), names.end(), name) == names.end()) {
+        RemoveOutput(fs::path(out_dir) / name);
+      }
+    }
     names.push_back("summary.json");
     for (const std::string& name : names) {
       const fs::path target = fs::path(out_dir) / name;
-      fs::rename(stage / name, target);
+      std::error_code ec;
+      fs::rename(stage / name, target, ec);
+      if (ec) throw std::runtime_error(target.string() + ": cannot commit: " + ec.message());
       result.files.push_back(target.string());
     }
-    fs::remove_all(stage);
-  } catch (...) {
-    std::error_code ec;
-    fs::remove_all(stage, ec);
-    throw;
   }
   return result;
 }
@@ -351,6 +370,7 @@ std::vector<std::string> WriteExactMap(const MapRun& run, const std::string& out
   }
   const ImageGrid grid =
       WorldGridCovering(corrected, slam.sensors(), 0.1, config.imaging.pixel_size_m);
+  CheckWholeRunImage(grid, config.limits, "the exact map");
   const StripImage exact = RenderScans(
       scans, slam.sensors(), grid, config.imaging.mode == "coherent", config.imaging.num_threads,
       [&](const ImagedScan& s) { return corrected[&s - scans.data()]; });

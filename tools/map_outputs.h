@@ -1,15 +1,17 @@
 // Everything `uwbsar map` leaves in its output folder (README "uwbsar map"):
 // map.png, map_float.tif + map_grid.yaml, map.pgm + map.yaml, trajectory.tum,
 // odometry.tum, graph.g2o, loops.csv, summary.json and report.html.
-// All files are first written into a hidden staging folder inside DIR and
-// renamed into place at the end, summary.json last: a folder with a
-// summary.json holds a complete result, and a failed run leaves none.
+// All files (the exact map too) are first written into a hidden staging folder
+// inside DIR and renamed into place at the end, summary.json last: a folder with
+// a summary.json holds one complete result, and a failed run leaves none.
 #pragma once
 
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "slam/interrupt_cleanup.h"
 #include "tools/map_job.h"
 
 namespace uwbsar::tools {
@@ -21,7 +23,38 @@ struct MapOutputs {
   AteResult odometry_ate;          ///< of odometry.tum
 };
 
-MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir);
+struct MapOutputOptions {
+  bool exact = false;  ///< also the exact map (WriteExactMap), staged and committed with the rest
+};
+
+/// The hidden staging folder of one run inside DIR (`.uwbsar-partial-<pid>`). Created before
+/// the work starts (it proves DIR writable); staging folders left by processes that are gone
+/// are removed then; Ctrl-C removes this one (slam/interrupt_cleanup.h), as does the
+/// destructor. Commit writes every output into it and renames them into DIR, summary.json
+/// last, after removing the outputs of an earlier run that this run does not write: a
+/// committed folder holds exactly one run's files.
+class MapOutputStage {
+ public:
+  /// Throws InputError naming DIR when it cannot be created or written.
+  explicit MapOutputStage(const std::string& out_dir);
+  ~MapOutputStage();
+  MapOutputStage(const MapOutputStage&) = delete;
+  MapOutputStage& operator=(const MapOutputStage&) = delete;
+
+  const std::string& path() const { return stage_; }
+  MapOutputs Commit(const MapRun& run, const MapOutputOptions& options = {});
+
+ private:
+  std::string out_dir_, stage_;
+  std::unique_ptr<RemoveOnInterrupt> guard_;
+};
+
+/// Every file name a `uwbsar map` run may commit into DIR.
+const std::vector<std::string>& AllMapOutputNames();
+
+/// MapOutputStage(out_dir).Commit(run, options).
+MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir,
+                           const MapOutputOptions& options = {});
 
 /// The exact global map: every imaged scan back-projected again at its corrected pose
 /// (the keyframe correction interpolated in time and applied to its odometry pose), at the

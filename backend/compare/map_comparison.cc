@@ -44,14 +44,15 @@ void RequireOverlap(const ComparisonReport& r, const GridComparison& g, const ch
 
 ComparisonReport CompareMapFiles(const std::string& sar_yaml, const std::string& lidar_yaml,
                                  const AlignRequest& request, const CompareConfig& config,
-                                 const SarOccupancyRule& rule) {
+                                 const SarOccupancyRule& rule, double max_image_pixels) {
   const auto start = std::chrono::steady_clock::now();
   ComparisonReport r;
   r.sar_path = sar_yaml;
   r.lidar_path = lidar_yaml;
-  r.sar = IsSarGridYaml(sar_yaml) ? SarImageToOccupancy(sar_yaml, rule)
-                                  : LoadMapForComparison(sar_yaml, config.grey_205_unknown);
-  r.lidar = LoadMapForComparison(lidar_yaml, config.grey_205_unknown);
+  r.sar = IsSarGridYaml(sar_yaml)
+              ? SarImageToOccupancy(sar_yaml, rule, max_image_pixels)
+              : LoadMapForComparison(sar_yaml, config.grey_205_unknown, max_image_pixels);
+  r.lidar = LoadMapForComparison(lidar_yaml, config.grey_205_unknown, max_image_pixels);
   r.align_mode = request.mode;
   const int tolerance = config.tolerance_cells;
 

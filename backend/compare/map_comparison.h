@@ -36,10 +36,12 @@ struct ComparisonReport {
 /// map is a map_server YAML, or a SAR grid YAML naming an intensity image, which becomes
 /// occupancy by `rule` (sar_image_occupancy.h). Throws InputError when the maps do not
 /// overlap: no observed SAR cell falls on a known LiDAR cell, before or after alignment.
-/// Writes nothing.
+/// Writes nothing. Map images declaring more than `max_image_pixels` are refused before
+/// decoding.
 ComparisonReport CompareMapFiles(const std::string& sar_yaml, const std::string& lidar_yaml,
                                  const AlignRequest& request, const CompareConfig& config,
-                                 const SarOccupancyRule& rule = {});
+                                 const SarOccupancyRule& rule = {},
+                                 double max_image_pixels = LimitsConfig{}.max_map_image_pixels);
 
 /// Writes `dir`/overlay.png then `dir`/metrics.json (each to a temporary name, renamed);
 /// returns the paths. `dir` must exist.

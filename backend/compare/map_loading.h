@@ -14,8 +14,11 @@
 namespace uwbsar {
 
 /// LoadOccupancyGrid (InputError on bad input), then, when `grey_205_unknown` is set and the
-/// map is trinary, not negated and stored as 8-bit grey, every cell whose pixel is exactly
-/// 205 becomes unknown.
-OccupancyGrid LoadMapForComparison(const std::string& yaml_path, bool grey_205_unknown);
+/// map is trinary and not negated, every cell whose normalised grey value is 205 of 255
+/// (8 bit: exactly 205; 16 bit or another PGM maxval: the same fraction, rounded to 8 bit)
+/// becomes unknown. Map images declaring more than `max_image_pixels` are refused before
+/// decoding.
+OccupancyGrid LoadMapForComparison(const std::string& yaml_path, bool grey_205_unknown,
+                                   double max_image_pixels = LimitsConfig{}.max_map_image_pixels);
 
 }  // namespace uwbsar

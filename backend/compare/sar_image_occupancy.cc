@@ -12,9 +12,10 @@ bool IsSarGridYaml(const std::string& yaml_path) {
   return root["x0_m"] && !root["origin"];
 }
 
-OccupancyGrid SarImageToOccupancy(const std::string& grid_yaml, const SarOccupancyRule& rule) {
+OccupancyGrid SarImageToOccupancy(const std::string& grid_yaml, const SarOccupancyRule& rule,
+                                  double max_image_pixels) {
   // The resolution comes from the grid YAML; ReadSarImageFile needs no default.
-  const SarImageFile file = ReadSarImageFile(grid_yaml, 1.0);
+  const SarImageFile file = ReadSarImageFile(grid_yaml, 1.0, max_image_pixels);
   cv::Mat intensity;
   if (file.enhanced) {
     file.image.convertTo(intensity, CV_32F);

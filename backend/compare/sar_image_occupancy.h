@@ -27,6 +27,8 @@ bool IsSarGridYaml(const std::string& yaml_path);
 /// measured (unknown cells); 8/16-bit images are intensities as they are, float images
 /// (1 page real, 2 pages re/im) become their positive image (Re + |Re|, or |I|). Throws
 /// InputError naming the file on bad input.
-OccupancyGrid SarImageToOccupancy(const std::string& grid_yaml, const SarOccupancyRule& rule);
+/// Images declaring more than `max_image_pixels` are refused before decoding.
+OccupancyGrid SarImageToOccupancy(const std::string& grid_yaml, const SarOccupancyRule& rule,
+                                  double max_image_pixels);
 
 }  // namespace uwbsar

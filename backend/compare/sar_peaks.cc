@@ -8,15 +8,18 @@
 
 #include "frontend/enhance.h"
 #include "slam/errors.h"
+#include "slam/image_header.h"
 
 namespace uwbsar {
 
-FloatSarMap LoadFloatSarMap(const std::string& tiff_path, const std::string& grid_yaml_path) {
+FloatSarMap LoadFloatSarMap(const std::string& tiff_path, const std::string& grid_yaml_path,
+                            double max_image_pixels) {
   FloatSarMap map;
   map.grid = LoadSarGridMetadata(grid_yaml_path);
   if (!std::filesystem::is_regular_file(tiff_path)) {
     throw InputError(tiff_path + ": float SAR map does not exist");
   }
+  CheckImageSize(tiff_path, max_image_pixels, "float SAR map");
   std::vector<cv::Mat> pages;
   try {
     cv::imreadmulti(tiff_path, pages, cv::IMREAD_UNCHANGED);

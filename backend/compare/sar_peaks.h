@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "backend/compare/pcd_export.h"
+#include "slam/config.h"
 #include "slam/sar_grid_metadata.h"
 
 namespace uwbsar {
@@ -18,7 +19,9 @@ struct FloatSarMap {
 
 /// Reads a float TIFF (1 page real, 2 pages re and im) and its `_grid.yaml`; throws
 /// InputError naming the file when either is unreadable or their sizes disagree.
-FloatSarMap LoadFloatSarMap(const std::string& tiff_path, const std::string& grid_yaml_path);
+/// A TIFF declaring more than `max_image_pixels` (all pages) is refused before decoding.
+FloatSarMap LoadFloatSarMap(const std::string& tiff_path, const std::string& grid_yaml_path,
+                            double max_image_pixels = LimitsConfig{}.max_map_image_pixels);
 
 /// Local maxima of the positive image (paper mode: Re + |I|; coherent: |I|) that are the
 /// strongest pixel within `radius_m` and at least `min_fraction` of the strongest pixel;

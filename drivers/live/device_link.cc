@@ -1,6 +1,7 @@
 #include "drivers/live/device_link.h"
 
 #include <algorithm>
+#include <chrono>
 #include <vector>
 
 #include "slam/log.h"
@@ -21,12 +22,16 @@ void DeviceLink::Start() {
   thread_ = std::thread([this] { Loop(); });
 }
 
-void DeviceLink::Stop() {
+void DeviceLink::RequestStop() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     stop_ = true;
   }
   wake_.notify_all();
+}
+
+void DeviceLink::Stop() {
+  RequestStop();
   if (thread_.joinable()) thread_.join();
 }
 
@@ -46,6 +51,8 @@ void DeviceLink::Loop() {
   auto note_failure = [&] {
     ++failures;
     if (power_cycle_ && failures % policy_.power_cycle_after_failures == 0) {
+      if (port.is_open()) protocol_->OnStop(port);  // stopped before its power goes
+      port.Close();
       ++counters_.power_cycles;
       faults_->Report(name_ + ": power cycled",
                       "after " + std::to_string(failures) + " failed connections in a row");
@@ -58,10 +65,10 @@ void DeviceLink::Loop() {
       port.Open(path_, policy_.baud);
       if (!protocol_->OnOpen(port)) throw SerialError(path_ + ": start commands not accepted");
     } catch (const SerialError& e) {
-      port.Close();
       ++counters_.open_failures;
       faults_->Report(name_ + ": cannot connect", e.what());
       note_failure();
+      port.Close();
       if (!Wait(backoff_s)) break;
       backoff_s = std::min(backoff_s * 2.0, policy_.reconnect_max_s);
       continue;
@@ -75,14 +82,16 @@ void DeviceLink::Loop() {
     connected_ = true;
     bool delivered = false;
     // Read until the device goes away, falls silent or we stop.
-    double silent_s = 0.0;
+    using Clock = std::chrono::steady_clock;
+    auto last_data = Clock::now();
     constexpr double kPollS = 0.05;
     while (!stop_) {
+      const double wait_s = std::clamp(protocol_->OnPoll(port), 0.0, kPollS);
       std::size_t n = 0;
-      const auto status = port.Read(buffer.data(), buffer.size(), kPollS, &n);
+      const auto status = port.Read(buffer.data(), buffer.size(), wait_s, &n);
       if (status == SerialPort::ReadStatus::kData) {
         counters_.bytes += static_cast<long long>(n);
-        silent_s = 0.0;
+        last_data = Clock::now();
         if (!delivered) {
           delivered = true;
           failures = 0;
@@ -90,8 +99,8 @@ void DeviceLink::Loop() {
         }
         protocol_->OnBytes(buffer.data(), n);
       } else if (status == SerialPort::ReadStatus::kTimeout) {
-        silent_s += kPollS;
-        if (silent_s >= policy_.read_timeout_s) {
+        if (std::chrono::duration<double>(Clock::now() - last_data).count() >=
+            policy_.read_timeout_s) {
           ++counters_.timeouts;
           faults_->Report(name_ + ": silent", "no bytes for " +
                                                   std::to_string(policy_.read_timeout_s) +
@@ -110,9 +119,9 @@ void DeviceLink::Loop() {
       port.Close();
       break;
     }
+    if (!delivered) note_failure();
     port.Close();
     protocol_->OnLost();
-    if (!delivered) note_failure();
     if (!Wait(backoff_s)) break;
     if (!delivered) backoff_s = std::min(backoff_s * 2.0, policy_.reconnect_max_s);
   }

@@ -1,8 +1,10 @@
-// One serial device kept alive on its own thread: open, let the protocol send its
-// start commands, read with a timeout and hand the bytes to the protocol; when the
+// One serial device kept alive on its own thread: open, let the protocol run its
+// start-up, read with a timeout and hand the bytes to the protocol (a polled device sends
+// its requests from OnPoll, on the same thread, between reads); when the
 // device disappears (unplug) or stays silent longer than the read timeout, close it
 // and reopen with exponential backoff. After `power_cycle_after_failures` failed
-// attempts in a row the optional power-cycle hook runs (radar power through GPIO).
+// attempts in a row the optional power-cycle hook runs (radar power through GPIO), after
+// the protocol's stop (OnStop) where the port is still open.
 // Every fault goes to the FaultLog under "<name>: <what>". The reading thread never
 // waits on anything but the device: the protocol's sinks must not block.
 #pragma once
@@ -31,10 +33,14 @@ struct LinkPolicy {
 class LinkProtocol {
  public:
   virtual ~LinkProtocol() = default;
-  /// Called after each (re)open: send start commands; false = the device did not accept them.
+  /// Called after each (re)open: the start-up. false, or a SerialError naming the reason,
+  /// fails the open (reconnect with backoff).
   virtual bool OnOpen(SerialPort& /*port*/) { return true; }
+  /// Called on the link thread before each read: a polled device sends its requests here.
+  /// Returns how long the link may wait for bytes before calling it again (seconds).
+  virtual double OnPoll(SerialPort& /*port*/) { return 0.05; }
   virtual void OnBytes(const std::uint8_t* data, std::size_t size) = 0;
-  /// Called before a deliberate close (stop): send stop commands.
+  /// Called before a deliberate close (stop) and before a power cycle: stop the device.
   virtual void OnStop(SerialPort& /*port*/) {}
   /// Called after the link was lost: forget partial frames.
   virtual void OnLost() {}
@@ -56,6 +62,8 @@ class DeviceLink {
   ~DeviceLink() { Stop(); }
 
   void Start();
+  /// Asks the thread to stop without waiting (stop several links at once, then Stop()).
+  void RequestStop();
   /// Stops the thread (sends the protocol's stop commands if connected); idempotent.
   void Stop();
   bool connected() const { return connected_; }

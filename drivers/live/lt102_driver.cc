@@ -1,35 +1,95 @@
 #include "drivers/live/lt102_driver.h"
 
-namespace uwbsar::live {
+#include <algorithm>
 
-Lt102Driver::Lt102Driver(std::string name, int sensor_id, const LiveConfig& config,
-                         FaultLog* faults, ScanSink sink)
+#include "slam/log.h"
+
+namespace uwbsar::live {
+namespace {
+
+/// The next `d` goes out this fraction of a frame period early, so it waits at the radar
+/// for the frame being acquired instead of arriving just after it (the stamp is the
+/// answer's arrival).
+constexpr double kPollLead = 0.2;
+
+double PercentileMs(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  const auto k = static_cast<std::size_t>(p / 100.0 * static_cast<double>(v.size() - 1) + 0.5);
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+  return v[k];
+}
+
+}  // namespace
+
+Lt102Driver::Lt102Driver(std::string name, int sensor_id, const Config& config, FaultLog* faults,
+                         ScanSink sink, EventSink events)
     : name_(std::move(name)),
       sensor_id_(sensor_id),
-      raw_code_(config.lt102_raw_data_code),
-      channel_(config.lt102_channel),
+      config_(config),
       faults_(faults),
-      sink_(std::move(sink)) {
-  for (const auto& c : config.lt102_start_commands) start_.push_back(ParseLt102Command(c));
-  for (const auto& c : config.lt102_stop_commands) stop_.push_back(ParseLt102Command(c));
-}
-
-bool Lt102Driver::SendAll(SerialPort& port, const std::vector<Lt102Frame>& commands) {
-  std::vector<std::uint8_t> bytes;
-  for (const Lt102Frame& c : commands) {
-    bytes.clear();
-    EncodeLt102Frame(c.code, c.payload.data(), c.payload.size(), &bytes);
-    if (!port.Write(bytes.data(), bytes.size(), 0.5)) return false;
-  }
-  return true;
-}
+      sink_(std::move(sink)),
+      events_(std::move(events)),
+      exchange_(name_, config.live.lt102, faults) {}
 
 bool Lt102Driver::OnOpen(SerialPort& port) {
-  decoder_.Reset();
-  return SendAll(port, start_);
+  OnLost();
+  exchange_.Reset();
+  try {
+    const Lt102Setup setup = RunLt102Startup(port, exchange_, config_, name_);
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stats_.setup = setup;
+      stats_.configured = true;
+      ++stats_.startups;
+      have_setup_ = true;
+    }
+    configured_cv_.notify_all();
+    Log(LogLevel::kInfo, name_ + ": " + setup.Describe());
+    if (events_) events_(name_ + ": " + setup.Describe());
+    period_ = std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(1.0 / std::max(1, setup.frame_rate_fps)));
+    acquiring_ = true;
+    next_due_ = Clock::now();
+    return true;
+  } catch (const Lt102ConfigError& e) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      ++stats_.config_errors;
+      if (!have_setup_) config_error_ = e.what();
+    }
+    configured_cv_.notify_all();
+    faults_->Report(name_ + ": configuration errors", e.what());
+    throw;
+  } catch (const SerialError&) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++stats_.startup_failures;
+    throw;
+  }
 }
 
-void Lt102Driver::OnStop(SerialPort& port) { SendAll(port, stop_); }
+double Lt102Driver::OnPoll(SerialPort& port) {
+  if (!acquiring_) return 0.05;
+  const auto now = Clock::now();
+  const auto timeout = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(config_.live.lt102.frame_timeout_s));
+  if (in_flight_ && now - sent_at_ > timeout) {
+    ++stats_.lost;
+    faults_->Report(name_ + ": lost frames",
+                    "no answer to 'd' within live.lt102.frame_timeout_s; resynchronising on the "
+                    "next 0xFF");
+    in_flight_ = false;  // a partial answer is dropped (counted broken) at the next 0xFF
+    next_due_ = now;
+  }
+  if (!in_flight_ && now >= next_due_) {
+    const std::vector<std::uint8_t> bytes = exchange_.Encode({lt102::kReadFrame, false, 0.0});
+    if (!port.Write(bytes.data(), bytes.size(), 0.05)) return 0.05;  // the read sees the unplug
+    ++stats_.requests;
+    in_flight_ = true;
+    sent_at_ = now;
+  }
+  const auto wait = in_flight_ ? sent_at_ + timeout - now : next_due_ - now;
+  return std::clamp(std::chrono::duration<double>(wait).count(), 0.0005, 0.05);
+}
 
 void Lt102Driver::OnBytes(const std::uint8_t* data, std::size_t size) {
   frames_.clear();
@@ -40,31 +100,107 @@ void Lt102Driver::OnBytes(const std::uint8_t* data, std::size_t size) {
   faults_->Report(name_ + ": broken frames", "frames dropped, resynchronised on the next 0xFF",
                   s.broken_frames - reported_.broken_frames);
   reported_ = s;
-  for (const Lt102Frame& frame : frames_) {
-    if (frame.code != raw_code_) {
-      faults_->Report(name_ + ": other frames",
-                      "frames with command code " + std::to_string(frame.code) + " ignored");
-      continue;
-    }
-    std::string error;
-    if (!DecodeLt102RawData(frame.payload.data(), frame.payload.size(), &raw_, &error)) {
-      faults_->Report(name_ + ": invalid raw-data messages", error);
-      continue;
-    }
-    if (channel_ >= raw_.channels) {
-      faults_->Report(name_ + ": missing channel",
-                      "live.lt102_channel " + std::to_string(channel_) + " but the scan has " +
-                          std::to_string(raw_.channels) + " channels");
-      continue;
-    }
-    RadarScan scan;
-    scan.sensor_id = sensor_id_;
-    const auto begin =
-        raw_.i.begin() + static_cast<std::ptrdiff_t>(channel_) * raw_.samples_per_scan;
-    scan.samples.assign(begin, begin + raw_.samples_per_scan);
-    ++scans_;
-    sink_(std::move(scan));
+  for (const Lt102Frame& frame : frames_) HandleFrame(frame);
+}
+
+void Lt102Driver::HandleFrame(const Lt102Frame& frame) {
+  if (frame.code != lt102::kReadFrame) {
+    faults_->Report(
+        name_ + ": other frames",
+        "a frame starting with " + Lt102CommandLabel(frame.code) + " during acquisition ignored");
+    return;
   }
+  const auto now = Clock::now();
+  if (in_flight_) {
+    ++stats_.answers;
+    answer_ms_.push_back(std::chrono::duration<double, std::milli>(now - sent_at_).count());
+    in_flight_ = false;
+    next_due_ = now + std::chrono::duration_cast<Clock::duration>(period_ * (1.0 - kPollLead));
+  } else {
+    ++stats_.late_answers;  // still a valid frame: delivered
+  }
+  std::vector<std::uint8_t> payload;
+  std::string error;
+  const Lt102Setup& setup = stats_.setup;
+  const int format = config_.live.lt102.sample_format;
+  const bool decoded = exchange_.StripCrc(frame, &payload, &error) &&
+                       DecodeLt102RawData(payload.data(), payload.size(), &raw_, &error);
+  if (!decoded) {
+    // `error` says why
+  } else if (raw_.samples_per_scan != setup.samples_per_scan) {
+    error = "raw-data samples_per_scan " + std::to_string(raw_.samples_per_scan) +
+            ", the echoed range gives " + std::to_string(setup.samples_per_scan);
+  } else if (raw_.channels != 1) {
+    error = "raw-data message of " + std::to_string(raw_.channels) +
+            " channels (total / per scan), live.lt102.channel gives one";
+  } else if (raw_.format != format) {
+    error = "raw-data sample format " + std::to_string(raw_.format) +
+            ", live.lt102.sample_format is " + std::to_string(format);
+  }
+  if (!error.empty()) {
+    ++stats_.invalid_frames;
+    faults_->Report(name_ + ": invalid raw-data messages", error);
+    return;
+  }
+  RadarScan scan;
+  scan.sensor_id = sensor_id_;
+  scan.samples.assign(raw_.i.begin(), raw_.i.begin() + raw_.samples_per_scan);
+  ++scans_;
+  sink_(std::move(scan));
+}
+
+void Lt102Driver::OnStop(SerialPort& port) {
+  if (!port.is_open()) return;
+  // Let the answer in flight arrive first, so that the first frame after `o` is its echo.
+  const auto end =
+      sent_at_ + std::chrono::duration_cast<Clock::duration>(
+                     std::chrono::duration<double>(config_.live.lt102.frame_timeout_s));
+  std::uint8_t buffer[4096];
+  while (acquiring_ && in_flight_ && Clock::now() < end) {
+    std::size_t n = 0;
+    const auto status = port.Read(buffer, sizeof(buffer), 0.005, &n);
+    if (status == SerialPort::ReadStatus::kDisconnected) return;
+    if (status == SerialPort::ReadStatus::kData) OnBytes(buffer, n);
+  }
+  if (acquiring_ && in_flight_) ++stats_.unanswered_at_stop;
+  acquiring_ = false;
+  in_flight_ = false;
+  try {
+    ++stats_.stops;
+    exchange_.Ask(port, {lt102::kStop, false, 0.0});
+  } catch (const SerialError& e) {
+    faults_->Report(name_ + ": stop not acknowledged", e.what());
+  }
+}
+
+void Lt102Driver::OnLost() {
+  decoder_.Reset();
+  acquiring_ = false;
+  in_flight_ = false;
+}
+
+bool Lt102Driver::WaitConfigured(double timeout_s, Lt102Setup* setup, std::string* error) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  configured_cv_.wait_for(lock, std::chrono::duration<double>(timeout_s),
+                          [this] { return have_setup_ || !config_error_.empty(); });
+  error->clear();
+  if (have_setup_) {
+    *setup = stats_.setup;
+    return true;
+  }
+  *error = config_error_;
+  return false;
+}
+
+Lt102Stats Lt102Driver::stats() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Lt102Stats s = stats_;
+  s.exchange = exchange_.counts();
+  s.answer_p50_ms = PercentileMs(answer_ms_, 50);
+  s.answer_p99_ms = PercentileMs(answer_ms_, 99);
+  s.answer_max_ms =
+      answer_ms_.empty() ? 0.0 : *std::max_element(answer_ms_.begin(), answer_ms_.end());
+  return s;
 }
 
 }  // namespace uwbsar::live

@@ -1,53 +1,98 @@
-// The LT102 as a LinkProtocol: on open it sends the configured start commands, then
-// turns raw-data frames into RadarScans (the I samples of the configured channel;
-// the link's elapsed-time field is kept for diagnostics) and hands them to the sink
-// on the reading thread; the sink stamps them on the host clock. Broken frames,
-// garbage bytes, invalid raw-data messages and frames of other codes are reported to
-// the FaultLog with counts, never passed on.
+// The LT102 as a LinkProtocol (REFERENCE.md section 4a). On each open it runs the
+// start-up sequence (lt102_startup.h: settings sent, every echo checked, `s` answered
+// `r`); a failed step fails the open, so the link's reconnect, backoff and power cycle
+// take over. Acquisition is polled: from the link's thread one `d` request is in flight
+// at a time, paced at the echoed frame rate; an answer that does not come within
+// live.lt102.frame_timeout_s is counted lost and the decoder resynchronises on the next
+// 0xFF. Each raw-data answer is validated (size = total x 2 x bytes per value, samples
+// per scan = the count from the echoed range, one channel, the configured format) and
+// its I samples handed to the sink, which stamps them on the host clock. On a deliberate
+// stop and before a power cycle the radar is stopped with `o`. Faults go to the FaultLog.
 #pragma once
 
+#include <chrono>
+#include <condition_variable>
 #include <functional>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include "drivers/live/device_link.h"
-#include "drivers/live/lt102_protocol.h"
+#include "drivers/live/lt102_startup.h"
 #include "slam/config.h"
 #include "slam/types.h"
 
 namespace uwbsar::live {
 
+/// Counts of one radar's link, for live.json.
+struct Lt102Stats {
+  long long startups = 0;  ///< completed start-up sequences
+  long long startup_failures = 0;
+  long long config_errors = 0;
+  long long requests = 0;            ///< `d` requests sent
+  long long answers = 0;             ///< `d` answers to a request in flight
+  long long lost = 0;                ///< `d` requests unanswered within frame_timeout_s
+  long long late_answers = 0;        ///< `d` answers after their request was given up
+  long long unanswered_at_stop = 0;  ///< a `d` still in flight when the link stopped
+  long long invalid_frames = 0;      ///< answers failing validation (size, samples, CRC)
+  long long stops = 0;               ///< `o` sent
+  Lt102ExchangeCounts exchange;      ///< start-up and stop requests, wrong / missing answers
+  double answer_p50_ms = 0.0, answer_p99_ms = 0.0, answer_max_ms = 0.0;  ///< `d` to answer
+  bool configured = false;
+  Lt102Setup setup;  ///< of the last start-up
+};
+
 class Lt102Driver : public LinkProtocol {
  public:
   using ScanSink = std::function<void(RadarScan&& scan)>;
+  using EventSink = std::function<void(const std::string& event)>;
 
-  /// `name` labels faults (e.g. "radar left"). Throws std::invalid_argument on bad commands.
-  Lt102Driver(std::string name, int sensor_id, const LiveConfig& config, FaultLog* faults,
-              ScanSink sink);
+  /// `name` labels faults and events (e.g. "radar left").
+  Lt102Driver(std::string name, int sensor_id, const Config& config, FaultLog* faults,
+              ScanSink sink, EventSink events = {});
 
   bool OnOpen(SerialPort& port) override;
+  double OnPoll(SerialPort& port) override;
   void OnBytes(const std::uint8_t* data, std::size_t size) override;
   void OnStop(SerialPort& port) override;
-  void OnLost() override { decoder_.Reset(); }
+  void OnLost() override;
 
+  /// Waits up to `timeout_s` for the first start-up to finish: true with `setup` when it
+  /// did; false with `error` set when it failed with a configuration error, or empty
+  /// `error` on timeout. Any thread.
+  bool WaitConfigured(double timeout_s, Lt102Setup* setup, std::string* error);
   long long scans() const { return scans_; }
-  const Lt102FrameStats& frame_stats() const { return decoder_.stats(); }
+  /// After the link stopped.
+  Lt102Stats stats() const;
 
  private:
-  bool SendAll(SerialPort& port, const std::vector<Lt102Frame>& commands);
+  using Clock = std::chrono::steady_clock;
+  void HandleFrame(const Lt102Frame& frame);
 
   std::string name_;
   int sensor_id_;
-  int raw_code_;
-  int channel_;
-  std::vector<Lt102Frame> start_, stop_;
+  Config config_;
   FaultLog* faults_;
   ScanSink sink_;
+  EventSink events_;
+  Lt102Exchange exchange_;
   Lt102FrameDecoder decoder_;
   Lt102FrameStats reported_;
   std::vector<Lt102Frame> frames_;
   Lt102RawData raw_;
-  long long scans_ = 0;
+  std::atomic<long long> scans_{0};
+  // Acquisition state (link thread).
+  bool acquiring_ = false;
+  bool in_flight_ = false;
+  Clock::time_point sent_at_, next_due_;
+  Clock::duration period_{};
+  std::vector<double> answer_ms_;
+  Lt102Stats stats_;
+  // Start-up result, read by other threads.
+  mutable std::mutex mutex_;
+  std::condition_variable configured_cv_;
+  bool have_setup_ = false;
+  std::string config_error_;
 };
 
 }  // namespace uwbsar::live

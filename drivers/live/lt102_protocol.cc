@@ -5,8 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <sstream>
-#include <stdexcept>
+#include <limits>
 
 namespace uwbsar::live {
 namespace {
@@ -242,23 +241,16 @@ std::vector<std::uint8_t> EncodeLt102RawData(int format, int samples_per_scan, i
   return out;
 }
 
-Lt102Frame ParseLt102Command(const std::string& text) {
-  std::istringstream in(text);
-  std::string token;
-  std::vector<std::uint8_t> bytes;
-  while (in >> token) {
-    if (token.empty() || token.size() > 2 ||
-        token.find_first_not_of("0123456789abcdefABCDEF") != std::string::npos) {
-      throw std::invalid_argument("LT102 command '" + text + "': '" + token +
-                                  "' is not a hex byte");
+std::uint8_t Lt102Crc8(const std::uint8_t* data, std::size_t size, std::uint8_t polynomial,
+                       std::uint8_t init) {
+  std::uint8_t crc = init;
+  for (std::size_t k = 0; k < size; ++k) {
+    crc ^= data[k];
+    for (int bit = 0; bit < 8; ++bit) {
+      crc = static_cast<std::uint8_t>((crc & 0x80) ? (crc << 1) ^ polynomial : crc << 1);
     }
-    bytes.push_back(static_cast<std::uint8_t>(std::stoi(token, nullptr, 16)));
   }
-  if (bytes.empty()) throw std::invalid_argument("LT102 command is empty");
-  Lt102Frame frame;
-  frame.code = bytes[0];
-  frame.payload.assign(bytes.begin() + 1, bytes.end());
-  return frame;
+  return crc;
 }
 
 }  // namespace uwbsar::live

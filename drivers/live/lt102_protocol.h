@@ -81,8 +81,9 @@ std::vector<std::uint8_t> EncodeLt102RawData(int format, int samples_per_scan, i
                                              const std::vector<float>& i,
                                              const std::vector<float>& q);
 
-/// Parses a configured command ("53 01": hex bytes, the first is the code). Throws
-/// std::invalid_argument on anything else.
-Lt102Frame ParseLt102Command(const std::string& text);
+/// CRC-8 (MSB first, no reflection, no final xor) of `size` bytes. Run over a body and its
+/// appended CRC it gives 0, which is how the receiver checks it (REFERENCE.md section 4a).
+std::uint8_t Lt102Crc8(const std::uint8_t* data, std::size_t size, std::uint8_t polynomial,
+                       std::uint8_t init);
 
 }  // namespace uwbsar::live

@@ -5,30 +5,42 @@
 #include <random>
 
 #include "drivers/live/kobuki_protocol.h"
-#include "drivers/live/lt102_protocol.h"
 
 namespace uwbsar::live {
 namespace {
 using Clock = std::chrono::steady_clock;
-}
+constexpr double kSpeedOfLight = 299792458.0;
+}  // namespace
 
 SimDevicePlayer::SimDevicePlayer(const Config& config, const sim::SimScenario& scenario,
                                  std::uint64_t seed, std::vector<std::string> radar_links,
-                                 std::string kobuki_link, double speed, int lt102_format,
+                                 std::string kobuki_link, double speed,
                                  const EmulatorFaults& faults, std::function<std::int64_t()> clock,
                                  double max_duration_s)
     : config_(config),
       stream_(config, scenario, seed),
       speed_(speed),
-      format_(lt102_format),
       faults_(faults),
       clock_(std::move(clock)),
       duration_s_(max_duration_s > 0 ? std::min(max_duration_s, stream_.duration_s())
                                      : stream_.duration_s()),
       rng_state_(faults.seed) {
+  Lt102EmulatorOptions lt102;
+  lt102.bin_m = kSpeedOfLight / (2.0 * config.pulse.sampling_frequency_hz);
+  lt102.carrier_mhz = faults.lt102_carrier_mhz > 0
+                          ? faults.lt102_carrier_mhz
+                          : static_cast<int>(std::lround(config.pulse.center_frequency_hz / 1e6));
+  lt102.bandwidth_mhz = static_cast<int>(std::lround(config.pulse.bandwidth_hz / 1e6));
+  lt102.adc_frequency = static_cast<int>(std::lround(config.pulse.sampling_frequency_hz / 1e6));
+  lt102.crc = faults.lt102_crc;
+  lt102.wrong_echo_code = faults.lt102_wrong_echo_code;
+  lt102.missing_answer_code = faults.lt102_missing_answer_code;
+  lt102.missing_answer_times = faults.lt102_missing_answer_times;
+  lt102.bad_size_every = faults.lt102_bad_size_every;
+  lt102.corrupt_fraction = faults.corrupt_fraction;
   for (const std::string& link : radar_links) {
-    radars_.push_back(std::make_unique<PtyDevice>(link));
-    streaming_.push_back(false);
+    lt102.seed = faults.seed + 1000 * radars_.size();
+    radars_.push_back(std::make_unique<Lt102Emulator>(link, lt102));
   }
   kobuki_ = std::make_unique<PtyDevice>(kobuki_link);
 }
@@ -44,10 +56,6 @@ void SimDevicePlayer::Stop() {
   if (thread_.joinable()) thread_.join();
 }
 
-void SimDevicePlayer::WaitDone() {
-  if (thread_.joinable()) thread_.join();
-}
-
 std::vector<OdometrySample> SimDevicePlayer::ground_truth() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return ground_truth_;
@@ -55,68 +63,26 @@ std::vector<OdometrySample> SimDevicePlayer::ground_truth() const {
 
 EmulatorCounts SimDevicePlayer::counts() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  return counts_;
+  EmulatorCounts c = counts_;
+  for (const auto& radar : radars_) {
+    const Lt102EmulatorCounts r = radar->counts();
+    c.scans_sent += r.frames_answered;
+    c.frames_acquired += r.frames_acquired;
+    c.frames_overwritten += r.frames_overwritten;
+    c.frames_corrupted += r.frames_corrupted;
+    c.bytes_dropped += r.bytes_dropped;
+  }
+  return c;
 }
 
-void SimDevicePlayer::ServeCommands(int radar) {
-  PtyDevice& dev = *radars_[static_cast<std::size_t>(radar)];
-  const std::vector<std::uint8_t> bytes = dev.ReadAvailable();
-  if (bytes.empty()) return;
-  static thread_local std::vector<Lt102FrameDecoder> decoders;
-  decoders.resize(radars_.size());
-  std::vector<Lt102Frame> frames;
-  decoders[static_cast<std::size_t>(radar)].Push(bytes.data(), bytes.size(), &frames);
-  for (const Lt102Frame& f : frames) {
-    for (const std::string& c : config_.live.lt102_start_commands) {
-      const Lt102Frame start = ParseLt102Command(c);
-      if (f.code == start.code && f.payload == start.payload) {
-        streaming_[static_cast<std::size_t>(radar)] = true;
-      }
-    }
-    for (const std::string& c : config_.live.lt102_stop_commands) {
-      const Lt102Frame stop = ParseLt102Command(c);
-      if (f.code == stop.code && f.payload == stop.payload) {
-        streaming_[static_cast<std::size_t>(radar)] = false;
-      }
-    }
-  }
+void ConfigureLiveForEmulation(Config* config, double speed) {
+  config->live.lt102.frame_rate_fps =
+      static_cast<int>(std::lround(config->simulator.radar.rate_hz * speed));
 }
 
 void SimDevicePlayer::SendScan(int radar, const RadarScan& scan) {
-  PtyDevice& dev = *radars_[static_cast<std::size_t>(radar)];
-  if (!dev.plugged() || !streaming_[static_cast<std::size_t>(radar)]) return;
-  const std::vector<float> q(scan.samples.size(), 0.0f);
-  const std::vector<std::uint8_t> payload =
-      EncodeLt102RawData(format_, static_cast<int>(scan.samples.size()), 250, scan.samples, q);
-  std::vector<std::uint8_t> frame;
-  EncodeLt102Frame(static_cast<std::uint8_t>(config_.live.lt102_raw_data_code), payload.data(),
-                   payload.size(), &frame);
-  std::mt19937_64 rng(rng_state_++);
-  const bool corrupt = std::uniform_real_distribution<double>(0, 1)(rng) < faults_.corrupt_fraction;
-  if (corrupt) {
-    switch (rng() % 3) {
-      case 0: {  // garbage before the frame
-        std::vector<std::uint8_t> garbage(20);
-        for (auto& b : garbage) b = static_cast<std::uint8_t>(rng() & 0x7F);
-        frame.insert(frame.begin(), garbage.begin(), garbage.end());
-        // and the frame itself cut short, so the scan is lost visibly
-        frame.resize(frame.size() / 2);
-        break;
-      }
-      case 1:  // truncated: the end byte never comes
-        frame.resize(frame.size() / 2);
-        break;
-      default:  // an invalid escape in the middle
-        frame[frame.size() / 2] = 0x80;
-        frame[frame.size() / 2 + 1] = 0x42;
-        break;
-    }
-  }
-  const std::size_t written = dev.Write(frame);
-  std::lock_guard<std::mutex> lock(mutex_);
-  ++counts_.scans_sent;
-  if (corrupt) ++counts_.frames_corrupted;
-  counts_.bytes_dropped += static_cast<long long>(frame.size() - written);
+  radars_[static_cast<std::size_t>(radar)]->Acquire(
+      scan.samples, config_.radars[static_cast<std::size_t>(radar)].range_offset_m);
 }
 
 void SimDevicePlayer::SendOdometry(TimestampNs sim_stamp_ns, const OdometrySample& odometry) {
@@ -169,19 +135,18 @@ void SimDevicePlayer::Loop() {
     const auto target = t0 + std::chrono::duration_cast<Clock::duration>(
                                  std::chrono::duration<double>(rel_s / speed_));
     while (true) {
-      for (int r = 0; r < static_cast<int>(radars_.size()); ++r) ServeCommands(r);
+      for (auto& radar : radars_) radar->Serve();
       const auto now = Clock::now();
       if (now >= target || stop_) break;
       std::this_thread::sleep_for(
           std::min<Clock::duration>(target - now, std::chrono::milliseconds(2)));
     }
     if (faults_.unplug_at_s >= 0 && faults_.unplug_radar < static_cast<int>(radars_.size())) {
-      PtyDevice& dev = *radars_[static_cast<std::size_t>(faults_.unplug_radar)];
+      Lt102Emulator& dev = *radars_[static_cast<std::size_t>(faults_.unplug_radar)];
       const bool out =
           rel_s >= faults_.unplug_at_s && rel_s < faults_.unplug_at_s + faults_.unplug_for_s;
       if (out && dev.plugged()) {
         dev.Unplug();
-        streaming_[static_cast<std::size_t>(faults_.unplug_radar)] = false;
       } else if (!out && !dev.plugged()) {
         dev.Plug();
       }
@@ -206,6 +171,11 @@ void SimDevicePlayer::Loop() {
     }
   }
   done_ = true;
+  // The radars keep answering (the drivers' stop `o`) until the player is stopped.
+  while (!stop_) {
+    for (auto& radar : radars_) radar->Serve();
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
 }
 
 }  // namespace uwbsar::live

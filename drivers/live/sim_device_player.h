@@ -1,10 +1,13 @@
 // Emulated robot hardware for tests: a simulated run (drivers/sim/sim_stream.h)
-// played in (scaled) real time through pseudo-terminals that speak the LT102
-// protocol (one per radar; streaming starts when the configured start command
-// arrives) and the Kobuki protocol (encoder ticks recovered exactly from the
-// simulated tick odometry, 16-bit wrap-around included). Faults are injected on
-// the wire: unplugging a radar, corrupted frames (garbage, truncation, bad
-// escapes; Kobuki: bad checksums), an odometry stall and an encoder jump. The
+// played in (scaled) real time through pseudo-terminals that speak the LT102 command
+// protocol (one lt102_emulator.h per radar: each simulated scan is a frame acquired,
+// handed out when the driver polls `d`) and the Kobuki protocol (encoder ticks
+// recovered exactly from the simulated tick odometry, 16-bit wrap-around included).
+// Faults are injected on the wire: unplugging a radar, corrupted frames (garbage,
+// truncation, bad escapes; Kobuki: bad checksums), an odometry stall, an encoder jump,
+// and the LT102 faults of lt102_emulator.h (wrong echo, missing answer, bad frame size,
+// frames with a CRC byte). The radars keep answering commands after the run ends, until
+// Stop(), so the drivers' stop is acknowledged. The
 // ground truth is kept, stamped by the same host clock the drivers use, so the
 // live result can be scored.
 #pragma once
@@ -17,6 +20,7 @@
 #include <thread>
 #include <vector>
 
+#include "drivers/live/lt102_emulator.h"
 #include "drivers/live/pty_device.h"
 #include "drivers/sim/sim_stream.h"
 #include "slam/config.h"
@@ -31,11 +35,20 @@ struct EmulatorFaults {
   double stall_at_s = -1.0;       ///< odometry silent from here (< 0: never)
   double stall_for_s = 0.0;
   double encoder_jump_at_s = -1.0;  ///< one packet with encoders jumped by 20000 ticks
+  // LT102 faults, on every radar (see Lt102EmulatorOptions).
+  int lt102_wrong_echo_code = -1;      ///< this command's echo is off by one
+  int lt102_missing_answer_code = -1;  ///< this command goes unanswered ...
+  int lt102_missing_answer_times = 1;  ///< ... this many times
+  int lt102_bad_size_every = 0;        ///< every n-th `d` answer is two bytes short
+  bool lt102_crc = false;              ///< the radars append a CRC-8 byte to every answer
+  int lt102_carrier_mhz = 0;           ///< the radars' carrier; 0 = pulse.center_frequency_hz
   std::uint64_t seed = 7;
 };
 
 struct EmulatorCounts {
-  long long scans_sent = 0;
+  long long scans_sent = 0;          ///< LT102 frames answered to `d` requests
+  long long frames_acquired = 0;     ///< simulated scans while the radars were started
+  long long frames_overwritten = 0;  ///< acquired but replaced before a `d` asked for them
   long long packets_sent = 0;
   long long frames_corrupted = 0;
   long long packets_corrupted = 0;
@@ -46,17 +59,18 @@ class SimDevicePlayer {
  public:
   /// `radar_links[i]` / `kobuki_link`: symlink paths the drivers open. `speed` = 1 plays at
   /// real time. `clock` stamps the ground truth (the drivers' clock). `max_duration_s` > 0
-  /// stops early (shortened runs).
+  /// stops early (shortened runs). The drivers must poll at the emulated frame rate:
+  /// see ConfigureLiveForEmulation.
   SimDevicePlayer(const Config& config, const sim::SimScenario& scenario, std::uint64_t seed,
                   std::vector<std::string> radar_links, std::string kobuki_link, double speed,
-                  int lt102_format, const EmulatorFaults& faults,
-                  std::function<std::int64_t()> clock, double max_duration_s = 0.0);
+                  const EmulatorFaults& faults, std::function<std::int64_t()> clock,
+                  double max_duration_s = 0.0);
   ~SimDevicePlayer();
 
   void Start();
   void Stop();
+  /// The simulated run has been played (the radars still answer commands).
   bool done() const { return done_; }
-  void WaitDone();
   /// Ground truth so far, stamped on the drivers' clock.
   std::vector<OdometrySample> ground_truth() const;
   EmulatorCounts counts() const;
@@ -64,19 +78,16 @@ class SimDevicePlayer {
 
  private:
   void Loop();
-  void ServeCommands(int radar);
   void SendScan(int radar, const RadarScan& scan);
   void SendOdometry(TimestampNs sim_stamp_ns, const OdometrySample& odometry);
 
   Config config_;
   sim::SimStream stream_;
   double speed_;
-  int format_;
   EmulatorFaults faults_;
   std::function<std::int64_t()> clock_;
   double duration_s_;
-  std::vector<std::unique_ptr<PtyDevice>> radars_;
-  std::vector<bool> streaming_;
+  std::vector<std::unique_ptr<Lt102Emulator>> radars_;
   std::unique_ptr<PtyDevice> kobuki_;
   std::thread thread_;
   std::atomic<bool> stop_{false}, done_{false};
@@ -90,5 +101,9 @@ class SimDevicePlayer {
   std::int64_t jump_ticks_ = 0;
   std::uint64_t rng_state_;
 };
+
+/// The live settings that must match the emulated devices at playback `speed`: the LT102
+/// frame rate (the simulated scan rate, scaled) that the drivers poll at.
+void ConfigureLiveForEmulation(Config* config, double speed);
 
 }  // namespace uwbsar::live

@@ -26,7 +26,9 @@ std::string HumanBytes(std::uint64_t bytes) {
 }
 
 std::string FormatBagTime(TimestampNs t) {
-  const std::int64_t sec = t >= 0 ? t / 1000000000 : -((-t + 999999999) / 1000000000);
+  // Floor division without negating t (-INT64_MIN overflows).
+  std::int64_t sec = t / 1000000000;
+  if (t % 1000000000 < 0) --sec;
   const auto nsec = static_cast<long>(t - sec * 1000000000);
   const std::time_t tt = static_cast<std::time_t>(sec);
   std::tm tm{};

@@ -2,9 +2,12 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
+#include "slam/bounded_file.h"
 #include "slam/errors.h"
 
 namespace uwbsar::rosbag {
@@ -25,6 +28,13 @@ class Parser {
 
   YAML::Node Required(const YAML::Node& parent, const std::string& key,
                       const std::string& path) const {
+    // A scalar or list where a mapping belongs: name the mapping (yaml-cpp would throw a
+    // bare BadSubscript naming no file).
+    if (!parent.IsMap()) {
+      const std::size_t dot = path.rfind('.');
+      Fail(parent, dot == std::string::npos ? path : path.substr(0, dot),
+           dot == std::string::npos ? "its parent is not a map" : "is not a map");
+    }
     const YAML::Node n = parent[key];
     if (!n.IsDefined() || n.IsNull()) Fail(parent, path, "missing");
     return n;
@@ -47,6 +57,7 @@ class Parser {
   template <class T>
   T Optional(const YAML::Node& parent, const std::string& key, const std::string& path,
              T fallback) const {
+    if (!parent.IsMap()) Fail(parent, path, "its parent is not a map");
     const YAML::Node n = parent[key];
     if (!n.IsDefined() || n.IsNull()) return fallback;
     return As<T>(n, path);
@@ -66,7 +77,25 @@ class Parser {
 
 }  // namespace
 
+namespace {
+
+BagMetadata Parse(const std::string& text, const std::string& name);
+
+}  // namespace
+
 BagMetadata ParseBagMetadata(const std::string& text, const std::string& name) {
+  try {
+    return Parse(text, name);
+  } catch (const YAML::Exception& e) {
+    // Anything the field checks did not foresee is still bad input naming the file and line.
+    throw InputError(name + (e.mark.line >= 0 ? ":" + std::to_string(e.mark.line + 1) : "") +
+                     ": unexpected YAML shape: " + e.msg);
+  }
+}
+
+namespace {
+
+BagMetadata Parse(const std::string& text, const std::string& name) {
   YAML::Node doc;
   try {
     doc = YAML::Load(text);
@@ -132,15 +161,24 @@ BagMetadata ParseBagMetadata(const std::string& text, const std::string& name) {
     }
   }
   m.ros_distro = p.Optional<std::string>(root, "ros_distro", "ros_distro", "");
+  // Times must add up without overflow: the bag ends at starting_time + duration.
+  if (m.duration_ns < 0) p.Fail(root["duration"], "duration", "is negative");
+  if (m.starting_time_ns < 0) p.Fail(root["starting_time"], "starting_time", "is negative");
+  if (m.duration_ns > std::numeric_limits<std::int64_t>::max() - m.starting_time_ns) {
+    p.Fail(root["duration"], "duration",
+           "starting_time + duration is past the last representable time (year 2262)");
+  }
   return m;
 }
 
+}  // namespace
+
 BagMetadata ReadBagMetadata(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": missing or unreadable (no bag metadata)");
-  std::stringstream text;
-  text << in.rdbuf();
-  return ParseBagMetadata(text.str(), path);
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) {
+    throw InputError(path + ": missing or unreadable (no bag metadata)");
+  }
+  return ParseBagMetadata(ReadBoundedFile(path, "bag metadata"), path);
 }
 
 std::string BagMetadataToYaml(const BagMetadata& m) {

@@ -4,13 +4,17 @@
 #include <zstd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 
 #include "drivers/rosbag/bag_metadata.h"
 #include "slam/errors.h"
+#include "slam/interrupt_cleanup.h"
 
 namespace uwbsar::rosbag {
 namespace fs = std::filesystem;
@@ -22,19 +26,34 @@ std::string Lower(std::string s) {
   return s;
 }
 
-// Decompresses a rosbag2 file-compressed storage (`x.db3.zstd`) to a private temporary
-// file, removed when the reader closes.
-std::string DecompressFileToTemp(const std::string& path) {
+// Decompresses a rosbag2 file-compressed storage (`x.db3.zstd`) in one streaming pass to a
+// private temporary file in $TMPDIR, removed when the reader closes, on every error and on
+// Ctrl-C (slam/interrupt_cleanup.h). The output may not exceed `cap_bytes` (from the
+// metadata's message count): a small file of zeros must not fill the disk. A failed write
+// names the temporary file and its cause (no space left on device), not the input.
+std::string DecompressFileToTemp(const std::string& path, std::uint64_t cap_bytes,
+                                 std::unique_ptr<RemoveOnInterrupt>* guard) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open");
-  std::string templ = (fs::temp_directory_path() / "uwbsar_bag_XXXXXX").string();
+  const char* tmpdir = std::getenv("TMPDIR");
+  std::string templ =
+      (fs::path(tmpdir && *tmpdir ? tmpdir : "/tmp") / "uwbsar_bag_XXXXXX").string();
   const int fd = ::mkstemp(templ.data());
-  if (fd < 0) throw InputError(path + ": cannot create a temporary file to decompress into");
-  ::close(fd);
-  std::ofstream out(templ, std::ios::binary | std::ios::trunc);
+  if (fd < 0) {
+    throw std::runtime_error(templ + ": cannot create a temporary file to decompress " + path +
+                             " into: " + std::strerror(errno));
+  }
+  *guard = std::make_unique<RemoveOnInterrupt>(templ);
+  const auto fail = [&](const auto& error) {
+    ::close(fd);
+    std::remove(templ.c_str());
+    guard->reset();
+    throw error;
+  };
   std::unique_ptr<ZSTD_DCtx, decltype(&ZSTD_freeDCtx)> ctx(ZSTD_createDCtx(), &ZSTD_freeDCtx);
   std::vector<char> ibuf(ZSTD_DStreamInSize()), obuf(ZSTD_DStreamOutSize());
   std::size_t last = 0;
+  std::uint64_t written = 0;
   bool any = false;
   while (in) {
     in.read(ibuf.data(), static_cast<std::streamsize>(ibuf.size()));
@@ -46,26 +65,55 @@ std::string DecompressFileToTemp(const std::string& path) {
       ZSTD_outBuffer output{obuf.data(), obuf.size(), 0};
       last = ZSTD_decompressStream(ctx.get(), &output, &input);
       if (ZSTD_isError(last)) {
-        std::remove(templ.c_str());
-        throw InputError(path + ": corrupt zstd file: " + ZSTD_getErrorName(last));
+        fail(InputError(path + ": corrupt zstd file: " + ZSTD_getErrorName(last)));
       }
-      out.write(obuf.data(), static_cast<std::streamsize>(output.pos));
+      written += output.pos;
+      if (written > cap_bytes) {
+        fail(InputError(path + ": decompresses to more than " + std::to_string(cap_bytes) +
+                        " bytes, the most its metadata's message count allows"));
+      }
+      for (std::size_t done = 0; done < output.pos;) {
+        const ssize_t w = ::write(fd, obuf.data() + done, output.pos - done);
+        if (w < 0 && errno == EINTR) continue;
+        if (w <= 0) {
+          fail(std::runtime_error(templ + ": cannot write the decompressed copy of " + path + ": " +
+                                  std::strerror(w < 0 ? errno : ENOSPC) +
+                                  " (set TMPDIR to a folder with more space)"));
+        }
+        done += static_cast<std::size_t>(w);
+      }
     }
   }
-  if (!any || last != 0 || !out) {
+  if (::close(fd) != 0) {
+    const int error = errno;
     std::remove(templ.c_str());
-    throw InputError(path + ": truncated zstd file");
+    guard->reset();
+    throw std::runtime_error(templ + ": cannot write the decompressed copy of " + path + ": " +
+                             std::strerror(error));
+  }
+  if (!any || last != 0) {
+    std::remove(templ.c_str());
+    guard->reset();
+    throw InputError(path + ": truncated zstd file (the compressed data ends mid-frame)");
   }
   return templ;
 }
 
 }  // namespace
 
+std::uint64_t DecompressedSizeCap(std::uint64_t message_count) {
+  constexpr std::uint64_t kBase = 64ull << 20;       // schema, indexes, page slack
+  constexpr std::uint64_t kPerMessage = 1ull << 20;  // one message at most 1 MiB
+  constexpr std::uint64_t kMax = 1ull << 40;         // and never more than 1 TiB
+  return std::min(kMax, kBase + std::min(message_count, kMax / kPerMessage) * kPerMessage);
+}
+
 struct BagReader::File {
   std::unique_ptr<StorageReader> storage;
   std::vector<int> topic_map;  // storage topic index -> BagInfo topic index
   StorageMessage current;
   std::string temp_path;  // decompressed copy to delete, if any
+  std::unique_ptr<RemoveOnInterrupt> temp_guard;
   ~File() {
     storage.reset();
     if (!temp_path.empty()) std::remove(temp_path.c_str());
@@ -81,7 +129,7 @@ std::string DetectStorage(const std::string& path) {
   return {};
 }
 
-BagReader::BagReader(const std::string& path) {
+BagReader::BagReader(const std::string& path, const BagReadOptions& options) : options_(options) {
   info_.path = path;
   std::error_code ec;
   if (fs::is_directory(path, ec)) {
@@ -172,11 +220,17 @@ void BagReader::OpenDirectory(const std::string& dir) {
     auto file = std::make_unique<File>();
     std::string open_path = p.string();
     if (mode == "file") {
-      file->temp_path = DecompressFileToTemp(open_path);
+      // The storage file's message count (metadata version >= 5), else the bag's.
+      std::uint64_t messages = m.message_count;
+      for (const BagFileInfo& f : m.files) {
+        if (f.path == rel) messages = f.message_count;
+      }
+      file->temp_path =
+          DecompressFileToTemp(open_path, DecompressedSizeCap(messages), &file->temp_guard);
       open_path = file->temp_path;
     }
     try {
-      file->storage = m.storage_identifier == "mcap" ? OpenMcapStorage(open_path)
+      file->storage = m.storage_identifier == "mcap" ? OpenMcapStorage(open_path, options_)
                                                      : OpenSqliteStorage(open_path);
     } catch (const InputError& e) {
       if (file->temp_path.empty()) throw;
@@ -196,7 +250,7 @@ void BagReader::OpenBareFile(const std::string& path) {
                      "(bad magic)");
   }
   auto file = std::make_unique<File>();
-  file->storage = kind == "mcap" ? OpenMcapStorage(path) : OpenSqliteStorage(path);
+  file->storage = kind == "mcap" ? OpenMcapStorage(path, options_) : OpenSqliteStorage(path);
   const StorageStats stats = file->storage->Stats();
   info_.storage_identifier = kind;
   info_.message_count = stats.message_count;

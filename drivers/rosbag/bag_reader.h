@@ -5,6 +5,7 @@
 // plus the MCAP chunks in flight).
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,7 +27,12 @@ struct BagInfo {
   std::uint64_t message_count = 0;
   TimestampNs start_ns = 0;
   TimestampNs end_ns = 0;
-  std::int64_t duration_ns() const { return end_ns - start_ns; }
+  /// end - start, saturated instead of overflowing (a damaged file's stamps can be anything).
+  std::int64_t duration_ns() const {
+    std::int64_t d = 0;
+    if (__builtin_sub_overflow(end_ns, start_ns, &d)) return std::numeric_limits<int64_t>::max();
+    return d;
+  }
 };
 
 /// One message. `data` is valid until the next call to BagReader::Next().
@@ -42,7 +48,7 @@ class BagReader {
  public:
   /// Opens a bag directory or a bare .db3/.mcap file. Throws InputError naming the
   /// file and what is wrong (missing metadata, unknown storage id, bad magic, ...).
-  explicit BagReader(const std::string& path);
+  explicit BagReader(const std::string& path, const BagReadOptions& options = {});
   ~BagReader();
   BagReader(const BagReader&) = delete;
   BagReader& operator=(const BagReader&) = delete;
@@ -61,12 +67,17 @@ class BagReader {
   bool Advance(std::size_t file);
 
   BagInfo info_;
+  BagReadOptions options_;
   bool message_compression_ = false;
   std::vector<std::unique_ptr<File>> files_;
   std::vector<std::size_t> heap_;  // files with a current message, min-heap by time
   long last_ = -1;                 // file whose message was returned last
   std::vector<std::uint8_t> decompressed_;
 };
+
+/// The most bytes a file-compressed (zstd FILE mode) storage file holding `message_count`
+/// messages may decompress to: 64 MiB + 1 MiB per message, at most 1 TiB.
+std::uint64_t DecompressedSizeCap(std::uint64_t message_count);
 
 /// "sqlite3" or "mcap" from a file's first bytes; empty when neither.
 std::string DetectStorage(const std::string& path);

@@ -70,8 +70,16 @@ class StorageWriter {
   virtual void Close(const std::string& metadata_yaml) = 0;
 };
 
+/// How damaged storage is read.
+struct BagReadOptions {
+  /// MCAP: a chunk that fails its CRC or cannot be decompressed is skipped with a warning
+  /// naming its offset and message count, instead of failing the whole read.
+  bool skip_damaged_chunks = false;
+};
+
 std::unique_ptr<StorageReader> OpenSqliteStorage(const std::string& path);
-std::unique_ptr<StorageReader> OpenMcapStorage(const std::string& path);
+std::unique_ptr<StorageReader> OpenMcapStorage(const std::string& path,
+                                               const BagReadOptions& options = {});
 
 struct McapWriteOptions {
   std::string compression = "zstd";         ///< chunk compression: "", "zstd" or "lz4"

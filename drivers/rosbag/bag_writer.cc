@@ -1,5 +1,6 @@
 #include "drivers/rosbag/bag_writer.h"
 
+#include <exception>
 #include <filesystem>
 #include <fstream>
 
@@ -44,6 +45,12 @@ BagWriter::BagWriter(const std::string& dir, const BagWriterOptions& options)
 
 BagWriter::~BagWriter() {
   if (!storage_) return;
+  // Unwinding from a failure (e.g. disk full): finishing the file would only fail again
+  // and bury the real error under a second one; the .partial stays as a crash leaves it.
+  if (std::uncaught_exceptions() > 0) {
+    storage_.reset();
+    return;
+  }
   try {
     Close();
   } catch (const std::exception& e) {

@@ -7,6 +7,7 @@
 
 #include "drivers/rosbag/crc32.h"
 #include "slam/errors.h"
+#include "slam/log.h"
 
 namespace uwbsar::rosbag::mcap {
 
@@ -180,6 +181,53 @@ void Catalog::LoadChunk(const Segment& s, ChunkMessages* out) {
   }
   std::stable_sort(out->entries.begin(), out->entries.end(),
                    [](const Entry& a, const Entry& b) { return a.log_time_ns < b.log_time_ns; });
+}
+
+}  // namespace uwbsar::rosbag::mcap
+
+namespace uwbsar::rosbag::mcap {
+
+bool Catalog::LoadChunkOrSkip(const Segment& s, ChunkMessages* out) {
+  if (!skip_damaged_chunks) {
+    LoadChunk(s, out);
+    return true;
+  }
+  try {
+    LoadChunk(s, out);
+    return true;
+  } catch (const InputError& e) {
+    out->buffer.clear();
+    out->entries.clear();
+    ++skipped_chunks;
+    const long long n = IndexedMessages(s);
+    std::string damage = e.what();
+    if (damage.rfind(Path() + ": ", 0) == 0) damage.erase(0, Path().size() + 2);
+    Log(LogLevel::kWarning, Path() + ": skipping the damaged chunk at offset " +
+                                std::to_string(s.offset) + " (" +
+                                (n >= 0 ? std::to_string(n) : std::string("an unknown number of")) +
+                                " messages, log time " + std::to_string(s.start_ns) + ".." +
+                                std::to_string(s.end_ns) + " ns): " + damage);
+    return false;
+  }
+}
+
+long long Catalog::IndexedMessages(const Segment& s) const {
+  long long count = -1;
+  const std::uint64_t size = src_->Size();
+  for (std::uint64_t pos = s.end; pos + kRecordHeaderBytes + 6 <= size;) {
+    try {
+      const auto [op, length] = RecordHeader(pos, size);
+      if (op != kMessageIndex || length < 6) break;
+      const auto head = ReadBytes(pos + kRecordHeaderBytes, 6);
+      std::uint32_t records_bytes = 0;
+      std::memcpy(&records_bytes, head.data() + 2, 4);
+      count = std::max(count, 0LL) + records_bytes / 16;  // (log_time, offset) pairs
+      pos += kRecordHeaderBytes + length;
+    } catch (const InputError&) {
+      break;
+    }
+  }
+  return count;
 }
 
 }  // namespace uwbsar::rosbag::mcap

@@ -76,6 +76,14 @@ class Catalog {
   /// Decompresses and CRC-checks the chunk of `s`, registers the schemas and channels in
   /// it and lists its messages sorted by log time. Throws InputError on any damage.
   void LoadChunk(const Segment& s, ChunkMessages* out);
+  /// LoadChunk; with skip_damaged_chunks a damaged chunk is logged (offset, message count
+  /// from its MessageIndex records, the damage) and skipped: false, `out` empty.
+  bool LoadChunkOrSkip(const Segment& s, ChunkMessages* out);
+  /// Messages listed by the MessageIndex records that follow the chunk of `s`; -1 if none.
+  long long IndexedMessages(const Segment& s) const;
+
+  bool skip_damaged_chunks = false;  ///< BagReadOptions::skip_damaged_chunks
+  std::uint64_t skipped_chunks = 0;  ///< chunks skipped so far
 
   std::vector<TopicInfo> topics;
   StorageStats stats;

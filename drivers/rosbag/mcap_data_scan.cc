@@ -50,7 +50,11 @@ class DataScanner {
       s.end_ns = ToNs(c.U64(), c);
       if (count_) {
         ChunkMessages chunk;
-        catalog_.LoadChunk(s, &chunk);
+        if (mode_ == ScanMode::kRecover) {
+          catalog_.LoadChunk(s, &chunk);  // recovery stops at the first damage
+        } else if (!catalog_.LoadChunkOrSkip(s, &chunk)) {
+          return true;  // skipped (skip_damaged_chunks): not a segment to merge
+        }
         for (const Entry& e : chunk.entries) catalog_.Count(e.topic, e.log_time_ns);
       }
       EndRun();

@@ -39,8 +39,10 @@ struct HeadLater {
 
 class McapStorageReader final : public StorageReader {
  public:
-  McapStorageReader(std::unique_ptr<ByteSource> source, McapOpenReport* report)
+  McapStorageReader(std::unique_ptr<ByteSource> source, McapOpenReport* report,
+                    const BagReadOptions& options)
       : src_(std::move(source)), catalog_(*src_) {
+    catalog_.skip_damaged_chunks = options.skip_damaged_chunks;
     McapOpenReport local;
     Open(report ? report : &local);
     std::stable_sort(catalog_.segments.begin(), catalog_.segments.end(),
@@ -78,7 +80,7 @@ class McapStorageReader final : public StorageReader {
       const Segment& s = segments[next_segment_++];
       it->is_chunk = s.is_chunk;
       if (s.is_chunk) {
-        catalog_.LoadChunk(s, &it->chunk);
+        if (!catalog_.LoadChunkOrSkip(s, &it->chunk)) continue;
       } else {
         it->pos = s.offset;
         it->end = s.end;
@@ -190,12 +192,14 @@ class McapStorageReader final : public StorageReader {
 }  // namespace
 
 std::unique_ptr<StorageReader> OpenMcapStorage(std::unique_ptr<ByteSource> source,
-                                               McapOpenReport* report) {
-  return std::make_unique<McapStorageReader>(std::move(source), report);
+                                               McapOpenReport* report,
+                                               const BagReadOptions& options) {
+  return std::make_unique<McapStorageReader>(std::move(source), report, options);
 }
 
-std::unique_ptr<StorageReader> OpenMcapStorage(const std::string& path) {
-  return OpenMcapStorage(OpenFileSource(path), nullptr);
+std::unique_ptr<StorageReader> OpenMcapStorage(const std::string& path,
+                                               const BagReadOptions& options) {
+  return OpenMcapStorage(OpenFileSource(path), nullptr, options);
 }
 
 }  // namespace uwbsar::rosbag

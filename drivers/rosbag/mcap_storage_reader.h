@@ -10,7 +10,9 @@
 // the Header that stops at the first cut or damaged record and keeps every complete
 // message before it (the contract is in mcap_data_scan.h); a Footer whose summary is
 // unreadable makes the reader ignore the summary. Both log a warning naming the file.
-// A file with an intact Footer but a damaged data section is an InputError.
+// A file with an intact Footer but a damaged data section is an InputError, unless
+// BagReadOptions::skip_damaged_chunks: then a damaged chunk is skipped with a warning
+// naming its offset and how many messages it held (from its MessageIndex records).
 #pragma once
 
 #include <cstdint>
@@ -35,6 +37,7 @@ struct McapOpenReport {
 /// Opens MCAP data from any source (a file, or memory for tests and fuzzing); fills
 /// `report` when given.
 std::unique_ptr<StorageReader> OpenMcapStorage(std::unique_ptr<ByteSource> source,
-                                               McapOpenReport* report = nullptr);
+                                               McapOpenReport* report = nullptr,
+                                               const BagReadOptions& options = {});
 
 }  // namespace uwbsar::rosbag

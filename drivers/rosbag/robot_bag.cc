@@ -53,7 +53,13 @@ OdometrySample ToOdometrySample(const Odometry& msg, TimestampNs stamp_ns) {
 RobotBagStats ReadRobotBag(const std::string& path, const RobotBagOptions& options,
                            RobotBagVisitor& visitor) {
   BagReader reader(path);
+  return ReadRobotBag(reader, options, visitor);
+}
+
+RobotBagStats ReadRobotBag(BagReader& reader, const RobotBagOptions& options,
+                           RobotBagVisitor& visitor) {
   const BagInfo& info = reader.Info();
+  const std::string& path = info.path;
   std::vector<TopicPlan> plans(info.topics.size());
   for (std::size_t i = 0; i < info.topics.size(); ++i) plans[i].kind = KindOf(info.topics[i].type);
   for (std::size_t r = 0; r < options.radar_topics.size(); ++r) {

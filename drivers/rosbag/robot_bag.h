@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "drivers/rosbag/bag_reader.h"
 #include "drivers/rosbag/ros_messages.h"
 #include "slam/config.h"
 #include "slam/types.h"
@@ -64,6 +65,9 @@ struct RobotBagStats {
 /// Streams a bag (directory or .db3/.mcap) through `visitor`. Throws InputError on bad
 /// input, naming the file, the topic and the message time.
 RobotBagStats ReadRobotBag(const std::string& path, const RobotBagOptions& options,
+                           RobotBagVisitor& visitor);
+/// The same from an open reader (read once: a file-compressed bag is decompressed once).
+RobotBagStats ReadRobotBag(BagReader& reader, const RobotBagOptions& options,
                            RobotBagVisitor& visitor);
 
 /// Everything the SLAM pipeline needs from a bag, in memory (like TextLog).

@@ -1,5 +1,12 @@
 #include "drivers/rosbag/sqlite_util.h"
 
+#include <sys/statvfs.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+
 #include "slam/errors.h"
 
 namespace uwbsar::rosbag {
@@ -17,7 +24,33 @@ SqliteDb::SqliteDb(const std::string& path, int flags) : path_(path) {
 SqliteDb::~SqliteDb() { sqlite3_close(db_); }
 
 void SqliteDb::Fail(const std::string& what) const {
-  throw InputError(path_ + ": sqlite3 " + what + ": " + sqlite3_errmsg(db_));
+  const int code = sqlite3_extended_errcode(db_);
+  const std::string message = path_ + ": sqlite3 " + what + ": " + sqlite3_errmsg(db_);
+  // A failing disk is an I/O failure naming its cause (the OS error: no space left on
+  // device, file too large, ...), not a bad input file.
+  const int os_error = sqlite3_system_errno(db_);
+  switch (code & 0xff) {
+    case SQLITE_FULL:
+      throw std::runtime_error(message + " (" +
+                               (os_error != 0 && os_error != ENOSPC
+                                    ? std::string(std::strerror(os_error))
+                                    : std::string("no space left on device")) +
+                               ")");
+    case SQLITE_IOERR:
+    case SQLITE_READONLY:
+    case SQLITE_PERM: {
+      std::string cause = os_error != 0 ? std::strerror(os_error) : sqlite3_errstr(code);
+      const std::string dir = std::filesystem::path(path_).parent_path().string();
+      struct statvfs fs {};
+      if (os_error == 0 && ::statvfs(dir.empty() ? "." : dir.c_str(), &fs) == 0 &&
+          fs.f_bavail == 0) {
+        cause = "no space left on device";
+      }
+      throw std::runtime_error(message + " (" + cause + ")");
+    }
+    default:
+      throw InputError(message);
+  }
 }
 
 void SqliteDb::Exec(const std::string& sql) {

@@ -24,8 +24,8 @@ SimScenario MakeScenario(const Config& config, const std::string& map_yaml,
   SimRadarConfig radar = config.simulator.radar;
   radar.point_targets.insert(radar.point_targets.end(), extra_targets.begin(), extra_targets.end());
   SimScenario scenario;
-  scenario.environment =
-      std::make_shared<const SimEnvironment>(LoadOccupancyGrid(map_yaml), radar, seed);
+  scenario.environment = std::make_shared<const SimEnvironment>(
+      LoadOccupancyGrid(map_yaml, config.limits.max_map_image_pixels), radar, seed);
   scenario.route = ResolveRoute(route_spec, config.simulator.route);
   scenario.trajectory = Trajectory::Plan(scenario.route, config.simulator.route);
   scenario.trajectory.CheckClearance(scenario.environment->grid(),

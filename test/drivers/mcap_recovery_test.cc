@@ -3,6 +3,7 @@
 // Header is complete is a clear error.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 
@@ -221,6 +222,50 @@ TEST(McapRecoveryTest, DamageBeforeAnIntactFooterIsStillAnError) {
   EXPECT_NE(e.find("chunk CRC mismatch in the Chunk record at offset " + std::to_string(chunk)),
             std::string::npos)
       << e;
+}
+
+// --skip-damaged: one flipped bit in one chunk of a finished file costs that chunk only,
+// and the warning names its offset and how many messages it held.
+TEST(McapRecoveryTest, SkipDamagedChunkLosesOnlyThatChunkAndNamesIt) {
+  TempDir tmp;
+  McapWriteOptions o;
+  o.compression = "";
+  o.chunk_size_bytes = 200;
+  Bytes f = WriteMcap(tmp.path, o, Ramp(30));
+  const Read whole = ReadAll(f);
+  std::size_t second = 8;
+  for (int chunks = 0; chunks < 2;) {
+    std::uint64_t len;
+    std::memcpy(&len, f.data() + second + 1, 8);
+    if (f[second] == mcap::kChunk && ++chunks == 2) break;
+    second += 9 + len;
+  }
+  f[second + 9 + 40 + 9 + 22] ^= 0x10;  // a payload byte of the second chunk's first message
+  EXPECT_NE(ErrorOf(f).find("chunk CRC mismatch"), std::string::npos);  // default: an error
+
+  BagReadOptions skip;
+  skip.skip_damaged_chunks = true;
+  ::testing::internal::CaptureStderr();
+  auto reader = OpenMcapStorage(MakeMemorySource("mem.mcap", f), nullptr, skip);
+  Read r;
+  StorageMessage m;
+  while (reader->Next(&m)) r.times.push_back(m.log_time_ns);
+  const std::string log = ::testing::internal::GetCapturedStderr();
+  ASSERT_LT(r.times.size(), whole.times.size());
+  const std::size_t lost = whole.times.size() - r.times.size();
+  EXPECT_NE(log.find("skipping the damaged chunk at offset " + std::to_string(second) + " (" +
+                     std::to_string(lost) + " messages"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("chunk CRC mismatch"), std::string::npos) << log;
+  // Every message outside the damaged chunk is there, in order.
+  std::size_t k = 0;
+  for (const TimestampNs t : r.times) {
+    while (k < whole.times.size() && whole.times[k] != t) ++k;
+    ASSERT_LT(k, whole.times.size()) << "message at " << t << " is not one of the file's";
+  }
+  std::printf("skip-damaged: %zu of %zu messages kept, 1 chunk of %zu messages skipped\n",
+              r.times.size(), whole.times.size(), lost);
 }
 
 }  // namespace

@@ -111,12 +111,60 @@ TEST(ImagingFrontendTest, OdometryJumpIsCorrectedNotImagedAsTeleport) {
   ImagingFrontend f(fx.config);
   Feed(&f, jumped);
   EXPECT_EQ(f.stats().odometry_jumps_corrected, 1);
+  // Faster than any robot, but the next samples agree with it: a reset, not an outlier.
+  EXPECT_EQ(f.stats().odometry_rejected_implausible, 0);
   // The corrected path stays continuous: travelled distance ~ 2 m, not 7+ m.
   const auto kfs = f.TakeKeyframes();
   ASSERT_FALSE(kfs.empty());
   const double path_end = kfs.back().path_end_m;
   EXPECT_LT(path_end, 2.1);
   EXPECT_GT(path_end, 1.8);
+}
+
+// Issue 14, rule 2: one sample at an impossible speed, turn rate or coordinate (x = 1e20
+// used to abort in an OpenCV allocation of 9 TB; 1e300 gave a garbage trajectory) is
+// dropped and counted; what is imaged equals the clean run.
+TEST(ImagingFrontendTest, OdometryOutlierAtImpossibleSpeedIsDroppedNotImaged) {
+  Fixture fx(2.0);
+  ImagingFrontend clean(fx.config);
+  Feed(&clean, fx.run);
+  const auto clean_kfs = clean.TakeKeyframes();
+  ASSERT_FALSE(clean_kfs.empty());
+  const double clean_sum = ImageSum(clean_kfs);
+  struct Outlier {
+    const char* what;
+    Pose2 pose;
+    bool implausible;  ///< counted as implausible (else as non-finite / absurd coordinate)
+  };
+  const std::size_t mid = fx.run.odometry.size() / 2;
+  const Pose2 p = fx.run.odometry[mid].T_world_robot;
+  const Outlier outliers[] = {
+      {"x + 100 km", {p.x_m + 1e5, p.y_m, p.yaw_rad}, true},
+      {"y - 1 m", {p.x_m, p.y_m - 1.0, p.yaw_rad}, true},
+      {"yaw + 3 rad", {p.x_m, p.y_m, NormalizeAngle(p.yaw_rad + 3.0)}, true},
+      {"x = 1e20", {1e20, p.y_m, p.yaw_rad}, false},
+      {"x = 1e300", {1e300, p.y_m, p.yaw_rad}, false},
+  };
+  for (const Outlier& o : outliers) {
+    for (const std::size_t at : {mid, fx.run.odometry.size() - 1}) {  // middle, and last
+      SyntheticRun bad = fx.run;
+      bad.odometry[at].T_world_robot = o.pose;
+      ImagingFrontend f(fx.config);
+      Feed(&f, bad);
+      const FrontendStats& s = f.stats();
+      EXPECT_EQ(s.odometry_rejected_implausible, o.implausible ? 1 : 0) << o.what << " at " << at;
+      EXPECT_EQ(s.odometry_rejected_nonfinite, o.implausible ? 0 : 1) << o.what << " at " << at;
+      EXPECT_EQ(s.odometry_jumps_corrected, 0) << o.what;
+      const auto kfs = f.TakeKeyframes();
+      ASSERT_EQ(kfs.size(), clean_kfs.size()) << o.what;
+      // The dropped sample lies on a straight constant-speed path: interpolating across
+      // it gives the same poses, so the tiles are the clean ones (without the last sample,
+      // the scans after the one before it have no odometry: at most a scan less).
+      const double tolerance = at == mid ? 1e-4 : 2e-2;
+      EXPECT_NEAR(ImageSum(kfs), clean_sum, tolerance * clean_sum) << o.what << " at " << at;
+      EXPECT_NEAR(kfs.back().path_end_m, clean_kfs.back().path_end_m, 0.02) << o.what;
+    }
+  }
 }
 
 TEST(ImagingFrontendTest, OutOfOrderAndNonFiniteOdometryAreRejected) {

@@ -82,5 +82,26 @@ TEST(ConfigIoTest, EmptyFileMeansDefaults) {
   EXPECT_EQ(ConfigToYaml(LoadConfigFromString("", "e.yaml")), ConfigToYaml(Config{}));
 }
 
+TEST(ConfigIoTest, WrongShapeIsBadInputNamingFileLineAndKey) {
+  struct Case {
+    const char* yaml;
+    const char* expect;
+  } cases[] = {
+      {"imaging:\n  mode: paper\n? [a, b]\n: 1\n", "x.yaml:3: a key in 'the top level'"},
+      {"imaging:\n  ? {a: 1}\n  : 2\n", "x.yaml:2: a key in 'imaging' is not a plain name"},
+      {"slam: 5\n", "x.yaml:1: 'slam' must be a mapping"},
+      {"radars:\n  - 7\n", "x.yaml:2: 'radars[0]' must be a mapping"},
+      {"imaging:\n  pixel_size_m: [1, 2]\n", "x.yaml:2: 'imaging.pixel_size_m' must be a value"},
+  };
+  for (const Case& c : cases) {
+    try {
+      LoadConfigFromString(c.yaml, "x.yaml");
+      ADD_FAILURE() << "no error for " << c.yaml;
+    } catch (const ConfigError& e) {  // exit 3, never a raw yaml-cpp exception (exit 1)
+      EXPECT_NE(std::string(e.what()).find(c.expect), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace uwbsar

@@ -170,6 +170,30 @@ TEST_F(OccupancyGridTest, BadYamlValuesNameKeyAndLine) {
   EXPECT_NE(ErrorOf((dir_ / "none.yaml").string()).find("cannot open"), std::string::npos);
 }
 
+// Netpbm allows any maxval 1..65535: samples are scaled by it, so the same map gives the
+// same cells whatever maxval and depth it was written with.
+TEST_F(OccupancyGridTest, PgmSamplesAreScaledByTheirMaxval) {
+  const std::string yaml = "image: m.pgm\nresolution: 0.5\norigin: [0, 0, 0]\n";
+  // Black, white and map_saver's unknown grey (205 of 255) at several maxvals.
+  struct Case {
+    std::string pgm;
+  } cases[] = {
+      {std::string("P5\n3 1\n255\n") + std::string("\x00\xff\xcd", 3)},
+      {"P2\n3 1\n1\n0 1 1\n"},  // maxval 1: 1 is white
+      {"P2\n3 1\n1000\n0 1000 804\n"},
+      {std::string("P5\n3 1\n65535\n") + std::string("\x00\x00\xff\xff\xcd\xcd", 6)},
+  };
+  for (const Case& c : cases) {
+    Write("m.pgm", c.pgm);
+    MapPixels pixels;
+    const OccupancyGrid g = LoadOccupancyGrid(Write("m.yaml", yaml), &pixels);
+    ASSERT_EQ(g.cols, 3);
+    EXPECT_EQ(g.At(0, 0), OccupancyGrid::kOccupied) << c.pgm.substr(0, 12);
+    EXPECT_EQ(g.At(0, 1), OccupancyGrid::kFree) << c.pgm.substr(0, 12);
+    EXPECT_NEAR(pixels.grey[1] / pixels.max_value, 1.0, 1e-12);
+  }
+}
+
 TEST(SeedLabMapTest, LoadsTheRoomWithItsOrigin) {
   UWBSAR_NEED_SEED_LAB_MAP();
   const OccupancyGrid g = LoadOccupancyGrid(testing::SeedLabLidarMap());

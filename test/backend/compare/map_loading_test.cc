@@ -45,5 +45,25 @@ TEST(MapLoadingTest, OnlyTrinaryUnnegatedMapsAreReinterpreted) {
   EXPECT_NE(LoadMapForComparison(dir + "/negated.yaml", true).At(0, 0), OccupancyGrid::kUnknown);
 }
 
+// The grey-205 rule applies to the normalised value: the same map written in 16 bits or
+// with another maxval has the same unknown cells (it only applied to 8 bit before).
+TEST(MapLoadingTest, Grey205RuleIsTheSameInEightAndSixteenBits) {
+  const std::string dir = testing::FreshDir("loading16");
+  std::ofstream(dir + "/m8.pgm", std::ios::binary) << "P5\n3 1\n255\n"
+                                                   << std::string("\xcd\xfe\x00", 3);
+  // 205 * 257 = 52685 (0xcdcd), 254 * 257 = 65278 (0xfefe), big-endian as Netpbm.
+  std::ofstream(dir + "/m16.pgm", std::ios::binary) << "P5\n3 1\n65535\n"
+                                                    << std::string("\xcd\xcd\xfe\xfe\x00\x00", 6);
+  std::ofstream(dir + "/m1000.pgm") << "P2\n3 1\n1000\n804 996 0\n";
+  for (const char* name : {"m8", "m16", "m1000"}) {
+    std::ofstream(dir + "/" + name + ".yaml")
+        << "image: " << name << ".pgm\nresolution: 0.1\norigin: [0, 0, 0]\n";
+    const OccupancyGrid g = LoadMapForComparison(dir + "/" + name + ".yaml", true);
+    EXPECT_EQ(g.At(0, 0), OccupancyGrid::kUnknown) << name;
+    EXPECT_EQ(g.At(0, 1), OccupancyGrid::kFree) << name;
+    EXPECT_EQ(g.At(0, 2), OccupancyGrid::kOccupied) << name;
+  }
+}
+
 }  // namespace
 }  // namespace uwbsar

@@ -9,7 +9,6 @@
 #include <thread>
 
 #include "drivers/live/kobuki_driver.h"
-#include "drivers/live/lt102_driver.h"
 #include "drivers/live/pty_device.h"
 
 namespace uwbsar::live {
@@ -39,43 +38,6 @@ TEST(SerialPortTest, MissingDeviceErrorNamesThePath) {
     EXPECT_NE(std::string(e.what()).find("/dev/uwbsar_no_such_tty"), std::string::npos);
   }
   EXPECT_THROW(BaudConstant(12345), SerialError);
-}
-
-TEST(Lt102DriverTest, SendsStartCommandAndDeliversScansOverAPty) {
-  PtyDevice device(TempLink("lt102"));
-  LiveConfig config;
-  FaultLog faults;
-  std::atomic<int> scans{0};
-  std::vector<float> first;
-  std::mutex mutex;
-  Lt102Driver driver("radar left", 0, config, &faults, [&](RadarScan&& scan) {
-    std::lock_guard<std::mutex> lock(mutex);
-    if (scans++ == 0) first = scan.samples;
-  });
-  LinkPolicy policy;
-  DeviceLink link("radar left", device.link_path(), policy, &driver, &faults);
-  link.Start();
-  // The emulated radar sees the start command.
-  std::vector<std::uint8_t> received;
-  ASSERT_TRUE(WaitFor([&] {
-    auto b = device.ReadAvailable();
-    received.insert(received.end(), b.begin(), b.end());
-    return received.size() >= 4;
-  }));
-  EXPECT_EQ(received, (std::vector<std::uint8_t>{0xFF, 0x53, 0x01, 0x00}));
-  std::vector<float> i(100), q(100, 0.0f);
-  for (int k = 0; k < 100; ++k) i[static_cast<std::size_t>(k)] = 0.01f * static_cast<float>(k);
-  const auto payload = EncodeLt102RawData(3, 100, 0, i, q);
-  std::vector<std::uint8_t> frame = {0x01, 0x02};  // garbage first
-  EncodeLt102Frame(82, payload.data(), payload.size(), &frame);
-  device.Write(frame);
-  ASSERT_TRUE(WaitFor([&] { return scans == 1; }));
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    EXPECT_EQ(first, i);
-  }
-  EXPECT_EQ(faults.Count("radar left: garbage bytes"), 2);
-  link.Stop();
 }
 
 TEST(DeviceLinkTest, ReconnectsAfterUnplugAndPowerCyclesAfterRepeatedFailures) {

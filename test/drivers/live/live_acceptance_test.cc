@@ -74,6 +74,16 @@ TEST(LiveAcceptanceTest, A_B_RealTimeRunMatchesOfflineMappingAndReportsLatency) 
       "%lld dropped from processing; snapshot max %.2f s\n",
       r.latency_p50_ms, r.latency_p99_ms, r.latency_max_ms, r.latency_samples,
       r.dropped_from_processing, r.snapshot_max_s);
+  for (const auto& [name, s] : r.radars) {
+    std::printf(
+        "A: %s polled at %d frames/s: %lld requests, %lld answers, %lld lost; "
+        "request-to-answer p50 %.2f ms, p99 %.2f ms\n",
+        name.c_str(), s.setup.frame_rate_fps, s.requests, s.answers, s.lost, s.answer_p50_ms,
+        s.answer_p99_ms);
+  }
+  std::printf(
+      "A: emulator acquired %lld frames, answered %lld, %lld overwritten before a request\n",
+      live.emulator.frames_acquired, live.emulator.scans_sent, live.emulator.frames_overwritten);
   EXPECT_EQ(r.dropped_from_processing, 0);
   // B: keyframe work runs on the SlamSystem's own thread and snapshots on another, so
   // the feeding thread only images (measured p99 20.5 ms; it was 71 ms with both on it).

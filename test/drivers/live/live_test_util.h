@@ -48,10 +48,12 @@ inline EmulatedRun RunEmulated(Config config, const std::string& name, double sp
   fs::create_directories(out.out_dir + "/dev");
   config.live.radar_devices = {out.out_dir + "/dev/radar0", out.out_dir + "/dev/radar1"};
   config.live.kobuki_device = out.out_dir + "/dev/kobuki";
+  ConfigureLiveForEmulation(&config, speed);
+  config.live.lt102.sample_format = 3;  // F32: the simulated samples unquantised
   const sim::SimScenario scenario = sim::MakeScenario(config, SeedLabMapPath(), "depart-return", 1);
   HostClock truth_clock(speed);
   SimDevicePlayer player(
-      config, scenario, 1, config.live.radar_devices, config.live.kobuki_device, speed, 3, faults,
+      config, scenario, 1, config.live.radar_devices, config.live.kobuki_device, speed, faults,
       [&] { return truth_clock.Now(); }, duration_s);
   std::atomic<bool> stop{false};
   tools::LiveRunOptions options;

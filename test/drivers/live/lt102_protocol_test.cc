@@ -93,12 +93,20 @@ TEST(Lt102RawDataTest, RejectsPayloadSizeMismatchAndBadHeaders) {
   EXPECT_FALSE(DecodeLt102RawData(payload.data(), 4, &raw, &error));
 }
 
-TEST(Lt102CommandTest, ParsesHexBytesAndRejectsOthers) {
-  const Lt102Frame c = ParseLt102Command("53 0a FF");
-  EXPECT_EQ(c.code, 0x53);
-  EXPECT_EQ(c.payload, (std::vector<std::uint8_t>{0x0A, 0xFF}));
-  EXPECT_THROW(ParseLt102Command("start"), std::invalid_argument);
-  EXPECT_THROW(ParseLt102Command(""), std::invalid_argument);
+TEST(Lt102CrcTest, CrcOverBodyAndItsCrcIsZeroForAnyInit) {
+  const std::vector<std::uint8_t> body = {0x01, 0x34, 0x12, 0x66, 0x00, 0xFF, 0x80};
+  for (const int init_value : {0x00, 0xFF, 0x5A}) {
+    const auto init = static_cast<std::uint8_t>(init_value);
+    std::vector<std::uint8_t> with = body;
+    with.push_back(Lt102Crc8(body.data(), body.size(), 0x07, init));
+    EXPECT_EQ(Lt102Crc8(with.data(), with.size(), 0x07, init), 0);
+    with[2] ^= 0x10;  // one flipped bit is caught
+    EXPECT_NE(Lt102Crc8(with.data(), with.size(), 0x07, init), 0);
+  }
+  // CRC-8/SMBUS check value ("123456789" -> 0xF4) with the default polynomial and init.
+  const std::string check = "123456789";
+  EXPECT_EQ(Lt102Crc8(reinterpret_cast<const std::uint8_t*>(check.data()), check.size(), 0x07, 0),
+            0xF4);
 }
 
 }  // namespace

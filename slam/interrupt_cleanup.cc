@@ -1,0 +1,92 @@
+#include "slam/interrupt_cleanup.h"
+
+#include <pthread.h>
+#include <signal.h>
+
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <thread>
+
+namespace uwbsar {
+namespace {
+
+struct Registry {
+  std::mutex mutex;
+  std::map<long, std::string> paths;
+  long next_id = 0;
+  std::function<void()> handler;
+};
+
+Registry& TheRegistry() {
+  static Registry* registry = new Registry;  // never destroyed: the watcher may outlive main
+  return *registry;
+}
+
+void WatchSignals(sigset_t set) {
+  for (;;) {
+    int sig = 0;
+    if (sigwait(&set, &sig) != 0) continue;
+    Registry& r = TheRegistry();
+    std::function<void()> handler;
+    {
+      std::lock_guard<std::mutex> lock(r.mutex);
+      handler = r.handler;
+      if (!handler) {
+        for (const auto& [id, path] : r.paths) {
+          std::error_code ec;
+          std::filesystem::remove_all(path, ec);
+        }
+        r.paths.clear();
+      }
+    }
+    if (handler) {
+      handler();
+      continue;
+    }
+    // End as the signal would have ended the process without the watcher.
+    ::signal(sig, SIG_DFL);
+    sigset_t one;
+    sigemptyset(&one);
+    sigaddset(&one, sig);
+    pthread_sigmask(SIG_UNBLOCK, &one, nullptr);
+    ::raise(sig);
+  }
+}
+
+}  // namespace
+
+RemoveOnInterrupt::RemoveOnInterrupt(std::string path) {
+  Registry& r = TheRegistry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  id_ = r.next_id++;
+  r.paths[id_] = std::move(path);
+}
+
+RemoveOnInterrupt::~RemoveOnInterrupt() {
+  Registry& r = TheRegistry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  r.paths.erase(id_);
+}
+
+void InstallInterruptCleanup() {
+  sigset_t set;
+  sigemptyset(&set);
+  for (const int sig : {SIGINT, SIGTERM}) {
+    // A signal the process was started with ignored (a background job of a script, nohup)
+    // stays ignored, as without the watcher.
+    struct sigaction current {};
+    if (sigaction(sig, nullptr, &current) == 0 && current.sa_handler == SIG_IGN) continue;
+    sigaddset(&set, sig);
+  }
+  pthread_sigmask(SIG_BLOCK, &set, nullptr);
+  std::thread(WatchSignals, set).detach();
+}
+
+void SetInterruptHandler(std::function<void()> handler) {
+  Registry& r = TheRegistry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  r.handler = std::move(handler);
+}
+
+}  // namespace uwbsar

@@ -1,0 +1,189 @@
+// The LT102 driver on a reconnecting link against the emulated module: polled `d`
+// acquisition (one request in flight, requests vs answers counted), the stop `o` on a
+// deliberate stop and before a power cycle, and the faults: a frame of a bad size, a
+// missing answer, a wrong echo, an unplug, frames with a CRC byte. Every valid frame that
+// arrived is delivered.
+#include "drivers/live/lt102_driver.h"
+
+#include <gtest/gtest.h>
+
+#include <mutex>
+
+#include "lt102_test_util.h"
+
+namespace uwbsar::live {
+namespace {
+
+struct DriverRun {
+  Lt102Stats stats;
+  long long scans = 0;
+  std::vector<float> first;
+};
+
+/// Runs the driver on `radar` for `seconds` (or until `until` holds), then stops the link.
+class DriverHarness {
+ public:
+  explicit DriverHarness(const EmulatedLt102& radar, Config config = {},
+                         std::function<void()> power_cycle = {})
+      : driver_("radar left", 0, config, &faults_, [this](RadarScan&& scan) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          if (scans_++ == 0) first_ = scan.samples;
+        }) {
+    LinkPolicy policy;
+    policy.reconnect_initial_s = 0.01;
+    policy.reconnect_max_s = 0.05;
+    link_ = std::make_unique<DeviceLink>("radar left", radar.path(), policy, &driver_, &faults_,
+                                         std::move(power_cycle));
+    link_->Start();
+  }
+  DriverRun Stop() {
+    link_->Stop();
+    DriverRun run;
+    run.stats = driver_.stats();
+    std::lock_guard<std::mutex> lock(mutex_);
+    run.scans = scans_;
+    run.first = first_;
+    return run;
+  }
+  long long scans() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return scans_;
+  }
+  Lt102Driver& driver() { return driver_; }
+  FaultLog& faults() { return faults_; }
+  DeviceLink& link() { return *link_; }
+
+ private:
+  FaultLog faults_;
+  std::mutex mutex_;
+  long long scans_ = 0;
+  std::vector<float> first_;
+  Lt102Driver driver_;
+  std::unique_ptr<DeviceLink> link_;
+};
+
+bool EndsWith(const std::vector<std::uint8_t>& bytes, const std::vector<std::uint8_t>& tail) {
+  return bytes.size() >= tail.size() &&
+         std::equal(tail.begin(), tail.end(), bytes.end() - tail.size());
+}
+
+TEST(Lt102DriverTest, PollsOneFrameAtATimeAndStopsTheRadarWithO) {
+  EmulatedLt102 radar("poll");
+  DriverHarness h(radar);
+  ASSERT_TRUE(WaitUntil([&] { return h.scans() >= 100; }));
+  const DriverRun run = h.Stop();
+  const Lt102EmulatorCounts emulated = radar.counts();
+  std::printf(
+      "polled: %lld requests, %lld answers, %lld lost; request-to-answer p50 %.2f ms, "
+      "p99 %.2f ms; emulator acquired %lld, answered %lld, overwritten %lld\n",
+      run.stats.requests, run.stats.answers, run.stats.lost, run.stats.answer_p50_ms,
+      run.stats.answer_p99_ms, emulated.frames_acquired, emulated.frames_answered,
+      emulated.frames_overwritten);
+  EXPECT_EQ(run.stats.lost, 0);
+  EXPECT_EQ(run.stats.answers, run.stats.requests);  // the stop waits for the one in flight
+  EXPECT_EQ(run.stats.answers, emulated.frames_answered);
+  EXPECT_EQ(run.scans, run.stats.answers);
+  EXPECT_GT(run.stats.answer_p99_ms, 0.0);
+  const std::vector<float> ramp = Lt102Ramp();
+  ASSERT_EQ(run.first.size(), 1000u);
+  EXPECT_NEAR(run.first[999], ramp[999], 1.0 / 32768);  // Q15 by default
+  // Stopped with 'o' (answered), the last bytes on the wire.
+  EXPECT_FALSE(radar.started());
+  EXPECT_EQ(run.stats.stops, 1);
+  EXPECT_TRUE(EndsWith(radar.received(), {0xFF, 'o', 0x00}));
+}
+
+TEST(Lt102DriverTest, AFrameOfABadSizeIsReportedAndPollingGoesOn) {
+  Lt102EmulatorOptions options;
+  options.bad_size_every = 5;
+  EmulatedLt102 radar("bad_size", options);
+  DriverHarness h(radar);
+  ASSERT_TRUE(WaitUntil([&] { return h.scans() >= 40; }));
+  const DriverRun run = h.Stop();
+  const Lt102EmulatorCounts emulated = radar.counts();
+  EXPECT_GT(emulated.bad_size_frames, 0);
+  EXPECT_EQ(run.stats.invalid_frames, emulated.bad_size_frames);
+  EXPECT_EQ(h.faults().Count("radar left: invalid raw-data messages"), emulated.bad_size_frames);
+  EXPECT_EQ(run.scans, emulated.frames_answered - emulated.bad_size_frames);  // the rest arrived
+  EXPECT_EQ(run.stats.lost, 0);
+}
+
+TEST(Lt102DriverTest, AMissingFrameAnswerIsCountedLostAndTheNextRequestGoesOut) {
+  Lt102EmulatorOptions options;
+  options.missing_answer_code = lt102::kReadFrame;
+  options.missing_answer_times = 3;
+  EmulatedLt102 radar("missing_d", options);
+  DriverHarness h(radar);
+  ASSERT_TRUE(WaitUntil([&] { return h.scans() >= 30; }));
+  const DriverRun run = h.Stop();
+  EXPECT_EQ(run.stats.lost, 3);
+  EXPECT_EQ(h.faults().Count("radar left: lost frames"), 3);
+  EXPECT_EQ(run.stats.answers, run.stats.requests - 3);
+  EXPECT_EQ(run.scans, radar.counts().frames_answered);
+}
+
+TEST(Lt102DriverTest, AWrongEchoFailsTheOpenWithAConfigurationErrorAndTheLinkRetries) {
+  Lt102EmulatorOptions options;
+  options.wrong_echo_code = lt102::kChannel;
+  EmulatedLt102 radar("wrong_echo", options);
+  DriverHarness h(radar);
+  Lt102Setup setup;
+  std::string error;
+  EXPECT_FALSE(h.driver().WaitConfigured(5.0, &setup, &error));
+  EXPECT_EQ(error,
+            "radar left: configuration error: data channel ('$' 0x24) sent 0, the radar echoed 1");
+  ASSERT_TRUE(WaitUntil([&] { return h.link().counters().open_failures >= 2; }));
+  const DriverRun run = h.Stop();
+  EXPECT_GE(run.stats.config_errors, 2);
+  EXPECT_GE(h.faults().Count("radar left: configuration errors"), 2);
+  EXPECT_EQ(run.scans, 0);
+}
+
+TEST(Lt102DriverTest, AReconnectRunsTheStartUpAgain) {
+  EmulatedLt102 radar("replug");
+  DriverHarness h(radar);
+  ASSERT_TRUE(WaitUntil([&] { return h.scans() >= 10; }));
+  radar.SetPlugged(false);
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  radar.SetPlugged(true);
+  const long long before = h.scans();
+  ASSERT_TRUE(WaitUntil([&] { return h.scans() >= before + 10; }));
+  const DriverRun run = h.Stop();
+  EXPECT_EQ(run.stats.startups, 2);
+  EXPECT_GE(h.faults().Count("radar left: unplugged"), 1);
+}
+
+TEST(Lt102DriverTest, TheRadarIsStoppedBeforeItIsPowerCycled) {
+  Lt102EmulatorOptions options;
+  options.missing_answer_code = lt102::kVersion;  // never starts: the open keeps failing
+  options.missing_answer_times = 1000;
+  EmulatedLt102 radar("power_cycle", options);
+  Config config;
+  config.live.lt102.answer_timeout_s = 0.05;
+  std::atomic<int> cycles{0};
+  std::atomic<bool> stopped_first{false};
+  DriverHarness h(radar, config, [&] {
+    stopped_first = EndsWith(radar.received(), {0xFF, 'o', 0x00});
+    ++cycles;
+  });
+  ASSERT_TRUE(WaitUntil([&] { return cycles >= 1; }, 10.0));
+  const DriverRun run = h.Stop();
+  EXPECT_TRUE(stopped_first);
+  EXPECT_GE(run.stats.stops, 1);
+  EXPECT_GE(h.faults().Count("radar left: cannot connect"), 3);
+}
+
+TEST(Lt102DriverTest, FramesWithACrcByteAreCheckedAndDelivered) {
+  Lt102EmulatorOptions options;
+  options.crc = true;
+  EmulatedLt102 radar("crc_frames", options);
+  DriverHarness h(radar);
+  ASSERT_TRUE(WaitUntil([&] { return h.scans() >= 20; }));
+  const DriverRun run = h.Stop();
+  EXPECT_TRUE(run.stats.setup.crc);
+  EXPECT_EQ(run.stats.invalid_frames, 0);
+  EXPECT_EQ(run.scans, run.stats.answers);
+}
+
+}  // namespace
+}  // namespace uwbsar::live

@@ -1,0 +1,83 @@
+// An LT102 emulator on a pseudo-terminal driven by its own thread for the driver tests:
+// it answers commands every millisecond and acquires a ramp frame (sample k = k / 2000)
+// at 100 frames/s while started.
+#pragma once
+
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "drivers/live/lt102_emulator.h"
+
+namespace uwbsar::live {
+
+inline std::string Lt102TempLink(const std::string& name) {
+  return (std::filesystem::temp_directory_path() /
+          ("uwbsar_lt102_" + std::to_string(::getpid()) + "_" + name))
+      .string();
+}
+
+inline bool WaitUntil(const std::function<bool()>& ok, double timeout_s = 5.0) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (std::chrono::steady_clock::now() < end) {
+    if (ok()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  return ok();
+}
+
+/// The ramp the emulated radar acquires: sample k at range k * bin.
+inline std::vector<float> Lt102Ramp() {
+  std::vector<float> v(1200);
+  for (std::size_t k = 0; k < v.size(); ++k) v[k] = static_cast<float>(k) / 2000.0f;
+  return v;
+}
+
+class EmulatedLt102 {
+ public:
+  explicit EmulatedLt102(const std::string& name, Lt102EmulatorOptions options = {})
+      : emulator_(Lt102TempLink(name), options), thread_([this] { Loop(); }) {}
+  ~EmulatedLt102() {
+    stop_ = true;
+    thread_.join();
+  }
+  const std::string& path() const { return emulator_.link_path(); }
+  std::vector<std::uint8_t> received() const { return emulator_.received(); }
+  Lt102EmulatorCounts counts() const { return emulator_.counts(); }
+  bool started() const { return started_; }
+  void SetPlugged(bool plugged) {
+    want_plugged_ = plugged;
+    WaitUntil([&] { return plugged_ == plugged; });
+  }
+
+ private:
+  void Loop() {
+    const std::vector<float> ramp = Lt102Ramp();
+    auto next = std::chrono::steady_clock::now();
+    while (!stop_) {
+      if (want_plugged_ != emulator_.plugged()) {
+        want_plugged_ ? emulator_.Plug() : emulator_.Unplug();
+      }
+      plugged_ = emulator_.plugged();
+      emulator_.Serve();
+      started_ = emulator_.started();
+      if (std::chrono::steady_clock::now() >= next) {
+        emulator_.Acquire(ramp, 0.0);
+        next += std::chrono::milliseconds(10);
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+  }
+
+  Lt102Emulator emulator_;
+  std::atomic<bool> stop_{false}, want_plugged_{true}, plugged_{true}, started_{false};
+  std::thread thread_;
+};
+
+}  // namespace uwbsar::live

@@ -1,0 +1,82 @@
+// The small `uwbsar map` input of the CLI tests: a synthetic straight run past a wall
+// and poles written as a ROS 2 bag, optionally damaged.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "drivers/rosbag/bag_writer.h"
+#include "drivers/rosbag/ros_codecs.h"
+#include "drivers/synthetic_run.h"
+
+namespace uwbsar {
+namespace map_test {
+
+namespace fs = std::filesystem;
+
+inline std::string TempDir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("uwbsar_map_cli_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir.string();
+}
+
+/// A bag of a synthetic straight run past a wall and poles; `edit` may drop or
+/// change messages before they are written (return false to drop).
+struct BagEdits {
+  bool radar = true;
+  bool odometry = true;
+  double odometry_time_shift_s = 0.0;
+  double length_m = 4.0;
+  /// One more odometry message, stamped 1 ns (the run itself is stamped in 2023).
+  bool stray_odometry_at_1ns = false;
+};
+
+inline std::string WriteRunBag(const std::string& dir, const BagEdits& edits) {
+  Config config;
+  SyntheticPath path;
+  path.length_m = edits.length_m;
+  path.speed_mps = 0.5;
+  path.radar_rate_hz = 100;
+  std::vector<Scatterer> scene = WallScatterers({-1, 1.6}, {6, 1.6}, 0.01, 0.05);
+  for (int i = 0; i < 8; ++i) scene.push_back({{0.5 * i, i % 2 ? -1.2 : 1.0}, 1.0});
+  const SyntheticRun run = SimulateRun(config, path, scene, EchoModel{}, 3);
+  const std::string bag = dir + "/run";
+  rosbag::BagWriter writer(bag);
+  const int left = writer.AddTopic(config.radars[0].topic, rosbag::kFloat32MultiArrayType);
+  const int right = writer.AddTopic(config.radars[1].topic, rosbag::kFloat32MultiArrayType);
+  const int odom = writer.AddTopic("/odom", rosbag::kOdometryType);
+  std::size_t i = 0, j = 0;
+  const TimestampNs shift = SecondsToNs(edits.odometry_time_shift_s);
+  if (edits.stray_odometry_at_1ns) {
+    rosbag::Odometry msg;
+    msg.orientation = rosbag::QuaternionFromYaw(0.0);
+    writer.WriteMessage(odom, 1, msg);
+  }
+  while (i < run.odometry.size() || j < run.scans.size()) {
+    const bool take_odom =
+        j >= run.scans.size() ||
+        (i < run.odometry.size() && run.odometry[i].stamp_ns + shift <= run.scans[j].stamp_ns);
+    if (take_odom) {
+      const OdometrySample& o = run.odometry[i++];
+      if (!edits.odometry) continue;
+      rosbag::Odometry msg;
+      msg.header.frame_id = "odom";
+      msg.child_frame_id = "base_link";
+      msg.position = {o.T_world_robot.x_m, o.T_world_robot.y_m, 0.0};
+      msg.orientation = rosbag::QuaternionFromYaw(o.T_world_robot.yaw_rad);
+      writer.WriteMessage(odom, o.stamp_ns + shift, msg);
+    } else {
+      const RadarScan& s = run.scans[j++];
+      if (!edits.radar) continue;
+      rosbag::Float32MultiArray msg;
+      msg.data = s.samples;
+      writer.WriteMessage(s.sensor_id == 0 ? left : right, s.stamp_ns, msg);
+    }
+  }
+  writer.Close();
+  return bag;
+}
+
+}  // namespace map_test
+}  // namespace uwbsar
