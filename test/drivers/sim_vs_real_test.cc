@@ -1,8 +1,12 @@
 // The simulator against reality (issue 13, point 5): the paper's departing run (7 m along
-// +x from the LiDAR map's origin) simulated through the seed_lab LiDAR map, imaged onto the
-// grid of the paper's real departing strip (`real/seed_corridor/departing.png`: 7 m x 6 m at
+// +x) simulated through the seed_lab LiDAR map, imaged onto the grid of the paper's real
+// departing strip (`real/seed_corridor/departing.png`: 7 m x 6 m at
 // 5 mm, column 0 = x 0, row 0 = y +3 m) with the paper's enhancement (positive image, blur
 // sigma 2 px, min-max to 8 bit over the strip), and compared with it figure by figure:
+// The real strip is in the robot's odometry frame at its start; where that start lies in the
+// LiDAR map is what `uwbsar compare` measures for the real strip (ICP, README "The real map
+// against LiDAR": T_lidar_sar = (0.182 m, 0 m, 2.19 deg)). The simulated run starts there and
+// is imaged in its own start frame, as the real one was.
 //  - wall ridges: the row of largest mean intensity (mean over all columns) in the upper
 //    and in the lower half, as y in metres;
 //  - blind band: the rows around the path (row 600) whose mean stays below 1 % of the
@@ -12,7 +16,8 @@
 //    contrast (std / mean) on walls and in clutter, the fraction of pixels above 128, and
 //    the normalised cross-correlation of the two 8-bit images.
 // With UWBSAR_SIM_VS_REAL_OUT=DIR the test writes DIR/sim_departing.png (ours) and
-// DIR/sim_vs_real.png (real on top, simulated below; outside data: never commit it).
+// DIR/sim_vs_real.png (real on top, simulated below; outside data: never commit it);
+// UWBSAR_SIM_VS_REAL_CONFIG=FILE measures another configuration (simulator calibration).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -28,6 +33,7 @@
 #include "frontend/image_io.h"
 #include "frontend/imaging_frontend.h"
 #include "frontend/strip_renderer.h"
+#include "slam/config_io.h"
 #include "test/drivers/sim_test_util.h"
 
 namespace uwbsar::sim {
@@ -36,6 +42,9 @@ namespace {
 constexpr char kDeparting[] = "real/seed_corridor/departing.png";
 constexpr int kRows = 1200, kCols = 1400, kPathRow = 600;
 constexpr double kResolutionM = 0.005, kTopYm = 3.0;
+
+/// The real run's start in the LiDAR map: T_lidar_sar of `uwbsar compare` on the real strip.
+const Pose2 kStartInMap{0.182, 0.0, 2.19 * M_PI / 180.0};
 
 double RowToY(double row) { return kTopYm - row * kResolutionM; }
 
@@ -117,8 +126,13 @@ void Print(const char* name, const LookFigures& f) {
 /// The departing half of a simulated seed_lab depart-return run, imaged with the wheel
 /// odometry poses (as the paper formed its strip) onto the real strip's grid, enhanced.
 cv::Mat SimulatedDeparting() {
-  Config config;
+  const char* config_file = std::getenv("UWBSAR_SIM_VS_REAL_CONFIG");
+  Config config =
+      config_file != nullptr && *config_file != '\0' ? LoadConfig(config_file) : Config{};
   config.simulator.route.depart_distance_m = 7.0;  // the paper's strip: 7 m along +x
+  config.simulator.route.start_x_m = kStartInMap.x_m;
+  config.simulator.route.start_y_m = kStartInMap.y_m;
+  config.simulator.route.start_yaw_deg = kStartInMap.yaw_rad * 180.0 / M_PI;
   const SimScenario scenario =
       MakeScenario(config, testing::SeedLabMap(), "depart-return", /*seed=*/1);
   SimStream stream(config, scenario, 1);
@@ -141,8 +155,10 @@ cv::Mat SimulatedDeparting() {
   grid.resolution_m = kResolutionM;
   grid.rows = kRows;
   grid.cols = kCols;
+  const Pose2 T_start_world = kStartInMap.Inverse();
   const StripImage strip =
-      RenderScans(imaged, frontend.sensors(), grid, false, config.imaging.num_threads);
+      RenderScans(imaged, frontend.sensors(), grid, false, config.imaging.num_threads,
+                  [&](const ImagedScan& s) { return T_start_world * s.T_world_robot; });
   return Enhance8U(strip.image, config.enhance);
 }
 
