@@ -87,9 +87,8 @@ cv::Mat ReadPgm(const std::string& path, double max_pixels, long* maxval) {
     std::vector<unsigned char> raw(static_cast<std::size_t>(bytes));
     in.read(reinterpret_cast<char*>(raw.data()), static_cast<std::streamsize>(raw.size()));
     for (long long i = 0; i < count; ++i) {
-      out[i] = width == 1 ? raw[static_cast<std::size_t>(i)]
-                          : static_cast<std::uint16_t>(raw[static_cast<std::size_t>(2 * i)] << 8 |
-                                                       raw[static_cast<std::size_t>(2 * i + 1)]);
+      const std::size_t k = static_cast<std::size_t>(i);
+      out[i] = static_cast<std::uint16_t>(width == 1 ? raw[k] : raw[2 * k] << 8 | raw[2 * k + 1]);
     }
   } else {
     long long n = 0;

@@ -83,8 +83,9 @@ void AddMatchCommand(CLI::App& app, const GlobalOptions& globals) {
     const Config config = LoadConfigFor(globals);
     const std::vector<DetectorKind> detectors = ParseDetectorList(opts->detectors);
     if (!opts->out_dir.empty()) EnsureDirectory(opts->out_dir);
-    const SarImageFile a = ReadSarImageFile(opts->a, opts->resolution_m);
-    const SarImageFile b = ReadSarImageFile(opts->b, opts->resolution_m);
+    const double max_pixels = config.limits.max_map_image_pixels;
+    const SarImageFile a = ReadSarImageFile(opts->a, opts->resolution_m, max_pixels);
+    const SarImageFile b = ReadSarImageFile(opts->b, opts->resolution_m, max_pixels);
     CheckComparable(a, b);
     const double feature_m =
         ImageFeatureResolution(a.grid.resolution_m, b.grid.resolution_m, config);

@@ -39,9 +39,10 @@ void FindRegionImages(const std::string& dir, ImageLoopStudy* study) {
   }
 }
 
-std::map<int, SarImageFile> ReadAll(const std::map<int, std::string>& files, double res) {
+std::map<int, SarImageFile> ReadAll(const std::map<int, std::string>& files, double res,
+                                    double max_pixels) {
   std::map<int, SarImageFile> images;
-  for (const auto& [i, path] : files) images[i] = ReadSarImageFile(path, res);
+  for (const auto& [i, path] : files) images[i] = ReadSarImageFile(path, res, max_pixels);
   return images;
 }
 
@@ -107,8 +108,9 @@ ImageLoopStudy RunImageLoopStudy(const std::string& dir, double resolution_m,
                                  const std::vector<DetectorKind>& detectors, const Config& config) {
   ImageLoopStudy study;
   FindRegionImages(dir, &study);
-  const auto d_images = ReadAll(study.d_files, resolution_m);
-  const auto r_images = ReadAll(study.r_files, resolution_m);
+  const double max_pixels = config.limits.max_map_image_pixels;
+  const auto d_images = ReadAll(study.d_files, resolution_m, max_pixels);
+  const auto r_images = ReadAll(study.r_files, resolution_m, max_pixels);
   // One feature resolution for every image: the configured one, or the coarsest image's.
   double feature_m = config.place_recognition.detectors.feature_resolution_m;
   for (const auto* images : {&d_images, &r_images}) {

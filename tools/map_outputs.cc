@@ -22,8 +22,8 @@
 #include "frontend/image_io.h"
 #include "frontend/strip_renderer.h"
 #include "slam/errors.h"
-#include "tools/imaging_job.h"
 #include "tools/commands.h"
+#include "tools/imaging_job.h"
 #include "tools/report_html.h"
 
 namespace uwbsar::tools {

@@ -186,7 +186,8 @@ TEST_F(OccupancyGridTest, PgmSamplesAreScaledByTheirMaxval) {
   for (const Case& c : cases) {
     Write("m.pgm", c.pgm);
     MapPixels pixels;
-    const OccupancyGrid g = LoadOccupancyGrid(Write("m.yaml", yaml), &pixels);
+    const OccupancyGrid g =
+        LoadOccupancyGrid(Write("m.yaml", yaml), LimitsConfig{}.max_map_image_pixels, &pixels);
     ASSERT_EQ(g.cols, 3);
     EXPECT_EQ(g.At(0, 0), OccupancyGrid::kOccupied) << c.pgm.substr(0, 12);
     EXPECT_EQ(g.At(0, 1), OccupancyGrid::kFree) << c.pgm.substr(0, 12);

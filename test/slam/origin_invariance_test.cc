@@ -11,8 +11,8 @@
 
 #include "drivers/sim/sim_stream.h"
 #include "slam/slam_system.h"
-#include "tools/map_job.h"
 #include "test/shared_data.h"
+#include "tools/map_job.h"
 
 namespace uwbsar {
 namespace {

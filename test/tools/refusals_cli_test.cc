@@ -26,8 +26,7 @@ std::string TempDir(const std::string& name) {
 void WriteFile(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
 /// The bundled room (our own map): these tests need a map, not the paper's room.
-const std::string kMap =
-    std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_hall/seed_hall.yaml";
+const std::string kMap = std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_hall/seed_hall.yaml";
 
 // README: `uwbsar run --config config/robot.yaml --emulate` (rule 11). Every subcommand takes
 // --config after its name, and a bad configuration is refused before any work (exit 3).
@@ -146,8 +145,7 @@ TEST(CliRefusalTest, UnwritableOutputIsRefusedBeforeTheWorkWithOneExitCode) {
       {"export-pcd " + kMap + " --out " + dir + "/folder", "output file is a folder"},
       {"image --synthetic straight --out " + dir + "/file", "output folder is a file"},
       {"detectors " + dir + " --out " + dir + "/file", "output folder is a file"},
-      {"compare " + kMap + " " + kMap + " --out " + dir + "/file",
-       "output folder is a file"},
+      {"compare " + kMap + " " + kMap + " --out " + dir + "/file", "output folder is a file"},
       {"demo --out " + dir + "/file", "output folder is a file"},
       {"simulate --map " + kMap + " --out " + dir + "/file/bag", "is a file"},
       {"simulate --map " + kMap + " --out " + dir + "/b --text-log " + dir + "/folder",
