@@ -67,7 +67,9 @@ struct SimRadarConfig {
   double max_angle_deg = 80.0;            ///< nothing farther off boresight is seen
   double beam_3db_half_angle_deg = 30.0;  ///< two-way -3 dB angle of the Gaussian beam pattern
   double coupling_amplitude = 0.3;        ///< direct antenna coupling pulse at range 0
-  double noise_std = 0.005;               ///< white thermal noise per sample
+  double noise_std = 0.02;                ///< white thermal noise per sample (0.02: the
+                                          ///< paper's real strip shows this floor up to
+                                          ///< its blind band; 0.005 left the band too wide)
   std::vector<PointTargetConfig> point_targets;  ///< e.g. metal poles, in the world frame
 
   template <class V>
