@@ -188,13 +188,7 @@ TEST(McapRecoveryTest, ChunkFailingItsCrcEndsTheRecoveredPart) {
   const Recording rec = RecordWithFlushes(tmp.path, o, 30, 10);  // 3 chunks
   Bytes f(rec.file.begin(), rec.file.begin() + static_cast<long>(rec.flushes[2].first) - 5);
   // Cut in the third chunk's message indexes; damage the second chunk's first payload.
-  std::size_t second = 8;
-  for (int chunks = 0; chunks < 2;) {
-    std::uint64_t len;
-    std::memcpy(&len, f.data() + second + 1, 8);
-    if (f[second] == mcap::kChunk && ++chunks == 2) break;
-    second += 9 + len;
-  }
+  const std::size_t second = FindRecord(f, mcap::kChunk, 2);
   f[second + 9 + 40 + 9 + 22] ^= 0x10;
   McapOpenReport report;
   ::testing::internal::CaptureStderr();
@@ -233,13 +227,7 @@ TEST(McapRecoveryTest, SkipDamagedChunkLosesOnlyThatChunkAndNamesIt) {
   o.chunk_size_bytes = 200;
   Bytes f = WriteMcap(tmp.path, o, Ramp(30));
   const Read whole = ReadAll(f);
-  std::size_t second = 8;
-  for (int chunks = 0; chunks < 2;) {
-    std::uint64_t len;
-    std::memcpy(&len, f.data() + second + 1, 8);
-    if (f[second] == mcap::kChunk && ++chunks == 2) break;
-    second += 9 + len;
-  }
+  const std::size_t second = FindRecord(f, mcap::kChunk, 2);
   f[second + 9 + 40 + 9 + 22] ^= 0x10;  // a payload byte of the second chunk's first message
   EXPECT_NE(ErrorOf(f).find("chunk CRC mismatch"), std::string::npos);  // default: an error
 

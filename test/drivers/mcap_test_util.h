@@ -71,11 +71,13 @@ inline Read ReadAll(const Bytes& file, McapOpenReport* report = nullptr) {
 }
 
 // Offset of the first record with `opcode` in the data section.
-inline std::size_t FindRecord(const Bytes& f, std::uint8_t opcode) {
+/// Offset of the `nth` (1-based) record with `opcode`, scanning from the magic; 0 if none.
+inline std::size_t FindRecord(const Bytes& f, std::uint8_t opcode, int nth = 1) {
+  int seen = 0;
   for (std::size_t off = 8; off + 9 <= f.size();) {
     std::uint64_t len;
     std::memcpy(&len, f.data() + off + 1, 8);
-    if (f[off] == opcode) return off;
+    if (f[off] == opcode && ++seen == nth) return off;
     off += 9 + len;
   }
   return 0;
