@@ -131,9 +131,7 @@ MapRun MapBag(const Config& config, const std::string& bag_path, bool progress,
   rosbag::BagReader reader(bag_path, read_options);
   const TimestampNs start = reader.Info().start_ns, end = reader.Info().end_ns;
   run.slam = std::make_unique<SlamSystem>(config);
-  rosbag::RobotBagOptions options = rosbag::RobotBagOptionsFromConfig(config);
-  options.odometry_topic = config.slam.odometry_topic;
-  options.ground_truth_topic = config.slam.ground_truth_topic;
+  const rosbag::RobotBagOptions options = rosbag::RobotBagOptionsFromConfig(config);
   {
     ProgressBar bar(progress, start, end);
     Feeder feeder(&run, &bar);

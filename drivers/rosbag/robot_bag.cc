@@ -36,6 +36,8 @@ RobotBagOptions RobotBagOptionsFromConfig(const Config& config) {
   RobotBagOptions options;
   options.radar_topics.clear();
   for (const RadarConfig& r : config.radars) options.radar_topics.push_back(r.topic);
+  options.odometry_topic = config.slam.odometry_topic;
+  options.ground_truth_topic = config.slam.ground_truth_topic;
   return options;
 }
 

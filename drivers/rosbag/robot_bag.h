@@ -28,7 +28,9 @@ struct RobotBagOptions {
   bool odometry_header_stamp = false;
 };
 
-/// Radar topics from the configuration, the rest defaulted.
+/// Every topic from the configuration (radars[i].topic, slam.odometry_topic,
+/// slam.ground_truth_topic): the one place that maps configuration to bag topics, used
+/// by every command that reads bags (map, detectors, info --decode).
 RobotBagOptions RobotBagOptionsFromConfig(const Config& config);
 
 struct MessageContext {

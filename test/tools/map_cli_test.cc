@@ -176,3 +176,36 @@ TEST(MapCliTest, SameBagAndConfigGiveByteIdenticalResults) {
 
 }  // namespace
 }  // namespace uwbsar
+
+namespace uwbsar {
+namespace {
+
+// Issue 15 point 5: slam.odometry_topic reaches every command that reads bags through
+// the one RobotBagOptionsFromConfig (before, only `map` patched it in).
+TEST(MapCliTest, NonDefaultOdometryTopicReachesEveryCommandThatReadsBags) {
+  const std::string dir = TempDir("odom_topic");
+  BagEdits edits;
+  edits.odometry_topic = "/wheel/odom";
+  const std::string bag = WriteRunBag(dir, edits);
+  const std::string config = dir + "/config.yaml";
+  std::ofstream(config) << "slam:\n  odometry_topic: /wheel/odom\n";
+  const std::string cfg = " --config " + config;
+
+  const CliRun map = Uwbsar("map " + bag + " --out " + dir + "/map" + cfg);
+  EXPECT_EQ(map.exit_code, 0) << map.output;
+
+  const CliRun info = Uwbsar("info " + bag + " --decode" + cfg);
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_EQ(info.output.find(" 0 odometry"), std::string::npos) << info.output;
+  EXPECT_NE(info.output.find("odometry, 0 ground truth"), std::string::npos) << info.output;
+  const CliRun info_default = Uwbsar("info " + bag + " --decode");
+  EXPECT_NE(info_default.output.find(" 0 odometry"), std::string::npos) << info_default.output;
+
+  const CliRun detectors = Uwbsar("detectors " + bag + " --out " + dir + "/det" + cfg +
+                                  " --split-path-m 2 --regions 1,0.5 --no-images");
+  EXPECT_EQ(detectors.exit_code, 0) << detectors.output;
+  EXPECT_EQ(detectors.output.find("could be imaged"), std::string::npos) << detectors.output;
+}
+
+}  // namespace
+}  // namespace uwbsar

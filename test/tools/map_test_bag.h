@@ -30,6 +30,8 @@ struct BagEdits {
   double length_m = 4.0;
   /// One more odometry message, stamped 1 ns (the run itself is stamped in 2023).
   bool stray_odometry_at_1ns = false;
+  /// The odometry topic name (a non-default one needs slam.odometry_topic).
+  std::string odometry_topic = "/odom";
 };
 
 inline std::string WriteRunBag(const std::string& dir, const BagEdits& edits) {
@@ -45,7 +47,7 @@ inline std::string WriteRunBag(const std::string& dir, const BagEdits& edits) {
   rosbag::BagWriter writer(bag);
   const int left = writer.AddTopic(config.radars[0].topic, rosbag::kFloat32MultiArrayType);
   const int right = writer.AddTopic(config.radars[1].topic, rosbag::kFloat32MultiArrayType);
-  const int odom = writer.AddTopic("/odom", rosbag::kOdometryType);
+  const int odom = writer.AddTopic(edits.odometry_topic, rosbag::kOdometryType);
   std::size_t i = 0, j = 0;
   const TimestampNs shift = SecondsToNs(edits.odometry_time_shift_s);
   if (edits.stray_odometry_at_1ns) {
