@@ -184,7 +184,7 @@ void SlamSystem::RethrowWorkerError() {
 
 void SlamSystem::Process(Work&& work) {
   {
-    std::lock_guard<std::mutex> lock(state_mutex_);
+    const auto lock = LockForKeyframeWork();
     odometry_.insert(odometry_.end(), work.odometry.begin(), work.odometry.end());
   }
   for (Keyframe& k : work.keyframes) AddKeyframe(std::move(k));
@@ -195,7 +195,7 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
   // composed with the odometry between the two.
   Pose2 estimate = keyframe.T_world_anchor;
   {
-    std::lock_guard<std::mutex> lock(state_mutex_);
+    const auto lock = LockForKeyframeWork();
     if (!keyframes_.empty()) {
       const Keyframe& prev = keyframes_.back().keyframe;
       const Pose2 T_prev_this = Between(prev.T_world_anchor, keyframe.T_world_anchor);
@@ -224,7 +224,7 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
     keyframe_times_.features_s += found.features_ms * 1e-3 + detected_s;
     keyframe_times_.matching_s += found.matching_ms * 1e-3;
   }
-  std::lock_guard<std::mutex> lock(state_mutex_);
+  const auto lock = LockForKeyframeWork();
   for (const LoopAttempt& attempt : found.attempts) {
     LoopRecord loop;
     loop.query_id = keyframe.id;
@@ -277,30 +277,56 @@ void SlamSystem::Optimize() {
 std::map<int, Pose2> SlamSystem::KeyframePoses() const { return graph_->GetPoses(); }
 
 Pose2 SlamSystem::CorrectionAt(TimestampNs stamp_ns) const {
-  if (keyframes_.empty()) return Pose2{};
-  auto correction = [&](std::size_t i) {
-    const Keyframe& k = keyframes_[i].keyframe;
-    return graph_->GetPose(k.id) * k.T_world_anchor.Inverse();
-  };
-  auto after = std::lower_bound(
-      keyframes_.begin(), keyframes_.end(), stamp_ns,
-      [](const KeyframeRecord& r, TimestampNs t) { return r.keyframe.stamp_ns < t; });
-  if (after == keyframes_.begin()) return correction(0);
-  if (after == keyframes_.end()) return correction(keyframes_.size() - 1);
-  const std::size_t i = static_cast<std::size_t>(after - keyframes_.begin());
-  const TimestampNs t0 = keyframes_[i - 1].keyframe.stamp_ns, t1 = after->keyframe.stamp_ns;
-  const double t =
-      t1 > t0 ? static_cast<double>(stamp_ns - t0) / static_cast<double>(t1 - t0) : 0.0;
-  // Interpolate the two corrections as rotations about the earlier anchor, not about the
-  // world origin: a correction's translation depends on its pivot, and with a pivot far
-  // away (a map frame 1e6 m from the robot) the linear blend of translations would move
-  // the samples between keyframes by metres. About a nearby pivot the result does not
-  // depend on where the world origin is.
-  const Pose2& a = keyframes_[i - 1].keyframe.T_world_anchor;
-  const Pose2 to_pivot{-a.x_m, -a.y_m, 0.0}, from_pivot{a.x_m, a.y_m, 0.0};
-  const Pose2 blend = Interpolate(to_pivot * correction(i - 1) * from_pivot,
-                                  to_pivot * correction(i) * from_pivot, t);
-  return from_pivot * blend * to_pivot;
+  return InterpolatedCorrection(
+      keyframes_.size(), [&](std::size_t i) { return keyframes_[i].keyframe.stamp_ns; },
+      [&](std::size_t i) -> const Pose2& { return keyframes_[i].keyframe.T_world_anchor; },
+      [&](std::size_t i) { return graph_->GetPose(keyframes_[i].keyframe.id); }, stamp_ns);
+}
+
+std::unique_lock<std::mutex> SlamSystem::LockForKeyframeWork() {
+  std::unique_lock<std::mutex> lock(state_mutex_, std::try_to_lock);
+  if (lock.owns_lock()) return lock;
+  const auto start = Clock::now();
+  lock.lock();
+  const double waited_s = SecondsSince(start);
+  std::lock_guard<std::mutex> stats(stats_mutex_);  // lock order: state, then stats
+  keyframe_lock_wait_max_s_ = std::max(keyframe_lock_wait_max_s_, waited_s);
+  return lock;
+}
+
+double SlamSystem::keyframe_lock_wait_max_s() const {
+  std::lock_guard<std::mutex> stats(stats_mutex_);
+  return keyframe_lock_wait_max_s_;
+}
+
+SlamSnapshot SlamSystem::Capture() const {
+  SlamSnapshot s;
+  s.config = &config_;
+  s.sensors = frontend_->sensors();  // fixed at construction
+  s.tiles.reserve(keyframes_.size());
+  for (const KeyframeRecord& k : keyframes_) {
+    TileSnapshot t;
+    t.id = k.keyframe.id;
+    t.stamp_ns = k.keyframe.stamp_ns;
+    t.T_world_anchor = k.keyframe.T_world_anchor;
+    t.detected = k.detected;  // shared: never written after the keyframe is stored
+    t.detected_grid = k.detected_grid;
+    for (const ImagedScan& scan : k.keyframe.scans) {
+      t.first_scan_ns = t.has_scans ? std::min(t.first_scan_ns, scan.stamp_ns) : scan.stamp_ns;
+      t.last_scan_ns = t.has_scans ? std::max(t.last_scan_ns, scan.stamp_ns) : scan.stamp_ns;
+      t.has_scans = true;
+    }
+    s.tiles.push_back(std::move(t));
+  }
+  s.poses = graph_->GetPoses();
+  s.edges = graph_->Edges();
+  s.fixed_ids = graph_->FixedNodes();
+  s.loops = loops_;
+  s.odometry = odometry_;
+  s.frontend_stats = frontend_stats();
+  s.times = times();
+  s.last_optimization = last_optimization_;
+  return s;
 }
 
 std::vector<std::pair<TimestampNs, Pose2>> SlamSystem::CorrectedTrajectory() const {

@@ -33,6 +33,7 @@
 #include "frontend/imaging_frontend.h"
 #include "frontend/place_recognition/place_recognizer.h"
 #include "slam/config.h"
+#include "slam/slam_snapshot.h"
 
 namespace uwbsar {
 
@@ -41,28 +42,6 @@ struct KeyframeRecord {
   Keyframe keyframe;        ///< tile image dropped after use unless slam.keep_tile_images
   cv::Mat detected;         ///< detected tile (positive / magnitude, blurred) at map resolution
   ImageGrid detected_grid;  ///< its geometry in the anchor frame
-};
-
-/// Every candidate pair that was matched, with the outcome.
-struct LoopRecord {
-  int query_id = 0;  ///< the new keyframe (j)
-  int match_id = 0;  ///< the earlier keyframe (i)
-  MatchResult akaze;
-  MatchResult orb;
-  LoopValidation validation;
-  int edge_index = -1;  ///< pose-graph edge, when the validator accepted it
-  bool rejected_by_backend = false;
-  double chi2 = 0.0;  ///< of the edge at the final solution
-  bool accepted() const { return validation.accepted && !rejected_by_backend; }
-};
-
-/// Seconds spent per stage (wall clock; imaging on the feeding thread, the rest on
-/// the keyframe thread when there is one).
-struct StageTimes {
-  double imaging_s = 0.0;       ///< gating, range compression, back-projection
-  double features_s = 0.0;      ///< feature images and AKAZE + ORB detection
-  double matching_s = 0.0;      ///< candidate search, matching and validation
-  double optimization_s = 0.0;  ///< pose-graph solves
 };
 
 class SlamSystem {
@@ -106,6 +85,13 @@ class SlamSystem {
   std::vector<std::pair<TimestampNs, Pose2>> CorrectedTrajectory() const;
   /// Correction T_world_corrected * T_world_odom^-1 at a time (interpolated).
   Pose2 CorrectionAt(TimestampNs stamp_ns) const;
+  /// A copy of the state the outputs are made from (slam/slam_snapshot.h), in time linear
+  /// in keyframes, loops and odometry samples; the same rules as the accessors (hold
+  /// LockState() while the keyframe thread may run).
+  SlamSnapshot Capture() const;
+  /// The keyframe thread's longest wait for the state lock so far (any thread): what a
+  /// reader holding LockState() costs SLAM.
+  double keyframe_lock_wait_max_s() const;
 
  private:
   /// What the feeding thread hands to the keyframe thread, in order.
@@ -120,6 +106,8 @@ class SlamSystem {
   void Process(Work&& work);
   void AddKeyframe(Keyframe&& keyframe);
   void Optimize();  ///< caller holds state_mutex_
+  /// state_mutex_ for the keyframe thread, recording how long it waited.
+  std::unique_lock<std::mutex> LockForKeyframeWork();
   void RethrowWorkerError();
 
   Config config_;
@@ -141,6 +129,7 @@ class SlamSystem {
   FrontendStats frontend_stats_;
   double imaging_s_ = 0.0;
   StageTimes keyframe_times_;  ///< features, matching, optimisation
+  double keyframe_lock_wait_max_s_ = 0.0;
   // The hand-over queue.
   std::mutex queue_mutex_;
   std::condition_variable queue_changed_;

@@ -63,16 +63,27 @@ void Processor::Snapshot() {
   view.processing_s = std::chrono::duration<double>(t0 - start_).count();
   if (options_.ground_truth) view.ground_truth = options_.ground_truth();
   try {
-    const auto state = view.slam->LockState();
-    if (view.slam->keyframes().empty()) return;
-    last_outputs_ = WriteMapOutputs(view, options_.out_dir);
+    // Only the copy is made under the state lock (time linear in keyframes, no I/O); the
+    // mosaic, the report and the files are made from the copy while SLAM goes on.
+    MapState state;
+    {
+      const auto lock_start = SteadyClock::now();
+      const auto lock = view.slam->LockState();
+      if (view.slam->keyframes().empty()) return;
+      state = CaptureMapState(view);
+      snapshot_lock_max_s_ =
+          std::max(snapshot_lock_max_s_,
+                   std::chrono::duration<double>(SteadyClock::now() - lock_start).count());
+    }
+    last_outputs_ = WriteMapOutputs(state, options_.out_dir);
     ++snapshots_;
-    if (hooks_.after_snapshot) hooks_.after_snapshot(view, last_outputs_);
+    if (hooks_.after_snapshot) hooks_.after_snapshot(state, last_outputs_);
   } catch (const std::exception& e) {
     Log(LogLevel::kWarning, std::string("snapshot not written: ") + e.what());
   }
-  snapshot_max_s_ =
-      std::max(snapshot_max_s_, std::chrono::duration<double>(SteadyClock::now() - t0).count());
+  const double took_s = std::chrono::duration<double>(SteadyClock::now() - t0).count();
+  snapshot_max_s_ = std::max(snapshot_max_s_, took_s);
+  snapshot_s_.push_back(took_s);
 }
 
 MapRun Processor::FinalRun() {

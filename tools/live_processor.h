@@ -2,8 +2,9 @@
 // from the Dispatcher and feeds the SlamSystem (which images on this thread and does the
 // keyframe work on its own), measuring each scan's latency from arrival to its inclusion
 // in the open tile; the snapshot thread rewrites the map outputs every
-// live.snapshot_period_s under the SlamSystem's state lock, so the feeding thread never
-// waits for a snapshot.
+// live.snapshot_period_s from a copy of the SLAM state taken under the SlamSystem's state
+// lock (CaptureMapState, linear in keyframes), rendering and writing after releasing it:
+// the feeding thread never waits for a snapshot, the keyframe thread only for the copy.
 #pragma once
 
 #include <atomic>
@@ -21,9 +22,10 @@ namespace uwbsar::tools {
 class Processor {
  public:
   /// Optional hooks on the snapshot thread (e.g. ROS 2 publishers): `after_snapshot`
-  /// runs after each snapshot with the state lock held; `tick` every 20 ms.
+  /// runs after each snapshot with the state it was written from (no lock held);
+  /// `tick` every 20 ms.
   struct Hooks {
-    std::function<void(const MapRun& view, const MapOutputs& outputs)> after_snapshot;
+    std::function<void(const MapState& state, const MapOutputs& outputs)> after_snapshot;
     std::function<void()> tick;
   };
 
@@ -47,6 +49,10 @@ class Processor {
   int snapshots() const { return snapshots_; }
   const MapOutputs& last_outputs() const { return last_outputs_; }
   double snapshot_max_s() const { return snapshot_max_s_; }
+  /// Every snapshot's duration (copy, render and write), seconds.
+  const std::vector<double>& snapshot_s() const { return snapshot_s_; }
+  /// The longest time a snapshot held (or waited for) the SLAM state lock.
+  double snapshot_lock_max_s() const { return snapshot_lock_max_s_; }
 
  private:
   void Process(const LiveMessage& msg);
@@ -65,6 +71,8 @@ class Processor {
   SteadyClock::time_point start_;
   int snapshots_ = 0;
   double snapshot_max_s_ = 0.0;
+  double snapshot_lock_max_s_ = 0.0;
+  std::vector<double> snapshot_s_;
   MapOutputs last_outputs_;
 };
 

@@ -7,12 +7,11 @@
 namespace uwbsar::tools {
 namespace {
 
-/// The accepted loops as lines between the two keyframes' corrected anchors (caller holds
-/// the SLAM state lock).
-std::vector<dds::LoopSegment> LoopSegments(const SlamSystem& slam) {
-  const std::map<int, Pose2> poses = slam.KeyframePoses();
+/// The accepted loops as lines between the two keyframes' corrected anchors.
+std::vector<dds::LoopSegment> LoopSegments(const SlamSnapshot& slam) {
+  const std::map<int, Pose2>& poses = slam.poses;
   std::vector<dds::LoopSegment> segments;
-  for (const LoopRecord& l : slam.loops()) {
+  for (const LoopRecord& l : slam.loops) {
     if (!l.accepted()) continue;
     const auto a = poses.find(l.match_id), b = poses.find(l.query_id);
     if (a == poses.end() || b == poses.end()) continue;
@@ -27,22 +26,23 @@ std::vector<dds::LoopSegment> LoopSegments(const SlamSystem& slam) {
 LiveResultPublisher::LiveResultPublisher(dds::Participant& participant, const DdsConfig& config,
                                          live::FaultLog* faults, Processor* processor)
     : faults_(faults), processor_(processor), publisher_(participant, config) {
-  processor->set_hooks(
-      {[this](const MapRun& view, const MapOutputs& outputs) { PublishSnapshot(view, outputs); },
-       [this] { PublishPose(); }});
+  processor->set_hooks({[this](const MapState& state, const MapOutputs& outputs) {
+                          PublishSnapshot(state, outputs);
+                        },
+                        [this] { PublishPose(); }});
 }
 
-// Snapshot thread, state lock held: what was just written to disk, to RViz2.
-void LiveResultPublisher::PublishSnapshot(const MapRun& view, const MapOutputs& outputs) {
+// Snapshot thread: what was just written to disk (from `state`), to RViz2.
+void LiveResultPublisher::PublishSnapshot(const MapState& state, const MapOutputs& outputs) {
   try {
-    const TimestampNs stamp = view.last_stamp_ns;
+    const TimestampNs stamp = state.last_stamp_ns;
     for (const std::string& file : outputs.files) {  // map.yaml, as written
       if (std::filesystem::path(file).filename() == "map.yaml") {
         publisher_.PublishMap(LoadOccupancyGrid(file), stamp);
       }
     }
-    publisher_.PublishPath(stamp, view.slam->CorrectedTrajectory());
-    publisher_.PublishLoops(stamp, LoopSegments(*view.slam));
+    publisher_.PublishPath(stamp, state.slam.CorrectedTrajectory());
+    publisher_.PublishLoops(stamp, LoopSegments(state.slam));
   } catch (const std::exception& e) {
     faults_->Report("ros2: publishing failed", e.what());
   }

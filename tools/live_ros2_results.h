@@ -21,7 +21,7 @@ class LiveResultPublisher {
                       live::FaultLog* faults, Processor* processor);
 
  private:
-  void PublishSnapshot(const MapRun& view, const MapOutputs& outputs);
+  void PublishSnapshot(const MapState& state, const MapOutputs& outputs);
   void PublishPose();
 
   live::FaultLog* faults_;

@@ -34,6 +34,9 @@ void WriteLiveJson(const LiveRunResult& result, const std::string& source,
                              {"max", result.latency_max_ms}};
   live["snapshots"] = result.snapshots;
   live["snapshot_max_s"] = result.snapshot_max_s;
+  live["snapshot_p50_s"] = result.snapshot_p50_s;
+  live["snapshot_lock_max_ms"] = result.snapshot_lock_max_s * 1e3;
+  live["keyframe_lock_wait_max_ms"] = result.keyframe_lock_wait_max_s * 1e3;
   live["faults"] = result.faults;
   nlohmann::json radars = nlohmann::json::object();
   for (const auto& [name, s] : result.radars) {
@@ -160,6 +163,9 @@ LiveRunResult RunLive(const Config& config, LiveRunOptions options) {
   processor.Snapshot();  // the final outputs (after Finish); published too with ros2
   result.snapshots = processor.snapshots();
   result.snapshot_max_s = processor.snapshot_max_s();
+  result.snapshot_p50_s = Percentile(processor.snapshot_s(), 50);
+  result.snapshot_lock_max_s = processor.snapshot_lock_max_s();
+  result.keyframe_lock_wait_max_s = processor.slam().keyframe_lock_wait_max_s();
   WriteLiveJson(result, options.source, options.out_dir);
   result.outputs = processor.last_outputs();
   result.run = processor.FinalRun();

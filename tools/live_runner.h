@@ -57,6 +57,11 @@ struct LiveRunResult {
   double latency_max_ms = 0.0;
   int snapshots = 0;
   double snapshot_max_s = 0.0;
+  double snapshot_p50_s = 0.0;
+  /// The longest a snapshot held the SLAM state lock (the copy), and the longest the
+  /// keyframe thread waited for that lock over the run (issue 15, point 3).
+  double snapshot_lock_max_s = 0.0;
+  double keyframe_lock_wait_max_s = 0.0;
   std::map<std::string, long long> faults;
   /// Serial: each radar's LT102 link (start-up, polled `d` requests vs answers, p99
   /// request-to-answer time, what the radar reported), by name ("radar left").

@@ -80,4 +80,9 @@ MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir,
   return stage.Commit(run, options);
 }
 
+MapOutputs WriteMapOutputs(const MapState& state, const std::string& out_dir) {
+  MapOutputStage stage(out_dir);
+  return stage.Commit(state);
+}
+
 }  // namespace uwbsar::tools

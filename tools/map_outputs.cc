@@ -22,8 +22,8 @@
 #include "frontend/image_io.h"
 #include "frontend/strip_renderer.h"
 #include "slam/errors.h"
-#include "tools/imaging_job.h"
 #include "tools/commands.h"
+#include "tools/imaging_job.h"
 #include "tools/report_html.h"
 
 namespace uwbsar::tools {
@@ -47,7 +47,8 @@ std::vector<std::pair<double, Pose2>> InSeconds(
 /// map.png: the mean detected map, clipped at its 99.5th percentile, colour-mapped,
 /// with the optimised trajectory (white), odometry (grey) and accepted loops (cyan).
 cv::Mat RenderMapPng(const cv::Mat& map, const cv::Mat& observed, const ImageGrid& grid,
-                     const MapRun& run, const std::vector<std::pair<TimestampNs, Pose2>>& traj,
+                     const SlamSnapshot& slam,
+                     const std::vector<std::pair<TimestampNs, Pose2>>& traj,
                      const std::string& colormap) {
   std::vector<float> values;
   for (int r = 0; r < map.rows; ++r) {
@@ -69,7 +70,7 @@ cv::Mat RenderMapPng(const cv::Mat& map, const cv::Mat& observed, const ImageGri
     return cv::Point(static_cast<int>(std::lround(grid.XToCol(p.x_m))),
                      static_cast<int>(std::lround(grid.YToRow(p.y_m))));
   };
-  const auto& odom = run.slam->odometry();
+  const auto& odom = slam.odometry;
   for (std::size_t i = 1; i < odom.size(); ++i) {
     cv::line(png, pixel(odom[i - 1].T_world_robot), pixel(odom[i].T_world_robot),
              cv::Scalar(150, 150, 150), 1, cv::LINE_AA);
@@ -78,8 +79,8 @@ cv::Mat RenderMapPng(const cv::Mat& map, const cv::Mat& observed, const ImageGri
     cv::line(png, pixel(traj[i - 1].second), pixel(traj[i].second), cv::Scalar(255, 255, 255), 2,
              cv::LINE_AA);
   }
-  const auto poses = run.slam->KeyframePoses();
-  for (const LoopRecord& loop : run.slam->loops()) {
+  const auto& poses = slam.poses;
+  for (const LoopRecord& loop : slam.loops) {
     if (!loop.accepted()) continue;
     cv::line(png, pixel(poses.at(loop.match_id)), pixel(poses.at(loop.query_id)),
              cv::Scalar(255, 255, 0), 1, cv::LINE_AA);
@@ -87,11 +88,11 @@ cv::Mat RenderMapPng(const cv::Mat& map, const cv::Mat& observed, const ImageGri
   return png;
 }
 
-std::string LoopsCsv(const MapRun& run) {
+std::string LoopsCsv(const SlamSnapshot& slam) {
   std::ostringstream csv;
   csv << "query_id,match_id,ratio_akaze,good_akaze,scale_akaze,ratio_orb,good_orb,scale_orb,"
          "x_m,y_m,yaw_deg,validator,reason,backend,chi2\n";
-  for (const LoopRecord& l : run.slam->loops()) {
+  for (const LoopRecord& l : slam.loops) {
     const Pose2& T = l.validation.constraint.T_ij;
     std::string reason = l.validation.reason;
     for (char& c : reason) {
@@ -145,9 +146,26 @@ std::string ReadFileBytes(const std::string& path) {
 
 }  // namespace
 
+MapState CaptureMapState(const MapRun& run) {
+  MapState state;
+  state.slam = run.slam->Capture();
+  state.input = run.input;
+  state.processing_s = run.processing_s;
+  state.log_duration_s = run.log_duration_s();
+  state.last_stamp_ns = run.last_stamp_ns;
+  state.ground_truth = run.ground_truth;
+  return state;
+}
+
 MapOutputs MapOutputStage::Commit(const MapRun& run, const MapOutputOptions& options) {
-  const SlamSystem& slam = *run.slam;
-  const Config& config = slam.config();
+  return CommitState(CaptureMapState(run), options.exact ? &run : nullptr);
+}
+
+MapOutputs MapOutputStage::Commit(const MapState& state) { return CommitState(state, nullptr); }
+
+MapOutputs MapOutputStage::CommitState(const MapState& run, const MapRun* exact_from) {
+  const SlamSnapshot& slam = run.slam;
+  const Config& config = *slam.config;
   const std::string& out_dir = out_dir_;
   MapOutputs result;
   const fs::path stage = stage_;
@@ -156,12 +174,11 @@ MapOutputs MapOutputStage::Commit(const MapRun& run, const MapOutputOptions& opt
     // Trajectories.
     const auto trajectory = slam.CorrectedTrajectory();
     std::vector<std::pair<TimestampNs, Pose2>> odometry;
-    for (const OdometryEntry& e : slam.odometry())
-      odometry.push_back({e.stamp_ns, e.T_world_robot});
+    for (const OdometryEntry& e : slam.odometry) odometry.push_back({e.stamp_ns, e.T_world_robot});
     WriteTum(staged("trajectory.tum"), InSeconds(trajectory));
     WriteTum(staged("odometry.tum"), InSeconds(odometry));
-    WriteG2o(staged("graph.g2o"), slam.graph(), /*drop_rejected_loops=*/false);
-    WriteTextAtomic(staged("loops.csv"), LoopsCsv(run));
+    WriteTextAtomic(staged("graph.g2o"), G2oText(slam.poses, slam.edges, slam.fixed_ids));
+    WriteTextAtomic(staged("loops.csv"), LoopsCsv(slam));
     std::vector<std::string> names = {"trajectory.tum", "odometry.tum",  "graph.g2o", "loops.csv",
                                       "map_float.tif",  "map_grid.yaml", "map.png",   "map.yaml",
                                       "map.pgm",        "report.html"};
@@ -177,10 +194,9 @@ MapOutputs MapOutputStage::Commit(const MapRun& run, const MapOutputOptions& opt
 
     // The global map from the optimised keyframes.
     GlobalMap global(config.slam.map_resolution_m);
-    const auto poses = slam.KeyframePoses();
-    for (const KeyframeRecord& k : slam.keyframes()) {
-      global.AddTile(k.detected, k.detected_grid, poses.at(k.keyframe.id));
-    }
+    const auto& poses = slam.poses;
+    for (const TileSnapshot& k : slam.tiles)
+      global.AddTile(k.detected, k.detected_grid, poses.at(k.id));
     ImageGrid grid;
     cv::Mat observed;
     const cv::Mat map = global.Render(&grid, &observed);
@@ -188,30 +204,30 @@ MapOutputs MapOutputStage::Commit(const MapRun& run, const MapOutputOptions& opt
     WriteTextAtomic(staged("map_grid.yaml"),
                     GridYaml(grid, "map_float.tif and map.png", "map_float.tif"));
     WriteImageAtomic(staged("map.png"),
-                     RenderMapPng(map, observed, grid, run, trajectory, config.enhance.colormap));
+                     RenderMapPng(map, observed, grid, slam, trajectory, config.enhance.colormap));
     const OccupancyGrid occupancy =
         MapToOccupancy(map, observed, grid, config.slam.occupancy_resolution_m,
                        config.slam.occupied_fraction, config.slam.occupancy_reference_percentile);
     WriteOccupancyGrid(staged("map.yaml"), "map.pgm", occupancy);
 
     // Summary.
-    const FrontendStats& fs_stats = slam.frontend_stats();
+    const FrontendStats& fs_stats = slam.frontend_stats;
     int validated = 0, accepted = 0, backend_rejected = 0;
-    for (const LoopRecord& l : slam.loops()) {
+    for (const LoopRecord& l : slam.loops) {
       validated += l.validation.accepted;
       accepted += l.accepted();
       backend_rejected += l.validation.accepted && l.rejected_by_backend;
     }
-    const double rtf = run.processing_s > 0 ? run.log_duration_s() / run.processing_s : 0.0;
+    const double rtf = run.processing_s > 0 ? run.log_duration_s / run.processing_s : 0.0;
     nlohmann::json& s = result.summary;
     s["input"] = run.input;
-    s["log_duration_s"] = run.log_duration_s();
+    s["log_duration_s"] = run.log_duration_s;
     s["processing_s"] = run.processing_s;
     s["real_time_factor"] = rtf;
     s["peak_memory_mib"] = PeakMemoryMiB();
-    s["keyframes"] = slam.keyframes().size();
-    s["path_length_m"] = slam.odometry().empty() ? 0.0 : slam.odometry().back().path_m;
-    s["loops"] = {{"candidates", slam.loops().size()},
+    s["keyframes"] = slam.tiles.size();
+    s["path_length_m"] = slam.odometry.empty() ? 0.0 : slam.odometry.back().path_m;
+    s["loops"] = {{"candidates", slam.loops.size()},
                   {"validated", validated},
                   {"accepted", accepted},
                   {"rejected_by_backend", backend_rejected}};
@@ -229,13 +245,13 @@ MapOutputs MapOutputStage::Commit(const MapRun& run, const MapOutputOptions& opt
                                       fs_stats.odometry_rejected_nonfinite +
                                       fs_stats.odometry_rejected_implausible},
                      {"rejected_implausible", fs_stats.odometry_rejected_implausible}};
-    const StageTimes& t = slam.times();
+    const StageTimes& t = slam.times;
     s["time_s"] = {{"imaging", t.imaging_s},
                    {"features", t.features_s},
                    {"matching", t.matching_s},
                    {"optimization", t.optimization_s},
                    {"total", run.processing_s}};
-    const OptimizeResult& opt = slam.last_optimization();
+    const OptimizeResult& opt = slam.last_optimization;
     s["optimization"] = {{"converged", opt.converged},
                          {"termination", opt.termination},
                          {"iterations", opt.iterations},
@@ -253,13 +269,13 @@ MapOutputs MapOutputStage::Commit(const MapRun& run, const MapOutputOptions& opt
     // report.html (built from the staged files, so it shows exactly what was written).
     RunReport report;
     report.title = "uwbsar map: " + run.input;
-    report.summary = {{"log duration", Fixed(run.log_duration_s(), 1) + " s"},
+    report.summary = {{"log duration", Fixed(run.log_duration_s, 1) + " s"},
                       {"processing time",
                        Fixed(run.processing_s, 2) + " s (real-time factor " + Fixed(rtf, 1) + ")"},
                       {"path length", Fixed(s["path_length_m"].get<double>(), 2) + " m"},
-                      {"keyframes", std::to_string(slam.keyframes().size())},
+                      {"keyframes", std::to_string(slam.tiles.size())},
                       {"loops accepted / candidates",
-                       std::to_string(accepted) + " / " + std::to_string(slam.loops().size())},
+                       std::to_string(accepted) + " / " + std::to_string(slam.loops.size())},
                       {"scans imaged / received", std::to_string(fs_stats.scans_imaged) + " / " +
                                                       std::to_string(fs_stats.scans_received)},
                       {"peak memory", Fixed(PeakMemoryMiB(), 0) + " MiB"}};
@@ -285,7 +301,7 @@ MapOutputs MapOutputStage::Commit(const MapRun& run, const MapOutputOptions& opt
     }
     report.trajectories.push_back({"odometry", "#e76f51", points(odometry)});
     report.trajectories.push_back({"SLAM", "#264653", points(trajectory)});
-    for (const LoopRecord& l : slam.loops()) {
+    for (const LoopRecord& l : slam.loops) {
       if (!l.accepted()) continue;
       const Pose2& a = poses.at(l.match_id);
       const Pose2& b = poses.at(l.query_id);
@@ -306,7 +322,7 @@ MapOutputs MapOutputStage::Commit(const MapRun& run, const MapOutputOptions& opt
                       {"query", "match", "AKAZE good", "ORB good", "x (m)", "y (m)", "yaw (deg)",
                        "validator", "backend", "reason"},
                       {}};
-    for (const LoopRecord& l : slam.loops()) {
+    for (const LoopRecord& l : slam.loops) {
       const Pose2& T = l.validation.constraint.T_ij;
       const bool v = l.validation.accepted;
       loops.rows.push_back(
@@ -318,8 +334,8 @@ MapOutputs MapOutputStage::Commit(const MapRun& run, const MapOutputOptions& opt
     }
     report.tables.push_back(loops);
     WriteTextAtomic(staged("report.html"), RenderReportHtml(report));
-    if (options.exact) {
-      for (const std::string& f : WriteExactMap(run, stage.string())) {
+    if (exact_from != nullptr) {
+      for (const std::string& f : WriteExactMap(*exact_from, stage.string())) {
         names.push_back(fs::path(f).filename().string());
       }
     }

@@ -23,6 +23,21 @@ struct MapOutputs {
   AteResult odometry_ate;          ///< of odometry.tum
 };
 
+/// What the outputs are made from: a copy of a run's SLAM state and its run-level fields.
+/// Taken in time linear in keyframes, loops and odometry (no rendering, no I/O), so a live
+/// writer holds the SLAM state lock only for CaptureMapState and writes without it.
+struct MapState {
+  SlamSnapshot slam;
+  std::string input;
+  double processing_s = 0.0;
+  double log_duration_s = 0.0;  ///< MapRun::log_duration_s() at capture
+  TimestampNs last_stamp_ns = 0;
+  std::vector<OdometrySample> ground_truth;
+};
+
+/// The state of `run` now. Hold run.slam->LockState() while its keyframe thread may run.
+MapState CaptureMapState(const MapRun& run);
+
 struct MapOutputOptions {
   bool exact = false;  ///< also the exact map (WriteExactMap), staged and committed with the rest
 };
@@ -42,9 +57,14 @@ class MapOutputStage {
   MapOutputStage& operator=(const MapOutputStage&) = delete;
 
   const std::string& path() const { return stage_; }
+  /// CaptureMapState(run), then the outputs from it (and the exact map from `run`).
   MapOutputs Commit(const MapRun& run, const MapOutputOptions& options = {});
+  /// The outputs of a captured state (no exact map: that needs the scans' profiles).
+  MapOutputs Commit(const MapState& state);
 
  private:
+  MapOutputs CommitState(const MapState& state, const MapRun* exact_from);
+
   std::string out_dir_, stage_;
   std::unique_ptr<RemoveOnInterrupt> guard_;
 };
@@ -55,6 +75,8 @@ const std::vector<std::string>& AllMapOutputNames();
 /// MapOutputStage(out_dir).Commit(run, options).
 MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir,
                            const MapOutputOptions& options = {});
+/// MapOutputStage(out_dir).Commit(state).
+MapOutputs WriteMapOutputs(const MapState& state, const std::string& out_dir);
 
 /// The exact global map: every imaged scan back-projected again at its corrected pose
 /// (the keyframe correction interpolated in time and applied to its odometry pose), at the
