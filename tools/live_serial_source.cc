@@ -61,6 +61,9 @@ class SerialSource : public LiveSource {
           },
           [dispatcher](const std::string& event) { dispatcher->Event(event); },
           [clock] { return clock->Now(); }, clock->scale()));
+      // Scans wait for the odometry (as over DDS): a radar is polled once the base's first
+      // sample went out, so no scan is stamped before the first pose and dropped.
+      radars_.back()->set_acquisition_gate([this] { return odometry_started_.load(); });
       live::LinkPolicy p = policy;
       p.baud = lc_.radar_baud;
       std::function<void()> cycle;
@@ -79,6 +82,7 @@ class SerialSource : public LiveSource {
           m.odometry = sample;
           order_.Push(m.stamp_ns, SteadyNs(), std::move(m));
           last_odometry_ns_ = clock_->Now();
+          odometry_started_ = true;
         });
     live::LinkPolicy p = policy;
     p.baud = lc_.kobuki_baud;
@@ -191,6 +195,7 @@ class SerialSource : public LiveSource {
   std::vector<std::unique_ptr<live::DeviceLink>> links_;
   StampOrderBuffer<LiveMessage> order_;
   std::atomic<long long> last_odometry_ns_{0};
+  std::atomic<bool> odometry_started_{false};
   bool stalled_ = false, led_ = false;
 };
 

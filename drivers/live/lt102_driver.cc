@@ -74,6 +74,7 @@ bool Lt102Driver::OnOpen(SerialPort& port) {
 
 double Lt102Driver::OnPoll(SerialPort& port) {
   if (!acquiring_) return 0.05;
+  if (gate_ && !in_flight_ && !gate_()) return 0.005;  // waiting for the first odometry
   const auto now = Clock::now();
   const auto timeout = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(config_.live.lt102.frame_timeout_s));

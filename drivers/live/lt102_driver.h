@@ -74,6 +74,9 @@ class Lt102Driver : public LinkProtocol {
   /// `error` on timeout. Any thread.
   bool WaitConfigured(double timeout_s, Lt102Setup* setup, std::string* error);
   long long scans() const { return scans_; }
+  /// Frames are requested only while `gate` returns true (set before the link starts): the
+  /// serial source polls the radars once odometry flows, so no scan precedes the first pose.
+  void set_acquisition_gate(std::function<bool()> gate) { gate_ = std::move(gate); }
   /// After the link stopped.
   Lt102Stats stats() const;
 
@@ -95,6 +98,7 @@ class Lt102Driver : public LinkProtocol {
   Lt102RawData raw_;
   std::atomic<long long> scans_{0};
   std::function<TimestampNs()> clock_;
+  std::function<bool()> gate_;
   double clock_scale_;
   StreamClock stamps_;
   TimestampNs request_ns_ = 0;    ///< host clock when the `d` in flight was written
