@@ -40,7 +40,7 @@ void FindRegionImages(const std::string& dir, ImageLoopStudy* study) {
 }
 
 std::map<int, SarImageFile> ReadAll(const std::map<int, std::string>& files, double res,
-                                     double max_pixels) {
+                                    double max_pixels) {
   std::map<int, SarImageFile> images;
   for (const auto& [i, path] : files) images[i] = ReadSarImageFile(path, res, max_pixels);
   return images;

@@ -119,6 +119,7 @@ void Lt102Driver::HandleFrame(const Lt102Frame& frame) {
   }
   const auto now = Clock::now();
   const TimestampNs arrival_ns = clock_ ? clock_() : 0;
+  const bool answered = in_flight_;
   if (in_flight_) {
     ++stats_.answers;
     answer_ms_.push_back(std::chrono::duration<double, std::milli>(now - sent_at_).count());
@@ -153,7 +154,21 @@ void Lt102Driver::HandleFrame(const Lt102Frame& frame) {
   RadarScan scan;
   scan.sensor_id = sensor_id_;
   scan.samples.assign(raw_.i.begin(), raw_.i.begin() + raw_.samples_per_scan);
-  if (clock_) scan.stamp_ns = StampFrame(arrival_ns);
+  if (clock_) {
+    scan.stamp_ns = StampFrame(arrival_ns);
+    if (answered) {
+      // Pace the next `d` on the radar's frame grid, kPollLead of a period before its next
+      // frame, not on this answer's arrival: a late answer does not push the next request
+      // past the frame (which would then wait at the radar and arrive up to a period late,
+      // a delay the envelope cannot tell from the clock).
+      const double ahead_ns = static_cast<double>(stamps_.Predict(frame_index_ + 1) - arrival_ns) -
+                              kPollLead * stamps_.ns_per_unit();
+      const double period_s = std::chrono::duration<double>(period_).count();
+      const double wait_s = std::clamp(ahead_ns * 1e-9 / clock_scale_, 0.0, period_s);
+      next_due_ =
+          now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(wait_s));
+    }
+  }
   ++scans_;
   sink_(std::move(scan));
 }
@@ -168,7 +183,10 @@ TimestampNs Lt102Driver::StampFrame(TimestampNs arrival_ns) {
     k = frame_index_ + std::max<std::int64_t>(1, late);
   }
   frame_index_ = k;
-  return stamps_.Stamp(k, arrival_ns);
+  const TimestampNs stamp = stamps_.Stamp(k, arrival_ns);
+  if (stats_.stamp_trace.size() < 100000) stats_.stamp_trace.push_back({arrival_ns, stamp});
+  stats_.stamp_reanchors = stamps_.reanchors();
+  return stamp;
 }
 
 void Lt102Driver::OnStop(SerialPort& port) {

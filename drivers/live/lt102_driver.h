@@ -49,7 +49,11 @@ struct Lt102Stats {
   Lt102ExchangeCounts exchange;      ///< start-up and stop requests, wrong / missing answers
   double answer_p50_ms = 0.0, answer_p99_ms = 0.0, answer_max_ms = 0.0;  ///< `d` to answer
   bool configured = false;
-  Lt102Setup setup;  ///< of the last start-up
+  Lt102Setup setup;               ///< of the last start-up
+  long long stamp_reanchors = 0;  ///< the StreamClock's (start-ups not counted)
+  /// (arrival, stamp) of the first 100000 scans stamped (host clock): for measuring the
+  /// filter against an emulator's true send times.
+  std::vector<std::pair<TimestampNs, TimestampNs>> stamp_trace;
 };
 
 class Lt102Driver : public LinkProtocol {
