@@ -71,7 +71,10 @@ struct LiveConfig {
   double reconnect_max_s = 5.0;        ///< reconnect delay cap
   int processing_queue_size = 4000;    ///< messages waiting for SLAM; beyond, the oldest
                                        ///< are dropped from processing (never from recording)
-  double snapshot_period_s = 10.0;     ///< map outputs are rewritten this often (0 = only at end)
+  /// Serial: stamped messages of the radars and the base are put back in stamp order
+  /// within this much wall time before SLAM and the recording see them.
+  double reorder_window_s = 0.1;
+  double snapshot_period_s = 10.0;  ///< map outputs are rewritten this often (0 = only at end)
   std::string recording_storage = "sqlite3";  ///< recording bag storage: sqlite3 or mcap (both
                                               ///< survive a crash up to the last flush)
   double recording_flush_period_s = 0.5;      ///< the recording is made durable this often
@@ -102,6 +105,7 @@ struct LiveConfig {
     v("reconnect_initial_s", reconnect_initial_s);
     v("reconnect_max_s", reconnect_max_s);
     v("processing_queue_size", processing_queue_size);
+    v("reorder_window_s", reorder_window_s);
     v("snapshot_period_s", snapshot_period_s);
     v("recording_storage", recording_storage);
     v("recording_flush_period_s", recording_flush_period_s);

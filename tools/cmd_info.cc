@@ -21,7 +21,7 @@ void AddInfoCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("BAG", opts->bag, "Bag directory (metadata.yaml), .db3 or .mcap file")
       ->required();
   cmd->add_flag("--decode", opts->decode,
-                "Also decode every message (checks the whole bag; uses --config radar topics)");
+                "Also decode every message (checks the whole bag; uses the --config topics)");
   cmd->callback([opts, &globals] {
     const rosbag::BagReader reader(opts->bag);
     std::cout << rosbag::FormatBagInfo(reader.Info());

@@ -1,5 +1,9 @@
 // The robot's own devices as a live source: LT102 radars and the Kobuki base on
-// reconnecting serial links, radar power and reset through GPIO.
+// reconnecting serial links, radar power and reset through GPIO. Each device's messages are
+// stamped by its driver's StreamClock (drivers/live/stream_clock.h: the radar's acquisition
+// grid, the base's millisecond counter), not at arrival, and put back in stamp order within
+// live.reorder_window_s, so SLAM and the recording see them in the order `uwbsar map` reads
+// the recording, whatever the scheduler did to the reading threads.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -10,6 +14,7 @@
 #include "drivers/live/radar_power.h"
 #include "slam/errors.h"
 #include "tools/live_source.h"
+#include "tools/stamp_order_buffer.h"
 
 namespace uwbsar::tools {
 namespace {
@@ -18,7 +23,12 @@ class SerialSource : public LiveSource {
  public:
   SerialSource(const Config& config, LiveRunOptions& options, Dispatcher* dispatcher,
                live::FaultLog* faults, live::HostClock* clock)
-      : lc_(config.live), dispatcher_(dispatcher), faults_(faults), clock_(clock) {
+      : lc_(config.live),
+        dispatcher_(dispatcher),
+        faults_(faults),
+        clock_(clock),
+        order_(static_cast<std::int64_t>(config.live.reorder_window_s * 1e9),
+               [this](LiveMessage&& m, bool late) { Release(std::move(m), late); }) {
     if (lc_.radar_devices.size() != config.radars.size()) {
       throw InputError("live.radar_devices lists " + std::to_string(lc_.radar_devices.size()) +
                        " devices for " + std::to_string(config.radars.size()) +
@@ -42,13 +52,18 @@ class SerialSource : public LiveSource {
       radar_names_.push_back(name);
       radars_.push_back(std::make_unique<live::Lt102Driver>(
           name, static_cast<int>(i), config, faults,
-          [dispatcher](RadarScan&& scan) {
+          [this](RadarScan&& scan) {
             LiveMessage m;
             m.kind = LiveMessage::Kind::kScan;
+            m.stamp_ns = scan.stamp_ns;
             m.scan = std::move(scan);
-            dispatcher->Publish(std::move(m));
+            order_.Push(m.stamp_ns, SteadyNs(), std::move(m));
           },
-          [dispatcher](const std::string& event) { dispatcher->Event(event); }));
+          [dispatcher](const std::string& event) { dispatcher->Event(event); },
+          [clock] { return clock->Now(); }, clock->scale()));
+      // Scans wait for the odometry (as over DDS): a radar is polled once the base's first
+      // sample went out, so no scan is stamped before the first pose and dropped.
+      radars_.back()->set_acquisition_gate([this] { return odometry_started_.load(); });
       live::LinkPolicy p = policy;
       p.baud = lc_.radar_baud;
       std::function<void()> cycle;
@@ -60,12 +75,14 @@ class SerialSource : public LiveSource {
     }
     kobuki_ = std::make_unique<live::KobukiDriver>(
         lc_, faults, [clock] { return clock->Now(); },
-        [this, dispatcher](OdometrySample&& sample) {
+        [this](OdometrySample&& sample) {
           LiveMessage m;
           m.kind = LiveMessage::Kind::kOdometry;
+          m.stamp_ns = sample.stamp_ns;
           m.odometry = sample;
-          dispatcher->Publish(std::move(m));
+          order_.Push(m.stamp_ns, SteadyNs(), std::move(m));
           last_odometry_ns_ = clock_->Now();
+          odometry_started_ = true;
         });
     live::LinkPolicy p = policy;
     p.baud = lc_.kobuki_baud;
@@ -79,6 +96,7 @@ class SerialSource : public LiveSource {
 
   // Odometry stalls, clock steps, status LED (on while every link is up).
   void Poll() override {
+    order_.Poll(SteadyNs());
     const double step_s = clock_->CheckStep();
     if (std::abs(step_s) >= lc_.clock_step_threshold_s) {
       faults_->Report("host clock: steps", "system clock stepped by " + std::to_string(step_s) +
@@ -132,6 +150,7 @@ class SerialSource : public LiveSource {
   void Stop() override {
     for (auto& link : links_) link->RequestStop();  // the radars' `o` exchanges run together
     for (auto& link : links_) link->Stop();
+    order_.Flush();
   }
 
   std::vector<std::pair<std::string, live::Lt102Stats>> radar_stats() const override {
@@ -150,6 +169,21 @@ class SerialSource : public LiveSource {
   }
 
  private:
+  static std::int64_t SteadyNs() {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(
+               std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+  }
+  // A late message still goes to SLAM with its own stamp (as with ROS 2).
+  void Release(LiveMessage&& m, bool late) {
+    if (late) {
+      faults_->Report("serial: late samples",
+                      "a message came after later-stamped ones of another device were passed "
+                      "on (more than live.reorder_window_s apart); recorded and used");
+    }
+    dispatcher_->PublishStamped(std::move(m));
+  }
+
   const LiveConfig& lc_;
   Dispatcher* dispatcher_;
   live::FaultLog* faults_;
@@ -159,7 +193,9 @@ class SerialSource : public LiveSource {
   std::vector<std::string> radar_names_;
   std::unique_ptr<live::KobukiDriver> kobuki_;
   std::vector<std::unique_ptr<live::DeviceLink>> links_;
+  StampOrderBuffer<LiveMessage> order_;
   std::atomic<long long> last_odometry_ns_{0};
+  std::atomic<bool> odometry_started_{false};
   bool stalled_ = false, led_ = false;
 };
 

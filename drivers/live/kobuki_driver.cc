@@ -16,7 +16,13 @@ KobukiDriver::KobukiDriver(const LiveConfig& config, FaultLog* faults,
     : faults_(faults),
       clock_(std::move(clock)),
       sink_(std::move(sink)),
-      odometry_(GeometryFromConfig(config)) {}
+      odometry_(GeometryFromConfig(config)),
+      stamps_([] {
+        StreamClockOptions o;
+        o.nominal_ns_per_unit = 1e6;  // a millisecond counter
+        o.gap_units = 2000;           // 2 s without packets: anchor again
+        return o;
+      }()) {}
 
 void KobukiDriver::OnBytes(const std::uint8_t* data, std::size_t size) {
   data_.clear();
@@ -30,7 +36,13 @@ void KobukiDriver::OnBytes(const std::uint8_t* data, std::size_t size) {
                   s.malformed - reported_.malformed);
   reported_ = s;
   for (const KobukiBasicSensorData& d : data_) {
-    auto sample = odometry_.Update(clock_(), d);
+    const TimestampNs arrival_ns = clock_();
+    // A counter that went back restarts the line (StreamClock re-anchors on x going back).
+    const std::uint16_t step = static_cast<std::uint16_t>(d.timestamp_ms - last_ms_);
+    device_ms_ = have_ms_ ? device_ms_ + (step < 0x8000 ? step : step - 0x10000) : 0;
+    have_ms_ = true;
+    last_ms_ = d.timestamp_ms;
+    auto sample = odometry_.Update(stamps_.Stamp(device_ms_, arrival_ns), d);
     if (odometry_.jumps() != reported_jumps_) {
       faults_->Report("kobuki: odometry jumps",
                       "encoder step faster than live.max_wheel_speed_mps, not integrated",

@@ -1,6 +1,7 @@
 #include "drivers/live/lt102_driver.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "slam/log.h"
 
@@ -22,14 +23,17 @@ double PercentileMs(std::vector<double> v, double p) {
 }  // namespace
 
 Lt102Driver::Lt102Driver(std::string name, int sensor_id, const Config& config, FaultLog* faults,
-                         ScanSink sink, EventSink events)
+                         ScanSink sink, EventSink events, std::function<TimestampNs()> clock,
+                         double clock_scale)
     : name_(std::move(name)),
       sensor_id_(sensor_id),
       config_(config),
       faults_(faults),
       sink_(std::move(sink)),
       events_(std::move(events)),
-      exchange_(name_, config.live.lt102, faults) {}
+      exchange_(name_, config.live.lt102, faults),
+      clock_(std::move(clock)),
+      clock_scale_(clock_scale) {}
 
 bool Lt102Driver::OnOpen(SerialPort& port) {
   OnLost();
@@ -50,6 +54,7 @@ bool Lt102Driver::OnOpen(SerialPort& port) {
         std::chrono::duration<double>(1.0 / std::max(1, setup.frame_rate_fps)));
     acquiring_ = true;
     next_due_ = Clock::now();
+    stamps_.Reset(1e9 / std::max(1, setup.frame_rate_fps) * clock_scale_);
     return true;
   } catch (const Lt102ConfigError& e) {
     {
@@ -69,6 +74,7 @@ bool Lt102Driver::OnOpen(SerialPort& port) {
 
 double Lt102Driver::OnPoll(SerialPort& port) {
   if (!acquiring_) return 0.05;
+  if (gate_ && !in_flight_ && !gate_()) return 0.005;  // waiting for the first odometry
   const auto now = Clock::now();
   const auto timeout = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(config_.live.lt102.frame_timeout_s));
@@ -86,6 +92,7 @@ double Lt102Driver::OnPoll(SerialPort& port) {
     ++stats_.requests;
     in_flight_ = true;
     sent_at_ = now;
+    if (clock_) request_ns_ = clock_();
   }
   const auto wait = in_flight_ ? sent_at_ + timeout - now : next_due_ - now;
   return std::clamp(std::chrono::duration<double>(wait).count(), 0.0005, 0.05);
@@ -111,6 +118,8 @@ void Lt102Driver::HandleFrame(const Lt102Frame& frame) {
     return;
   }
   const auto now = Clock::now();
+  const TimestampNs arrival_ns = clock_ ? clock_() : 0;
+  const bool answered = in_flight_;
   if (in_flight_) {
     ++stats_.answers;
     answer_ms_.push_back(std::chrono::duration<double, std::milli>(now - sent_at_).count());
@@ -145,8 +154,39 @@ void Lt102Driver::HandleFrame(const Lt102Frame& frame) {
   RadarScan scan;
   scan.sensor_id = sensor_id_;
   scan.samples.assign(raw_.i.begin(), raw_.i.begin() + raw_.samples_per_scan);
+  if (clock_) {
+    scan.stamp_ns = StampFrame(arrival_ns);
+    if (answered) {
+      // Pace the next `d` on the radar's frame grid, kPollLead of a period before its next
+      // frame, not on this answer's arrival: a late answer does not push the next request
+      // past the frame (which would then wait at the radar and arrive up to a period late,
+      // a delay the envelope cannot tell from the clock).
+      const double ahead_ns = static_cast<double>(stamps_.Predict(frame_index_ + 1) - arrival_ns) -
+                              kPollLead * stamps_.ns_per_unit();
+      const double period_s = std::chrono::duration<double>(period_).count();
+      const double wait_s = std::clamp(ahead_ns * 1e-9 / clock_scale_, 0.0, period_s);
+      next_due_ =
+          now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(wait_s));
+    }
+  }
   ++scans_;
   sink_(std::move(scan));
+}
+
+TimestampNs Lt102Driver::StampFrame(TimestampNs arrival_ns) {
+  std::int64_t k = 0;
+  if (stamps_.anchored()) {
+    // Grid points after the last frame up to the request: 0 when the `d` was sent before
+    // the next one (it waited for it), n when it went out n periods late.
+    const double since_ns = static_cast<double>(request_ns_ - stamps_.Predict(frame_index_));
+    const auto late = static_cast<std::int64_t>(std::floor(since_ns / stamps_.ns_per_unit()));
+    k = frame_index_ + std::max<std::int64_t>(1, late);
+  }
+  frame_index_ = k;
+  const TimestampNs stamp = stamps_.Stamp(k, arrival_ns);
+  if (stats_.stamp_trace.size() < 100000) stats_.stamp_trace.push_back({arrival_ns, stamp});
+  stats_.stamp_reanchors = stamps_.reanchors();
+  return stamp;
 }
 
 void Lt102Driver::OnStop(SerialPort& port) {

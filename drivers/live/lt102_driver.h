@@ -6,7 +6,16 @@
 // live.lt102.frame_timeout_s is counted lost and the decoder resynchronises on the next
 // 0xFF. Each raw-data answer is validated (size = total x 2 x bytes per value, samples
 // per scan = the count from the echoed range, one channel, the configured format) and
-// its I samples handed to the sink, which stamps them on the host clock. On a deliberate
+// its I samples handed to the sink. With a clock, each scan is stamped by a StreamClock
+// (stream_clock.h) on the radar's acquisition grid, not at the answer's arrival: what is
+// periodic in polled acquisition is the radar's frame clock (it acquires at the echoed frame
+// rate whether or not a `d` waits; a waiting `d` is answered as the frame is acquired). The
+// frame's index on that grid comes from the request time, which the link thread takes just
+// before writing, not from the arrival: a request sent before the next grid point gets that
+// frame (last + 1); one sent n > 1 periods late gets the newest, last + n (the frames in
+// between were overwritten at the radar). The answers' arrivals against those indices give
+// the lower envelope; re-anchored at every start-up (new frame rate). Without a clock the
+// sink stamps at arrival (scan.stamp_ns = 0). On a deliberate
 // stop and before a power cycle the radar is stopped with `o`. Faults go to the FaultLog.
 #pragma once
 
@@ -19,6 +28,7 @@
 
 #include "drivers/live/device_link.h"
 #include "drivers/live/lt102_startup.h"
+#include "drivers/live/stream_clock.h"
 #include "slam/config.h"
 #include "slam/types.h"
 
@@ -39,7 +49,11 @@ struct Lt102Stats {
   Lt102ExchangeCounts exchange;      ///< start-up and stop requests, wrong / missing answers
   double answer_p50_ms = 0.0, answer_p99_ms = 0.0, answer_max_ms = 0.0;  ///< `d` to answer
   bool configured = false;
-  Lt102Setup setup;  ///< of the last start-up
+  Lt102Setup setup;               ///< of the last start-up
+  long long stamp_reanchors = 0;  ///< the StreamClock's (start-ups not counted)
+  /// (arrival, stamp) of the first 100000 scans stamped (host clock): for measuring the
+  /// filter against an emulator's true send times.
+  std::vector<std::pair<TimestampNs, TimestampNs>> stamp_trace;
 };
 
 class Lt102Driver : public LinkProtocol {
@@ -48,8 +62,10 @@ class Lt102Driver : public LinkProtocol {
   using EventSink = std::function<void(const std::string& event)>;
 
   /// `name` labels faults and events (e.g. "radar left").
+  /// `clock` (optional) gives host-clock stamps running `clock_scale` times wall time.
   Lt102Driver(std::string name, int sensor_id, const Config& config, FaultLog* faults,
-              ScanSink sink, EventSink events = {});
+              ScanSink sink, EventSink events = {}, std::function<TimestampNs()> clock = {},
+              double clock_scale = 1.0);
 
   bool OnOpen(SerialPort& port) override;
   double OnPoll(SerialPort& port) override;
@@ -62,12 +78,16 @@ class Lt102Driver : public LinkProtocol {
   /// `error` on timeout. Any thread.
   bool WaitConfigured(double timeout_s, Lt102Setup* setup, std::string* error);
   long long scans() const { return scans_; }
+  /// Frames are requested only while `gate` returns true (set before the link starts): the
+  /// serial source polls the radars once odometry flows, so no scan precedes the first pose.
+  void set_acquisition_gate(std::function<bool()> gate) { gate_ = std::move(gate); }
   /// After the link stopped.
   Lt102Stats stats() const;
 
  private:
   using Clock = std::chrono::steady_clock;
   void HandleFrame(const Lt102Frame& frame);
+  TimestampNs StampFrame(TimestampNs arrival_ns);
 
   std::string name_;
   int sensor_id_;
@@ -81,6 +101,12 @@ class Lt102Driver : public LinkProtocol {
   std::vector<Lt102Frame> frames_;
   Lt102RawData raw_;
   std::atomic<long long> scans_{0};
+  std::function<TimestampNs()> clock_;
+  std::function<bool()> gate_;
+  double clock_scale_;
+  StreamClock stamps_;
+  TimestampNs request_ns_ = 0;    ///< host clock when the `d` in flight was written
+  std::int64_t frame_index_ = 0;  ///< of the last frame stamped
   // Acquisition state (link thread).
   bool acquiring_ = false;
   bool in_flight_ = false;

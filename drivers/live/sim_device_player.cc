@@ -80,7 +80,27 @@ void ConfigureLiveForEmulation(Config* config, double speed) {
       static_cast<int>(std::lround(config->simulator.radar.rate_hz * speed));
 }
 
-void SimDevicePlayer::SendScan(int radar, const RadarScan& scan) {
+std::vector<std::vector<TimestampNs>> SimDevicePlayer::scan_send_ns() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return scan_send_ns_;
+}
+
+void SimDevicePlayer::SendScan(int radar, const RadarScan& scan, Clock::time_point due) {
+  {
+    // The scan's true time on the host clock: when the simulated run says it was acquired
+    // (this thread may be late: the frame is then handed out late, not acquired late).
+    const TimestampNs now =
+        clock_() -
+        static_cast<TimestampNs>(std::llround(
+            static_cast<double>(
+                std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - due).count()) *
+            speed_));
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (scan_send_ns_.size() <= static_cast<std::size_t>(radar)) {
+      scan_send_ns_.resize(static_cast<std::size_t>(radar) + 1);
+    }
+    scan_send_ns_[static_cast<std::size_t>(radar)].push_back(now);
+  }
   radars_[static_cast<std::size_t>(radar)]->Acquire(
       scan.samples, config_.radars[static_cast<std::size_t>(radar)].range_offset_m);
 }
@@ -164,7 +184,7 @@ void SimDevicePlayer::Loop() {
         break;
       case sim::SimMessage::Kind::kRadarScan:
         if (msg.scan.sensor_id < static_cast<int>(radars_.size()))
-          SendScan(msg.scan.sensor_id, msg.scan);
+          SendScan(msg.scan.sensor_id, msg.scan, target);
         break;
       case sim::SimMessage::Kind::kLaserScan:
         break;

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -73,12 +74,15 @@ class SimDevicePlayer {
   bool done() const { return done_; }
   /// Ground truth so far, stamped on the drivers' clock.
   std::vector<OdometrySample> ground_truth() const;
+  /// Each radar's frames' true times on the host clock (the simulated run's acquisition
+  /// times, played from the start of the run), whenever this thread got to them.
+  std::vector<std::vector<TimestampNs>> scan_send_ns() const;
   EmulatorCounts counts() const;
   double duration_s() const { return duration_s_; }
 
  private:
   void Loop();
-  void SendScan(int radar, const RadarScan& scan);
+  void SendScan(int radar, const RadarScan& scan, std::chrono::steady_clock::time_point due);
   void SendOdometry(TimestampNs sim_stamp_ns, const OdometrySample& odometry);
 
   Config config_;
@@ -93,6 +97,7 @@ class SimDevicePlayer {
   std::atomic<bool> stop_{false}, done_{false};
   mutable std::mutex mutex_;
   std::vector<OdometrySample> ground_truth_;
+  std::vector<std::vector<TimestampNs>> scan_send_ns_;
   EmulatorCounts counts_;
   // Kobuki state: ticks recovered from the simulated odometry.
   bool have_last_odometry_ = false;

@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -71,9 +72,11 @@ TEST(LiveAcceptanceTest, A_B_RealTimeRunMatchesOfflineMappingAndReportsLatency) 
       AcceptedLoops(*offline.slam), 100 * offline_ate.rmse_m, AcceptedLoops(*replay.slam));
   std::printf(
       "B: scan-to-tile latency p50 %.1f ms, p99 %.1f ms, max %.1f ms over %lld scans; "
-      "%lld dropped from processing; snapshot max %.2f s\n",
+      "%lld dropped from processing; snapshot p50 %.2f s, max %.2f s, lock held max %.3f ms, "
+      "keyframe thread's longest lock wait %.3f ms%s\n",
       r.latency_p50_ms, r.latency_p99_ms, r.latency_max_ms, r.latency_samples,
-      r.dropped_from_processing, r.snapshot_max_s);
+      r.dropped_from_processing, r.snapshot_p50_s, r.snapshot_max_s, 1e3 * r.snapshot_lock_max_s,
+      1e3 * r.keyframe_lock_wait_max_s, std::getenv("UWBSAR_UNDER_LOAD") ? " (under load)" : "");
   for (const auto& [name, s] : r.radars) {
     std::printf(
         "A: %s polled at %d frames/s: %lld requests, %lld answers, %lld lost; "
@@ -87,7 +90,9 @@ TEST(LiveAcceptanceTest, A_B_RealTimeRunMatchesOfflineMappingAndReportsLatency) 
   EXPECT_EQ(r.dropped_from_processing, 0);
   // B: keyframe work runs on the SlamSystem's own thread and snapshots on another, so
   // the feeding thread only images (measured p99 20.5 ms; it was 71 ms with both on it).
-  EXPECT_LE(r.latency_p99_ms, 50.0);
+  // Margin measured under load: p99 20 ms idle, 44 ms with uwbsar_load --memory-mib 256 on
+  // the 2-core machine (busy thread per core); the limit is over 3x the loaded figure.
+  EXPECT_LE(r.latency_p99_ms, 150.0);
   // A: the recording replays the live run exactly. Against `uwbsar map` of the simulated
   // run the inputs are the same except for the host's sub-millisecond arrival jitter
   // (p50 0.2 ms), which changes which scans the 3 mm travel gate keeps now and then and
@@ -97,7 +102,10 @@ TEST(LiveAcceptanceTest, A_B_RealTimeRunMatchesOfflineMappingAndReportsLatency) 
   EXPECT_TRUE(NonMarginalDifferences(*r.run.slam, *offline.slam).empty());
   EXPECT_LE(std::abs(AcceptedLoops(*r.run.slam) - AcceptedLoops(*offline.slam)), 2);
   EXPECT_EQ(AcceptedPairs(*r.run.slam), AcceptedPairs(*replay.slam));
-  EXPECT_LT(std::abs(r.outputs.ate.rmse_m - offline_ate.rmse_m), 0.01);
+  // Issue 15: within 0.1 cm of the offline ATE, idle or under uwbsar_load (.ci/run).
+  EXPECT_LT(std::abs(r.outputs.ate.rmse_m - offline_ate.rmse_m), 0.001);
+  // No scan dropped at start-up: the radars are polled once odometry flows.
+  EXPECT_EQ(r.run.slam->frontend_stats().scans_rejected_no_odometry, 0);
   ASSERT_EQ(a.size(), b.size());
   double max_diff = 0.0;
   for (std::size_t k = 0; k < a.size(); ++k) {

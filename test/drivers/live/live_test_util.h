@@ -23,6 +23,7 @@ struct EmulatedRun {
   std::vector<OdometrySample> ground_truth;
   EmulatorCounts emulator;
   std::string out_dir;
+  std::vector<std::vector<TimestampNs>> scan_send_ns;  ///< per radar, true acquisition times
 };
 
 /// The accepted loops as (earlier keyframe, new keyframe) ids: keyframe ids are world-
@@ -74,6 +75,7 @@ inline EmulatedRun RunEmulated(Config config, const std::string& name, double sp
   player.Stop();
   out.ground_truth = player.ground_truth();
   out.emulator = player.counts();
+  out.scan_send_ns = player.scan_send_ns();
   return out;
 }
 
