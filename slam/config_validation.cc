@@ -236,6 +236,8 @@ void ValidateLive(const LiveConfig& l, const std::string& src) {
   Require(l.reconnect_initial_s > 0, src, k + "reconnect_initial_s", "must be > 0");
   Require(l.reconnect_max_s >= l.reconnect_initial_s, src, k + "reconnect_max_s",
           "must be >= reconnect_initial_s");
+  Require(l.driver_priority >= 0 && l.driver_priority <= 99, src, k + "driver_priority",
+          "must be 0 (normal priority) or a SCHED_FIFO priority 1..99");
   Require(l.processing_queue_size >= 1, src, k + "processing_queue_size", "must be >= 1");
   Require(l.snapshot_period_s >= 0, src, k + "snapshot_period_s", "must be >= 0");
   Require(l.recording_storage == "mcap" || l.recording_storage == "sqlite3", src,

@@ -69,8 +69,12 @@ struct LiveConfig {
   double read_timeout_s = 1.0;         ///< a link silent this long is reconnected
   double reconnect_initial_s = 0.2;    ///< first reconnect delay, doubled per failure
   double reconnect_max_s = 5.0;        ///< reconnect delay cap
-  int processing_queue_size = 4000;    ///< messages waiting for SLAM; beyond, the oldest
-                                       ///< are dropped from processing (never from recording)
+  /// SCHED_FIFO priority (1-99) of the device link threads (and the emulator's), so a busy
+  /// CPU does not make them poll late; 0 = normal priority. Refused without the right to
+  /// (root, CAP_SYS_NICE or an rtprio limit): one warning, the run goes on.
+  int driver_priority = 20;
+  int processing_queue_size = 4000;  ///< messages waiting for SLAM; beyond, the oldest
+                                     ///< are dropped from processing (never from recording)
   /// Serial: stamped messages of the radars and the base are put back in stamp order
   /// within this much wall time before SLAM and the recording see them.
   double reorder_window_s = 0.1;
@@ -104,6 +108,7 @@ struct LiveConfig {
     v("read_timeout_s", read_timeout_s);
     v("reconnect_initial_s", reconnect_initial_s);
     v("reconnect_max_s", reconnect_max_s);
+    v("driver_priority", driver_priority);
     v("processing_queue_size", processing_queue_size);
     v("reorder_window_s", reorder_window_s);
     v("snapshot_period_s", snapshot_period_s);

@@ -47,6 +47,7 @@ class SerialSource : public LiveSource {
     policy.reconnect_initial_s = lc_.reconnect_initial_s;
     policy.reconnect_max_s = lc_.reconnect_max_s;
     policy.power_cycle_after_failures = lc_.power_cycle_after_failures;
+    policy.realtime_priority = lc_.driver_priority;
     for (std::size_t i = 0; i < config.radars.size(); ++i) {
       const std::string name = "radar " + config.radars[i].name;
       radar_names_.push_back(name);

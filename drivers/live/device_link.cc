@@ -4,6 +4,7 @@
 #include <chrono>
 #include <vector>
 
+#include "drivers/live/thread_priority.h"
 #include "slam/log.h"
 
 namespace uwbsar::live {
@@ -42,6 +43,7 @@ bool DeviceLink::Wait(double s) {
 }
 
 void DeviceLink::Loop() {
+  RequestRealtimeOrWarn(policy_.realtime_priority, name_);
   SerialPort port;
   std::vector<std::uint8_t> buffer(1 << 16);
   double backoff_s = policy_.reconnect_initial_s;

@@ -27,6 +27,7 @@ struct LinkPolicy {
   double reconnect_initial_s = 0.2;
   double reconnect_max_s = 5.0;
   int power_cycle_after_failures = 3;
+  int realtime_priority = 0;  ///< SCHED_FIFO priority of the link thread; 0 = normal
 };
 
 /// What a device speaks.

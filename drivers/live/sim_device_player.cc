@@ -5,6 +5,7 @@
 #include <random>
 
 #include "drivers/live/kobuki_protocol.h"
+#include "drivers/live/thread_priority.h"
 
 namespace uwbsar::live {
 namespace {
@@ -147,6 +148,8 @@ void SimDevicePlayer::SendOdometry(TimestampNs sim_stamp_ns, const OdometrySampl
 }
 
 void SimDevicePlayer::Loop() {
+  // The emulated devices stand for hardware that does not share the host's CPU.
+  RequestRealtimeOrWarn(config_.live.driver_priority, "device emulator");
   const auto t0 = Clock::now();
   sim::SimMessage msg;
   while (!stop_ && stream_.Next(&msg)) {
