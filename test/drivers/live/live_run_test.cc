@@ -16,7 +16,7 @@ namespace {
 TEST(LiveRunTest, RecordingMappedOfflineReproducesTheLiveTrajectory) {
   UWBSAR_NEED_SEED_LAB_MAP();
   Config config;
-  config.live.snapshot_period_s = 2.0;
+  config.live.snapshot_period_s = 1.0;
   const EmulatedRun live = RunEmulated(config, "short", 2.0, 14.0);
   const tools::LiveRunResult& r = live.result;
   ASSERT_TRUE(r.run.slam);
@@ -32,7 +32,10 @@ TEST(LiveRunTest, RecordingMappedOfflineReproducesTheLiveTrajectory) {
   EXPECT_GE(r.recorded_messages, r.scans_received + r.odometry_received);
   EXPECT_GT(r.latency_samples, 500);
   EXPECT_GT(r.latency_p99_ms, 0.0);
-  EXPECT_GE(r.snapshots, 2);
+  // Snapshots were taken while SLAM ran (not a rate check: each waits for the first
+  // keyframe and takes about 0.1 s idle, up to 2 s with uwbsar_load and a compiler busy, when
+  // a 2 s period gave one snapshot in the 7 s run).
+  EXPECT_GE(r.snapshots, 1);
   // Offline, from the recording: the same trajectory, pose by pose.
   const tools::MapRun offline = tools::MapBag(config, r.recording_path, false);
   const auto a = r.run.slam->CorrectedTrajectory();
@@ -224,10 +227,15 @@ TEST(LiveRunTest, RadarStampsFollowTheAcquisitionTimesNotTheArrivals) {
       "%.3f p99 %.3f max %.3f ms\n",
       std::getenv("UWBSAR_UNDER_LOAD") ? " (under load)" : "", raw.size(), a.p50_ms, a.p99_ms,
       a.max_ms, f.p50_ms, f.p99_ms, f.max_ms);
-  // Relative, not absolute: measured idle filtered p50/p99/max 0.43/0.70/0.72 ms against raw
-  // 0.67/3.1/7.5 ms; under uwbsar_load 1.8/4.9/5.0 ms against 6.4/40/118 ms (a frame more
-  // than half a period off is matched to its neighbour, so 5 ms is the measure's ceiling).
-  EXPECT_LT(f.p50_ms, a.p50_ms);
+  // Relative, not absolute (a frame more than half a period off is matched to its
+  // neighbour, so 5 ms is the measure's ceiling). At normal priority: idle filtered
+  // p50/p99/max 0.43/0.70/0.72 ms against raw 0.67/3.1/7.5 ms; under uwbsar_load 1.8/4.9/5.0
+  // against 6.4/40/118 ms. With the link threads under SCHED_FIFO (live.driver_priority) the
+  // raw arrivals' median is near the transfer time the envelope cannot see either (raw p50
+  // 0.57-0.60 ms against filtered 0.39-0.51 ms, with a compiler and uwbsar_load running): the
+  // filter wins in the tail (raw p99 4.2-10.5 ms, filtered 0.56-4.7 ms), and its median may
+  // not be worse than the raw one by more than a tenth of a millisecond.
+  EXPECT_LT(f.p50_ms, a.p50_ms + 0.1);
   EXPECT_LT(f.p99_ms, a.p99_ms);
 }
 
