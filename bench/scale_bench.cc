@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "tools/map_job.h"
+#include "pipeline/map_job.h"
 
 namespace uwbsar {
 namespace {

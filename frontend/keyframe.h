@@ -7,8 +7,8 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "frontend/image_grid.h"
 #include "frontend/range_profile.h"
+#include "imaging/image_grid.h"
 #include "slam/types.h"
 
 namespace uwbsar {

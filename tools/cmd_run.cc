@@ -14,9 +14,9 @@
 #include "drivers/live/host_clock.h"
 #include "drivers/live/sim_device_player.h"
 #include "drivers/sim/sim_stream.h"
+#include "pipeline/live_runner.h"
 #include "slam/interrupt_cleanup.h"
 #include "tools/commands.h"
-#include "tools/live_runner.h"
 
 namespace uwbsar::tools {
 

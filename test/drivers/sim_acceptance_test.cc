@@ -28,9 +28,9 @@
 #include "drivers/sim/grid_ray_caster.h"
 #include "drivers/sim/sim_recorder.h"
 #include "drivers/sim/sim_stream.h"
-#include "frontend/enhance.h"
 #include "frontend/imaging_frontend.h"
 #include "frontend/strip_renderer.h"
+#include "imaging/enhance.h"
 #include "test/drivers/sim_test_util.h"
 
 namespace uwbsar::sim {

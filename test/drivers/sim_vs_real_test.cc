@@ -29,10 +29,10 @@
 #include <vector>
 
 #include "drivers/sim/sim_stream.h"
-#include "frontend/enhance.h"
-#include "frontend/image_io.h"
 #include "frontend/imaging_frontend.h"
 #include "frontend/strip_renderer.h"
+#include "imaging/enhance.h"
+#include "imaging/image_io.h"
 #include "slam/config_io.h"
 #include "test/drivers/sim_test_util.h"
 

@@ -16,12 +16,12 @@
 
 #include "drivers/rosbag/bag_reader.h"
 #include "drivers/tum_reader.h"
+#include "pipeline/live_runner.h"
+#include "pipeline/map_job.h"
 #include "slam/occupancy_grid.h"
 #include "test/drivers/dds/dds_test_util.h"
-#include "test/drivers/live/live_test_util.h"
+#include "test/pipeline/live_test_util.h"
 #include "test/shared_data.h"
-#include "tools/live_runner.h"
-#include "tools/map_job.h"
 
 namespace uwbsar::tools {
 namespace {
