@@ -12,9 +12,9 @@
 #include "pipeline/live_recorder.h"
 #include "pipeline/live_ros2_results.h"
 #include "pipeline/live_source.h"
+#include "pipeline/output_folder.h"
 #include "slam/errors.h"
 #include "slam/log.h"
-#include "tools/commands.h"
 
 namespace uwbsar::tools {
 namespace {

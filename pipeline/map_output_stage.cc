@@ -9,8 +9,8 @@
 #include <filesystem>
 
 #include "pipeline/map_outputs.h"
+#include "pipeline/output_folder.h"
 #include "slam/errors.h"
-#include "tools/commands.h"
 
 namespace uwbsar::tools {
 namespace fs = std::filesystem;

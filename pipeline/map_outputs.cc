@@ -24,7 +24,6 @@
 #include "pipeline/imaging_job.h"
 #include "pipeline/report_html.h"
 #include "slam/errors.h"
-#include "tools/commands.h"
 
 namespace uwbsar::tools {
 namespace fs = std::filesystem;

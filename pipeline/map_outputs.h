@@ -85,7 +85,4 @@ MapOutputs WriteMapOutputs(const MapState& state, const std::string& out_dir);
 /// with slam.keep_scan_profiles (std::logic_error otherwise).
 std::vector<std::string> WriteExactMap(const MapRun& run, const std::string& out_dir);
 
-/// The five-line summary printed by `uwbsar map` and `uwbsar demo`.
-void PrintMapSummary(const MapRun& run, const MapOutputs& outputs, const std::string& out_dir);
-
 }  // namespace uwbsar::tools
