@@ -22,18 +22,13 @@
 #include "imaging/enhance.h"
 #include "imaging/image_io.h"
 #include "pipeline/imaging_job.h"
+#include "pipeline/map_report.h"
 #include "pipeline/report_html.h"
 #include "slam/errors.h"
 
 namespace uwbsar::tools {
 namespace fs = std::filesystem;
 namespace {
-
-std::string Fixed(double v, int digits) {
-  std::ostringstream out;
-  out << std::fixed << std::setprecision(digits) << v;
-  return out.str();
-}
 
 std::vector<std::pair<double, Pose2>> InSeconds(
     const std::vector<std::pair<TimestampNs, Pose2>>& trajectory) {
@@ -162,201 +157,170 @@ MapOutputs MapOutputStage::Commit(const MapRun& run, const MapOutputOptions& opt
 
 MapOutputs MapOutputStage::Commit(const MapState& state) { return CommitState(state, nullptr); }
 
-MapOutputs MapOutputStage::CommitState(const MapState& run, const MapRun* exact_from) {
+namespace {
+
+/// trajectory.tum, odometry.tum, graph.g2o, loops.csv and, with ground truth,
+/// ground_truth.tum and the ATEs in `result`. Appends the names written to `names` (but
+/// ground_truth.tum, which CommitState lists after report.html, as `files` always had it).
+MapTrajectories WriteTrajectories(const MapState& run, const fs::path& stage, MapOutputs* result,
+                                  std::vector<std::string>* names) {
+  const SlamSnapshot& slam = run.slam;
+  auto staged = [&](const char* name) { return (stage / name).string(); };
+  MapTrajectories traj;
+  traj.slam = slam.CorrectedTrajectory();
+  for (const OdometryEntry& e : slam.odometry)
+    traj.odometry.push_back({e.stamp_ns, e.T_world_robot});
+  WriteTum(staged("trajectory.tum"), InSeconds(traj.slam));
+  WriteTum(staged("odometry.tum"), InSeconds(traj.odometry));
+  WriteTextAtomic(staged("graph.g2o"), G2oText(slam.poses, slam.edges, slam.fixed_ids));
+  WriteTextAtomic(staged("loops.csv"), LoopsCsv(slam));
+  names->insert(names->end(), {"trajectory.tum", "odometry.tum", "graph.g2o", "loops.csv"});
+  if (!run.ground_truth.empty()) {
+    for (const OdometrySample& g : run.ground_truth) {
+      traj.ground_truth.push_back({g.stamp_ns, g.T_world_robot});
+    }
+    WriteTum(staged("ground_truth.tum"), InSeconds(traj.ground_truth));
+    result->ate = TrajectoryError(traj.slam, run.ground_truth);
+    result->odometry_ate = TrajectoryError(traj.odometry, run.ground_truth);
+  }
+  return traj;
+}
+
+/// The global map's extent and size, for summary.json.
+struct MapExtent {
+  ImageGrid grid;
+  std::size_t blocks = 0;
+  std::size_t memory_bytes = 0;
+};
+
+/// The global map from the optimised keyframes: map_float.tif, map_grid.yaml, map.png, and
+/// its occupancy grid map.yaml + map.pgm.
+MapExtent WriteMapAndOccupancy(const MapState& run, const StampedPoses& trajectory,
+                               const fs::path& stage, std::vector<std::string>* names) {
   const SlamSnapshot& slam = run.slam;
   const Config& config = *slam.config;
-  const std::string& out_dir = out_dir_;
-  MapOutputs result;
-  const fs::path stage = stage_;
   auto staged = [&](const char* name) { return (stage / name).string(); };
-  {
-    // Trajectories.
-    const auto trajectory = slam.CorrectedTrajectory();
-    std::vector<std::pair<TimestampNs, Pose2>> odometry;
-    for (const OdometryEntry& e : slam.odometry) odometry.push_back({e.stamp_ns, e.T_world_robot});
-    WriteTum(staged("trajectory.tum"), InSeconds(trajectory));
-    WriteTum(staged("odometry.tum"), InSeconds(odometry));
-    WriteTextAtomic(staged("graph.g2o"), G2oText(slam.poses, slam.edges, slam.fixed_ids));
-    WriteTextAtomic(staged("loops.csv"), LoopsCsv(slam));
-    std::vector<std::string> names = {"trajectory.tum", "odometry.tum",  "graph.g2o", "loops.csv",
-                                      "map_float.tif",  "map_grid.yaml", "map.png",   "map.yaml",
-                                      "map.pgm",        "report.html"};
-    if (!run.ground_truth.empty()) {
-      std::vector<std::pair<double, Pose2>> gt;
-      for (const OdometrySample& g : run.ground_truth)
-        gt.push_back({NsToSeconds(g.stamp_ns), g.T_world_robot});
-      WriteTum(staged("ground_truth.tum"), gt);
-      names.push_back("ground_truth.tum");
-      result.ate = TrajectoryError(trajectory, run.ground_truth);
-      result.odometry_ate = TrajectoryError(odometry, run.ground_truth);
-    }
+  GlobalMap global(config.slam.map_resolution_m);
+  for (const TileSnapshot& k : slam.tiles) {
+    global.AddTile(k.detected, k.detected_grid, slam.poses.at(k.id));
+  }
+  MapExtent extent;
+  cv::Mat observed;
+  const cv::Mat map = global.Render(&extent.grid, &observed);
+  WriteFloatTiff(staged("map_float.tif"), map);
+  WriteTextAtomic(staged("map_grid.yaml"),
+                  GridYaml(extent.grid, "map_float.tif and map.png", "map_float.tif"));
+  WriteImageAtomic(staged("map.png"), RenderMapPng(map, observed, extent.grid, slam, trajectory,
+                                                   config.enhance.colormap));
+  const OccupancyGrid occupancy =
+      MapToOccupancy(map, observed, extent.grid, config.slam.occupancy_resolution_m,
+                     config.slam.occupied_fraction, config.slam.occupancy_reference_percentile);
+  WriteOccupancyGrid(staged("map.yaml"), "map.pgm", occupancy);
+  names->insert(names->end(), {"map_float.tif", "map_grid.yaml", "map.png", "map.yaml", "map.pgm"});
+  extent.blocks = global.num_blocks();
+  extent.memory_bytes = global.memory_bytes();
+  return extent;
+}
 
-    // The global map from the optimised keyframes.
-    GlobalMap global(config.slam.map_resolution_m);
-    const auto& poses = slam.poses;
-    for (const TileSnapshot& k : slam.tiles)
-      global.AddTile(k.detected, k.detected_grid, poses.at(k.id));
-    ImageGrid grid;
-    cv::Mat observed;
-    const cv::Mat map = global.Render(&grid, &observed);
-    WriteFloatTiff(staged("map_float.tif"), map);
-    WriteTextAtomic(staged("map_grid.yaml"),
-                    GridYaml(grid, "map_float.tif and map.png", "map_float.tif"));
-    WriteImageAtomic(staged("map.png"),
-                     RenderMapPng(map, observed, grid, slam, trajectory, config.enhance.colormap));
-    const OccupancyGrid occupancy =
-        MapToOccupancy(map, observed, grid, config.slam.occupancy_resolution_m,
-                       config.slam.occupied_fraction, config.slam.occupancy_reference_percentile);
-    WriteOccupancyGrid(staged("map.yaml"), "map.pgm", occupancy);
+/// The content of summary.json (`ate`, `odometry_ate` from `outputs`).
+nlohmann::json SummaryJson(const MapState& run, const MapOutputs& outputs,
+                           const MapExtent& extent) {
+  const SlamSnapshot& slam = run.slam;
+  const FrontendStats& fs_stats = slam.frontend_stats;
+  const LoopCounts counts = CountLoops(slam);
+  nlohmann::json s;
+  s["input"] = run.input;
+  s["log_duration_s"] = run.log_duration_s;
+  s["processing_s"] = run.processing_s;
+  s["real_time_factor"] = run.processing_s > 0 ? run.log_duration_s / run.processing_s : 0.0;
+  s["peak_memory_mib"] = PeakMemoryMiB();
+  s["keyframes"] = slam.tiles.size();
+  s["path_length_m"] = slam.odometry.empty() ? 0.0 : slam.odometry.back().path_m;
+  s["loops"] = {{"candidates", slam.loops.size()},
+                {"validated", counts.validated},
+                {"accepted", counts.accepted},
+                {"rejected_by_backend", counts.backend_rejected}};
+  s["scans"] = {{"received", fs_stats.scans_received},
+                {"imaged", fs_stats.scans_imaged},
+                {"gated", fs_stats.scans_gated},
+                {"rejected", fs_stats.scans_rejected()},
+                {"rejected_wrong_length", fs_stats.scans_rejected_length},
+                {"rejected_non_finite", fs_stats.scans_rejected_nonfinite},
+                {"rejected_no_odometry",
+                 fs_stats.scans_rejected_no_odometry + fs_stats.scans_rejected_stale}};
+  s["odometry"] = {
+      {"received", fs_stats.odometry_received},
+      {"jumps_corrected", fs_stats.odometry_jumps_corrected},
+      {"rejected", fs_stats.odometry_rejected_out_of_order + fs_stats.odometry_rejected_nonfinite +
+                       fs_stats.odometry_rejected_implausible},
+      {"rejected_implausible", fs_stats.odometry_rejected_implausible}};
+  const StageTimes& t = slam.times;
+  s["time_s"] = {{"imaging", t.imaging_s},
+                 {"features", t.features_s},
+                 {"matching", t.matching_s},
+                 {"optimization", t.optimization_s},
+                 {"total", run.processing_s}};
+  const OptimizeResult& opt = slam.last_optimization;
+  s["optimization"] = {{"converged", opt.converged},
+                       {"termination", opt.termination},
+                       {"iterations", opt.iterations},
+                       {"final_cost", opt.final_cost}};
+  s["map"] = {{"resolution_m", extent.grid.resolution_m},
+              {"rows", extent.grid.rows},
+              {"cols", extent.grid.cols},
+              {"blocks", extent.blocks},
+              {"memory_mib", static_cast<double>(extent.memory_bytes) / 1048576.0}};
+  if (outputs.ate.num_poses > 0) {
+    s["ate"] = AteJson(outputs.ate);
+    s["odometry_ate"] = AteJson(outputs.odometry_ate);
+  }
+  return s;
+}
 
-    // Summary.
-    const FrontendStats& fs_stats = slam.frontend_stats;
-    int validated = 0, accepted = 0, backend_rejected = 0;
-    for (const LoopRecord& l : slam.loops) {
-      validated += l.validation.accepted;
-      accepted += l.accepted();
-      backend_rejected += l.validation.accepted && l.rejected_by_backend;
-    }
-    const double rtf = run.processing_s > 0 ? run.log_duration_s / run.processing_s : 0.0;
-    nlohmann::json& s = result.summary;
-    s["input"] = run.input;
-    s["log_duration_s"] = run.log_duration_s;
-    s["processing_s"] = run.processing_s;
-    s["real_time_factor"] = rtf;
-    s["peak_memory_mib"] = PeakMemoryMiB();
-    s["keyframes"] = slam.tiles.size();
-    s["path_length_m"] = slam.odometry.empty() ? 0.0 : slam.odometry.back().path_m;
-    s["loops"] = {{"candidates", slam.loops.size()},
-                  {"validated", validated},
-                  {"accepted", accepted},
-                  {"rejected_by_backend", backend_rejected}};
-    s["scans"] = {{"received", fs_stats.scans_received},
-                  {"imaged", fs_stats.scans_imaged},
-                  {"gated", fs_stats.scans_gated},
-                  {"rejected", fs_stats.scans_rejected()},
-                  {"rejected_wrong_length", fs_stats.scans_rejected_length},
-                  {"rejected_non_finite", fs_stats.scans_rejected_nonfinite},
-                  {"rejected_no_odometry",
-                   fs_stats.scans_rejected_no_odometry + fs_stats.scans_rejected_stale}};
-    s["odometry"] = {{"received", fs_stats.odometry_received},
-                     {"jumps_corrected", fs_stats.odometry_jumps_corrected},
-                     {"rejected", fs_stats.odometry_rejected_out_of_order +
-                                      fs_stats.odometry_rejected_nonfinite +
-                                      fs_stats.odometry_rejected_implausible},
-                     {"rejected_implausible", fs_stats.odometry_rejected_implausible}};
-    const StageTimes& t = slam.times;
-    s["time_s"] = {{"imaging", t.imaging_s},
-                   {"features", t.features_s},
-                   {"matching", t.matching_s},
-                   {"optimization", t.optimization_s},
-                   {"total", run.processing_s}};
-    const OptimizeResult& opt = slam.last_optimization;
-    s["optimization"] = {{"converged", opt.converged},
-                         {"termination", opt.termination},
-                         {"iterations", opt.iterations},
-                         {"final_cost", opt.final_cost}};
-    s["map"] = {{"resolution_m", grid.resolution_m},
-                {"rows", grid.rows},
-                {"cols", grid.cols},
-                {"blocks", global.num_blocks()},
-                {"memory_mib", static_cast<double>(global.memory_bytes()) / 1048576.0}};
-    if (result.ate.num_poses > 0) {
-      s["ate"] = AteJson(result.ate);
-      s["odometry_ate"] = AteJson(result.odometry_ate);
-    }
-
-    // report.html (built from the staged files, so it shows exactly what was written).
-    RunReport report;
-    report.title = "uwbsar map: " + run.input;
-    report.summary = {{"log duration", Fixed(run.log_duration_s, 1) + " s"},
-                      {"processing time",
-                       Fixed(run.processing_s, 2) + " s (real-time factor " + Fixed(rtf, 1) + ")"},
-                      {"path length", Fixed(s["path_length_m"].get<double>(), 2) + " m"},
-                      {"keyframes", std::to_string(slam.tiles.size())},
-                      {"loops accepted / candidates",
-                       std::to_string(accepted) + " / " + std::to_string(slam.loops.size())},
-                      {"scans imaged / received", std::to_string(fs_stats.scans_imaged) + " / " +
-                                                      std::to_string(fs_stats.scans_received)},
-                      {"peak memory", Fixed(PeakMemoryMiB(), 0) + " MiB"}};
-    if (result.ate.num_poses > 0) {
-      report.summary.push_back({"ATE RMSE (SLAM)", Fixed(result.ate.rmse_m * 100, 2) + " cm"});
-      report.summary.push_back(
-          {"ATE RMSE (odometry)", Fixed(result.odometry_ate.rmse_m * 100, 2) + " cm"});
-    }
-    report.images.push_back(
-        {"SAR map with the optimised trajectory (white), odometry (grey) and "
-         "accepted loops (cyan)",
-         ReadFileBytes(staged("map.png"))});
-    auto points = [](const std::vector<std::pair<TimestampNs, Pose2>>& traj) {
-      std::vector<Point2> out;
-      for (std::size_t i = 0; i < traj.size(); i += 5)
-        out.push_back({traj[i].second.x_m, traj[i].second.y_m});
-      return out;
-    };
-    if (!run.ground_truth.empty()) {
-      std::vector<std::pair<TimestampNs, Pose2>> gt;
-      for (const auto& g : run.ground_truth) gt.push_back({g.stamp_ns, g.T_world_robot});
-      report.trajectories.push_back({"ground truth", "#222222", points(gt)});
-    }
-    report.trajectories.push_back({"odometry", "#e76f51", points(odometry)});
-    report.trajectories.push_back({"SLAM", "#264653", points(trajectory)});
-    for (const LoopRecord& l : slam.loops) {
-      if (!l.accepted()) continue;
-      const Pose2& a = poses.at(l.match_id);
-      const Pose2& b = poses.at(l.query_id);
-      report.loop_segments.push_back({{a.x_m, a.y_m}, {b.x_m, b.y_m}});
-    }
-    ReportTable timing{"Time per stage", {"stage", "seconds", "share"}, {}};
-    for (const auto& [name, secs] :
-         std::vector<std::pair<std::string, double>>{{"imaging", t.imaging_s},
-                                                     {"features", t.features_s},
-                                                     {"matching", t.matching_s},
-                                                     {"optimization", t.optimization_s}}) {
-      timing.rows.push_back(
-          {name, Fixed(secs, 3),
-           Fixed(run.processing_s > 0 ? 100 * secs / run.processing_s : 0, 1) + " %"});
-    }
-    report.tables.push_back(timing);
-    ReportTable loops{"Loop candidates",
-                      {"query", "match", "AKAZE good", "ORB good", "x (m)", "y (m)", "yaw (deg)",
-                       "validator", "backend", "reason"},
-                      {}};
-    for (const LoopRecord& l : slam.loops) {
-      const Pose2& T = l.validation.constraint.T_ij;
-      const bool v = l.validation.accepted;
-      loops.rows.push_back(
-          {std::to_string(l.query_id), std::to_string(l.match_id),
-           std::to_string(l.akaze.good_matches), std::to_string(l.orb.good_matches),
-           v ? Fixed(T.x_m, 3) : "", v ? Fixed(T.y_m, 3) : "",
-           v ? Fixed(T.yaw_rad * 180 / M_PI, 2) : "", v ? "accepted" : "rejected",
-           v ? (l.rejected_by_backend ? "rejected" : "accepted") : "", l.validation.reason});
-    }
-    report.tables.push_back(loops);
-    WriteTextAtomic(staged("report.html"), RenderReportHtml(report));
-    if (exact_from != nullptr) {
-      for (const std::string& f : WriteExactMap(*exact_from, stage.string())) {
-        names.push_back(fs::path(f).filename().string());
-      }
-    }
-    WriteTextAtomic(staged("summary.json"), s.dump(2) + "\n");
-
-    // Commit: drop a previous run's summary first, then the outputs this run does not
-    // write (a committed folder holds one run's files), then rename, the summary last.
-    RemoveOutput(fs::path(out_dir) / "summary.json");
-    for (const std::string& name : AllMapOutputNames()) {
-      if (std::find(names.begin(), names.end(), name) == names.end()) {
-        RemoveOutput(fs::path(out_dir) / name);
-      }
-    }
-    names.push_back("summary.json");
-    for (const std::string& name : names) {
-      const fs::path target = fs::path(out_dir) / name;
-      std::error_code ec;
-      fs::rename(stage / name, target, ec);
-      if (ec) throw std::runtime_error(target.string() + ": cannot commit: " + ec.message());
-      result.files.push_back(target.string());
+/// Commit: drops a previous run's summary first, then the outputs this run does not write
+/// (a committed folder holds one run's files), then renames `names` from `stage` into
+/// `out_dir`, summary.json last. Appends the final paths to `files`.
+void CommitStagedOutputs(const fs::path& stage, const std::string& out_dir,
+                         std::vector<std::string> names, std::vector<std::string>* files) {
+  RemoveOutput(fs::path(out_dir) / "summary.json");
+  for (const std::string& name : AllMapOutputNames()) {
+    if (std::find(names.begin(), names.end(), name) == names.end()) {
+      RemoveOutput(fs::path(out_dir) / name);
     }
   }
+  names.push_back("summary.json");
+  for (const std::string& name : names) {
+    const fs::path target = fs::path(out_dir) / name;
+    std::error_code ec;
+    fs::rename(stage / name, target, ec);
+    if (ec) throw std::runtime_error(target.string() + ": cannot commit: " + ec.message());
+    files->push_back(target.string());
+  }
+}
+
+}  // namespace
+
+MapOutputs MapOutputStage::CommitState(const MapState& run, const MapRun* exact_from) {
+  MapOutputs result;
+  const fs::path stage = stage_;
+  std::vector<std::string> names;
+  const MapTrajectories trajectories = WriteTrajectories(run, stage, &result, &names);
+  const MapExtent extent = WriteMapAndOccupancy(run, trajectories.slam, stage, &names);
+  result.summary = SummaryJson(run, result, extent);
+  // report.html is built from the staged files, so it shows exactly what was written.
+  WriteTextAtomic((stage / "report.html").string(),
+                  RenderReportHtml(BuildMapReport(run, result, trajectories,
+                                                  ReadFileBytes((stage / "map.png").string()))));
+  names.push_back("report.html");
+  // ground_truth.tum is listed here so that MapOutputs::files keeps its order.
+  if (!run.ground_truth.empty()) names.push_back("ground_truth.tum");
+  if (exact_from != nullptr) {
+    for (const std::string& f : WriteExactMap(*exact_from, stage.string())) {
+      names.push_back(fs::path(f).filename().string());
+    }
+  }
+  WriteTextAtomic((stage / "summary.json").string(), result.summary.dump(2) + "\n");
+  CommitStagedOutputs(stage, out_dir_, names, &result.files);
   return result;
 }
 
