@@ -1,5 +1,5 @@
 // Pixel geometry of an image in a metric frame (world or a tile's anchor frame).
-// Convention (DESIGN.md): column = +x, row = -y; pixel (row 0, col 0) is the
+// Convention (the whole project's): column = +x, row = -y; pixel (row 0, col 0) is the
 // top-left pixel and its centre sits at (x0_m, y0_m). All pixel <-> metric
 // conversions of the project go through here.
 #pragma once

@@ -2,7 +2,7 @@
 // take it: an 8- or 16-bit PNG/PGM (the detected, enhanced image of another tool, e.g. the
 // paper's published figures: positive image, blurred, min-max normalised), or a float
 // TIFF as `uwbsar image` and `uwbsar map` write it (1 page real, 2 pages re and im), with
-// its pixel geometry from a grid YAML (slam/sar_grid_metadata.h) when one is found.
+// its pixel geometry from a grid YAML (imaging/sar_grid_metadata.h) when one is found.
 #pragma once
 
 #include <opencv2/core.hpp>

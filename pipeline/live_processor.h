@@ -1,4 +1,4 @@
-// The SLAM half of `uwbsar run` (tools/live_runner.h): the feeding thread takes messages
+// The SLAM half of `uwbsar run` (pipeline/live_runner.h): the feeding thread takes messages
 // from the Dispatcher and feeds the SlamSystem (which images on this thread and does the
 // keyframe work on its own), measuring each scan's latency from arrival to its inclusion
 // in the open tile; the snapshot thread rewrites the map outputs every

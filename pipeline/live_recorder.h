@@ -1,4 +1,4 @@
-// The recording and hand-off half of `uwbsar run` (tools/live_runner.h), shared by every
+// The recording and hand-off half of `uwbsar run` (pipeline/live_runner.h), shared by every
 // source (serial devices, ROS 2 over DDS). A source produces LiveMessages; the
 // Dispatcher stamps each one (or keeps the source's stamp) and hands it to the Recorder,
 // which writes every message to a ROS 2 bag in that order and never drops one, and to

@@ -1,6 +1,6 @@
 // A ROS 2 robot as a live source, over DDS without ROS (drivers/dds): the radar and
 // odometry topics are subscribed, put back into stamp order and dispatched with the
-// publisher's stamps; the results are published for RViz2 (tools/live_ros2_results.h).
+// publisher's stamps; the results are published for RViz2 (pipeline/live_ros2_results.h).
 #include <chrono>
 
 #include "drivers/dds/participant.h"

@@ -1,11 +1,11 @@
-// `uwbsar run`: SLAM live on the robot. A source (tools/live_source.h: the serial
+// `uwbsar run`: SLAM live on the robot. A source (pipeline/live_source.h: the serial
 // drivers of two LT102 radars and the Kobuki base, stamping every message on the host
 // clock; or a ROS 2 robot over DDS, keeping the publisher's stamps) hands messages from
-// its own threads to a dispatcher (tools/live_recorder.h), which passes each to the
+// its own threads to a dispatcher (pipeline/live_recorder.h), which passes each to the
 // recorder (a ROS 2 bag, unbounded queue: nothing is ever dropped from the recording,
 // made durable at least every live.recording_flush_period_s) and to the SLAM feeding
 // thread through a bounded queue (when SLAM falls behind the oldest waiting messages are
-// dropped from processing and counted). The feeding thread (tools/live_processor.h) runs
+// dropped from processing and counted). The feeding thread (pipeline/live_processor.h) runs
 // the same SlamSystem as `uwbsar map` and measures each scan's latency from arrival to
 // its inclusion in the open tile; a snapshot thread rewrites the map outputs atomically
 // every live.snapshot_period_s. Stop (SIGINT/SIGTERM, or the options' stop flag): the
@@ -59,7 +59,7 @@ struct LiveRunResult {
   double snapshot_max_s = 0.0;
   double snapshot_p50_s = 0.0;
   /// The longest a snapshot held the SLAM state lock (the copy), and the longest the
-  /// keyframe thread waited for that lock over the run (issue 15, point 3).
+  /// keyframe thread waited for that lock over the run.
   double snapshot_lock_max_s = 0.0;
   double keyframe_lock_wait_max_s = 0.0;
   std::map<std::string, long long> faults;

@@ -1,4 +1,4 @@
-// Where `uwbsar run` gets its input (tools/live_runner.h): the robot's serial devices
+// Where `uwbsar run` gets its input (pipeline/live_runner.h): the robot's serial devices
 // (LT102 radars, Kobuki base, GPIO) or a ROS 2 robot over DDS. A source hands every
 // message to the Dispatcher from its own threads; the run's main thread calls Poll()
 // every 50 ms for watchdog work until the run is stopped.

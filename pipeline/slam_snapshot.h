@@ -4,7 +4,7 @@
 // I/O). The tiles' detected images are shared, not copied: SlamSystem never writes a
 // tile after the keyframe is stored, so the snapshot may read them without the lock.
 // A live snapshot writer takes one under the lock, releases it and then renders and
-// writes from the copy while the keyframe thread goes on (issue 15, point 3).
+// writes from the copy while the keyframe thread goes on.
 #pragma once
 
 #include <map>

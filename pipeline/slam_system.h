@@ -1,5 +1,5 @@
 // SlamSystem: the whole pipeline behind one object, the same for offline logs
-// and live drivers (DESIGN.md "Data flow"): scans and odometry go in; the
+// and live drivers (docs/architecture.md): scans and odometry go in; the
 // imaging frontend closes keyframe tiles; each new keyframe gets its AKAZE and
 // ORB features once, is matched against candidate keyframes near its pose
 // estimate, validated loops go into the Ceres pose graph, which is re-solved
@@ -85,7 +85,7 @@ class SlamSystem {
   std::vector<std::pair<TimestampNs, Pose2>> CorrectedTrajectory() const;
   /// Correction T_world_corrected * T_world_odom^-1 at a time (interpolated).
   Pose2 CorrectionAt(TimestampNs stamp_ns) const;
-  /// A copy of the state the outputs are made from (slam/slam_snapshot.h), in time linear
+  /// A copy of the state the outputs are made from (pipeline/slam_snapshot.h), in time linear
   /// in keyframes, loops and odometry samples; the same rules as the accessors (hold
   /// LockState() while the keyframe thread may run).
   SlamSnapshot Capture() const;
@@ -110,27 +110,32 @@ class SlamSystem {
   std::unique_lock<std::mutex> LockForKeyframeWork();
   void RethrowWorkerError();
 
-  Config config_;
-  // Feeding thread only.
+  // Locking contract (docs/architecture.md "Which mutex guards what"). Three mutexes;
+  // lock order state_mutex_, then stats_mutex_; queue_mutex_ is never held with another.
+  Config config_;  // not changed after construction: any thread reads it
+  // Feeding thread only: no lock.
   std::unique_ptr<ImagingFrontend> frontend_;
   std::vector<OdometryEntry> pending_odometry_;
-  // Keyframe thread (or the feeding thread without one); written under state_mutex_.
-  std::unique_ptr<PoseGraph> graph_;
-  std::unique_ptr<PlaceRecognizer> recognizer_;
-  std::vector<KeyframeRecord> keyframes_;
-  std::vector<LoopRecord> loops_;
-  std::vector<OdometryEntry> odometry_;
-  OptimizeResult last_optimization_;
-  bool graph_dirty_ = false;
-  int keyframes_since_solve_ = 0;
+  // Guarded by state_mutex_: written by the keyframe thread (or the feeding thread without
+  // one) under it; read by other threads under LockState(). recognizer_ is used by the
+  // keyframe thread alone, outside the lock (features and matching are the long part).
+  std::unique_ptr<PoseGraph> graph_;             // GUARDED_BY(state_mutex_), solves included
+  std::unique_ptr<PlaceRecognizer> recognizer_;  // keyframe thread only
+  std::vector<KeyframeRecord> keyframes_;        // GUARDED_BY(state_mutex_)
+  std::vector<LoopRecord> loops_;                // GUARDED_BY(state_mutex_)
+  std::vector<OdometryEntry> odometry_;          // GUARDED_BY(state_mutex_)
+  OptimizeResult last_optimization_;             // GUARDED_BY(state_mutex_)
+  bool graph_dirty_ = false;                     // GUARDED_BY(state_mutex_)
+  int keyframes_since_solve_ = 0;                // GUARDED_BY(state_mutex_)
   mutable std::mutex state_mutex_;
-  // Counters for readers on any thread (lock order: state_mutex_, then stats_mutex_).
+  // Guarded by stats_mutex_: counters for readers on any thread (copies returned).
   mutable std::mutex stats_mutex_;
-  FrontendStats frontend_stats_;
-  double imaging_s_ = 0.0;
-  StageTimes keyframe_times_;  ///< features, matching, optimisation
-  double keyframe_lock_wait_max_s_ = 0.0;
-  // The hand-over queue.
+  FrontendStats frontend_stats_;  // GUARDED_BY(stats_mutex_)
+  double imaging_s_ = 0.0;        // GUARDED_BY(stats_mutex_)
+  StageTimes keyframe_times_;     // GUARDED_BY(stats_mutex_): features, matching, optimisation
+  double keyframe_lock_wait_max_s_ = 0.0;  // GUARDED_BY(stats_mutex_)
+  // Guarded by queue_mutex_ (waited on with queue_changed_): the hand-over FIFO, the worker's
+  // busy and stop flags and the error it met. worker_ is started and joined by the owner.
   std::mutex queue_mutex_;
   std::condition_variable queue_changed_;
   std::deque<Work> queue_;

@@ -1,4 +1,4 @@
-// Acceptance C of the simulator issue: a simulated seed_lab depart-return run,
+// The simulator end to end: a simulated seed_lab depart-return run,
 // imaged by the frontend, shows the room's walls and objects where the LiDAR
 // grid has them when imaged with ground-truth poses, and shows the drift when
 // imaged with the wheel-odometry poses.

@@ -1,4 +1,4 @@
-// The simulator against reality (issue 13, point 5): the paper's departing run (7 m along
+// The simulator against reality: the paper's departing run (7 m along
 // +x) simulated through the seed_lab LiDAR map, imaged onto the grid of the paper's real
 // departing strip (`real/seed_corridor/departing.png`: 7 m x 6 m at
 // 5 mm, column 0 = x 0, row 0 = y +3 m) with the paper's enhancement (positive image, blur

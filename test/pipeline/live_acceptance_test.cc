@@ -1,4 +1,4 @@
-// Issue 8 acceptance on the full simulated seed_lab run played by emulated devices:
+// Live acceptance on the full simulated seed_lab run played by emulated devices:
 // A (1x live run vs `uwbsar map`), B (p99 scan-to-tile latency, reported), C (faults:
 // radar unplugged 5 s, 1 % corrupted frames, odometry stall 2 s) and D (kill -9 of
 // `uwbsar run --emulate`: the recording opens and holds everything up to 1 s before
@@ -102,7 +102,7 @@ TEST(LiveAcceptanceTest, A_B_RealTimeRunMatchesOfflineMappingAndReportsLatency) 
   EXPECT_TRUE(NonMarginalDifferences(*r.run.slam, *offline.slam).empty());
   EXPECT_LE(std::abs(AcceptedLoops(*r.run.slam) - AcceptedLoops(*offline.slam)), 2);
   EXPECT_EQ(AcceptedPairs(*r.run.slam), AcceptedPairs(*replay.slam));
-  // Issue 15: within 0.1 cm of the offline ATE, idle or under uwbsar_load (.ci/run).
+  // Within 0.1 cm of the offline ATE, idle or under uwbsar_load (.ci/run).
   EXPECT_LT(std::abs(r.outputs.ate.rmse_m - offline_ate.rmse_m), 0.001);
   // No scan dropped at start-up: the radars are polled once odometry flows.
   EXPECT_EQ(r.run.slam->frontend_stats().scans_rejected_no_odometry, 0);

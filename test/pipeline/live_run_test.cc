@@ -148,7 +148,7 @@ TEST(LiveRunTest, ARadarRefusingASettingStopsTheRunWithOneLineNamingIt) {
   EXPECT_FALSE(fs::exists(dir + "/live.json"));
 }
 
-// Issue 16: polled acquisition keeps up at 100 frames/s per radar, two radars, on the
+// Polled acquisition keeps up at 100 frames/s per radar, two radars, on the
 // 2-core machine (the figure goes into live.json; no wall-clock bound is asserted).
 TEST(LiveRunTest, PolledAcquisitionAt100FramesPerSecondFromTwoRadarsLosesNoFrame) {
   Config config;
@@ -196,7 +196,7 @@ ErrorStats Stats(std::vector<double> v) {
   return {at(0.5), at(0.99), v.back()};
 }
 
-// Issue 15 point 1: a radar scan's stamp is its acquisition time on the emulator (taken on
+// A radar scan's stamp is its acquisition time on the emulator (taken on
 // the same host clock), not its arrival: the filtered error is printed next to the raw
 // arrival's (README table), idle and, in .ci/run, under uwbsar_load.
 TEST(LiveRunTest, RadarStampsFollowTheAcquisitionTimesNotTheArrivals) {

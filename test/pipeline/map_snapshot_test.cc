@@ -1,4 +1,4 @@
-// Issue 15 point 3: a live snapshot copies the SLAM state under the lock and writes it
+// A live snapshot copies the SLAM state under the lock and writes it
 // after releasing it. The copy must be complete and independent: the outputs written
 // later from the copy, while SLAM has moved on, equal those written the old way (from the
 // SlamSystem itself, lock held throughout) at the moment of the copy.

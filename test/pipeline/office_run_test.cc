@@ -1,4 +1,4 @@
-// Acceptance B of issue 6: a longer simulated run with several loops through an office
+// A longer simulated run with several loops through an office
 // floor (config/maps/office: corridor ring driven twice plus a detour into a room,
 // about 75 m): no false loop accepted, ATE RMSE <= 10 cm.
 #include <gtest/gtest.h>

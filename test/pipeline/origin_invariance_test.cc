@@ -1,4 +1,4 @@
-// Issue 14, rule 1: results must not depend on where the world origin is. Real robots
+// Results must not depend on where the world origin is. Real robots
 // map in frames far from 0 (UTM, building coordinates); the same run with odometry and
 // ground truth shifted by a constant must give the same loops and the same ATE.
 #include <gtest/gtest.h>

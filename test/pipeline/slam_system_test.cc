@@ -1,4 +1,4 @@
-// End-to-end acceptance of the SLAM pipeline on simulated runs (issue 6, A).
+// End-to-end acceptance of the SLAM pipeline on simulated runs.
 #include "pipeline/slam_system.h"
 
 #include <gtest/gtest.h>

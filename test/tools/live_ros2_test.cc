@@ -1,4 +1,4 @@
-// Issue 9 acceptance: `uwbsar run --source ros2` driven by an independent ROS 2 peer (the
+// `uwbsar run --source ros2` driven by an independent ROS 2 peer (the
 // Python `cyclonedds` package playing a simulated bag, test/tools/ros2_bag_player.py) on
 // loopback. A: the live result matches `uwbsar map` on the same bag; B: an independent
 // subscriber decodes the published map and path to the files written to disk; C: publisher
