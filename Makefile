@@ -15,7 +15,7 @@ DEB_PACKAGES := build-essential cmake ninja-build pkg-config git \
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps venv build test demo bench sanitize-test format format-check clean fuzz-smoke
+.PHONY: all deps venv build test demo bench sanitize-test format format-check layering-check clean fuzz-smoke
 
 all: build
 
@@ -79,6 +79,10 @@ format:
 
 format-check:
 	git ls-files '*.h' '*.cc' | xargs clang-format --dry-run --Werror
+
+# No #include runs from a lower folder to a higher one (the order is in the script).
+layering-check:
+	python3 cmake/check_layering.py
 
 clean:
 	rm -rf $(BUILD_DIR) $(SAN_BUILD_DIR)

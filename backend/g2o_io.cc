@@ -8,7 +8,7 @@
 #include <unordered_map>
 
 #include "backend/se2_edge_cost.h"
-#include "frontend/image_io.h"
+#include "imaging/image_io.h"
 #include "slam/errors.h"
 
 namespace uwbsar {

@@ -10,7 +10,7 @@
 #include <opencv2/core.hpp>
 #include <utility>
 
-#include "frontend/image_grid.h"
+#include "imaging/image_grid.h"
 #include "slam/occupancy_grid.h"
 #include "slam/pose2.h"
 

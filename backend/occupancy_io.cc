@@ -4,7 +4,7 @@
 #include <opencv2/core.hpp>
 #include <sstream>
 
-#include "frontend/image_io.h"
+#include "imaging/image_io.h"
 
 namespace uwbsar {
 

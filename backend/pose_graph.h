@@ -154,6 +154,10 @@ class PoseGraph {
 
   const BackendConfig config_;
 
+  // Locking contract: data_mutex_ guards what callers see (the members from here up to
+  // solve_mutex_) and is held only briefly, never during a solve; solve_mutex_ guards the
+  // solver side (the members after it) and is held by Optimize() for the whole solve, which
+  // serialises solves. Lock order: solve_mutex_, then data_mutex_. config_ is immutable.
   mutable std::mutex data_mutex_;  // guards everything below up to solve_mutex_
   std::map<int, Pose2> estimates_;
   std::vector<PoseGraphEdge> edges_;

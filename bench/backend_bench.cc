@@ -1,8 +1,8 @@
-// Pose-graph backend benchmarks (issue "Pose-graph backend on Ceres"):
-//  - BM_M3500FromOdometry: acceptance A, batch solve of M3500 from its odometry guess,
+// Pose-graph backend benchmarks:
+//  - BM_M3500FromOdometry: batch solve of M3500 from its odometry guess,
 //    single-threaded (default backend config); counters: ATE, cost, iterations.
-//  - BM_M3500FalseLoops/N: acceptance B figures (N random false loops).
-//  - BM_IncrementalLoop1000: acceptance D, re-solve a 1,000-node graph after adding one
+//  - BM_M3500FalseLoops/N: the same with N random false loops added.
+//  - BM_IncrementalLoop1000: re-solve a 1,000-node graph after adding one
 //    loop; counter median_ms over the iterations.
 #include <benchmark/benchmark.h>
 

@@ -1,4 +1,4 @@
-// Issue 3 acceptance B: decoding throughput of radar scans (Float32MultiArray of
+// Decoding throughput of radar scans (Float32MultiArray of
 // 1000 floats) from a bag on disk, >= 100k messages/s. The bag (10 000 scans of
 // noise-like samples, plus odometry at 1/20 of the rate) is written once per storage
 // into the temp folder; each iteration reads and decodes all of it through

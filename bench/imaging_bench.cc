@@ -1,4 +1,4 @@
-// Imaging benchmarks (issue 2, point C). The reference Python takes about 20 ms
+// Imaging benchmarks. The reference Python takes about 20 ms
 // per scan pair on this machine class; the target is <= 0.5 ms with 2 threads.
 #include <benchmark/benchmark.h>
 

@@ -1,4 +1,4 @@
-// Place-recognition benchmarks (issue 4, point C): matching one candidate pair with
+// Place-recognition benchmarks: matching one candidate pair with
 // cached features (AKAZE + ORB, ~200 keypoints each, plus validation) must take
 // <= 5 ms (paper, i9: AKAZE 52 ms, ORB 6.4 ms, features included). Also: detection
 // per tile for each detector, matching per detector, and the candidate query

@@ -1,4 +1,4 @@
-// Scale benchmark (issue 6, acceptance F): a simulated 1 km run of repeated loops through
+// Scale benchmark: a simulated 1 km run of repeated loops through
 // a 50 m x 50 m floor (config/maps/floor50), streamed from the simulator into SlamSystem in
 // memory (no scan is held by the harness). Requirements: peak memory <= 4 GB, and SLAM
 // processing time per metre over the last 100 m within 1.5x that of the first 100 m.
@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "tools/map_job.h"
+#include "pipeline/map_job.h"
 
 namespace uwbsar {
 namespace {

@@ -1,4 +1,4 @@
-// Simulator benchmarks (issue 3, point 6): a 15 m depart-return run in the bundled seed_hall room
+// Simulator benchmarks: a 15 m depart-return run in the bundled seed_hall room
 // with two radars at 100 Hz, 1000 samples per scan, must simulate in well under a minute on one
 // core. Reports seconds of simulation per metre of route.
 #include <benchmark/benchmark.h>

@@ -8,8 +8,8 @@
 #include <random>
 #include <vector>
 
-#include "frontend/pulse.h"
-#include "frontend/sensor_geometry.h"
+#include "imaging/pulse.h"
+#include "imaging/sensor_geometry.h"
 #include "slam/config.h"
 #include "slam/pose2.h"
 

@@ -10,10 +10,10 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "frontend/image_grid.h"
 #include "frontend/range_profile.h"
 #include "frontend/sector_spans.h"
-#include "frontend/sensor_geometry.h"
+#include "imaging/image_grid.h"
+#include "imaging/sensor_geometry.h"
 
 namespace uwbsar {
 

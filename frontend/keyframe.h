@@ -1,14 +1,14 @@
 // A keyframe: an overlapping SAR tile over L metres of path, with everything
 // needed to relate it metrically to other tiles and to re-render it from
-// corrected poses (DESIGN.md "Keyframe{id, odom pose, tile image, scan poses}").
+// corrected poses: id, odometry pose of the anchor, tile image, imaged scans with their poses.
 #pragma once
 
 #include <memory>
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "frontend/image_grid.h"
 #include "frontend/range_profile.h"
+#include "imaging/image_grid.h"
 #include "slam/types.h"
 
 namespace uwbsar {

@@ -13,7 +13,7 @@
 
 #include "frontend/back_projection.h"
 #include "frontend/keyframe.h"
-#include "frontend/sensor_geometry.h"
+#include "imaging/sensor_geometry.h"
 #include "slam/config.h"
 
 namespace uwbsar {

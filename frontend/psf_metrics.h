@@ -6,7 +6,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "frontend/image_grid.h"
+#include "imaging/image_grid.h"
 
 namespace uwbsar {
 

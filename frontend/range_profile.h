@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "frontend/matched_filter.h"
-#include "frontend/sensor_geometry.h"
+#include "imaging/sensor_geometry.h"
 #include "slam/config.h"
 
 namespace uwbsar {

@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "frontend/image_grid.h"
+#include "imaging/image_grid.h"
 #include "slam/pose2.h"
 
 namespace uwbsar {

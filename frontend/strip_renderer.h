@@ -7,9 +7,9 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "frontend/image_grid.h"
 #include "frontend/keyframe.h"
-#include "frontend/sensor_geometry.h"
+#include "imaging/image_grid.h"
+#include "imaging/sensor_geometry.h"
 
 namespace uwbsar {
 

@@ -1,6 +1,6 @@
 // Reading a small text file (configuration, map_server YAML, bag metadata.yaml) whole,
 // with a size cap: a path to /dev/zero, a FIFO or a huge file must give one clear error,
-// not fill the memory (issue 14, rule 9).
+// not fill the memory.
 #pragma once
 
 #include <cstdint>

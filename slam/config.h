@@ -15,7 +15,7 @@
 
 namespace uwbsar {
 
-/// Transmitted pulse and receiver sampling (paper Table I, REFERENCE.md section 1).
+/// Transmitted pulse and receiver sampling (paper Table I).
 struct PulseConfig {
   double center_frequency_hz = 7.29e9;  ///< fc
   double bandwidth_hz = 1.4e9;          ///< -6 dB bandwidth (reference code; paper table: 2 GHz)

@@ -1,6 +1,6 @@
 // The declared size of an image file, read from its header without decoding it, so
 // that a small file declaring a huge image (a "decompression bomb": a 439 KB PNG of
-// 20000 x 20000 pixels) is refused before OpenCV allocates it (issue 14, rule 10).
+// 20000 x 20000 pixels) is refused before OpenCV allocates it.
 // OpenCV 4.6 has no header-only API, so the few formats uwbsar reads maps in are
 // parsed here: PNG (IHDR), PNM (P1-P6), BMP, JPEG (SOF) and TIFF (every page's IFD).
 #pragma once

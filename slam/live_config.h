@@ -9,7 +9,7 @@
 namespace uwbsar {
 
 /// The LT102 settings sent at start-up (the vendor toolbox's command protocol,
-/// REFERENCE.md section 4a; drivers/live/lt102_commands.h holds the command table).
+/// drivers/live/lt102_commands.h holds the command table).
 /// The radar's echoed range, not radars[].range_offset_m / num_samples, sets the range of
 /// sample 0 and the sample count that imaging uses in a live run.
 struct Lt102Config {

@@ -8,7 +8,7 @@
 
 namespace uwbsar {
 
-/// Feature detectors on the 8-bit enhanced tile (paper Table II, REFERENCE.md section 3),
+/// Feature detectors on the 8-bit enhanced tile (paper Table II),
 /// tuned to about 200 keypoints per tile.
 struct DetectorConfig {
   double feature_resolution_m = 0.01;      ///< pixel size features are detected at (tiles are

@@ -1,4 +1,4 @@
-// The messages that flow from drivers to the frontend (see DESIGN.md "Data flow").
+// The messages that flow from drivers to the frontend (docs/architecture.md "Data flow").
 #pragma once
 
 #include <cstdint>

@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "pipeline/map_outputs.h"
 #include "tools/commands.h"
-#include "tools/map_outputs.h"
 
 namespace uwbsar::tools {
 

@@ -11,12 +11,12 @@
 #include <sstream>
 
 #include "drivers/rosbag/robot_bag.h"
-#include "frontend/image_io.h"
 #include "frontend/imaging_frontend.h"
 #include "frontend/place_recognition/region_study.h"
+#include "imaging/image_io.h"
+#include "pipeline/image_match_report.h"
 #include "slam/errors.h"
 #include "tools/commands.h"
-#include "tools/image_match_report.h"
 
 namespace uwbsar::tools {
 namespace {

@@ -16,7 +16,7 @@ bool HasTiffExtension(const std::string& path) {
   return ext == ".tif" || ext == ".tiff";
 }
 
-/// `<prefix>_float.tif` -> `<prefix>_grid.yaml` (tools/imaging_job.cc's naming).
+/// `<prefix>_float.tif` -> `<prefix>_grid.yaml` (pipeline/imaging_job.cc's naming).
 std::string DefaultGridYaml(const std::string& tiff) {
   const std::string stem = std::filesystem::path(tiff).stem().string();
   const std::string suffix = "_float";

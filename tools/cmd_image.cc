@@ -4,9 +4,9 @@
 #include <iostream>
 
 #include "drivers/text_log.h"
+#include "pipeline/imaging_job.h"
 #include "slam/config_io.h"
 #include "tools/commands.h"
-#include "tools/imaging_job.h"
 
 namespace uwbsar::tools {
 

@@ -7,12 +7,12 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "frontend/image_io.h"
 #include "frontend/place_recognition/loop_stats.h"
+#include "imaging/image_io.h"
+#include "pipeline/image_loop_study.h"
+#include "pipeline/image_match_report.h"
 #include "slam/errors.h"
 #include "tools/commands.h"
-#include "tools/image_loop_study.h"
-#include "tools/image_match_report.h"
 
 namespace uwbsar::tools {
 namespace {

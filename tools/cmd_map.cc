@@ -2,8 +2,8 @@
 #include <cstdio>
 
 #include "drivers/tum_reader.h"
+#include "pipeline/map_outputs.h"
 #include "tools/commands.h"
-#include "tools/map_outputs.h"
 
 namespace uwbsar::tools {
 

@@ -6,11 +6,11 @@
 #include <iostream>
 #include <opencv2/imgproc.hpp>
 
-#include "frontend/image_io.h"
 #include "frontend/place_recognition/image_match.h"
+#include "imaging/image_io.h"
+#include "pipeline/image_match_report.h"
 #include "slam/errors.h"
 #include "tools/commands.h"
-#include "tools/image_match_report.h"
 
 namespace uwbsar::tools {
 namespace {

@@ -10,7 +10,7 @@
 #include "backend/g2o_io.h"
 #include "backend/graph_plot.h"
 #include "backend/pose_graph.h"
-#include "frontend/image_io.h"
+#include "imaging/image_io.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

@@ -1,5 +1,5 @@
 // `uwbsar run --config config/robot.yaml [--out DIR]`: live SLAM on the robot
-// (tools/live_runner.h). SIGINT/SIGTERM finish the run cleanly: drivers stop, the
+// (pipeline/live_runner.h). SIGINT/SIGTERM finish the run cleanly: drivers stop, the
 // graph is solved once more, final outputs are written, exit 0.
 // `--emulate` replaces the hardware by emulated devices on pseudo-terminals that play
 // a simulated depart-and-return run in the bundled seed_hall room or in --map
@@ -14,9 +14,9 @@
 #include "drivers/live/host_clock.h"
 #include "drivers/live/sim_device_player.h"
 #include "drivers/sim/sim_stream.h"
+#include "pipeline/live_runner.h"
 #include "slam/interrupt_cleanup.h"
 #include "tools/commands.h"
-#include "tools/live_runner.h"
 
 namespace uwbsar::tools {
 

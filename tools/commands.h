@@ -7,9 +7,13 @@
 #include <memory>
 #include <string>
 
+#include "pipeline/output_folder.h"  // EnsureDirectory, CheckOutputFolder, CheckOutputFile
 #include "slam/config.h"
 
 namespace uwbsar::tools {
+
+struct MapOutputs;
+struct MapRun;
 
 /// Exit codes, documented in `uwbsar --help`.
 enum ExitCode : int {
@@ -32,22 +36,15 @@ struct GlobalOptions {
 Config LoadConfigFor(const GlobalOptions& globals);
 /// Loads --config into globals->config; throws ConfigError (exit 3) for a bad file.
 void LoadGlobalConfig(GlobalOptions* globals);
-/// Output locations are checked before any work (README "What uwbsar refuses"): an output
-/// that cannot be written is bad input (InputError, exit 3) naming the path; a write that
-/// fails later (disk full) is an I/O failure (exit 1) naming the path and the cause.
-/// Creates `dir` (and parents) if needed and checks that a file can be created in it.
-void EnsureDirectory(const std::string& dir);
-/// The same check without creating anything: `dir` is a writable folder, or could be created
-/// (its nearest existing ancestor is a writable folder).
-void CheckOutputFolder(const std::string& dir);
-/// `path` is not a folder, its folder exists and a file can be created in it.
-void CheckOutputFile(const std::string& path);
 
 /// CLI11 check functions ("" when valid). --seed: a decimal integer in [0, 2^64 - 1]
 /// (CLI11 itself wraps -1 and saturates 2^64).
 std::string CheckSeed(const std::string& text);
 /// A finite number > 0 (CLI::PositiveNumber lets nan through).
 std::string CheckPositiveFinite(const std::string& text);
+
+/// The five-line summary printed by `uwbsar map`, `uwbsar demo` and `uwbsar run`.
+void PrintMapSummary(const MapRun& run, const MapOutputs& outputs, const std::string& out_dir);
 
 void AddConfigCommand(CLI::App& app, const GlobalOptions& globals);
 void AddImageCommand(CLI::App& app, const GlobalOptions& globals);

@@ -7,7 +7,7 @@
 #include "backend/compare/map_loading.h"
 #include "backend/compare/metrics_json.h"
 #include "backend/compare/overlay.h"
-#include "frontend/image_io.h"
+#include "imaging/image_io.h"
 #include "slam/errors.h"
 
 namespace uwbsar {

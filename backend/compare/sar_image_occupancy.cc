@@ -1,8 +1,8 @@
 #include "backend/compare/sar_image_occupancy.h"
 
 #include "backend/global_map.h"
-#include "frontend/enhance.h"
-#include "frontend/sar_image_file.h"
+#include "imaging/enhance.h"
+#include "imaging/sar_image_file.h"
 #include "slam/yaml_file.h"
 
 namespace uwbsar {

@@ -1,7 +1,7 @@
 // A SAR intensity image as an occupancy grid, so that `uwbsar compare` scores images from
 // any imager (the paper's published strips, `uwbsar image` strips, `uwbsar map`'s
 // map_float.tif) against a LiDAR grid. The image is described by a grid YAML (image, x0_m,
-// y0_m, resolution_m; slam/sar_grid_metadata.h) and becomes occupancy with the rule of
+// y0_m, resolution_m; imaging/sar_grid_metadata.h) and becomes occupancy with the rule of
 // `uwbsar map` (backend/global_map.h MapToOccupancy).
 #pragma once
 

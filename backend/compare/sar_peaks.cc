@@ -6,7 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "frontend/enhance.h"
+#include "imaging/enhance.h"
 #include "slam/errors.h"
 #include "slam/image_header.h"
 

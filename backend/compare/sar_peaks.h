@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "backend/compare/pcd_export.h"
+#include "imaging/sar_grid_metadata.h"
 #include "slam/config.h"
-#include "slam/sar_grid_metadata.h"
 
 namespace uwbsar {
 

@@ -21,7 +21,7 @@ unsigned GetU16(const std::uint8_t* p) { return static_cast<unsigned>(p[0] | (p[
 }  // namespace
 
 const std::vector<Lt102Command>& Lt102Commands() {
-  // REFERENCE.md section 4a, LT102-relevant use of each byte.
+  // The toolbox's command bytes, each with its LT102-relevant use.
   static const std::vector<Lt102Command> table = {
       {"start acquisition", lt102::kStart, V::kNone, lt102::kStarted, V::kNone, E::kNone},
       {"stop acquisition", lt102::kStop, V::kNone, lt102::kStop, V::kNone, E::kNone},

@@ -1,5 +1,5 @@
-// The LT102 command set as data (REFERENCE.md section 4a, from ARIA Sensing's public
-// toolbox): each command's byte, the type of its request value, the byte and value type
+// The LT102 command set as data (from ARIA Sensing's public
+// toolbox protocol): each command's byte, the type of its request value, the byte and value type
 // of its answer and how the answer relates to the request. Requests and answers are
 // byte-stuffed frames (lt102_protocol.h) with an optional trailing CRC-8 byte over
 // command byte + payload. Values are little-endian, f32 is IEEE single. The raw-data

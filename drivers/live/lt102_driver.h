@@ -1,4 +1,4 @@
-// The LT102 as a LinkProtocol (REFERENCE.md section 4a). On each open it runs the
+// The LT102 as a LinkProtocol (lt102_commands.h). On each open it runs the
 // start-up sequence (lt102_startup.h: settings sent, every echo checked, `s` answered
 // `r`); a failed step fails the open, so the link's reconnect, backoff and power cycle
 // take over. Acquisition is polled: from the link's thread one `d` request is in flight

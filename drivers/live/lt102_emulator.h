@@ -1,5 +1,5 @@
 // An LT102 on a pseudo-terminal for tests and `uwbsar run --emulate`: it speaks the
-// vendor's command protocol (REFERENCE.md section 4a) as the driver must expect it:
+// vendor's command protocol (lt102_commands.h) as the driver must expect it:
 // every setting is echoed (`x` / `X` snapped to the sample grid, and that range sets the
 // sample count and the range of sample 0 of the frames), queries are answered, `s` is
 // answered `r` and starts acquisition, `o` stops it, and `d` is answered with the newest

@@ -1,5 +1,5 @@
 // One request and its answer on an LT102 link, as the vendor toolbox does it
-// (REFERENCE.md section 4a): flush the input, send the framed request, wait up to the
+// (lt102_commands.h): flush the input, send the framed request, wait up to the
 // answer timeout for the first frame, and check it: its first byte must be the command's
 // answer byte, its size the answer's (plus the CRC byte when frames carry one), its CRC
 // must check. A wrong or missing answer is reported, the link resynchronised (input

@@ -1,4 +1,4 @@
-// The ARIA Sensing LT102 serial link (REFERENCE.md section 4): byte-stuffed frames
+// The ARIA Sensing LT102 serial link: byte-stuffed frames
 // (0xFF, command byte, payload, 0x00; 0xFF, 0x00 and 0x80 inside a frame escaped as
 // 0x80 + 0xFE / 0x01 / 0x81) and the raw-data message (little-endian int16
 // samples_per_scan, int16 elapsed-time (low 12 bits, us) + format (top 4 bits),
@@ -82,7 +82,7 @@ std::vector<std::uint8_t> EncodeLt102RawData(int format, int samples_per_scan, i
                                              const std::vector<float>& q);
 
 /// CRC-8 (MSB first, no reflection, no final xor) of `size` bytes. Run over a body and its
-/// appended CRC it gives 0, which is how the receiver checks it (REFERENCE.md section 4a).
+/// appended CRC it gives 0, which is how the receiver checks it.
 std::uint8_t Lt102Crc8(const std::uint8_t* data, std::size_t size, std::uint8_t polynomial,
                        std::uint8_t init);
 

@@ -1,4 +1,4 @@
-// The LT102 start-up sequence (issue 16, REFERENCE.md section 4a), in order, each step
+// The LT102 start-up sequence (commands in lt102_commands.h), in order, each step
 // one request and its checked answer (lt102_exchange.h): firmware version (logged; its
 // length tells whether frames carry a CRC), stop (`o`), raw output (`e` 0), data channel
 // (`$`), sample format (0x0A), range minimum / maximum (`x`, `X`: the echoed actual values

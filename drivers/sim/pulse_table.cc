@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "frontend/pulse.h"
+#include "imaging/pulse.h"
 
 namespace uwbsar::sim {
 

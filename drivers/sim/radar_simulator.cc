@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "frontend/pulse.h"
+#include "imaging/pulse.h"
 
 namespace uwbsar::sim {
 

@@ -16,7 +16,7 @@
 #include "drivers/sim/grid_ray_caster.h"
 #include "drivers/sim/pulse_table.h"
 #include "drivers/sim/sim_environment.h"
-#include "frontend/sensor_geometry.h"
+#include "imaging/sensor_geometry.h"
 
 namespace uwbsar::sim {
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "frontend/sensor_geometry.h"
+#include "imaging/sensor_geometry.h"
 
 namespace uwbsar::sim {
 namespace {

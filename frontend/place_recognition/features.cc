@@ -9,7 +9,7 @@
 #include <numeric>
 #include <opencv2/imgproc.hpp>
 
-#include "frontend/enhance.h"
+#include "imaging/enhance.h"
 
 #ifdef UWBSAR_WITH_SURF
 #include "frontend/place_recognition/surf.h"

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "frontend/image_grid.h"
+#include "imaging/image_grid.h"
 #include "slam/config.h"
 
 namespace uwbsar {

@@ -9,11 +9,11 @@
 #include <map>
 #include <vector>
 
-#include "frontend/image_grid.h"
 #include "frontend/place_recognition/feature_matcher.h"
 #include "frontend/place_recognition/features.h"
 #include "frontend/place_recognition/loop_validator.h"
-#include "frontend/sar_image_file.h"
+#include "imaging/image_grid.h"
+#include "imaging/sar_image_file.h"
 #include "slam/config.h"
 
 namespace uwbsar {

@@ -9,9 +9,9 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "frontend/image_grid.h"
 #include "frontend/place_recognition/feature_matcher.h"
 #include "frontend/place_recognition/loop_rule.h"
+#include "imaging/image_grid.h"
 #include "slam/config.h"
 #include "slam/pose2.h"
 

@@ -10,13 +10,13 @@
 #include <map>
 #include <vector>
 
-#include "frontend/image_grid.h"
 #include "frontend/keyframe.h"
 #include "frontend/place_recognition/feature_matcher.h"
 #include "frontend/place_recognition/features.h"
 #include "frontend/place_recognition/loop_stats.h"
 #include "frontend/place_recognition/loop_validator.h"
-#include "frontend/sensor_geometry.h"
+#include "imaging/image_grid.h"
+#include "imaging/sensor_geometry.h"
 #include "slam/config.h"
 
 namespace uwbsar {

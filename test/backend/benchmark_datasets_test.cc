@@ -1,4 +1,4 @@
-// Acceptance A-C of the backend on the standard 2-D pose-graph datasets (full size;
+// The backend on the standard 2-D pose-graph datasets (full size;
 // labelled integration). The figures are printed for the report.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Acceptance A: bags written by independent writers (Python rosbags, mcap +
+// Bags written by independent writers (Python rosbags, mcap +
 // mcap-ros2-support; see test/data/bags/make_fixtures.py) decode to exactly the
 // floats and poses that were written, in every storage layout and compression.
 #include <gtest/gtest.h>

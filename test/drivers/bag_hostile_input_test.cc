@@ -1,4 +1,4 @@
-// Bags made to break the reader (issue 14): metadata of the wrong shape or with times that
+// Bags made to break the reader: metadata of the wrong shape or with times that
 // overflow, and file-compressed storage that decompresses to far more than it can hold or
 // into a temporary folder that cannot take it. Each is one clear error naming the cause.
 #include <gtest/gtest.h>

@@ -29,7 +29,7 @@ Odometry SampleOdometry() {
 TEST(CdrCodecTest, OdometryLayoutMatchesTheReference) {
   std::vector<std::uint8_t> bytes;
   EncodeCdr(SampleOdometry(), &bytes);
-  // REFERENCE.md: with frames odom/base_link the message is 724 bytes and position.x
+  // With frames odom/base_link a nav_msgs/Odometry is 724 bytes and position.x
   // sits at payload offset 40 (after the 4-byte encapsulation header).
   ASSERT_EQ(bytes.size(), 724u);
   EXPECT_EQ(bytes[0], 0x00);

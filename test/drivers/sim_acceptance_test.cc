@@ -1,4 +1,4 @@
-// Acceptance C of the simulator issue: a simulated seed_lab depart-return run,
+// The simulator end to end: a simulated seed_lab depart-return run,
 // imaged by the frontend, shows the room's walls and objects where the LiDAR
 // grid has them when imaged with ground-truth poses, and shows the drift when
 // imaged with the wheel-odometry poses.
@@ -28,9 +28,9 @@
 #include "drivers/sim/grid_ray_caster.h"
 #include "drivers/sim/sim_recorder.h"
 #include "drivers/sim/sim_stream.h"
-#include "frontend/enhance.h"
 #include "frontend/imaging_frontend.h"
 #include "frontend/strip_renderer.h"
+#include "imaging/enhance.h"
 #include "test/drivers/sim_test_util.h"
 
 namespace uwbsar::sim {

@@ -9,7 +9,7 @@
 
 #include "drivers/sim/grid_ray_caster.h"
 #include "drivers/sim/pulse_table.h"
-#include "frontend/pulse.h"
+#include "imaging/pulse.h"
 #include "test/drivers/sim_test_util.h"
 
 namespace uwbsar::sim {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "drivers/sim/radar_simulator.h"
-#include "frontend/pulse.h"
+#include "imaging/pulse.h"
 #include "test/drivers/sim_test_util.h"
 
 namespace uwbsar::sim {

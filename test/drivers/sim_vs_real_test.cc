@@ -1,4 +1,4 @@
-// The simulator against reality (issue 13, point 5): the paper's departing run (7 m along
+// The simulator against reality: the paper's departing run (7 m along
 // +x) simulated through the seed_lab LiDAR map, imaged onto the grid of the paper's real
 // departing strip (`real/seed_corridor/departing.png`: 7 m x 6 m at
 // 5 mm, column 0 = x 0, row 0 = y +3 m) with the paper's enhancement (positive image, blur
@@ -29,10 +29,10 @@
 #include <vector>
 
 #include "drivers/sim/sim_stream.h"
-#include "frontend/enhance.h"
-#include "frontend/image_io.h"
 #include "frontend/imaging_frontend.h"
 #include "frontend/strip_renderer.h"
+#include "imaging/enhance.h"
+#include "imaging/image_io.h"
 #include "slam/config_io.h"
 #include "test/drivers/sim_test_util.h"
 

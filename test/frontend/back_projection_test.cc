@@ -1,4 +1,4 @@
-// Imaging acceptance (issue 2, points A and B): point targets and a wall,
+// Imaging acceptance: point targets and a wall,
 // simulated with the pulse at delay 2R/c, imaged by the frontend in both modes.
 #include "frontend/back_projection.h"
 
@@ -84,7 +84,7 @@ TEST(BackProjectionTest, PointTargetsFocusAtTruePositionInBothModes) {
     EXPECT_LE(coherent.psf[i].range_width_m, 1.01 * paper.psf[i].range_width_m) << i;
     EXPECT_LE(coherent.psf[i].pslr_db, paper.psf[i].pslr_db) << i;
     // Exact interpolation keeps the coherent gain that linear interpolation of
-    // the raw carrier loses (REFERENCE.md: up to 5 dB).
+    // the raw carrier loses (up to 5 dB).
     EXPECT_GT(coherent.psf[i].peak_value, paper.psf[i].peak_value) << i;
     EXPECT_LE(coherent.psf[i].position_error_m, paper.psf[i].position_error_m + 0.002) << i;
   }

@@ -1,4 +1,4 @@
-// The frontend's contract on bad input (issue 2, point D), gating and tiles.
+// The frontend's contract on bad input, gating and tiles.
 #include "frontend/imaging_frontend.h"
 
 #include <gtest/gtest.h>
@@ -121,7 +121,7 @@ TEST(ImagingFrontendTest, OdometryJumpIsCorrectedNotImagedAsTeleport) {
   EXPECT_GT(path_end, 1.8);
 }
 
-// Issue 14, rule 2: one sample at an impossible speed, turn rate or coordinate (x = 1e20
+// One odometry sample at an impossible speed, turn rate or coordinate (x = 1e20
 // used to abort in an OpenCV allocation of 9 TB; 1e300 gave a garbage trajectory) is
 // dropped and counted; what is imaged equals the clean run.
 TEST(ImagingFrontendTest, OdometryOutlierAtImpossibleSpeedIsDroppedNotImaged) {

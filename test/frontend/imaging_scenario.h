@@ -5,10 +5,10 @@
 #include <vector>
 
 #include "drivers/synthetic_run.h"
-#include "frontend/enhance.h"
 #include "frontend/psf_metrics.h"
 #include "frontend/strip_renderer.h"
-#include "tools/imaging_job.h"
+#include "imaging/enhance.h"
+#include "pipeline/imaging_job.h"
 
 namespace uwbsar::testing {
 

@@ -6,7 +6,7 @@
 #include <random>
 
 #include "drivers/echo_simulator.h"
-#include "frontend/pulse.h"
+#include "imaging/pulse.h"
 
 namespace uwbsar {
 namespace {

@@ -1,5 +1,5 @@
 // uwbsar_load: CPU (and optionally memory-bandwidth) load for tests and benchmarks, so
-// that live results can be checked on a busy machine (issue 15): one busy thread per core
+// that live results can be checked on a busy machine: one busy thread per core
 // (or --threads N) spinning on integer work, and with --memory-mib M one more thread per
 // 4 cores streaming copies through an M MiB buffer (evicting the caches, taking memory
 // bandwidth). Runs --seconds S (0: until SIGINT/SIGTERM). Prints one line at start.

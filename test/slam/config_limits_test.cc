@@ -1,4 +1,4 @@
-// Issue 14, rules 8 and 9: configuration values whose implied sizes exceed the budgets
+// Configuration values whose implied sizes exceed the budgets
 // of `limits:` are refused before any work, naming the key; configuration and YAML files
 // are read only when they are small regular files.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Issue 14, rule 10: the declared size of an image is read from its header and checked
+// The declared size of an image is read from its header and checked
 // against limits.max_map_image_pixels before anything decodes it.
 #include "slam/image_header.h"
 

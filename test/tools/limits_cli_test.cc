@@ -1,4 +1,4 @@
-// Issue 14, rules 2, 8, 9, 10 as a user meets them: hostile sizes are refused with exit 3
+// The limits as a user meets them: hostile sizes are refused with exit 3
 // and one line naming the key or file, before any work; one odometry outlier does not
 // break a run. Each command runs under a 3 GB address-space cap, so a regression fails
 // the test instead of exhausting the machine.

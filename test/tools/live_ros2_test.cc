@@ -1,4 +1,4 @@
-// Issue 9 acceptance: `uwbsar run --source ros2` driven by an independent ROS 2 peer (the
+// `uwbsar run --source ros2` driven by an independent ROS 2 peer (the
 // Python `cyclonedds` package playing a simulated bag, test/tools/ros2_bag_player.py) on
 // loopback. A: the live result matches `uwbsar map` on the same bag; B: an independent
 // subscriber decodes the published map and path to the files written to disk; C: publisher
@@ -16,12 +16,12 @@
 
 #include "drivers/rosbag/bag_reader.h"
 #include "drivers/tum_reader.h"
+#include "pipeline/live_runner.h"
+#include "pipeline/map_job.h"
 #include "slam/occupancy_grid.h"
 #include "test/drivers/dds/dds_test_util.h"
-#include "test/drivers/live/live_test_util.h"
+#include "test/pipeline/live_test_util.h"
 #include "test/shared_data.h"
-#include "tools/live_runner.h"
-#include "tools/map_job.h"
 
 namespace uwbsar::tools {
 namespace {

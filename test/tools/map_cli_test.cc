@@ -1,4 +1,4 @@
-// `uwbsar map` as a user meets it (issue 6, points D and E): every output of a
+// `uwbsar map` as a user meets it: every output of a
 // good run, a report that renders in a browser, and bad bags that end with one
 // clear message, a documented exit code and no output that looks complete.
 #include <gtest/gtest.h>
@@ -180,7 +180,7 @@ TEST(MapCliTest, SameBagAndConfigGiveByteIdenticalResults) {
 namespace uwbsar {
 namespace {
 
-// Issue 15 point 5: slam.odometry_topic reaches every command that reads bags through
+// slam.odometry_topic reaches every command that reads bags through
 // the one RobotBagOptionsFromConfig (before, only `map` patched it in).
 TEST(MapCliTest, NonDefaultOdometryTopicReachesEveryCommandThatReadsBags) {
   const std::string dir = TempDir("odom_topic");

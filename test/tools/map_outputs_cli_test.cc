@@ -1,4 +1,4 @@
-// What `uwbsar map` promises about its output folder (issue 14, rules 4-6, 13 and 15):
+// What `uwbsar map` promises about its output folder:
 // everything is staged and summary.json committed last, a committed folder holds one run's
 // files, staging folders of dead processes are cleaned and Ctrl-C cleans its own, the
 // output folder and the ground truth are checked before the work, and the summary's

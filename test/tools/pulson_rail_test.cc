@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "drivers/text_log.h"
-#include "frontend/enhance.h"
+#include "imaging/enhance.h"
+#include "pipeline/imaging_job.h"
 #include "slam/config_io.h"
 #include "test/shared_data.h"
-#include "tools/imaging_job.h"
 
 namespace uwbsar {
 namespace {

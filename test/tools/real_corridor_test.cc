@@ -13,9 +13,9 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "pipeline/image_loop_study.h"
 #include "test/cli_runner.h"
 #include "test/shared_data.h"
-#include "tools/image_loop_study.h"
 
 namespace uwbsar {
 namespace {

@@ -1,4 +1,4 @@
-// What `uwbsar` refuses (issue 14, README "What uwbsar refuses"): global options after the
+// What `uwbsar` refuses (README "What uwbsar refuses"): global options after the
 // subcommand, YAML of the wrong shape, out-of-range values, outputs that cannot be written,
 // failures that leave nothing behind, and -q that quiets every command.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Issue 7, acceptance B: the SAR map of the simulated seed_lab depart-and-return run against
+// The SAR map of the simulated seed_lab depart-and-return run against
 // the seed_lab LiDAR grid (paper: cell-wise difference 1397 / 16800 = 8.3 %), and the same run
 // mapped from odometry alone, which must score visibly worse. Runs the real CLI end to end.
 #include <gtest/gtest.h>

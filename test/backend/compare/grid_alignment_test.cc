@@ -12,7 +12,7 @@ namespace uwbsar {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
-const Pose2 kMoved{0.4, -0.25, 7.0 * kDeg};  // the acceptance A
+const Pose2 kMoved{0.4, -0.25, 7.0 * kDeg};  // the acceptance case
 
 /// Checks that T is `expected` within one cell (0.05 m) and 0.5 deg.
 void ExpectWithinOneCell(const Pose2& T, const Pose2& expected) {

@@ -75,7 +75,7 @@ TEST(MapComparisonTest, SeedLabAgainstItselfScoresPerfectAndWritesOutputs) {
 
 TEST(MapComparisonTest, MovedCopyAtCoarserResolutionIsRealignedThroughFiles) {
   UWBSAR_NEED_SEED_LAB_MAP();
-  // Acceptance A through the files: shifted (0.4, -0.25) m, rotated 7 deg, and stored at
+  // The acceptance case through the files: shifted (0.4, -0.25) m, rotated 7 deg, and stored at
   // 0.1 m cells, so resampling is exercised too.
   const std::string dir = testing::FreshDir("moved");
   const OccupancyGrid lidar = testing::SeedLabGrid();

@@ -1,4 +1,4 @@
-// Acceptance D for the recording layer: a recording process killed with SIGKILL leaves
+// The recording layer after a crash: a recording process killed with SIGKILL leaves
 // a `<dir>.partial` bag whose storage file opens and holds every message written up to
 // the last flush, which the live recorder makes at least every second. For both
 // storages: sqlite3 commits on flush; an MCAP file cut short has no footer, and the

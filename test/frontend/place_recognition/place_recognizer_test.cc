@@ -125,7 +125,7 @@ TEST(PlaceRecognizerTest, UpdatePoseMovesAKeyframeInTheIndex) {
   EXPECT_EQ(pr.Process(w.Tile(1, p, p, 20.0)).loops.size(), 1u);
 }
 
-// Acceptance E: bad tiles are rejected with a reason, never a crash or a NaN constraint.
+// Bad tiles are rejected with a reason, never a crash or a NaN constraint.
 TEST(PlaceRecognizerTest, BadTilesAreRejectedWithReasons) {
   const World& w = TheWorld();
   const Pose2 p{1.0, -0.3, 0.0};

@@ -1,4 +1,4 @@
-// Acceptance B (issue 4): over all candidate keyframe pairs of simulated runs (no pose
+// Over all candidate keyframe pairs of simulated runs (no pose
 // prior: every pair that does not share scans), precision and recall of accepted loops
 // for each detector alone (more than N good matches and a plausible scale) and for the
 // paper's AKAZE+ORB rule. An accepted loop is correct when its metric transform is

@@ -1,4 +1,4 @@
-// Acceptance A (issue 4): the paper's experiment on a simulated depart-and-return run
+// The paper's experiment on a simulated depart-and-return run
 // in seed_lab. D_i -> R_i are all accepted, no D_i -> R_j with |i - j| >= 2 is, and each
 // accepted fused transform is within 3 cm and 1 deg of the ground truth.
 #include <gtest/gtest.h>

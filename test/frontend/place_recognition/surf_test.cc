@@ -99,7 +99,7 @@ struct WarpCase {
 
 class SurfWarpTest : public ::testing::TestWithParam<WarpCase> {};
 
-// Acceptance D: the transform between a tile and its rotated / scaled copy is recovered
+// The transform between a tile and its rotated / scaled copy is recovered
 // within 1 px (at the image centre) and 1 deg; repeatability is printed.
 TEST_P(SurfWarpTest, RecoversRotationAndScale) {
   const WarpCase c = GetParam();

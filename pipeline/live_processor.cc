@@ -1,0 +1,143 @@
+#include "pipeline/live_processor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+
+#include "slam/log.h"
+
+namespace uwbsar::tools {
+
+Processor::Processor(const Config& config, const LiveRunOptions& options, Dispatcher* dispatcher)
+    : config_(config), options_(options), dispatcher_(dispatcher) {
+  run_.input = "live run";
+  run_.slam = std::make_shared<SlamSystem>(config);
+  start_ = SteadyClock::now();
+}
+
+void Processor::Loop(const std::atomic<bool>& stop) {
+  LiveMessage msg;
+  while (true) {
+    if (dispatcher_->Pop(&msg, std::chrono::milliseconds(20))) {
+      if (failed_) continue;  // keep draining: the recording goes on regardless
+      try {
+        Process(msg);
+      } catch (const std::exception& e) {
+        // A SLAM failure must not take the recording down; Finish() reports it again.
+        Log(LogLevel::kError, std::string("SLAM stopped: ") + e.what() +
+                                  "; recording continues, map it later with uwbsar map");
+        failed_ = true;
+      }
+    } else if (stop) {
+      break;
+    }
+  }
+}
+
+void Processor::SnapshotLoop(const std::atomic<bool>& stop) {
+  const double period_s = config_.live.snapshot_period_s;
+  const auto period = std::chrono::duration<double>(period_s);
+  auto next = SteadyClock::now() + period;
+  while (!stop) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    if (hooks_.tick) hooks_.tick();
+    if (period_s <= 0 || SteadyClock::now() < next) continue;
+    Snapshot();
+    next = SteadyClock::now() + period;
+  }
+}
+
+void Processor::Snapshot() {
+  const auto t0 = SteadyClock::now();
+  MapRun view;  // the counters as of now, the same SlamSystem
+  {
+    std::lock_guard<std::mutex> lock(run_mutex_);
+    view.slam = run_.slam;
+    view.input = run_.input;
+    view.first_stamp_ns = run_.first_stamp_ns;
+    view.last_stamp_ns = run_.last_stamp_ns;
+    view.messages = run_.messages;
+    view.radar_messages = run_.radar_messages;
+    view.odometry_messages = run_.odometry_messages;
+  }
+  view.processing_s = std::chrono::duration<double>(t0 - start_).count();
+  if (options_.ground_truth) view.ground_truth = options_.ground_truth();
+  try {
+    // Only the copy is made under the state lock (time linear in keyframes, no I/O); the
+    // mosaic, the report and the files are made from the copy while SLAM goes on.
+    MapState state;
+    {
+      const auto lock_start = SteadyClock::now();
+      const auto lock = view.slam->LockState();
+      if (view.slam->keyframes().empty()) return;
+      state = CaptureMapState(view);
+      snapshot_lock_max_s_ =
+          std::max(snapshot_lock_max_s_,
+                   std::chrono::duration<double>(SteadyClock::now() - lock_start).count());
+    }
+    last_outputs_ = WriteMapOutputs(state, options_.out_dir);
+    ++snapshots_;
+    if (hooks_.after_snapshot) hooks_.after_snapshot(state, last_outputs_);
+  } catch (const std::exception& e) {
+    Log(LogLevel::kWarning, std::string("snapshot not written: ") + e.what());
+  }
+  const double took_s = std::chrono::duration<double>(SteadyClock::now() - t0).count();
+  snapshot_max_s_ = std::max(snapshot_max_s_, took_s);
+  snapshot_s_.push_back(took_s);
+}
+
+MapRun Processor::FinalRun() {
+  run_.processing_s = std::chrono::duration<double>(SteadyClock::now() - start_).count();
+  if (options_.ground_truth) run_.ground_truth = options_.ground_truth();
+  return std::move(run_);
+}
+
+long long Processor::odometry_messages() {
+  std::lock_guard<std::mutex> lock(run_mutex_);
+  return run_.odometry_messages;
+}
+
+std::optional<OdometrySample> Processor::LatestOdometry() {
+  std::lock_guard<std::mutex> lock(run_mutex_);
+  return latest_odometry_;
+}
+
+void Processor::Process(const LiveMessage& msg) {
+  {
+    std::lock_guard<std::mutex> lock(run_mutex_);
+    if (run_.messages++ == 0) run_.first_stamp_ns = msg.stamp_ns;
+    run_.last_stamp_ns = msg.stamp_ns;
+    if (msg.kind == LiveMessage::Kind::kScan) {
+      ++run_.radar_messages;
+    } else {
+      ++run_.odometry_messages;
+      latest_odometry_ = msg.odometry;
+    }
+  }
+  if (msg.kind == LiveMessage::Kind::kScan) {
+    pending_.push_back(msg.arrival);
+    run_.slam->AddScan(msg.scan);
+  } else {
+    run_.slam->AddOdometry(msg.odometry);
+  }
+  // A scan is resolved once the frontend imaged, gated or rejected it (it may wait for
+  // the odometry after it); resolution is in arrival order.
+  const FrontendStats s = run_.slam->frontend_stats();
+  const long long resolved = s.scans_imaged + s.scans_gated + s.scans_rejected();
+  const auto now = SteadyClock::now();
+  while (resolved_ < resolved && !pending_.empty()) {
+    latencies_ms_.push_back(
+        std::chrono::duration<double, std::milli>(now - pending_.front()).count());
+    pending_.pop_front();
+    ++resolved_;
+  }
+}
+
+double Percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const auto k = static_cast<std::size_t>(std::ceil(p / 100.0 * static_cast<double>(v.size()))) - 1;
+  return v[std::min(k, v.size() - 1)];
+}
+
+}  // namespace uwbsar::tools

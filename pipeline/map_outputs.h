@@ -1,0 +1,88 @@
+// Everything `uwbsar map` leaves in its output folder (README "uwbsar map"):
+// map.png, map_float.tif + map_grid.yaml, map.pgm + map.yaml, trajectory.tum,
+// odometry.tum, graph.g2o, loops.csv, summary.json and report.html.
+// All files (the exact map too) are first written into a hidden staging folder
+// inside DIR and renamed into place at the end, summary.json last: a folder with
+// a summary.json holds one complete result, and a failed run leaves none.
+#pragma once
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "pipeline/map_job.h"
+#include "slam/interrupt_cleanup.h"
+
+namespace uwbsar::tools {
+
+struct MapOutputs {
+  std::vector<std::string> files;  ///< final paths written
+  nlohmann::json summary;          ///< the content of summary.json
+  AteResult ate;                   ///< of trajectory.tum (num_poses 0 without ground truth)
+  AteResult odometry_ate;          ///< of odometry.tum
+};
+
+/// What the outputs are made from: a copy of a run's SLAM state and its run-level fields.
+/// Taken in time linear in keyframes, loops and odometry (no rendering, no I/O), so a live
+/// writer holds the SLAM state lock only for CaptureMapState and writes without it.
+struct MapState {
+  SlamSnapshot slam;
+  std::string input;
+  double processing_s = 0.0;
+  double log_duration_s = 0.0;  ///< MapRun::log_duration_s() at capture
+  TimestampNs last_stamp_ns = 0;
+  std::vector<OdometrySample> ground_truth;
+};
+
+/// The state of `run` now. Hold run.slam->LockState() while its keyframe thread may run.
+MapState CaptureMapState(const MapRun& run);
+
+struct MapOutputOptions {
+  bool exact = false;  ///< also the exact map (WriteExactMap), staged and committed with the rest
+};
+
+/// The hidden staging folder of one run inside DIR (`.uwbsar-partial-<pid>`). Created before
+/// the work starts (it proves DIR writable); staging folders left by processes that are gone
+/// are removed then; Ctrl-C removes this one (slam/interrupt_cleanup.h), as does the
+/// destructor. Commit writes every output into it and renames them into DIR, summary.json
+/// last, after removing the outputs of an earlier run that this run does not write: a
+/// committed folder holds exactly one run's files.
+class MapOutputStage {
+ public:
+  /// Throws InputError naming DIR when it cannot be created or written.
+  explicit MapOutputStage(const std::string& out_dir);
+  ~MapOutputStage();
+  MapOutputStage(const MapOutputStage&) = delete;
+  MapOutputStage& operator=(const MapOutputStage&) = delete;
+
+  const std::string& path() const { return stage_; }
+  /// CaptureMapState(run), then the outputs from it (and the exact map from `run`).
+  MapOutputs Commit(const MapRun& run, const MapOutputOptions& options = {});
+  /// The outputs of a captured state (no exact map: that needs the scans' profiles).
+  MapOutputs Commit(const MapState& state);
+
+ private:
+  MapOutputs CommitState(const MapState& state, const MapRun* exact_from);
+
+  std::string out_dir_, stage_;
+  std::unique_ptr<RemoveOnInterrupt> guard_;
+};
+
+/// Every file name a `uwbsar map` run may commit into DIR.
+const std::vector<std::string>& AllMapOutputNames();
+
+/// MapOutputStage(out_dir).Commit(run, options).
+MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir,
+                           const MapOutputOptions& options = {});
+/// MapOutputStage(out_dir).Commit(state).
+MapOutputs WriteMapOutputs(const MapState& state, const std::string& out_dir);
+
+/// The exact global map: every imaged scan back-projected again at its corrected pose
+/// (the keyframe correction interpolated in time and applied to its odometry pose), at the
+/// imaging resolution: map_exact_float.tif (raw values), map_exact_grid.yaml and
+/// map_exact.png (the paper's enhancement). Returns the files written. Needs the run mapped
+/// with slam.keep_scan_profiles (std::logic_error otherwise).
+std::vector<std::string> WriteExactMap(const MapRun& run, const std::string& out_dir);
+
+}  // namespace uwbsar::tools

@@ -1,0 +1,243 @@
+// The live runner on a shortened emulated run: what it records, maps offline to the
+// same trajectory it produced live; it measures latency and writes its outputs.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "live_test_util.h"
+#include "test/shared_data.h"
+
+namespace uwbsar::live {
+namespace {
+
+TEST(LiveRunTest, RecordingMappedOfflineReproducesTheLiveTrajectory) {
+  UWBSAR_NEED_SEED_LAB_MAP();
+  Config config;
+  config.live.snapshot_period_s = 1.0;
+  const EmulatedRun live = RunEmulated(config, "short", 2.0, 14.0);
+  const tools::LiveRunResult& r = live.result;
+  ASSERT_TRUE(r.run.slam);
+  ASSERT_FALSE(r.run.slam->keyframes().empty());
+  EXPECT_EQ(r.dropped_from_processing, 0);
+  // Data flowed (not a rate check): about 2700 scans idle, 1290 under uwbsar_load, where the
+  // emulator's starved thread acquires frames back to back and overwrites some (1952 under
+  // ASan). Every frame the emulator answered must have arrived (one per radar may be in
+  // flight at the stop).
+  EXPECT_GE(r.scans_received, live.emulator.scans_sent - 2);
+  EXPECT_GT(r.scans_received, 500);
+  // Every scan and odometry sample is recorded (plus GPIO / fault / run events).
+  EXPECT_GE(r.recorded_messages, r.scans_received + r.odometry_received);
+  EXPECT_GT(r.latency_samples, 500);
+  EXPECT_GT(r.latency_p99_ms, 0.0);
+  // Snapshots were taken while SLAM ran (not a rate check: each waits for the first
+  // keyframe and takes about 0.1 s idle, up to 2 s with uwbsar_load and a compiler busy, when
+  // a 2 s period gave one snapshot in the 7 s run).
+  EXPECT_GE(r.snapshots, 1);
+  // Offline, from the recording: the same trajectory, pose by pose.
+  const tools::MapRun offline = tools::MapBag(config, r.recording_path, false);
+  const auto a = r.run.slam->CorrectedTrajectory();
+  const auto b = offline.slam->CorrectedTrajectory();
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    ASSERT_EQ(a[k].first, b[k].first);
+    ASSERT_NEAR(a[k].second.x_m, b[k].second.x_m, 1e-6);
+    ASSERT_NEAR(a[k].second.y_m, b[k].second.y_m, 1e-6);
+  }
+  EXPECT_EQ(offline.slam->keyframes().size(), r.run.slam->keyframes().size());
+  // live.json holds the figures.
+  std::ifstream in(live.out_dir + "/live.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["scan_latency_ms"]["samples"].get<long long>(), r.latency_samples);
+  EXPECT_TRUE(std::filesystem::exists(live.out_dir + "/summary.json"));
+  // ATE against the emulator's ground truth is measured (same clock as the drivers).
+  EXPECT_GT(r.outputs.ate.num_poses, 100);
+  EXPECT_LT(r.outputs.ate.rmse_m, 0.05);
+}
+
+TEST(LiveRunTest, DeviceListNotMatchingTheRadarsIsAnInputError) {
+  Config config;
+  config.live.radar_devices = {"/dev/ttyACM0"};
+  tools::LiveRunOptions options;
+  options.out_dir = std::filesystem::temp_directory_path() / "uwbsar_live_bad";
+  EXPECT_THROW(tools::RunLive(config, std::move(options)), InputError);
+}
+
+long long Fault(const tools::LiveRunResult& r, const std::string& kind) {
+  auto it = r.faults.find(kind);
+  return it == r.faults.end() ? 0 : it->second;
+}
+
+TEST(LiveRunTest, TheEchoedRangeNotTheYamlSetsTheImagingGeometry) {
+  Config config;  // radars[]: sample 0 at 0 m, 1000 samples
+  config.live.lt102.range_min_m = 0.5;
+  config.live.lt102.range_max_m = 3.0;
+  const EmulatedRun live = RunEmulated(config, "range", 2.0, 8.0);
+  const tools::LiveRunResult& r = live.result;
+  const double bin_m = 299792458.0 / (2 * 23.328e9);
+  for (const RadarConfig& radar : r.run.slam->config().radars) {
+    EXPECT_NEAR(radar.range_offset_m, 78 * bin_m, 1e-6);  // 0.5 m on the radar's grid
+    EXPECT_EQ(radar.num_samples, 390);
+  }
+  const FrontendStats s = r.run.slam->frontend_stats();
+  std::printf("range 0.5-3.0 m: %lld scans imaged, %lld rejected for their length; ATE %.2f cm\n",
+              s.scans_imaged, s.scans_rejected_length, 100 * r.outputs.ate.rmse_m);
+  EXPECT_EQ(s.scans_rejected_length, 0);
+  EXPECT_GT(s.scans_imaged, 100);
+  EXPECT_LT(r.outputs.ate.rmse_m, 0.05);
+}
+
+TEST(LiveRunTest, Lt102FaultsAreCountedAndEveryScanThatArrivedIsRecorded) {
+  Config config;
+  EmulatorFaults faults;
+  faults.lt102_crc = true;  // detected from the version answer (live.lt102.crc: auto)
+  faults.lt102_bad_size_every = 50;
+  faults.lt102_missing_answer_code = 'd';
+  faults.lt102_missing_answer_times = 3;     // 0.75 s without bytes: under live.read_timeout_s
+  config.live.lt102.frame_timeout_s = 0.25;  // the request in flight when the run ends stays so
+  const EmulatedRun live = RunEmulated(config, "lt102_faults", 2.0, 8.0, faults);
+  const tools::LiveRunResult& r = live.result;
+  long long answers = 0, invalid = 0;
+  for (const auto& [name, s] : r.radars) {
+    std::printf("%s: %lld requests, %lld answers, %lld lost, %lld invalid; CRC %s\n", name.c_str(),
+                s.requests, s.answers, s.lost, s.invalid_frames, s.setup.crc ? "on" : "off");
+    EXPECT_TRUE(s.setup.crc);
+    EXPECT_EQ(s.lost, 3);
+    EXPECT_EQ(s.startups, 1);
+    EXPECT_GT(s.invalid_frames, 0);
+    answers += s.answers + s.late_answers;
+    invalid += s.invalid_frames;
+  }
+  EXPECT_EQ(Fault(r, "radar left: lost frames"), 3);
+  EXPECT_GT(Fault(r, "radar right: invalid raw-data messages"), 0);
+  EXPECT_EQ(r.scans_received, answers - invalid);
+  EXPECT_GE(r.recorded_messages, r.scans_received + r.odometry_received);
+  ASSERT_FALSE(r.run.slam->keyframes().empty());
+}
+
+TEST(LiveRunTest, ARadarRefusingASettingStopsTheRunWithOneLineNamingIt) {
+  namespace fs = std::filesystem;
+  Config config;
+  const std::string dir =
+      (fs::temp_directory_path() / ("uwbsar_live_refuse_" + std::to_string(::getpid()))).string();
+  fs::remove_all(dir);
+  fs::create_directories(dir + "/dev");
+  config.live.radar_devices = {dir + "/dev/radar0", dir + "/dev/radar1"};
+  config.live.kobuki_device = dir + "/dev/kobuki";
+  EmulatorFaults faults;
+  faults.lt102_wrong_echo_code = lt102::kFormat;
+  const sim::SimScenario scenario = sim::MakeScenario(config, SeedLabMapPath(), "depart-return", 1);
+  HostClock clock;
+  SimDevicePlayer player(
+      config, scenario, 1, config.live.radar_devices, config.live.kobuki_device, 1.0, faults,
+      [&] { return clock.Now(); }, 5.0);
+  player.Start();
+  tools::LiveRunOptions options;
+  options.out_dir = dir;
+  options.quiet = true;
+  std::atomic<bool> stop{true};
+  options.stop = &stop;
+  try {
+    tools::RunLive(config, std::move(options));
+    ADD_FAILURE() << "the run started";
+  } catch (const InputError& e) {
+    std::printf("refused: %s\n", e.what());
+    EXPECT_EQ(std::string(e.what()),
+              "radar left: configuration error: sample format (0x0A) sent 1, the radar echoed 2");
+  }
+  player.Stop();
+  EXPECT_FALSE(fs::exists(dir + "/live.json"));
+}
+
+// Polled acquisition keeps up at 100 frames/s per radar, two radars, on the
+// 2-core machine (the figure goes into live.json; no wall-clock bound is asserted).
+TEST(LiveRunTest, PolledAcquisitionAt100FramesPerSecondFromTwoRadarsLosesNoFrame) {
+  Config config;
+  config.live.lt102.frame_timeout_s = 0.5;  // the request in flight when the run ends stays so
+  const EmulatedRun live = RunEmulated(config, "poll100", 1.0, 10.0);
+  const tools::LiveRunResult& r = live.result;
+  ASSERT_EQ(r.radars.size(), 2u);
+  for (const auto& [name, s] : r.radars) {
+    std::printf(
+        "%s at %d frames/s: %lld requests, %lld answers, %lld lost, %lld unanswered at stop; "
+        "request-to-answer p50 %.2f ms, p99 %.2f ms, max %.2f ms\n",
+        name.c_str(), s.setup.frame_rate_fps, s.requests, s.answers, s.lost, s.unanswered_at_stop,
+        s.answer_p50_ms, s.answer_p99_ms, s.answer_max_ms);
+    EXPECT_EQ(s.setup.frame_rate_fps, 100);
+    EXPECT_EQ(s.lost, 0);
+    EXPECT_EQ(s.requests, s.answers + s.unanswered_at_stop);
+    EXPECT_GT(s.answers, 0);  // how many depends on the machine's load: printed, not asserted
+    EXPECT_GT(s.answer_p99_ms, 0.0);
+  }
+  std::printf("emulator: %lld frames acquired, %lld answered, %lld overwritten before a request\n",
+              live.emulator.frames_acquired, live.emulator.scans_sent,
+              live.emulator.frames_overwritten);
+  std::ifstream in(live.out_dir + "/live.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_GT(j["radars"]["radar left"]["request_to_answer_ms"]["p99"].get<double>(), 0.0);
+  EXPECT_EQ(j["radars"]["radar right"]["frames_lost"].get<long long>(), 0);
+}
+
+}  // namespace
+}  // namespace uwbsar::live
+
+namespace uwbsar::live {
+namespace {
+
+struct ErrorStats {
+  double p50_ms = 0, p99_ms = 0, max_ms = 0;
+};
+ErrorStats Stats(std::vector<double> v) {
+  for (double& e : v) e = std::abs(e);
+  std::sort(v.begin(), v.end());
+  if (v.empty()) return {};
+  auto at = [&](double p) {
+    return v[std::min(v.size() - 1, static_cast<std::size_t>(p * static_cast<double>(v.size())))];
+  };
+  return {at(0.5), at(0.99), v.back()};
+}
+
+// A radar scan's stamp is its acquisition time on the emulator (taken on
+// the same host clock), not its arrival: the filtered error is printed next to the raw
+// arrival's (README table), idle and, in .ci/run, under uwbsar_load.
+TEST(LiveRunTest, RadarStampsFollowTheAcquisitionTimesNotTheArrivals) {
+  UWBSAR_NEED_SEED_LAB_MAP();
+  Config config;
+  const EmulatedRun live = RunEmulated(config, "stamps", 1.0, 12.0);
+  ASSERT_EQ(live.result.radars.size(), live.scan_send_ns.size());
+  std::vector<double> raw, filtered;
+  for (std::size_t r = 0; r < live.scan_send_ns.size(); ++r) {
+    const std::vector<TimestampNs>& truth = live.scan_send_ns[r];
+    const auto& trace = live.result.radars[r].second.stamp_trace;
+    ASSERT_GT(trace.size(), 500u);
+    for (std::size_t i = 100; i < trace.size(); ++i) {  // after the envelope settled
+      const auto [arrival, stamp] = trace[i];
+      // The frame is the acquisition nearest its stamp.
+      auto it = std::lower_bound(truth.begin(), truth.end(), stamp);
+      if (it == truth.end() || (it != truth.begin() && stamp - *(it - 1) < *it - stamp)) --it;
+      raw.push_back(static_cast<double>(arrival - *it) * 1e-6);
+      filtered.push_back(static_cast<double>(stamp - *it) * 1e-6);
+    }
+  }
+  const ErrorStats a = Stats(raw), f = Stats(filtered);
+  std::printf(
+      "stamps%s: %zu scans; raw arrival error p50 %.3f p99 %.3f max %.3f ms; filtered p50 "
+      "%.3f p99 %.3f max %.3f ms\n",
+      std::getenv("UWBSAR_UNDER_LOAD") ? " (under load)" : "", raw.size(), a.p50_ms, a.p99_ms,
+      a.max_ms, f.p50_ms, f.p99_ms, f.max_ms);
+  // Relative, not absolute (a frame more than half a period off is matched to its
+  // neighbour, so 5 ms is the measure's ceiling). At normal priority: idle filtered
+  // p50/p99/max 0.43/0.70/0.72 ms against raw 0.67/3.1/7.5 ms; under uwbsar_load 1.8/4.9/5.0
+  // against 6.4/40/118 ms. With the link threads under SCHED_FIFO (live.driver_priority) the
+  // raw arrivals' median is near the transfer time the envelope cannot see either (raw p50
+  // 0.57-0.60 ms against filtered 0.39-0.51 ms, with a compiler and uwbsar_load running): the
+  // filter wins in the tail (raw p99 4.2-10.5 ms, filtered 0.56-4.7 ms), and its median may
+  // not be worse than the raw one by more than a tenth of a millisecond.
+  EXPECT_LT(f.p50_ms, a.p50_ms + 0.1);
+  EXPECT_LT(f.p99_ms, a.p99_ms);
+}
+
+}  // namespace
+}  // namespace uwbsar::live

@@ -1,0 +1,86 @@
+#include "pipeline/stamp_order_buffer.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace uwbsar::tools {
+namespace {
+
+constexpr std::int64_t kMs = 1000000;
+
+struct Released {
+  std::vector<int> items;
+  std::vector<bool> late;
+};
+
+StampOrderBuffer<int> MakeBuffer(Released* out, std::int64_t window_ns = 50 * kMs) {
+  return StampOrderBuffer<int>(window_ns, [out](int&& item, bool late) {
+    out->items.push_back(item);
+    out->late.push_back(late);
+  });
+}
+
+TEST(StampOrderBufferTest, InterleavedStreamsComeOutInStampOrder) {
+  Released out;
+  auto buffer = MakeBuffer(&out);
+  // Two streams taken in bursts: stream A up to 40 ms, then stream B from 5 ms.
+  buffer.Push(10 * kMs, 0, 10);
+  buffer.Push(20 * kMs, 1 * kMs, 20);
+  buffer.Push(40 * kMs, 2 * kMs, 40);
+  buffer.Push(5 * kMs, 3 * kMs, 5);
+  buffer.Push(25 * kMs, 30 * kMs, 25);
+  buffer.Poll(49 * kMs);
+  EXPECT_TRUE(out.items.empty());  // nothing waited 50 ms yet
+  buffer.Poll(53 * kMs);           // 5, 10, 20 and 40 waited; 25 arrived at 30 ms
+  EXPECT_EQ(out.items, (std::vector<int>{5, 10, 20}));
+  buffer.Poll(80 * kMs);
+  EXPECT_EQ(out.items, (std::vector<int>{5, 10, 20, 25, 40}));
+  EXPECT_EQ(buffer.late(), 0);
+}
+
+TEST(StampOrderBufferTest, ABurstAfterAStallIsSortedWhateverItsStampSpan) {
+  Released out;
+  auto buffer = MakeBuffer(&out);
+  // The reading thread stalled for 300 ms: one stream's backlog, then the other's.
+  for (int i = 0; i < 30; ++i) buffer.Push(i * 10 * kMs, 1000 * kMs, 1000 + i);
+  for (int i = 0; i < 15; ++i) buffer.Push(i * 20 * kMs + kMs, 1001 * kMs, 2000 + i);
+  buffer.Poll(1051 * kMs);
+  ASSERT_EQ(out.items.size(), 45u);
+  EXPECT_EQ(buffer.late(), 0);
+  EXPECT_EQ(out.items[0], 1000);
+  EXPECT_EQ(out.items[1], 2000);  // stamped 1 ms
+}
+
+TEST(StampOrderBufferTest, EqualStampsKeepArrivalOrder) {
+  Released out;
+  auto buffer = MakeBuffer(&out);
+  buffer.Push(10 * kMs, 0, 1);
+  buffer.Push(10 * kMs, 0, 2);
+  buffer.Flush();
+  EXPECT_EQ(out.items, (std::vector<int>{1, 2}));
+}
+
+TEST(StampOrderBufferTest, AStoppedStreamDoesNotHoldTheRestLongerThanTheWindow) {
+  Released out;
+  auto buffer = MakeBuffer(&out);
+  buffer.Push(10 * kMs, 0, 10);
+  buffer.Poll(49 * kMs);
+  EXPECT_TRUE(out.items.empty());
+  buffer.Poll(50 * kMs);  // waited the window in wall time
+  EXPECT_EQ(out.items, (std::vector<int>{10}));
+}
+
+TEST(StampOrderBufferTest, ASampleOlderThanOneReleasedIsPassedOnFlaggedLate) {
+  Released out;
+  auto buffer = MakeBuffer(&out);
+  buffer.Push(100 * kMs, 0, 100);
+  buffer.Poll(50 * kMs);                // releases 100
+  buffer.Push(90 * kMs, 60 * kMs, 90);  // older than what went out
+  ASSERT_EQ(out.items, (std::vector<int>{100, 90}));
+  EXPECT_EQ(out.late, (std::vector<bool>{false, true}));
+  EXPECT_EQ(buffer.late(), 1);
+}
+
+}  // namespace
+}  // namespace uwbsar::tools
