@@ -337,14 +337,8 @@ void ValidateLimits(const Config& c, const std::string& src) {
                 "max_tile_pixels");
 }
 
-}  // namespace
-
-void ValidateConfig(const Config& c, const std::string& src) {
-  ValidateCompare(c.compare, src);
-  ValidateLive(c.live, src);
-  ValidateDds(c.dds, src);
-  ValidateSimulator(c.simulator, src);
-  ValidatePlaceRecognition(c.place_recognition, src);
+/// Pulse and radars.
+void ValidateSensors(const Config& c, const std::string& src) {
   Require(c.pulse.center_frequency_hz > 0, src, "pulse.center_frequency_hz", "must be > 0");
   Require(c.pulse.bandwidth_hz > 0, src, "pulse.bandwidth_hz", "must be > 0");
   Require(c.pulse.sampling_frequency_hz > 2 * c.pulse.center_frequency_hz, src,
@@ -361,6 +355,10 @@ void ValidateConfig(const Config& c, const std::string& src) {
     Require(r.zero_leading_samples >= 0 && r.zero_leading_samples < r.num_samples, src,
             k + "zero_leading_samples", "must be in [0, num_samples)");
   }
+}
+
+/// slam.*, with the radar topics and the feature resolution that depend on it.
+void ValidateSlam(const Config& c, const std::string& src) {
   Require(c.slam.map_resolution_m > 0, src, "slam.map_resolution_m", "must be > 0");
   Require(c.slam.optimize_every_keyframes >= 0, src, "slam.optimize_every_keyframes",
           "must be >= 0");
@@ -385,6 +383,10 @@ void ValidateConfig(const Config& c, const std::string& src) {
           "slam.occupied_fraction", "must be in (0, 1]");
   Require(c.slam.occupancy_reference_percentile > 0 && c.slam.occupancy_reference_percentile <= 100,
           src, "slam.occupancy_reference_percentile", "must be in (0, 100]");
+}
+
+/// imaging, gating, keyframe and enhance.
+void ValidateImaging(const Config& c, const std::string& src) {
   Require(c.imaging.mode == "paper" || c.imaging.mode == "coherent", src, "imaging.mode",
           "must be 'paper' or 'coherent'");
   Require(c.imaging.pixel_size_m > 0, src, "imaging.pixel_size_m", "must be > 0");
@@ -410,7 +412,9 @@ void ValidateConfig(const Config& c, const std::string& src) {
                                                    "viridis", "magma",   "hot"};
   Require(kColormaps.count(c.enhance.colormap) > 0, src, "enhance.colormap",
           "must be one of gray, inferno, jet, viridis, magma, hot");
-  const BackendConfig& b = c.backend;
+}
+
+void ValidateBackend(const BackendConfig& b, const std::string& src) {
   Require(b.initialization == "guess" || b.initialization == "chordal", src,
           "backend.initialization", "must be 'guess' or 'chordal'");
   Require(b.robust_loss == "cauchy" || b.robust_loss == "huber" || b.robust_loss == "none", src,
@@ -430,6 +434,20 @@ void ValidateConfig(const Config& c, const std::string& src) {
   Require(b.function_tolerance > 0 && b.function_tolerance < 1, src, "backend.function_tolerance",
           "must be in (0, 1)");
   Require(b.num_threads >= 1, src, "backend.num_threads", "must be >= 1");
+}
+
+}  // namespace
+
+void ValidateConfig(const Config& c, const std::string& src) {
+  ValidateCompare(c.compare, src);
+  ValidateLive(c.live, src);
+  ValidateDds(c.dds, src);
+  ValidateSimulator(c.simulator, src);
+  ValidatePlaceRecognition(c.place_recognition, src);
+  ValidateSensors(c, src);
+  ValidateSlam(c, src);
+  ValidateImaging(c, src);
+  ValidateBackend(c.backend, src);
   Require(c.gating.max_odom_speed_mps > 0, src, "gating.max_odom_speed_mps", "must be > 0");
   Require(c.gating.max_odom_turn_rate_radps > 0, src, "gating.max_odom_turn_rate_radps",
           "must be > 0");
