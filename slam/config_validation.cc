@@ -131,7 +131,6 @@ void ValidatePlaceRecognition(const PlaceRecognitionConfig& p, const std::string
 
 void ValidateCompare(const CompareConfig& c, const std::string& src) {
   const std::string k = "compare.";
-  Require(c.align == "icp" || c.align == "origin", src, k + "align", "must be 'icp' or 'origin'");
   Require(c.icp_method == "point_to_point" || c.icp_method == "point_to_plane", src,
           k + "icp_method", "must be 'point_to_point' or 'point_to_plane'");
   Require(!c.icp_max_correspondence_m.empty(), src, k + "icp_max_correspondence_m",
@@ -274,7 +273,7 @@ void ValidateLimits(const Config& c, const std::string& src) {
         std::make_pair("max_map_image_pixels", l.max_map_image_pixels)}) {
     Require(value > 0, src, std::string("limits.") + key, "must be > 0");
   }
-  const bool coherent = c.imaging.mode == "coherent";
+  const bool coherent = c.imaging.coherent();
   for (std::size_t i = 0; i < c.radars.size(); ++i) {
     const double samples = static_cast<double>(c.radars[i].num_samples) *
                            (coherent ? c.imaging.coherent_oversampling : 1);
@@ -387,8 +386,6 @@ void ValidateSlam(const Config& c, const std::string& src) {
 
 /// imaging, gating, keyframe and enhance.
 void ValidateImaging(const Config& c, const std::string& src) {
-  Require(c.imaging.mode == "paper" || c.imaging.mode == "coherent", src, "imaging.mode",
-          "must be 'paper' or 'coherent'");
   Require(c.imaging.pixel_size_m > 0, src, "imaging.pixel_size_m", "must be > 0");
   Require(c.imaging.coherent_oversampling >= 1 && c.imaging.coherent_oversampling <= 64, src,
           "imaging.coherent_oversampling", "must be in [1, 64]");
@@ -415,10 +412,6 @@ void ValidateImaging(const Config& c, const std::string& src) {
 }
 
 void ValidateBackend(const BackendConfig& b, const std::string& src) {
-  Require(b.initialization == "guess" || b.initialization == "chordal", src,
-          "backend.initialization", "must be 'guess' or 'chordal'");
-  Require(b.robust_loss == "cauchy" || b.robust_loss == "huber" || b.robust_loss == "none", src,
-          "backend.robust_loss", "must be 'cauchy', 'huber' or 'none'");
   Require(b.robust_loss_scale > 0, src, "backend.robust_loss_scale", "must be > 0");
   Require(b.loop_rejection_chi2 > 0, src, "backend.loop_rejection_chi2", "must be > 0");
   Require(b.max_rejection_rounds >= 0, src, "backend.max_rejection_rounds", "must be >= 0");

@@ -70,7 +70,7 @@ void AddCompareOptions(CLI::App* cmd, CompareOptions* opts) {
 /// The alignment asked by --align (else compare.align), --method and --init.
 AlignRequest MakeAlignRequest(const CompareOptions& opts, const Config& config) {
   AlignRequest request;
-  request.mode = opts.align.empty() ? config.compare.align : opts.align;
+  request.mode = opts.align.empty() ? EnumName(config.compare.align) : opts.align;
   request.method = opts.method;
   if (request.mode != "icp" && request.mode != "origin") {
     ParsePose(request.mode, &request.T_lidar_sar);

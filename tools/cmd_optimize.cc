@@ -113,7 +113,7 @@ void Optimize(const OptimizeOptions& opts, const GlobalOptions& globals) {
   for (const std::string* out : {&opts.out, &opts.tum, &opts.png}) {
     if (!out->empty()) CheckOutputFile(*out);  // before the work
   }
-  if (!opts.init.empty()) config.backend.initialization = opts.init;
+  if (!opts.init.empty()) EnumFromName(opts.init, &config.backend.initialization);  // checked
   G2oReadOptions read;
   read.skip_bad_lines = opts.skip_bad_lines;
   const G2oGraph file = ReadG2o(opts.in, read);

@@ -80,7 +80,7 @@ RegionStudy RunRegionStudy(const std::vector<ImagedScan>& depart,
   }
   study.strip_grid =
       WorldGridCovering(poses, sensors, config.keyframe.margin_m, config.imaging.pixel_size_m);
-  const bool coherent = config.imaging.mode == "coherent";
+  const bool coherent = config.imaging.coherent();
   const int threads = std::max(1, config.imaging.num_threads);
   study.d_strip = RenderScans(depart, sensors, study.strip_grid, coherent, threads).image;
   study.r_strip = RenderScans(ret, sensors, study.strip_grid, coherent, threads).image;

@@ -18,7 +18,7 @@ constexpr double kPixelM = 0.02;
 
 ImagingConfig Imaging(const std::string& mode) {
   ImagingConfig imaging;
-  imaging.mode = mode;
+  EXPECT_TRUE(EnumFromName(mode, &imaging.mode)) << mode;
   imaging.pixel_size_m = kPixelM;
   imaging.num_threads = 1;
   return imaging;
