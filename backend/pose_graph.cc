@@ -54,8 +54,8 @@ bool Finite(const Pose2& p) {
 }
 
 ceres::LossFunction* MakeRobustLoss(const BackendConfig& c) {
-  if (c.robust_loss == "cauchy") return new ceres::CauchyLoss(c.robust_loss_scale);
-  if (c.robust_loss == "huber") return new ceres::HuberLoss(c.robust_loss_scale);
+  if (c.robust_loss == RobustLoss::kCauchy) return new ceres::CauchyLoss(c.robust_loss_scale);
+  if (c.robust_loss == RobustLoss::kHuber) return new ceres::HuberLoss(c.robust_loss_scale);
   return nullptr;  // "none": plain least squares
 }
 
@@ -330,9 +330,9 @@ OptimizeResult PoseGraph::Optimize() {
   result.initial_cost = HalfChi2Sum(false);
   ComputeSupport();
   const bool first = !solved_once_;
-  if (first && config_.initialization == "chordal") ChordalStart();
+  if (first && config_.initialization == GraphInitialization::kChordal) ChordalStart();
   solved_once_ = true;
-  const bool robust = config_.robust_loss != "none";
+  const bool robust = config_.robust_loss != RobustLoss::kNone;
   if (!solver_edges_.empty()) {
     bool settled = false;
     if (!first) {

@@ -29,7 +29,7 @@ void BM_BackProjectScanPair(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(1));
   cv::setNumThreads(threads);
   Config config;
-  config.imaging.mode = coherent ? "coherent" : "paper";
+  config.imaging.mode = coherent ? ImagingMode::kCoherent : ImagingMode::kPaper;
   std::vector<SensorGeometry> sensors;
   std::vector<std::shared_ptr<const RangeProfile>> profiles;
   for (const RadarConfig& r : config.radars) {

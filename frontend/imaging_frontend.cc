@@ -6,7 +6,7 @@
 namespace uwbsar {
 
 ImagingFrontend::ImagingFrontend(const Config& config) : config_(config), odometry_(config.gating) {
-  const bool coherent = config.imaging.mode == "coherent";
+  const bool coherent = config.imaging.coherent();
   for (const RadarConfig& radar : config.radars) {
     sensors_.push_back(SensorGeometry::FromConfig(radar, config.pulse));
     compressors_.push_back(std::make_unique<RangeCompressor>(

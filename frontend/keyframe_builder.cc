@@ -10,7 +10,7 @@ KeyframeBuilder::KeyframeBuilder(const KeyframeConfig& keyframe, const ImagingCo
                                  std::vector<SensorGeometry> sensors)
     : config_(keyframe),
       resolution_m_(imaging.pixel_size_m),
-      coherent_(imaging.mode == "coherent"),
+      coherent_(imaging.coherent()),
       segments_per_tile_(std::max(
           1, static_cast<int>(std::lround(keyframe.tile_length_m / keyframe.tile_spacing_m)))),
       sensors_(std::move(sensors)),

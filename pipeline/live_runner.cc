@@ -69,6 +69,78 @@ void WriteLiveJson(const LiveRunResult& result, const std::string& source,
   WriteTextAtomic((std::filesystem::path(out_dir) / "live.json").string(), live.dump(2) + "\n");
 }
 
+/// Runs the SLAM and snapshot threads and polls the source until options.stop; then
+/// stops the source, drains SLAM, stops snapshots and shuts the source down, also when
+/// the loop throws.
+void RunUntilStopped(const LiveRunOptions& options, const std::string& recording,
+                     LiveSource* source, Dispatcher* dispatcher, Processor* processor,
+                     bool start_source) {
+  std::atomic<bool> processing_stop{false}, snapshot_stop{false};
+  std::thread slam_thread([&] { processor->Loop(processing_stop); });
+  std::thread snapshot_thread([&] { processor->SnapshotLoop(snapshot_stop); });
+  // Shutdown order: the source first (no new input), then drain SLAM, then snapshots.
+  auto stop_all = [&] {
+    source->Stop();
+    dispatcher->Event("run stopping");
+    processing_stop = true;
+    if (slam_thread.joinable()) slam_thread.join();
+    snapshot_stop = true;
+    if (snapshot_thread.joinable()) snapshot_thread.join();
+    source->ShutDown();
+  };
+  try {
+    if (start_source) source->Start();
+    dispatcher->Event("run started (" + options.source + ")");
+    if (!options.quiet) {
+      Log(LogLevel::kInfo, "live run (" + options.source + "): recording to " + recording +
+                               ".partial, outputs in " + options.out_dir + "; Ctrl-C to finish");
+    }
+    while (!(options.stop && options.stop->load())) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      source->Poll();
+    }
+  } catch (...) {
+    stop_all();  // threads joined and the recording closed before the error leaves
+    throw;
+  }
+  stop_all();
+}
+
+/// After the threads stopped: finishes SLAM, closes the recording, writes the final
+/// outputs and live.json, and gathers the run's figures.
+LiveRunResult FinishRun(const LiveRunOptions& options, const live::FaultLog& faults,
+                        const Dispatcher& dispatcher, const LiveSource& source,
+                        Processor* processor_ptr, Recorder* recorder_ptr) {
+  Processor& processor = *processor_ptr;
+  Recorder& recorder = *recorder_ptr;
+  LiveRunResult result;
+  processor.slam().Finish();
+  result.faults = faults.Counts();
+  result.dropped_from_processing = dispatcher.dropped();
+  auto& lat = processor.latencies_ms();
+  result.latency_samples = static_cast<long long>(lat.size());
+  result.latency_p50_ms = Percentile(lat, 50);
+  result.latency_p99_ms = Percentile(lat, 99);
+  result.latency_max_ms = lat.empty() ? 0.0 : *std::max_element(lat.begin(), lat.end());
+  result.scans_received = source.scans_received();
+  result.radars = source.radar_stats();
+  result.odometry_received = processor.odometry_messages();
+  recorder.Close();
+  result.recorded_messages = recorder.written();
+  result.recording_path = recorder.path();
+
+  processor.Snapshot();  // the final outputs (after Finish); published too with ros2
+  result.snapshots = processor.snapshots();
+  result.snapshot_max_s = processor.snapshot_max_s();
+  result.snapshot_p50_s = Percentile(processor.snapshot_s(), 50);
+  result.snapshot_lock_max_s = processor.snapshot_lock_max_s();
+  result.keyframe_lock_wait_max_s = processor.slam().keyframe_lock_wait_max_s();
+  WriteLiveJson(result, options.source, options.out_dir);
+  result.outputs = processor.last_outputs();
+  result.run = processor.FinalRun();
+  return result;
+}
+
 }  // namespace
 
 LiveRunResult RunLive(const Config& config, LiveRunOptions options) {
@@ -115,61 +187,10 @@ LiveRunResult RunLive(const Config& config, LiveRunOptions options) {
   dispatcher.AttachRecorder(&recorder);
   guard.source = nullptr;
 
-  std::atomic<bool> processing_stop{false}, snapshot_stop{false};
-  std::thread slam_thread([&] { processor.Loop(processing_stop); });
-  std::thread snapshot_thread([&] { processor.SnapshotLoop(snapshot_stop); });
-  // Shutdown order: the source first (no new input), then drain SLAM, then snapshots.
-  auto stop_all = [&] {
-    source->Stop();
-    dispatcher.Event("run stopping");
-    processing_stop = true;
-    if (slam_thread.joinable()) slam_thread.join();
-    snapshot_stop = true;
-    if (snapshot_thread.joinable()) snapshot_thread.join();
-    source->ShutDown();
-  };
-  try {
-    if (!serial) source->Start();
-    dispatcher.Event("run started (" + options.source + ")");
-    if (!options.quiet) {
-      Log(LogLevel::kInfo, "live run (" + options.source + "): recording to " + recording +
-                               ".partial, outputs in " + options.out_dir + "; Ctrl-C to finish");
-    }
-    while (!(options.stop && options.stop->load())) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-      source->Poll();
-    }
-  } catch (...) {
-    stop_all();  // threads joined and the recording closed before the error leaves
-    throw;
-  }
-  stop_all();
+  RunUntilStopped(options, recording, source.get(), &dispatcher, &processor,
+                  /*start_source=*/!serial);
 
-  LiveRunResult result;
-  processor.slam().Finish();
-  result.faults = faults.Counts();
-  result.dropped_from_processing = dispatcher.dropped();
-  auto& lat = processor.latencies_ms();
-  result.latency_samples = static_cast<long long>(lat.size());
-  result.latency_p50_ms = Percentile(lat, 50);
-  result.latency_p99_ms = Percentile(lat, 99);
-  result.latency_max_ms = lat.empty() ? 0.0 : *std::max_element(lat.begin(), lat.end());
-  result.scans_received = source->scans_received();
-  result.radars = source->radar_stats();
-  result.odometry_received = processor.odometry_messages();
-  recorder.Close();
-  result.recorded_messages = recorder.written();
-  result.recording_path = recorder.path();
-
-  processor.Snapshot();  // the final outputs (after Finish); published too with ros2
-  result.snapshots = processor.snapshots();
-  result.snapshot_max_s = processor.snapshot_max_s();
-  result.snapshot_p50_s = Percentile(processor.snapshot_s(), 50);
-  result.snapshot_lock_max_s = processor.snapshot_lock_max_s();
-  result.keyframe_lock_wait_max_s = processor.slam().keyframe_lock_wait_max_s();
-  WriteLiveJson(result, options.source, options.out_dir);
-  result.outputs = processor.last_outputs();
-  result.run = processor.FinalRun();
+  LiveRunResult result = FinishRun(options, faults, dispatcher, *source, &processor, &recorder);
   source.reset();  // after the last publication
   return result;
 }

@@ -10,6 +10,7 @@
 
 #include "slam/dds_config.h"
 #include "slam/live_config.h"
+#include "slam/named_enum.h"
 #include "slam/place_recognition_config.h"
 #include "slam/simulator_config.h"
 
@@ -72,13 +73,23 @@ inline std::vector<RadarConfig> DefaultRadars() {
   return {left, right};
 }
 
+/// imaging.mode: "paper": real samples, linear interpolation (as the paper); "coherent":
+/// analytic signal with exp(j 4 pi fc R / c) phase.
+enum class ImagingMode { kPaper, kCoherent };
+template <>
+struct EnumNames<ImagingMode> {
+  static constexpr std::pair<ImagingMode, const char*> kNames[] = {
+      {ImagingMode::kPaper, "paper"}, {ImagingMode::kCoherent, "coherent"}};
+};
+
 /// Back-projection (paper section "Back-projection Algorithm").
 struct ImagingConfig {
-  std::string mode = "paper";     ///< "paper": real samples, linear interpolation (as the paper);
-                                  ///< "coherent": analytic signal with exp(j 4 pi fc R / c) phase
-  double pixel_size_m = 0.005;    ///< 5 mm per pixel, as the paper
+  ImagingMode mode = ImagingMode::kPaper;  ///< paper or coherent (see ImagingMode)
+  double pixel_size_m = 0.005;             ///< 5 mm per pixel, as the paper
   int coherent_oversampling = 4;  ///< analytic-signal upsampling before interpolation (coherent)
   int num_threads = 2;            ///< threads for back-projection (0 = OpenCV default)
+
+  bool coherent() const { return mode == ImagingMode::kCoherent; }
 
   template <class V>
   void Visit(V& v) {
@@ -138,25 +149,40 @@ struct EnhanceConfig {
   }
 };
 
+/// backend.initialization: the first solve starts from the nodes' initial estimates
+/// (guess) or from a chordal relaxation (chordal).
+enum class GraphInitialization { kGuess, kChordal };
+template <>
+struct EnumNames<GraphInitialization> {
+  static constexpr std::pair<GraphInitialization, const char*> kNames[] = {
+      {GraphInitialization::kGuess, "guess"}, {GraphInitialization::kChordal, "chordal"}};
+};
+
+/// backend.robust_loss: the loss on loop edges while outliers are sought.
+enum class RobustLoss { kCauchy, kHuber, kNone };
+template <>
+struct EnumNames<RobustLoss> {
+  static constexpr std::pair<RobustLoss, const char*> kNames[] = {
+      {RobustLoss::kCauchy, "cauchy"}, {RobustLoss::kHuber, "huber"}, {RobustLoss::kNone, "none"}};
+};
+
 /// Pose-graph backend (Ceres): loop outlier handling, odometry weighting, solver settings.
 struct BackendConfig {
-  std::string initialization = "guess";  ///< first solve starts from: guess (the nodes'
-                                         ///< initial estimates) or chordal (relaxation)
-  std::string robust_loss = "cauchy";    ///< loss on loop edges while outliers are sought:
-                                         ///< cauchy, huber or none
-  double robust_loss_scale = 2.0;        ///< whitened residual norm (sigmas) where it turns robust
-  double loop_rejection_chi2 = 16.27;    ///< a loop whose chi2 at the solution exceeds this is
-                                         ///< rejected (16.27 = 99.9 % quantile, 3 DOF)
-  int max_rejection_rounds = 10;         ///< solve / reject / re-admit rounds per optimisation
-  int min_loop_support = 1;              ///< loops agreeing with fewer other loops nearby are
-                                         ///< held back and only admitted if the map solved
-                                         ///< without them confirms them; 0 disables
-  int loop_support_window = 10;          ///< nodes along the odometry chain that count as nearby
-  double unsupported_loop_chi2 = 32.5;   ///< a held-back loop is admitted when its chi2 against
-                                         ///< the map solved without it is at most this (twice
-                                         ///< loop_rejection_chi2: the map's own uncertainty
-                                         ///< between the ends counted as one more loop)
-  bool final_least_squares = true;       ///< last solve without loss on the accepted loops
+  GraphInitialization initialization = GraphInitialization::kGuess;  ///< guess or chordal
+  RobustLoss robust_loss = RobustLoss::kCauchy;  ///< cauchy, huber or none (on loop edges)
+  double robust_loss_scale = 2.0;       ///< whitened residual norm (sigmas) where it turns robust
+  double loop_rejection_chi2 = 16.27;   ///< a loop whose chi2 at the solution exceeds this is
+                                        ///< rejected (16.27 = 99.9 % quantile, 3 DOF)
+  int max_rejection_rounds = 10;        ///< solve / reject / re-admit rounds per optimisation
+  int min_loop_support = 1;             ///< loops agreeing with fewer other loops nearby are
+                                        ///< held back and only admitted if the map solved
+                                        ///< without them confirms them; 0 disables
+  int loop_support_window = 10;         ///< nodes along the odometry chain that count as nearby
+  double unsupported_loop_chi2 = 32.5;  ///< a held-back loop is admitted when its chi2 against
+                                        ///< the map solved without it is at most this (twice
+                                        ///< loop_rejection_chi2: the map's own uncertainty
+                                        ///< between the ends counted as one more loop)
+  bool final_least_squares = true;      ///< last solve without loss on the accepted loops
   double odometry_xy_information = 2500.0;    ///< x, y information of 1 m of odometry (1/m^2):
                                               ///< sigma 2 cm per metre (wheel odometry, 1-2 %),
                                               ///< divided by the edge's travelled distance
@@ -191,10 +217,19 @@ struct BackendConfig {
   }
 };
 
+/// compare.align: ICP between the occupied cells (from the map origins or --init), or
+/// the map origins trusted.
+enum class CompareAlign { kIcp, kOrigin };
+template <>
+struct EnumNames<CompareAlign> {
+  static constexpr std::pair<CompareAlign, const char*> kNames[] = {
+      {CompareAlign::kIcp, "icp"}, {CompareAlign::kOrigin, "origin"}};
+};
+
 /// Map comparison against a LiDAR occupancy grid (`uwbsar compare`) and PCD export
 /// (`uwbsar export-pcd`). Evaluation rule: see backend/compare/map_metrics.h.
 struct CompareConfig {
-  std::string align = "icp";                  ///< icp (from the map origins or --init) or origin
+  CompareAlign align = CompareAlign::kIcp;    ///< icp (from the map origins or --init) or origin
   std::string icp_method = "point_to_plane";  ///< point_to_plane (2-D normals) or point_to_point
   std::vector<double> icp_max_correspondence_m = {
       1.0, 0.5, 0.25, 0.1};                  ///< coarse-to-fine

@@ -79,6 +79,12 @@ class Reader {
         Read(node[i], items[i], key + "[" + std::to_string(i) + "]");
       }
       value = std::move(items);
+    } else if constexpr (std::is_enum_v<T>) {
+      if (!node.IsScalar() || !EnumFromName(node.Scalar(), &value)) {
+        throw ConfigError(Where(source_, node) + ": '" + key + "' must be one of " +
+                          EnumNameList<T>() +
+                          (node.IsScalar() ? ", got '" + node.Scalar() + "'" : std::string()));
+      }
     } else {
       if (!node.IsScalar())
         throw ConfigError(Where(source_, node) + ": '" + key + "' must be a value");
@@ -124,6 +130,8 @@ class Writer {
       out_ << YAML::BeginSeq;
       for (auto& item : value) Write(item);
       out_ << YAML::EndSeq;
+    } else if constexpr (std::is_enum_v<T>) {
+      out_ << EnumName(value);
     } else {
       out_ << value;
     }

@@ -131,7 +131,6 @@ void ValidatePlaceRecognition(const PlaceRecognitionConfig& p, const std::string
 
 void ValidateCompare(const CompareConfig& c, const std::string& src) {
   const std::string k = "compare.";
-  Require(c.align == "icp" || c.align == "origin", src, k + "align", "must be 'icp' or 'origin'");
   Require(c.icp_method == "point_to_point" || c.icp_method == "point_to_plane", src,
           k + "icp_method", "must be 'point_to_point' or 'point_to_plane'");
   Require(!c.icp_max_correspondence_m.empty(), src, k + "icp_max_correspondence_m",
@@ -276,7 +275,7 @@ void ValidateLimits(const Config& c, const std::string& src) {
         std::make_pair("max_map_image_pixels", l.max_map_image_pixels)}) {
     Require(value > 0, src, std::string("limits.") + key, "must be > 0");
   }
-  const bool coherent = c.imaging.mode == "coherent";
+  const bool coherent = c.imaging.coherent();
   for (std::size_t i = 0; i < c.radars.size(); ++i) {
     const double samples = static_cast<double>(c.radars[i].num_samples) *
                            (coherent ? c.imaging.coherent_oversampling : 1);
@@ -339,14 +338,8 @@ void ValidateLimits(const Config& c, const std::string& src) {
                 "max_tile_pixels");
 }
 
-}  // namespace
-
-void ValidateConfig(const Config& c, const std::string& src) {
-  ValidateCompare(c.compare, src);
-  ValidateLive(c.live, src);
-  ValidateDds(c.dds, src);
-  ValidateSimulator(c.simulator, src);
-  ValidatePlaceRecognition(c.place_recognition, src);
+/// Pulse and radars.
+void ValidateSensors(const Config& c, const std::string& src) {
   Require(c.pulse.center_frequency_hz > 0, src, "pulse.center_frequency_hz", "must be > 0");
   Require(c.pulse.bandwidth_hz > 0, src, "pulse.bandwidth_hz", "must be > 0");
   Require(c.pulse.sampling_frequency_hz > 2 * c.pulse.center_frequency_hz, src,
@@ -363,6 +356,10 @@ void ValidateConfig(const Config& c, const std::string& src) {
     Require(r.zero_leading_samples >= 0 && r.zero_leading_samples < r.num_samples, src,
             k + "zero_leading_samples", "must be in [0, num_samples)");
   }
+}
+
+/// slam.*, with the radar topics and the feature resolution that depend on it.
+void ValidateSlam(const Config& c, const std::string& src) {
   Require(c.slam.map_resolution_m > 0, src, "slam.map_resolution_m", "must be > 0");
   Require(c.slam.optimize_every_keyframes >= 0, src, "slam.optimize_every_keyframes",
           "must be >= 0");
@@ -387,8 +384,10 @@ void ValidateConfig(const Config& c, const std::string& src) {
           "slam.occupied_fraction", "must be in (0, 1]");
   Require(c.slam.occupancy_reference_percentile > 0 && c.slam.occupancy_reference_percentile <= 100,
           src, "slam.occupancy_reference_percentile", "must be in (0, 100]");
-  Require(c.imaging.mode == "paper" || c.imaging.mode == "coherent", src, "imaging.mode",
-          "must be 'paper' or 'coherent'");
+}
+
+/// imaging, gating, keyframe and enhance.
+void ValidateImaging(const Config& c, const std::string& src) {
   Require(c.imaging.pixel_size_m > 0, src, "imaging.pixel_size_m", "must be > 0");
   Require(c.imaging.coherent_oversampling >= 1 && c.imaging.coherent_oversampling <= 64, src,
           "imaging.coherent_oversampling", "must be in [1, 64]");
@@ -412,11 +411,9 @@ void ValidateConfig(const Config& c, const std::string& src) {
                                                    "viridis", "magma",   "hot"};
   Require(kColormaps.count(c.enhance.colormap) > 0, src, "enhance.colormap",
           "must be one of gray, inferno, jet, viridis, magma, hot");
-  const BackendConfig& b = c.backend;
-  Require(b.initialization == "guess" || b.initialization == "chordal", src,
-          "backend.initialization", "must be 'guess' or 'chordal'");
-  Require(b.robust_loss == "cauchy" || b.robust_loss == "huber" || b.robust_loss == "none", src,
-          "backend.robust_loss", "must be 'cauchy', 'huber' or 'none'");
+}
+
+void ValidateBackend(const BackendConfig& b, const std::string& src) {
   Require(b.robust_loss_scale > 0, src, "backend.robust_loss_scale", "must be > 0");
   Require(b.loop_rejection_chi2 > 0, src, "backend.loop_rejection_chi2", "must be > 0");
   Require(b.max_rejection_rounds >= 0, src, "backend.max_rejection_rounds", "must be >= 0");
@@ -432,6 +429,20 @@ void ValidateConfig(const Config& c, const std::string& src) {
   Require(b.function_tolerance > 0 && b.function_tolerance < 1, src, "backend.function_tolerance",
           "must be in (0, 1)");
   Require(b.num_threads >= 1, src, "backend.num_threads", "must be >= 1");
+}
+
+}  // namespace
+
+void ValidateConfig(const Config& c, const std::string& src) {
+  ValidateCompare(c.compare, src);
+  ValidateLive(c.live, src);
+  ValidateDds(c.dds, src);
+  ValidateSimulator(c.simulator, src);
+  ValidatePlaceRecognition(c.place_recognition, src);
+  ValidateSensors(c, src);
+  ValidateSlam(c, src);
+  ValidateImaging(c, src);
+  ValidateBackend(c.backend, src);
   Require(c.gating.max_odom_speed_mps > 0, src, "gating.max_odom_speed_mps", "must be > 0");
   Require(c.gating.max_odom_turn_rate_radps > 0, src, "gating.max_odom_turn_rate_radps",
           "must be > 0");

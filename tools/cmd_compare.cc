@@ -36,20 +36,13 @@ std::string PoseCheck(const std::string& text) {
                              : "expected x,y,yaw (metres, metres, degrees), got '" + text + "'";
 }
 
-}  // namespace
+struct CompareOptions {
+  std::string sar, lidar, out_dir, align, init, method;
+  int tolerance_cells = -1;
+  bool json = false;
+};
 
-void AddCompareCommand(CLI::App& app, const GlobalOptions& globals) {
-  struct Options {
-    std::string sar, lidar, out_dir, align, init, method;
-    int tolerance_cells = -1;
-    bool json = false;
-  };
-  auto opts = std::make_shared<Options>();
-  CLI::App* cmd = app.add_subcommand(
-      "compare",
-      "Score a SAR map against a LiDAR occupancy grid (both map_server YAML): cell-wise "
-      "difference, precision/recall/F1 with a one-cell tolerance, IoU, distances; writes "
-      "overlay.png and metrics.json");
+void AddCompareOptions(CLI::App* cmd, CompareOptions* opts) {
   cmd->add_option("SAR_MAP", opts->sar,
                   "SAR occupancy map (map_server YAML), or a SAR image's grid YAML (keys image, "
                   "x0_m, y0_m, resolution_m, as map_grid.yaml): occupancy by the rule of "
@@ -72,39 +65,58 @@ void AddCompareCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--tolerance", opts->tolerance_cells, "Match tolerance in cells (default 1)")
       ->check(CLI::Range(0, 50));
   cmd->add_flag("--json", opts->json, "Print metrics.json to stdout instead of the summary");
-  cmd->callback([opts, &globals] {
-    Config config = LoadConfigFor(globals);
-    CheckOutputFolder(opts->out_dir);  // before the work, creating nothing
-    if (opts->tolerance_cells >= 0) config.compare.tolerance_cells = opts->tolerance_cells;
-    AlignRequest request;
-    request.mode = opts->align.empty() ? config.compare.align : opts->align;
-    request.method = opts->method;
-    if (request.mode != "icp" && request.mode != "origin") {
-      ParsePose(request.mode, &request.T_lidar_sar);
-      request.mode = "fixed";
-    }
-    if (!opts->init.empty()) {
-      if (request.mode != "icp") throw CLI::ValidationError("--init", "needs --align icp");
-      ParsePose(opts->init, &request.T_lidar_sar);
-    }
-    // Everything is computed before the output folder is touched: bad input leaves nothing.
-    SarOccupancyRule rule;
-    rule.cell_m = config.slam.occupancy_resolution_m;
-    rule.occupied_fraction = config.slam.occupied_fraction;
-    rule.reference_percentile = config.slam.occupancy_reference_percentile;
-    const ComparisonReport report = CompareMapFiles(opts->sar, opts->lidar, request, config.compare,
-                                                    rule, config.limits.max_map_image_pixels);
-    EnsureDirectory(opts->out_dir);
-    const auto files = WriteComparisonOutputs(report, opts->out_dir, config.compare);
-    if (opts->json) {
-      std::cout << ComparisonToJson(report) << "\n";
-      return;
-    }
-    if (globals.quiet) return;
-    for (const std::string& line : ComparisonSummaryLines(report))
-      std::printf("%s\n", line.c_str());
-    for (const std::string& f : files) std::printf("wrote %s\n", f.c_str());
-  });
+}
+
+/// The alignment asked by --align (else compare.align), --method and --init.
+AlignRequest MakeAlignRequest(const CompareOptions& opts, const Config& config) {
+  AlignRequest request;
+  request.mode = opts.align.empty() ? EnumName(config.compare.align) : opts.align;
+  request.method = opts.method;
+  if (request.mode != "icp" && request.mode != "origin") {
+    ParsePose(request.mode, &request.T_lidar_sar);
+    request.mode = "fixed";
+  }
+  if (!opts.init.empty()) {
+    if (request.mode != "icp") throw CLI::ValidationError("--init", "needs --align icp");
+    ParsePose(opts.init, &request.T_lidar_sar);
+  }
+  return request;
+}
+
+void RunCompare(const CompareOptions& opts, const GlobalOptions& globals) {
+  Config config = LoadConfigFor(globals);
+  CheckOutputFolder(opts.out_dir);  // before the work, creating nothing
+  if (opts.tolerance_cells >= 0) config.compare.tolerance_cells = opts.tolerance_cells;
+  const AlignRequest request = MakeAlignRequest(opts, config);
+  // Everything is computed before the output folder is touched: bad input leaves nothing.
+  SarOccupancyRule rule;
+  rule.cell_m = config.slam.occupancy_resolution_m;
+  rule.occupied_fraction = config.slam.occupied_fraction;
+  rule.reference_percentile = config.slam.occupancy_reference_percentile;
+  const ComparisonReport report = CompareMapFiles(opts.sar, opts.lidar, request, config.compare,
+                                                  rule, config.limits.max_map_image_pixels);
+  EnsureDirectory(opts.out_dir);
+  const auto files = WriteComparisonOutputs(report, opts.out_dir, config.compare);
+  if (opts.json) {
+    std::cout << ComparisonToJson(report) << "\n";
+    return;
+  }
+  if (globals.quiet) return;
+  for (const std::string& line : ComparisonSummaryLines(report)) std::printf("%s\n", line.c_str());
+  for (const std::string& f : files) std::printf("wrote %s\n", f.c_str());
+}
+
+}  // namespace
+
+void AddCompareCommand(CLI::App& app, const GlobalOptions& globals) {
+  auto opts = std::make_shared<CompareOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "compare",
+      "Score a SAR map against a LiDAR occupancy grid (both map_server YAML): cell-wise "
+      "difference, precision/recall/F1 with a one-cell tolerance, IoU, distances; writes "
+      "overlay.png and metrics.json");
+  AddCompareOptions(cmd, opts.get());
+  cmd->callback([opts, &globals] { RunCompare(*opts, globals); });
 }
 
 }  // namespace uwbsar::tools

@@ -50,7 +50,8 @@ struct Outputs {
   std::ostringstream t3_csv, t3_md, t4_csv, t4_md, stats, loops_csv, loops_md;
 };
 
-void WriteTables(const RegionStudy& s, const RegionStudyOptions& options, double px_m, Outputs* o) {
+/// Table III: every detector on the loop events D_i -> R_i.
+void WriteTable3(const RegionStudy& s, const RegionStudyOptions& options, double px_m, Outputs* o) {
   o->t3_csv << "detector,loop,keypoints_d,keypoints_r,ratio_matches,good_matches,good_pct,"
                "detect_ms,match_ms,scale,tx_mm,ty_mm,rot_deg\n";
   o->t3_md
@@ -90,6 +91,10 @@ void WriteTables(const RegionStudy& s, const RegionStudyOptions& options, double
                << " (2 detections + matching) | |\n";
     }
   }
+}
+
+/// Table IV: AKAZE and ORB on the non-loop events |i - j| >= 2.
+void WriteTable4(const RegionStudy& s, double px_m, Outputs* o) {
   o->t4_csv << "detector,event,total_matches,good_matches,scale,tx_m,ty_m,rot_deg\n";
   o->t4_md << "| Desc. | non-loop event | Total matches | Good matches | scale, tx (m), ty (m), "
               "rot (deg) |\n|---|---|---|---|---|\n";
@@ -110,6 +115,10 @@ void WriteTables(const RegionStudy& s, const RegionStudyOptions& options, double
                << m.good_matches << " | " << tf_md << " |\n";
     }
   }
+}
+
+/// The per-pair statistics, and the loop matrix and list of the AKAZE+ORB rule.
+void WriteStatsAndLoops(const RegionStudy& s, Outputs* o) {
   o->stats << [] {
     std::string h;
     for (const std::string& c : PairStatsColumns()) h += (h.empty() ? "" : ",") + c;
@@ -140,18 +149,20 @@ void WriteTables(const RegionStudy& s, const RegionStudyOptions& options, double
   }
 }
 
-}  // namespace
+void WriteTables(const RegionStudy& s, const RegionStudyOptions& options, double px_m, Outputs* o) {
+  WriteTable3(s, options, px_m, o);
+  WriteTable4(s, px_m, o);
+  WriteStatsAndLoops(s, o);
+}
 
-void AddDetectorsCommand(CLI::App& app, const GlobalOptions& globals) {
-  struct Options {
-    std::string bag, out_dir = "out/detectors", detectors;
-    std::vector<double> regions;
-    double split_path_m = 0.0;
-    bool no_images = false;
-  };
-  auto opts = std::make_shared<Options>();
-  CLI::App* cmd = app.add_subcommand(
-      "detectors", "The paper's detector comparison on a depart-and-return bag (Tables III, IV)");
+struct DetectorsOptions {
+  std::string bag, out_dir = "out/detectors", detectors;
+  std::vector<double> regions;
+  double split_path_m = 0.0;
+  bool no_images = false;
+};
+
+void AddDetectorsOptions(CLI::App* cmd, DetectorsOptions* opts) {
   cmd->add_option("BAG", opts->bag, "ROS 2 bag (directory, .db3 or .mcap)")
       ->required()
       ->check(CLI::ExistingPath);
@@ -165,79 +176,111 @@ void AddDetectorsCommand(CLI::App& app, const GlobalOptions& globals) {
                   "Path length where the returning pass starts (default: farthest point)")
       ->check(CheckPositiveFinite, "finite > 0");
   cmd->add_flag("--no-images", opts->no_images, "Do not write match images");
-  cmd->callback([opts, &globals] {
-    const Config config = LoadConfigFor(globals);
-    EnsureDirectory(opts->out_dir);  // every output is checked before the work
-    if (!opts->no_images) EnsureDirectory(opts->out_dir + "/matches");
-    RegionStudyOptions options;
-    if (!opts->regions.empty()) {
-      options.region_length_m = opts->regions[0];
-      options.region_step_m = opts->regions[1];
-      if (!(options.region_length_m > 0) || !(options.region_step_m > 0)) {
-        throw InputError("--regions: length and step must be > 0");
-      }
+}
+
+RegionStudyOptions StudyOptions(const DetectorsOptions& opts) {
+  RegionStudyOptions options;
+  if (!opts.regions.empty()) {
+    options.region_length_m = opts.regions[0];
+    options.region_step_m = opts.regions[1];
+    if (!(options.region_length_m > 0) || !(options.region_step_m > 0)) {
+      throw InputError("--regions: length and step must be > 0");
     }
-    if (!opts->detectors.empty()) options.detectors = ParseDetectorList(opts->detectors);
-    const rosbag::RobotLog log =
-        rosbag::LoadRobotBag(opts->bag, rosbag::RobotBagOptionsFromConfig(config));
-    ImagingFrontend frontend(config);
-    std::vector<ImagedScan> scans;
-    frontend.SetScanObserver([&](const ImagedScan& s) { scans.push_back(s); });
-    std::size_t o = 0;
-    for (const RadarScan& scan : log.scans) {
-      while (o < log.odometry.size() && log.odometry[o].stamp_ns <= scan.stamp_ns) {
-        frontend.AddOdometry(log.odometry[o++]);
-      }
-      frontend.AddScan(scan);
+  }
+  if (!opts.detectors.empty()) options.detectors = ParseDetectorList(opts.detectors);
+  return options;
+}
+
+/// The bag's scans that `frontend` imaged, in time order.
+std::vector<ImagedScan> ImageBag(const std::string& bag, const Config& config,
+                                 ImagingFrontend* frontend) {
+  const rosbag::RobotLog log = rosbag::LoadRobotBag(bag, rosbag::RobotBagOptionsFromConfig(config));
+  std::vector<ImagedScan> scans;
+  frontend->SetScanObserver([&](const ImagedScan& s) { scans.push_back(s); });
+  std::size_t o = 0;
+  for (const RadarScan& scan : log.scans) {
+    while (o < log.odometry.size() && log.odometry[o].stamp_ns <= scan.stamp_ns) {
+      frontend->AddOdometry(log.odometry[o++]);
     }
-    while (o < log.odometry.size()) frontend.AddOdometry(log.odometry[o++]);
-    frontend.Finish();
-    if (scans.size() < 10)
-      throw InputError(opts->bag + ": fewer than 10 radar scans could be imaged");
-    std::size_t turn = TurnaroundIndex(scans);
-    if (opts->split_path_m > 0) {
-      turn = 0;
-      while (turn < scans.size() && scans[turn].path_m < opts->split_path_m) ++turn;
+    frontend->AddScan(scan);
+  }
+  while (o < log.odometry.size()) frontend->AddOdometry(log.odometry[o++]);
+  frontend->Finish();
+  if (scans.size() < 10) throw InputError(bag + ": fewer than 10 radar scans could be imaged");
+  return scans;
+}
+
+/// Index of the first scan of the returning pass: at --split-path-m, else where the run
+/// turns back.
+std::size_t SplitIndex(const std::vector<ImagedScan>& scans, const DetectorsOptions& opts) {
+  std::size_t turn = TurnaroundIndex(scans);
+  if (opts.split_path_m > 0) {
+    turn = 0;
+    while (turn < scans.size() && scans[turn].path_m < opts.split_path_m) ++turn;
+  }
+  if (turn < 1 || turn + 1 >= scans.size()) {
+    throw InputError(opts.bag + ": cannot split the run into a departing and a returning pass");
+  }
+  return turn;
+}
+
+void WriteDetectorOutputs(const std::string& dir, const Outputs& out, const RegionStudy& study,
+                          const RegionStudyOptions& options, bool images) {
+  WriteTextAtomic(dir + "table3.csv", out.t3_csv.str());
+  WriteTextAtomic(dir + "table3.md", out.t3_md.str());
+  WriteTextAtomic(dir + "table4.csv", out.t4_csv.str());
+  WriteTextAtomic(dir + "table4.md", out.t4_md.str());
+  WriteTextAtomic(dir + "stats.csv", out.stats.str());
+  WriteTextAtomic(dir + "loops.csv", out.loops_csv.str());
+  WriteTextAtomic(dir + "loops.md", out.loops_md.str());
+  if (!images) return;
+  for (std::size_t k = 0; k < study.d_regions.size(); ++k) {
+    const StudyRegion& d = study.d_regions[k];
+    const RegionPair* p = study.Find(d.index, d.index);
+    for (DetectorKind kind : options.detectors) {
+      WriteImageAtomic(dir + "matches/" + DetectorName(kind) + "_D" + std::to_string(d.index) +
+                           "_R" + std::to_string(d.index) + ".png",
+                       DrawMatches(d, study.r_regions[k], kind, p->matches.at(kind)));
     }
-    if (turn < 1 || turn + 1 >= scans.size()) {
-      throw InputError(opts->bag + ": cannot split the run into a departing and a returning pass");
-    }
-    const std::vector<ImagedScan> depart(scans.begin(), scans.begin() + static_cast<long>(turn));
-    const std::vector<ImagedScan> back(scans.begin() + static_cast<long>(turn), scans.end());
-    const RegionStudy study = RunRegionStudy(depart, back, frontend.sensors(), config, options);
-    if (study.d_regions.empty()) throw InputError(opts->bag + ": the passes share no region");
-    Outputs out;
-    WriteTables(study, options, config.imaging.pixel_size_m, &out);
-    const std::string dir = opts->out_dir + "/";
-    WriteTextAtomic(dir + "table3.csv", out.t3_csv.str());
-    WriteTextAtomic(dir + "table3.md", out.t3_md.str());
-    WriteTextAtomic(dir + "table4.csv", out.t4_csv.str());
-    WriteTextAtomic(dir + "table4.md", out.t4_md.str());
-    WriteTextAtomic(dir + "stats.csv", out.stats.str());
-    WriteTextAtomic(dir + "loops.csv", out.loops_csv.str());
-    WriteTextAtomic(dir + "loops.md", out.loops_md.str());
-    if (!opts->no_images) {
-      for (std::size_t k = 0; k < study.d_regions.size(); ++k) {
-        const StudyRegion& d = study.d_regions[k];
-        const RegionPair* p = study.Find(d.index, d.index);
-        for (DetectorKind kind : options.detectors) {
-          WriteImageAtomic(dir + "matches/" + DetectorName(kind) + "_D" + std::to_string(d.index) +
-                               "_R" + std::to_string(d.index) + ".png",
-                           DrawMatches(d, study.r_regions[k], kind, p->matches.at(kind)));
-        }
-      }
-    }
-    if (globals.quiet) return;
-    std::printf("%zu scans (%zu departing, %zu returning), %zu regions of %.2f m every %.2f m\n\n",
-                scans.size(), depart.size(), back.size(), study.d_regions.size(),
-                options.region_length_m, options.region_step_m);
-    std::printf("Table III - detectors on loop closing events\n%s\n", out.t3_md.str().c_str());
-    std::printf("Table IV - AKAZE and ORB on non-loop events\n%s\n", out.t4_md.str().c_str());
-    std::printf(
-        "Loops (AKAZE+ORB rule)\n%s\nwrote %s{table3,table4}.{csv,md}, stats.csv, "
-        "loops.{csv,md}%s\n",
-        out.loops_md.str().c_str(), dir.c_str(), opts->no_images ? "" : ", matches/");
-  });
+  }
+}
+
+void RunDetectors(const DetectorsOptions& opts, const GlobalOptions& globals) {
+  const Config config = LoadConfigFor(globals);
+  EnsureDirectory(opts.out_dir);  // every output is checked before the work
+  if (!opts.no_images) EnsureDirectory(opts.out_dir + "/matches");
+  const RegionStudyOptions options = StudyOptions(opts);
+  ImagingFrontend frontend(config);
+  const std::vector<ImagedScan> scans = ImageBag(opts.bag, config, &frontend);
+  const std::size_t turn = SplitIndex(scans, opts);
+  const std::vector<ImagedScan> depart(scans.begin(), scans.begin() + static_cast<long>(turn));
+  const std::vector<ImagedScan> back(scans.begin() + static_cast<long>(turn), scans.end());
+  const RegionStudy study = RunRegionStudy(depart, back, frontend.sensors(), config, options);
+  if (study.d_regions.empty()) throw InputError(opts.bag + ": the passes share no region");
+  Outputs out;
+  WriteTables(study, options, config.imaging.pixel_size_m, &out);
+  const std::string dir = opts.out_dir + "/";
+  WriteDetectorOutputs(dir, out, study, options, !opts.no_images);
+  if (globals.quiet) return;
+  std::printf("%zu scans (%zu departing, %zu returning), %zu regions of %.2f m every %.2f m\n\n",
+              scans.size(), depart.size(), back.size(), study.d_regions.size(),
+              options.region_length_m, options.region_step_m);
+  std::printf("Table III - detectors on loop closing events\n%s\n", out.t3_md.str().c_str());
+  std::printf("Table IV - AKAZE and ORB on non-loop events\n%s\n", out.t4_md.str().c_str());
+  std::printf(
+      "Loops (AKAZE+ORB rule)\n%s\nwrote %s{table3,table4}.{csv,md}, stats.csv, "
+      "loops.{csv,md}%s\n",
+      out.loops_md.str().c_str(), dir.c_str(), opts.no_images ? "" : ", matches/");
+}
+
+}  // namespace
+
+void AddDetectorsCommand(CLI::App& app, const GlobalOptions& globals) {
+  auto opts = std::make_shared<DetectorsOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "detectors", "The paper's detector comparison on a depart-and-return bag (Tables III, IV)");
+  AddDetectorsOptions(cmd, opts.get());
+  cmd->callback([opts, &globals] { RunDetectors(*opts, globals); });
 }
 
 }  // namespace uwbsar::tools

@@ -31,7 +31,7 @@ void AddImageCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->callback([opts, &globals] {
     Config config = LoadConfigFor(globals);
     EnsureDirectory(opts->out_dir);  // every output is checked before the work
-    if (!opts->mode.empty()) config.imaging.mode = opts->mode;
+    if (!opts->mode.empty()) EnumFromName(opts->mode, &config.imaging.mode);  // checked above
     if (opts->resolution_m > 0) {
       config.imaging.pixel_size_m = opts->resolution_m;
       ValidateConfig(config, "--resolution");  // the sizes it implies, before any work
@@ -58,8 +58,8 @@ void AddImageCommand(CLI::App& app, const GlobalOptions& globals) {
     std::printf("scans: %lld received, %lld imaged, %lld gated, %lld rejected\n", s.scans_received,
                 s.scans_imaged, s.scans_gated, s.scans_rejected());
     std::printf("image: %d x %d px at %.4f m (%s mode), %.3f s\n", result.strip.grid.cols,
-                result.strip.grid.rows, result.strip.grid.resolution_m, config.imaging.mode.c_str(),
-                result.seconds);
+                result.strip.grid.rows, result.strip.grid.resolution_m,
+                EnumName(config.imaging.mode), result.seconds);
     for (const auto& f : files) std::printf("wrote %s\n", f.c_str());
   });
 }

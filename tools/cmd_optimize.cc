@@ -15,13 +15,14 @@
 
 namespace uwbsar::tools {
 
-void AddOptimizeCommand(CLI::App& app, const GlobalOptions& globals) {
-  struct Options {
-    std::string in, out, tum, png, init;
-    bool json = false, skip_bad_lines = false, drop_rejected = false;
-  };
-  auto opts = std::make_shared<Options>();
-  CLI::App* cmd = app.add_subcommand("optimize", "Optimise a g2o pose graph (SE(2))");
+namespace {
+
+struct OptimizeOptions {
+  std::string in, out, tum, png, init;
+  bool json = false, skip_bad_lines = false, drop_rejected = false;
+};
+
+void AddOptimizeOptions(CLI::App* cmd, OptimizeOptions* opts) {
   cmd->add_option("input", opts->in, "g2o file (VERTEX_SE2, EDGE_SE2, FIX)")
       ->required()
       ->check(CLI::ExistingFile);
@@ -36,86 +37,113 @@ void AddOptimizeCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_flag("--skip-bad-lines", opts->skip_bad_lines,
                 "Skip (and report) bad lines instead of failing");
   cmd->add_flag("--drop-rejected", opts->drop_rejected, "Leave rejected loops out of --out");
-  cmd->callback([opts, &globals] {
-    Config config = LoadConfigFor(globals);
-    for (const std::string* out : {&opts->out, &opts->tum, &opts->png}) {
-      if (!out->empty()) CheckOutputFile(*out);  // before the work
+}
+
+/// Why the solve must not be written (not converged, cost or poses not finite); empty if
+/// it may: such a result would look like a map.
+std::string SolveFailure(const OptimizeResult& r, const PoseGraph& graph) {
+  std::string failure;
+  if (!r.converged) failure = "the solver did not converge: " + r.termination;
+  if (failure.empty() && !std::isfinite(r.final_cost)) {
+    failure = "the final cost is not finite (" + std::to_string(r.final_cost) + ")";
+  }
+  for (const auto& [id, pose] : graph.GetPoses()) {
+    if (failure.empty() &&
+        !(std::isfinite(pose.x_m) && std::isfinite(pose.y_m) && std::isfinite(pose.yaw_rad))) {
+      failure = "the solution is not finite (vertex " + std::to_string(id) + ")";
     }
-    if (!opts->init.empty()) config.backend.initialization = opts->init;
-    G2oReadOptions read;
-    read.skip_bad_lines = opts->skip_bad_lines;
-    const G2oGraph file = ReadG2o(opts->in, read);
-    for (const std::string& s : file.skipped) std::cerr << "uwbsar: skipped " << s << "\n";
-    PoseGraph graph(config.backend);
-    LoadIntoPoseGraph(file, &graph);
-    const OptimizeResult r = graph.Optimize();
-    // A failed solve writes nothing: a graph that did not converge, or poses that are not
-    // finite, would look like a result.
-    std::string failure;
-    if (!r.converged) failure = "the solver did not converge: " + r.termination;
-    if (failure.empty() && !std::isfinite(r.final_cost)) {
-      failure = "the final cost is not finite (" + std::to_string(r.final_cost) + ")";
+  }
+  return failure;
+}
+
+void WriteOptimizeOutputs(const OptimizeOptions& opts, const PoseGraph& graph) {
+  if (!opts.out.empty()) WriteG2o(opts.out, graph, opts.drop_rejected);
+  if (!opts.tum.empty()) {
+    std::vector<std::pair<double, Pose2>> trajectory;
+    for (const auto& [id, pose] : graph.GetPoses()) trajectory.push_back({id, pose});
+    WriteTum(opts.tum, trajectory);
+  }
+  if (!opts.png.empty()) {
+    WriteImageAtomic(opts.png, PlotPoseGraph(graph.GetPoses(), graph.Edges(), graph.EdgeReports()));
+  }
+}
+
+void PrintOptimizeJson(const std::string& input, const OptimizeResult& r,
+                       const std::vector<std::string>& skipped_lines) {
+  nlohmann::json j;
+  j["input"] = input;
+  j["nodes"] = r.num_nodes;
+  j["edges"] = r.num_edges;
+  j["loops"] = r.num_loops;
+  j["converged"] = r.converged;
+  j["termination"] = r.termination;
+  j["iterations"] = r.iterations;
+  j["solves"] = r.solves;
+  j["initial_cost"] = r.initial_cost;
+  j["final_cost"] = r.final_cost;
+  j["solve_time_s"] = r.solve_time_s;
+  j["skipped_lines"] = skipped_lines;
+  j["rejected"] = nlohmann::json::array();
+  for (const EdgeReport& e : r.rejected) {
+    j["rejected"].push_back({{"edge", e.index},
+                             {"from", e.from_id},
+                             {"to", e.to_id},
+                             {"chi2", e.chi2},
+                             {"reason", e.reason},
+                             {"support", e.support}});
+  }
+  std::cout << j.dump(2) << "\n";
+}
+
+void PrintOptimizeText(const OptimizeResult& r, const std::string& out) {
+  std::printf("graph: %d nodes, %d edges (%d loops)\n", r.num_nodes, r.num_edges, r.num_loops);
+  std::printf("termination: %s\n", r.termination.c_str());
+  std::printf("iterations: %d in %d solves, %.3f s\n", r.iterations, r.solves, r.solve_time_s);
+  std::printf("cost: %.6g -> %.6g\n", r.initial_cost, r.final_cost);
+  std::printf("rejected loops: %zu\n", r.rejected.size());
+  for (const EdgeReport& e : r.rejected) {
+    std::printf("  edge %d: %d -> %d  chi2 %.3f  %s (support %d)\n", e.index, e.from_id, e.to_id,
+                e.chi2, e.reason.c_str(), e.support);
+  }
+  if (!out.empty()) std::printf("wrote %s\n", out.c_str());
+}
+
+void Optimize(const OptimizeOptions& opts, const GlobalOptions& globals) {
+  Config config = LoadConfigFor(globals);
+  for (const std::string* out : {&opts.out, &opts.tum, &opts.png}) {
+    if (!out->empty()) CheckOutputFile(*out);  // before the work
+  }
+  if (!opts.init.empty()) EnumFromName(opts.init, &config.backend.initialization);  // checked
+  G2oReadOptions read;
+  read.skip_bad_lines = opts.skip_bad_lines;
+  const G2oGraph file = ReadG2o(opts.in, read);
+  for (const std::string& s : file.skipped) std::cerr << "uwbsar: skipped " << s << "\n";
+  PoseGraph graph(config.backend);
+  LoadIntoPoseGraph(file, &graph);
+  const OptimizeResult r = graph.Optimize();
+  const std::string failure = SolveFailure(r, graph);
+  if (!failure.empty()) {
+    if (!opts.json) {
+      std::printf("termination: %s\ncost: %.6g -> %.6g\n", r.termination.c_str(), r.initial_cost,
+                  r.final_cost);
     }
-    for (const auto& [id, pose] : graph.GetPoses()) {
-      if (failure.empty() &&
-          !(std::isfinite(pose.x_m) && std::isfinite(pose.y_m) && std::isfinite(pose.yaw_rad))) {
-        failure = "the solution is not finite (vertex " + std::to_string(id) + ")";
-      }
-    }
-    if (!failure.empty()) {
-      if (!opts->json) {
-        std::printf("termination: %s\ncost: %.6g -> %.6g\n", r.termination.c_str(), r.initial_cost,
-                    r.final_cost);
-      }
-      throw std::runtime_error(failure + "; no output written");
-    }
-    if (!opts->out.empty()) WriteG2o(opts->out, graph, opts->drop_rejected);
-    if (!opts->tum.empty()) {
-      std::vector<std::pair<double, Pose2>> trajectory;
-      for (const auto& [id, pose] : graph.GetPoses()) trajectory.push_back({id, pose});
-      WriteTum(opts->tum, trajectory);
-    }
-    if (!opts->png.empty()) {
-      WriteImageAtomic(opts->png,
-                       PlotPoseGraph(graph.GetPoses(), graph.Edges(), graph.EdgeReports()));
-    }
-    if (opts->json) {
-      nlohmann::json j;
-      j["input"] = opts->in;
-      j["nodes"] = r.num_nodes;
-      j["edges"] = r.num_edges;
-      j["loops"] = r.num_loops;
-      j["converged"] = r.converged;
-      j["termination"] = r.termination;
-      j["iterations"] = r.iterations;
-      j["solves"] = r.solves;
-      j["initial_cost"] = r.initial_cost;
-      j["final_cost"] = r.final_cost;
-      j["solve_time_s"] = r.solve_time_s;
-      j["skipped_lines"] = file.skipped;
-      j["rejected"] = nlohmann::json::array();
-      for (const EdgeReport& e : r.rejected) {
-        j["rejected"].push_back({{"edge", e.index},
-                                 {"from", e.from_id},
-                                 {"to", e.to_id},
-                                 {"chi2", e.chi2},
-                                 {"reason", e.reason},
-                                 {"support", e.support}});
-      }
-      std::cout << j.dump(2) << "\n";
-    } else {
-      std::printf("graph: %d nodes, %d edges (%d loops)\n", r.num_nodes, r.num_edges, r.num_loops);
-      std::printf("termination: %s\n", r.termination.c_str());
-      std::printf("iterations: %d in %d solves, %.3f s\n", r.iterations, r.solves, r.solve_time_s);
-      std::printf("cost: %.6g -> %.6g\n", r.initial_cost, r.final_cost);
-      std::printf("rejected loops: %zu\n", r.rejected.size());
-      for (const EdgeReport& e : r.rejected) {
-        std::printf("  edge %d: %d -> %d  chi2 %.3f  %s (support %d)\n", e.index, e.from_id,
-                    e.to_id, e.chi2, e.reason.c_str(), e.support);
-      }
-      if (!opts->out.empty()) std::printf("wrote %s\n", opts->out.c_str());
-    }
-  });
+    throw std::runtime_error(failure + "; no output written");
+  }
+  WriteOptimizeOutputs(opts, graph);
+  if (opts.json) {
+    PrintOptimizeJson(opts.in, r, file.skipped);
+  } else {
+    PrintOptimizeText(r, opts.out);
+  }
+}
+
+}  // namespace
+
+void AddOptimizeCommand(CLI::App& app, const GlobalOptions& globals) {
+  auto opts = std::make_shared<OptimizeOptions>();
+  CLI::App* cmd = app.add_subcommand("optimize", "Optimise a g2o pose graph (SE(2))");
+  AddOptimizeOptions(cmd, opts.get());
+  cmd->callback([opts, &globals] { Optimize(*opts, globals); });
 }
 
 }  // namespace uwbsar::tools

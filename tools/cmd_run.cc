@@ -25,22 +25,19 @@ std::string BundledMap();  // cmd_demo.cc
 namespace {
 std::atomic<bool> g_stop{false};
 extern "C" void OnStopSignal(int) { g_stop = true; }
-}  // namespace
 
-void AddRunCommand(CLI::App& app, const GlobalOptions& globals) {
-  struct Options {
-    std::string out_dir = "out/run";
-    std::string recording;
-    bool emulate = false;
-    double speed = 1.0;
-    double duration_s = 0.0;
-    std::uint64_t seed = 1;
-    std::string source = "serial";
-    std::string map_path;  ///< --emulate: the map to simulate in
-  };
-  auto opts = std::make_shared<Options>();
-  CLI::App* cmd = app.add_subcommand(
-      "run", "Live SLAM on the robot: LT102 radars, Kobuki odometry, GPIO, recording");
+struct RunOptions {
+  std::string out_dir = "out/run";
+  std::string recording;
+  bool emulate = false;
+  double speed = 1.0;
+  double duration_s = 0.0;
+  std::uint64_t seed = 1;
+  std::string source = "serial";
+  std::string map_path;  ///< --emulate: the map to simulate in
+};
+
+void AddRunOptions(CLI::App* cmd, RunOptions* opts) {
   cmd->add_option("--out", opts->out_dir, "Output folder (snapshots, final outputs, live.json)")
       ->capture_default_str();
   cmd->add_option("--recording", opts->recording,
@@ -64,78 +61,101 @@ void AddRunCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--map", opts->map_path,
                   "--emulate: map_server map to simulate in (default: the bundled seed_hall)")
       ->check(CLI::ExistingFile);
-  cmd->callback([opts, &globals] {
-    Config config = LoadConfigFor(globals);
-    // SIGINT/SIGTERM finish the run cleanly (slam/interrupt_cleanup.h's watcher calls this;
-    // the plain handler serves callers that did not install the watcher).
-    SetInterruptHandler([] { g_stop = true; });
-    std::signal(SIGINT, OnStopSignal);
-    std::signal(SIGTERM, OnStopSignal);
-    LiveRunOptions options;
-    options.out_dir = opts->out_dir;
-    options.recording_dir = opts->recording;
-    options.source = opts->source;
-    if (opts->emulate && opts->source != "serial") {
-      throw InputError("--emulate plays serial devices: it needs --source serial");
-    }
-    options.stop = &g_stop;
-    options.quiet = globals.quiet;
-    std::unique_ptr<live::SimDevicePlayer> player;
-    std::unique_ptr<live::HostClock> truth_clock;
-    std::thread watcher;
-    if (opts->emulate) {
-      EnsureDirectory(opts->out_dir);
-      const std::string dev_dir = (std::filesystem::path(opts->out_dir) / "dev").string();
-      EnsureDirectory(dev_dir);
-      config.live.radar_devices.clear();
-      for (std::size_t i = 0; i < config.radars.size(); ++i) {
-        config.live.radar_devices.push_back(dev_dir + "/radar" + std::to_string(i));
-      }
-      config.live.kobuki_device = dev_dir + "/kobuki";
-      config.live.gpio_chip.clear();
-      config.live.radar_power_lines.clear();
-      config.live.radar_reset_lines.clear();
-      config.live.status_led_line = -1;
-      options.time_scale = opts->speed;
-      live::ConfigureLiveForEmulation(&config, opts->speed);
-      const sim::SimScenario scenario =
-          sim::MakeScenario(config, opts->map_path.empty() ? BundledMap() : opts->map_path,
-                            "depart-return", opts->seed);
-      // Ground truth on a clock started with the run's: the same timeline within microseconds.
-      truth_clock = std::make_unique<live::HostClock>(opts->speed);
-      player = std::make_unique<live::SimDevicePlayer>(
-          config, scenario, opts->seed, config.live.radar_devices, config.live.kobuki_device,
-          opts->speed, live::EmulatorFaults{}, [c = truth_clock.get()] { return c->Now(); },
-          opts->duration_s);
-      options.ground_truth = [p = player.get()] { return p->ground_truth(); };
-      player->Start();
-      watcher = std::thread([p = player.get()] {
-        while (!p->done() && !g_stop) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));  // let the tail arrive
-        g_stop = true;
-      });
-    }
-    LiveRunResult result = RunLive(config, std::move(options));
-    if (watcher.joinable()) watcher.join();
-    if (player) player->Stop();
-    if (!globals.quiet) {
-      std::printf(
-          "live run: %lld scans, %lld odometry, %lld recorded messages, %lld dropped from "
-          "processing\n",
-          result.scans_received, result.odometry_received, result.recorded_messages,
-          result.dropped_from_processing);
-      std::printf("scan-to-tile latency p50 %.1f ms, p99 %.1f ms, max %.1f ms over %lld scans\n",
-                  result.latency_p50_ms, result.latency_p99_ms, result.latency_max_ms,
-                  result.latency_samples);
-      for (const auto& [kind, count] : result.faults) {
-        std::printf("fault %s: %lld\n", kind.c_str(), count);
-      }
-      std::printf("recording: %s\n", result.recording_path.c_str());
-      if (result.run.slam && !result.run.slam->keyframes().empty()) {
-        PrintMapSummary(result.run, result.outputs, opts->out_dir);
-      }
-    }
+}
+
+/// The emulated devices of --emulate and the thread that stops the run when they end.
+/// Members in this order: destroyed watcher first, player last.
+struct Emulation {
+  std::unique_ptr<live::SimDevicePlayer> player;
+  std::unique_ptr<live::HostClock> truth_clock;
+  std::thread watcher;
+};
+
+/// Points the live config at emulated devices on pseudo-terminals in <out>/dev and
+/// starts them playing a simulated depart-and-return run.
+void StartEmulation(const RunOptions& opts, Config* config, LiveRunOptions* options,
+                    Emulation* emulation) {
+  EnsureDirectory(opts.out_dir);
+  const std::string dev_dir = (std::filesystem::path(opts.out_dir) / "dev").string();
+  EnsureDirectory(dev_dir);
+  config->live.radar_devices.clear();
+  for (std::size_t i = 0; i < config->radars.size(); ++i) {
+    config->live.radar_devices.push_back(dev_dir + "/radar" + std::to_string(i));
+  }
+  config->live.kobuki_device = dev_dir + "/kobuki";
+  config->live.gpio_chip.clear();
+  config->live.radar_power_lines.clear();
+  config->live.radar_reset_lines.clear();
+  config->live.status_led_line = -1;
+  options->time_scale = opts.speed;
+  live::ConfigureLiveForEmulation(config, opts.speed);
+  const sim::SimScenario scenario = sim::MakeScenario(
+      *config, opts.map_path.empty() ? BundledMap() : opts.map_path, "depart-return", opts.seed);
+  // Ground truth on a clock started with the run's: the same timeline within microseconds.
+  emulation->truth_clock = std::make_unique<live::HostClock>(opts.speed);
+  emulation->player = std::make_unique<live::SimDevicePlayer>(
+      *config, scenario, opts.seed, config->live.radar_devices, config->live.kobuki_device,
+      opts.speed, live::EmulatorFaults{}, [c = emulation->truth_clock.get()] { return c->Now(); },
+      opts.duration_s);
+  options->ground_truth = [p = emulation->player.get()] { return p->ground_truth(); };
+  emulation->player->Start();
+  emulation->watcher = std::thread([p = emulation->player.get()] {
+    while (!p->done() && !g_stop) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));  // let the tail arrive
+    g_stop = true;
   });
+}
+
+void PrintRunResult(const LiveRunResult& result, const std::string& out_dir) {
+  std::printf(
+      "live run: %lld scans, %lld odometry, %lld recorded messages, %lld dropped from "
+      "processing\n",
+      result.scans_received, result.odometry_received, result.recorded_messages,
+      result.dropped_from_processing);
+  std::printf("scan-to-tile latency p50 %.1f ms, p99 %.1f ms, max %.1f ms over %lld scans\n",
+              result.latency_p50_ms, result.latency_p99_ms, result.latency_max_ms,
+              result.latency_samples);
+  for (const auto& [kind, count] : result.faults) {
+    std::printf("fault %s: %lld\n", kind.c_str(), count);
+  }
+  std::printf("recording: %s\n", result.recording_path.c_str());
+  if (result.run.slam && !result.run.slam->keyframes().empty()) {
+    PrintMapSummary(result.run, result.outputs, out_dir);
+  }
+}
+
+void Run(const RunOptions& opts, const GlobalOptions& globals) {
+  Config config = LoadConfigFor(globals);
+  // SIGINT/SIGTERM finish the run cleanly (slam/interrupt_cleanup.h's watcher calls this;
+  // the plain handler serves callers that did not install the watcher).
+  SetInterruptHandler([] { g_stop = true; });
+  std::signal(SIGINT, OnStopSignal);
+  std::signal(SIGTERM, OnStopSignal);
+  LiveRunOptions options;
+  options.out_dir = opts.out_dir;
+  options.recording_dir = opts.recording;
+  options.source = opts.source;
+  if (opts.emulate && opts.source != "serial") {
+    throw InputError("--emulate plays serial devices: it needs --source serial");
+  }
+  options.stop = &g_stop;
+  options.quiet = globals.quiet;
+  Emulation emulation;
+  if (opts.emulate) StartEmulation(opts, &config, &options, &emulation);
+  LiveRunResult result = RunLive(config, std::move(options));
+  if (emulation.watcher.joinable()) emulation.watcher.join();
+  if (emulation.player) emulation.player->Stop();
+  if (!globals.quiet) PrintRunResult(result, opts.out_dir);
+}
+
+}  // namespace
+
+void AddRunCommand(CLI::App& app, const GlobalOptions& globals) {
+  auto opts = std::make_shared<RunOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "run", "Live SLAM on the robot: LT102 radars, Kobuki odometry, GPIO, recording");
+  AddRunOptions(cmd, opts.get());
+  cmd->callback([opts, &globals] { Run(*opts, globals); });
 }
 
 }  // namespace uwbsar::tools

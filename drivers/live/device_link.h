@@ -15,6 +15,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "drivers/live/fault_log.h"
 #include "drivers/live/serial_port.h"
@@ -72,7 +73,21 @@ class DeviceLink {
   const std::string& name() const { return name_; }
 
  private:
+  /// Reconnection state of Loop(): failed connections in a row and the next backoff.
+  struct Retry {
+    int failures = 0;
+    double backoff_s = 0.0;
+  };
+
   void Loop();
+  /// Opens the port and sends the start commands; false (counted, reported) if that fails.
+  bool Connect(SerialPort* port, Retry* retry);
+  /// Reads until the device goes away, falls silent or the link stops; true if any byte
+  /// arrived (which resets `retry`).
+  bool ReadUntilLost(SerialPort* port, std::vector<std::uint8_t>* buffer, Retry* retry);
+  /// Counts a failed connection (a failed open, or one that ended without a byte) and
+  /// power-cycles the device every policy_.power_cycle_after_failures of them.
+  void NoteFailure(SerialPort* port, Retry* retry);
   /// Sleeps up to `s` seconds; false when stopping.
   bool Wait(double s);
 

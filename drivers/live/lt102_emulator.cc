@@ -82,83 +82,101 @@ void Lt102Emulator::Serve() {
 }
 
 void Lt102Emulator::Handle(const Lt102Frame& request) {
+  if (HandleControl(request.code)) return;
   const Lt102Command& command = *FindLt102Command(request.code);
   const std::size_t size = Lt102ValueSize(command.request);
   const bool query = size > 0 && std::all_of(request.payload.begin(), request.payload.end(),
                                              [](std::uint8_t b) { return b == 0xFF; });
   const double value = size > 0 ? ReadLt102Value(command.request, request.payload.data()) : 0.0;
-  auto setting = [&](int* field) {
+  if (HandleRange(command, query, value)) return;
+  if (request.code == lt102::kAdcFrequency) return SendValue(command, options_.adc_frequency);
+  if (int* field = SettingField(request.code)) {
     if (!query) *field = static_cast<int>(value);
     SendValue(command, *field);
-  };
-  switch (request.code) {
+  }
+}
+
+bool Lt102Emulator::HandleControl(std::uint8_t code) {
+  switch (code) {
     case lt102::kVersion: {
       std::vector<std::uint8_t> payload;
       AppendLt102Version(options_.version, &payload);
       SendAnswer(lt102::kVersion, payload);
-      return;
+      return true;
     }
     case lt102::kStart:
       started_ = true;
       SendAnswer(lt102::kStarted, {});
-      return;
+      return true;
     case lt102::kStop:
       started_ = d_waiting_ = have_frame_ = false;
       SendAnswer(lt102::kStop, {});
-      return;
+      return true;
     case lt102::kReset:
       ResetState();
       SendAnswer(lt102::kReset, {});
-      return;
+      return true;
     case lt102::kReadFrame:
-      if (!started_) return;  // not acquiring: nothing to hand out
+      if (!started_) return true;  // not acquiring: nothing to hand out
       if (have_frame_) {
         SendFrame();
       } else {
         d_waiting_ = true;
       }
-      return;
+      return true;
+    default:
+      return false;
+  }
+}
+
+bool Lt102Emulator::HandleRange(const Lt102Command& command, bool query, double value) {
+  switch (command.code) {
     case lt102::kRangeMin:
       if (!query) {
         range_min_m_ = std::max(0.0, std::round(value / options_.bin_m) * options_.bin_m);
         range_max_m_ = std::max(range_max_m_, range_min_m_ + options_.bin_m);
       }
       SendValue(command, range_min_m_);
-      return;
+      return true;
     case lt102::kRangeMax:
       if (!query) {
         const long long bins = std::max(1LL, std::llround((value - range_min_m_) / options_.bin_m));
         range_max_m_ = range_min_m_ + static_cast<double>(bins) * options_.bin_m;
       }
       SendValue(command, range_max_m_);
-      return;
+      return true;
     case lt102::kOffset:
       SendValue(command, range_min_m_);
-      return;
-    case lt102::kFrameRate:
-      return setting(&frame_rate_);
-    case lt102::kFormat:
-      return setting(&format_);
-    case lt102::kChannel:
-      return setting(&channel_);
-    case lt102::kProcessing:
-      return setting(&processing_);
-    case lt102::kOutput:
-      return setting(&output_);
-    case lt102::kDecimation:
-      return setting(&decimation_);
-    case lt102::kPrfDivider:
-      return setting(&options_.prf_divider);
-    case lt102::kCarrier:
-      return setting(&options_.carrier_mhz);
-    case lt102::kBandwidth:
-      return setting(&options_.bandwidth_mhz);
-    case lt102::kTxPower:
-      return setting(&options_.tx_power);
-    case lt102::kAdcFrequency:
-      return SendValue(command, options_.adc_frequency);
+      return true;
     default:
-      return;
+      return false;
+  }
+}
+
+int* Lt102Emulator::SettingField(std::uint8_t code) {
+  switch (code) {
+    case lt102::kFrameRate:
+      return &frame_rate_;
+    case lt102::kFormat:
+      return &format_;
+    case lt102::kChannel:
+      return &channel_;
+    case lt102::kProcessing:
+      return &processing_;
+    case lt102::kOutput:
+      return &output_;
+    case lt102::kDecimation:
+      return &decimation_;
+    case lt102::kPrfDivider:
+      return &options_.prf_divider;
+    case lt102::kCarrier:
+      return &options_.carrier_mhz;
+    case lt102::kBandwidth:
+      return &options_.bandwidth_mhz;
+    case lt102::kTxPower:
+      return &options_.tx_power;
+    default:
+      return nullptr;
   }
 }
 

@@ -71,6 +71,12 @@ class Lt102Emulator {
  private:
   void ResetState();
   void Handle(const Lt102Frame& request);
+  /// Version, start, stop, reset and frame requests; false for any other code.
+  bool HandleControl(std::uint8_t code);
+  /// Range settings (snapped to whole bins) and the offset query; false for other codes.
+  bool HandleRange(const Lt102Command& command, bool query, double value);
+  /// The integer setting a code sets and queries; nullptr if it is none.
+  int* SettingField(std::uint8_t code);
   void SendAnswer(std::uint8_t code, std::vector<std::uint8_t> payload);
   void SendValue(const Lt102Command& command, double value);
   void SendFrame();

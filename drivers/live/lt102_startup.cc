@@ -49,6 +49,86 @@ std::vector<Lt102Request> Lt102StartupRequests(const Lt102Config& c) {
   };
 }
 
+namespace {
+
+/// A setting the radar must echo exactly, compared as the request was encoded (integers
+/// wrap like the wire does).
+void CheckExactEcho(const Lt102Command& command, const Lt102Request& request, double value,
+                    const std::string& name) {
+  std::vector<std::uint8_t> sent, got;
+  AppendLt102Value(command.request, request.value, &sent);
+  AppendLt102Value(command.request, value, &got);
+  if (sent != got) {
+    throw Lt102ConfigError(name + ": configuration error: " + Lt102CommandLabel(request.code) +
+                           " sent " + FormatLt102Value(command.request, request.value) +
+                           ", the radar echoed " + FormatLt102Value(command.answer, value));
+  }
+}
+
+/// Records the answer to `code` in `setup`.
+void StoreAnswer(std::uint8_t code, double value, Lt102Setup* setup) {
+  switch (code) {
+    case lt102::kRangeMin:
+      setup->range_min_m = value;
+      break;
+    case lt102::kRangeMax:
+      setup->range_max_m = value;
+      break;
+    case lt102::kFrameRate:
+      setup->frame_rate_fps = static_cast<int>(value);
+      break;
+    case lt102::kCarrier:
+      setup->carrier_mhz = static_cast<int>(value);
+      break;
+    case lt102::kBandwidth:
+      setup->bandwidth_mhz = static_cast<int>(value);
+      break;
+    case lt102::kPrfDivider:
+      setup->prf_divider = static_cast<int>(value);
+      break;
+    case lt102::kTxPower:
+      setup->tx_power = static_cast<int>(value);
+      break;
+    case lt102::kAdcFrequency:
+      setup->adc_frequency = static_cast<int>(value);
+      break;
+    default:
+      break;
+  }
+}
+
+/// The echoed range sets the samples per scan; a range giving fewer than two is refused.
+void SetSamplesPerScan(const Config& config, const std::string& name, Lt102Setup* setup) {
+  const double bin_m = kSpeedOfLight / (2.0 * config.pulse.sampling_frequency_hz);
+  setup->samples_per_scan = Lt102SampleCount(setup->range_min_m, setup->range_max_m, bin_m);
+  if (!std::isfinite(setup->range_min_m) || !std::isfinite(setup->range_max_m) ||
+      setup->samples_per_scan < 2) {
+    throw Lt102ConfigError(name + ": configuration error: the radar echoed range " +
+                           FormatLt102Value(Lt102Value::kF32, setup->range_min_m) + "-" +
+                           FormatLt102Value(Lt102Value::kF32, setup->range_max_m) + " m for " +
+                           FormatLt102Value(Lt102Value::kF32, config.live.lt102.range_min_m) + "-" +
+                           FormatLt102Value(Lt102Value::kF32, config.live.lt102.range_max_m) +
+                           " m asked (live.lt102.range_min_m / range_max_m)");
+  }
+}
+
+/// The radar's carrier must be within kCarrierTolerance of pulse.center_frequency_hz.
+void CheckCarrier(double carrier_mhz, const Lt102Setup& setup, const Config& config,
+                  const std::string& name) {
+  const double fc_hz = config.pulse.center_frequency_hz;
+  const double off = std::abs(carrier_mhz * 1e6 - fc_hz) / fc_hz;
+  if (off > kCarrierTolerance) {
+    char text[200];
+    std::snprintf(text, sizeof(text),
+                  "the radar's carrier is %d MHz, pulse.center_frequency_hz is %.0f MHz "
+                  "(%.1f %% apart, more than 1 %%)",
+                  setup.carrier_mhz, fc_hz / 1e6, 100.0 * off);
+    throw Lt102ConfigError(name + ": configuration error: " + text);
+  }
+}
+
+}  // namespace
+
 Lt102Setup RunLt102Startup(SerialPort& port, Lt102Exchange& exchange, const Config& config,
                            const std::string& name) {
   Lt102Setup setup;
@@ -63,70 +143,11 @@ Lt102Setup RunLt102Startup(SerialPort& port, Lt102Exchange& exchange, const Conf
     if (command.answer == Lt102Value::kNone) continue;
     const double value = ReadLt102Value(command.answer, answer.data());
     if (command.echo == Lt102Echo::kExact && !request.query) {
-      // Compare as the request was encoded (integers wrap like the wire does).
-      std::vector<std::uint8_t> sent, got;
-      AppendLt102Value(command.request, request.value, &sent);
-      AppendLt102Value(command.request, value, &got);
-      if (sent != got) {
-        throw Lt102ConfigError(name + ": configuration error: " + Lt102CommandLabel(request.code) +
-                               " sent " + FormatLt102Value(command.request, request.value) +
-                               ", the radar echoed " + FormatLt102Value(command.answer, value));
-      }
+      CheckExactEcho(command, request, value, name);
     }
-    switch (request.code) {
-      case lt102::kRangeMin:
-        setup.range_min_m = value;
-        break;
-      case lt102::kRangeMax:
-        setup.range_max_m = value;
-        break;
-      case lt102::kFrameRate:
-        setup.frame_rate_fps = static_cast<int>(value);
-        break;
-      case lt102::kCarrier:
-        setup.carrier_mhz = static_cast<int>(value);
-        break;
-      case lt102::kBandwidth:
-        setup.bandwidth_mhz = static_cast<int>(value);
-        break;
-      case lt102::kPrfDivider:
-        setup.prf_divider = static_cast<int>(value);
-        break;
-      case lt102::kTxPower:
-        setup.tx_power = static_cast<int>(value);
-        break;
-      case lt102::kAdcFrequency:
-        setup.adc_frequency = static_cast<int>(value);
-        break;
-      default:
-        break;
-    }
-    if (request.code == lt102::kRangeMax) {
-      const double bin_m = kSpeedOfLight / (2.0 * config.pulse.sampling_frequency_hz);
-      setup.samples_per_scan = Lt102SampleCount(setup.range_min_m, setup.range_max_m, bin_m);
-      if (!std::isfinite(setup.range_min_m) || !std::isfinite(setup.range_max_m) ||
-          setup.samples_per_scan < 2) {
-        throw Lt102ConfigError(name + ": configuration error: the radar echoed range " +
-                               FormatLt102Value(Lt102Value::kF32, setup.range_min_m) + "-" +
-                               FormatLt102Value(Lt102Value::kF32, setup.range_max_m) + " m for " +
-                               FormatLt102Value(Lt102Value::kF32, config.live.lt102.range_min_m) +
-                               "-" +
-                               FormatLt102Value(Lt102Value::kF32, config.live.lt102.range_max_m) +
-                               " m asked (live.lt102.range_min_m / range_max_m)");
-      }
-    }
-    if (request.code == lt102::kCarrier) {
-      const double fc_hz = config.pulse.center_frequency_hz;
-      const double off = std::abs(value * 1e6 - fc_hz) / fc_hz;
-      if (off > kCarrierTolerance) {
-        char text[200];
-        std::snprintf(text, sizeof(text),
-                      "the radar's carrier is %d MHz, pulse.center_frequency_hz is %.0f MHz "
-                      "(%.1f %% apart, more than 1 %%)",
-                      setup.carrier_mhz, fc_hz / 1e6, 100.0 * off);
-        throw Lt102ConfigError(name + ": configuration error: " + text);
-      }
-    }
+    StoreAnswer(request.code, value, &setup);
+    if (request.code == lt102::kRangeMax) SetSamplesPerScan(config, name, &setup);
+    if (request.code == lt102::kCarrier) CheckCarrier(value, setup, config, name);
   }
   return setup;
 }

@@ -126,89 +126,18 @@ class McapStorageWriter final : public StorageWriter {
 
   void Close(const std::string& metadata_yaml) override {
     CloseChunk();
+    const Span metadata = WriteMetadata(metadata_yaml);
     std::vector<std::uint8_t> out;
     Builder b(&out);
-    const std::uint64_t metadata_at = position_;
-    std::size_t at = b.BeginRecord(mcap::kMetadata);
-    b.String("rosbag2");
-    std::vector<std::uint8_t> map;
-    Builder m(&map);
-    m.String("serialized_metadata");
-    m.String(metadata_yaml);
-    b.U32(static_cast<std::uint32_t>(map.size()));
-    b.Raw(map.data(), map.size());
-    b.EndRecord(at);
-    const std::uint64_t metadata_length = out.size();
-    Emit(out);
-    out.clear();
-    at = b.BeginRecord(mcap::kDataEnd);
+    const std::size_t at = b.BeginRecord(mcap::kDataEnd);
     b.U32(data_crc_);
     b.EndRecord(at);
     Emit(out);
 
-    // Summary section: groups of records, each listed in a Summary Offset record.
     const std::uint64_t summary_start = position_;
     std::vector<std::uint8_t> summary;
-    Builder s(&summary);
-    struct Group {
-      std::uint8_t opcode;
-      std::uint64_t start, length;
-    };
-    std::vector<Group> groups;
-    auto group = [&](std::uint8_t opcode, auto&& write) {
-      const std::size_t begin = summary.size();
-      write();
-      if (summary.size() > begin) {
-        groups.push_back({opcode, summary_start + begin, summary.size() - begin});
-      }
-    };
-    group(mcap::kSchema, [&] {
-      for (const auto& r : schema_records_) s.Raw(r.data(), r.size());
-    });
-    group(mcap::kChannel, [&] {
-      for (const auto& r : channel_records_) s.Raw(r.data(), r.size());
-    });
-    group(mcap::kStatistics, [&] {
-      const std::size_t a = s.BeginRecord(mcap::kStatistics);
-      s.U64(message_count_);
-      s.U16(static_cast<std::uint16_t>(schema_records_.size()));
-      s.U32(static_cast<std::uint32_t>(channel_records_.size()));
-      s.U32(0);  // attachments
-      s.U32(1);  // metadata
-      s.U32(static_cast<std::uint32_t>(chunk_indexes_.size()));
-      s.U64(message_start_);
-      s.U64(message_end_);
-      s.U32(static_cast<std::uint32_t>(channel_counts_.size() * 10));
-      for (const auto& [id, n] : channel_counts_) {
-        s.U16(id);
-        s.U64(n);
-      }
-      s.EndRecord(a);
-    });
-    group(mcap::kChunkIndex, [&] {
-      for (const auto& r : chunk_indexes_) s.Raw(r.data(), r.size());
-    });
-    group(mcap::kMetadataIndex, [&] {
-      const std::size_t a = s.BeginRecord(mcap::kMetadataIndex);
-      s.U64(metadata_at);
-      s.U64(metadata_length);
-      s.String("rosbag2");
-      s.EndRecord(a);
-    });
-    const std::uint64_t summary_offset_start = summary_start + summary.size();
-    for (const Group& g : groups) {
-      const std::size_t a = s.BeginRecord(mcap::kSummaryOffset);
-      s.U8(g.opcode);
-      s.U64(g.start);
-      s.U64(g.length);
-      s.EndRecord(a);
-    }
-    s.U8(mcap::kFooter);
-    s.U64(mcap::kFooterContentBytes);
-    s.U64(summary_start);
-    s.U64(summary_offset_start);
-    s.U32(Crc32(0, summary.data(), summary.size()));  // covers the footer up to here
-    s.Raw(mcap::kMagic, sizeof(mcap::kMagic));
+    const std::vector<SummaryGroup> groups = BuildSummary(metadata, summary_start, &summary);
+    AppendSummaryOffsetsAndFooter(groups, summary_start, &summary);
     WriteRaw(summary);
     if (std::fclose(file_) != 0) {
       file_ = nullptr;
@@ -220,6 +149,108 @@ class McapStorageWriter final : public StorageWriter {
  private:
   [[noreturn]] void Fail(const char* what) const {
     throw InputError(path_ + ": cannot " + std::string(what) + ": " + std::strerror(errno));
+  }
+
+  /// Where a record or a group of records lies in the file.
+  struct Span {
+    std::uint64_t start = 0, length = 0;
+  };
+  /// A group of summary records of one opcode, listed in a Summary Offset record.
+  struct SummaryGroup {
+    std::uint8_t opcode;
+    std::uint64_t start, length;
+  };
+
+  /// Writes the rosbag2 metadata record (the bag's metadata.yaml) into the data section.
+  Span WriteMetadata(const std::string& metadata_yaml) {
+    std::vector<std::uint8_t> out;
+    Builder b(&out);
+    Span span;
+    span.start = position_;
+    const std::size_t at = b.BeginRecord(mcap::kMetadata);
+    b.String("rosbag2");
+    std::vector<std::uint8_t> map;
+    Builder m(&map);
+    m.String("serialized_metadata");
+    m.String(metadata_yaml);
+    b.U32(static_cast<std::uint32_t>(map.size()));
+    b.Raw(map.data(), map.size());
+    b.EndRecord(at);
+    span.length = out.size();
+    Emit(out);
+    return span;
+  }
+
+  /// Appends the summary section (schemas, channels, statistics, chunk indexes, metadata
+  /// index) to `summary`, which starts at file offset `summary_start`; returns its groups.
+  std::vector<SummaryGroup> BuildSummary(const Span& metadata, std::uint64_t summary_start,
+                                         std::vector<std::uint8_t>* summary) const {
+    Builder s(summary);
+    std::vector<SummaryGroup> groups;
+    auto group = [&](std::uint8_t opcode, auto&& write) {
+      const std::size_t begin = summary->size();
+      write();
+      if (summary->size() > begin) {
+        groups.push_back({opcode, summary_start + begin, summary->size() - begin});
+      }
+    };
+    group(mcap::kSchema, [&] {
+      for (const auto& r : schema_records_) s.Raw(r.data(), r.size());
+    });
+    group(mcap::kChannel, [&] {
+      for (const auto& r : channel_records_) s.Raw(r.data(), r.size());
+    });
+    group(mcap::kStatistics, [&] { AppendStatistics(&s); });
+    group(mcap::kChunkIndex, [&] {
+      for (const auto& r : chunk_indexes_) s.Raw(r.data(), r.size());
+    });
+    group(mcap::kMetadataIndex, [&] {
+      const std::size_t a = s.BeginRecord(mcap::kMetadataIndex);
+      s.U64(metadata.start);
+      s.U64(metadata.length);
+      s.String("rosbag2");
+      s.EndRecord(a);
+    });
+    return groups;
+  }
+
+  void AppendStatistics(Builder* s) const {
+    const std::size_t a = s->BeginRecord(mcap::kStatistics);
+    s->U64(message_count_);
+    s->U16(static_cast<std::uint16_t>(schema_records_.size()));
+    s->U32(static_cast<std::uint32_t>(channel_records_.size()));
+    s->U32(0);  // attachments
+    s->U32(1);  // metadata
+    s->U32(static_cast<std::uint32_t>(chunk_indexes_.size()));
+    s->U64(message_start_);
+    s->U64(message_end_);
+    s->U32(static_cast<std::uint32_t>(channel_counts_.size() * 10));
+    for (const auto& [id, n] : channel_counts_) {
+      s->U16(id);
+      s->U64(n);
+    }
+    s->EndRecord(a);
+  }
+
+  /// Appends the summary offsets and the footer (with the summary CRC) and the magic.
+  static void AppendSummaryOffsetsAndFooter(const std::vector<SummaryGroup>& groups,
+                                            std::uint64_t summary_start,
+                                            std::vector<std::uint8_t>* summary) {
+    Builder s(summary);
+    const std::uint64_t summary_offset_start = summary_start + summary->size();
+    for (const SummaryGroup& g : groups) {
+      const std::size_t a = s.BeginRecord(mcap::kSummaryOffset);
+      s.U8(g.opcode);
+      s.U64(g.start);
+      s.U64(g.length);
+      s.EndRecord(a);
+    }
+    s.U8(mcap::kFooter);
+    s.U64(mcap::kFooterContentBytes);
+    s.U64(summary_start);
+    s.U64(summary_offset_start);
+    s.U32(Crc32(0, summary->data(), summary->size()));  // covers the footer up to here
+    s.Raw(mcap::kMagic, sizeof(mcap::kMagic));
   }
 
   void WriteRaw(const std::vector<std::uint8_t>& bytes) {

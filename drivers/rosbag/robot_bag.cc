@@ -10,18 +10,21 @@ namespace {
 
 enum class Role { kNone, kRadar, kOdometry, kGroundTruth };
 
+/// The message types the reader decodes; kOther topics are counted and skipped.
+enum class MessageKind { kOther, kFloat32MultiArray, kOdometry, kLaserScan, kTf };
+
 struct TopicPlan {
-  int kind = -1;  // 0 Float32MultiArray, 1 Odometry, 2 LaserScan, 3 TFMessage, -1 other
+  MessageKind kind = MessageKind::kOther;
   Role role = Role::kNone;
   int sensor_id = -1;
 };
 
-int KindOf(const std::string& type) {
-  if (type == kFloat32MultiArrayType) return 0;
-  if (type == kOdometryType) return 1;
-  if (type == kLaserScanType) return 2;
-  if (type == kTfMessageType) return 3;
-  return -1;
+MessageKind KindOf(const std::string& type) {
+  if (type == kFloat32MultiArrayType) return MessageKind::kFloat32MultiArray;
+  if (type == kOdometryType) return MessageKind::kOdometry;
+  if (type == kLaserScanType) return MessageKind::kLaserScan;
+  if (type == kTfMessageType) return MessageKind::kTf;
+  return MessageKind::kOther;
 }
 
 void Expect(const BagInfo& info, const TopicInfo& t, const char* expected, const std::string& why) {
@@ -29,6 +32,112 @@ void Expect(const BagInfo& info, const TopicInfo& t, const char* expected, const
   throw InputError(info.path + ": topic " + t.name + " has type " + t.type + ", but " + why +
                    " expects " + expected);
 }
+
+/// The kind of every topic of the bag, and the role the options give some of them.
+std::vector<TopicPlan> PlanTopics(const BagReader& reader, const RobotBagOptions& options) {
+  const BagInfo& info = reader.Info();
+  std::vector<TopicPlan> plans(info.topics.size());
+  for (std::size_t i = 0; i < info.topics.size(); ++i) plans[i].kind = KindOf(info.topics[i].type);
+  for (std::size_t r = 0; r < options.radar_topics.size(); ++r) {
+    const int i = reader.FindTopic(options.radar_topics[r]);
+    if (i < 0) {
+      Log(LogLevel::kWarning, info.path + ": no radar topic " + options.radar_topics[r]);
+      continue;
+    }
+    Expect(info, info.topics[static_cast<std::size_t>(i)], kFloat32MultiArrayType,
+           "radars[" + std::to_string(r) + "].topic");
+    plans[static_cast<std::size_t>(i)].role = Role::kRadar;
+    plans[static_cast<std::size_t>(i)].sensor_id = static_cast<int>(r);
+  }
+  const std::pair<const std::string*, Role> odom_topics[] = {
+      {&options.odometry_topic, Role::kOdometry},
+      {&options.ground_truth_topic, Role::kGroundTruth}};
+  for (const auto& [name, role] : odom_topics) {
+    if (name->empty()) continue;
+    const int i = reader.FindTopic(*name);
+    if (i < 0) {
+      if (role == Role::kOdometry) {
+        Log(LogLevel::kWarning, info.path + ": no odometry topic " + *name);
+      }
+      continue;
+    }
+    Expect(info, info.topics[static_cast<std::size_t>(i)], kOdometryType,
+           role == Role::kOdometry ? "the odometry topic" : "the ground-truth topic");
+    plans[static_cast<std::size_t>(i)].role = role;
+  }
+  return plans;
+}
+
+/// Decodes messages by their topic's plan and hands them to the visitor, counting
+/// them; the decode buffers are reused from message to message.
+class MessageDispatcher {
+ public:
+  MessageDispatcher(const RobotBagOptions& options, RobotBagVisitor& visitor, RobotBagStats* stats)
+      : options_(options), visitor_(visitor), stats_(*stats) {}
+
+  void Dispatch(const BagMessage& m, const TopicPlan& plan, const MessageContext& ctx) {
+    switch (plan.kind) {
+      case MessageKind::kFloat32MultiArray:
+        OnFloat32MultiArray(m, plan, ctx);
+        break;
+      case MessageKind::kOdometry:
+        OnOdometry(m, plan, ctx);
+        break;
+      case MessageKind::kLaserScan:
+        DecodeCdr(m.data, m.size, &scan_);
+        visitor_.OnLaserScan(ctx, scan_);
+        ++stats_.laser_scans;
+        break;
+      case MessageKind::kTf:
+        DecodeCdr(m.data, m.size, &tf_);
+        visitor_.OnTf(ctx, tf_);
+        ++stats_.tf;
+        break;
+      case MessageKind::kOther:
+        ++stats_.skipped;
+        ++stats_.skipped_by_type[ctx.type];
+        break;
+    }
+  }
+
+ private:
+  void OnFloat32MultiArray(const BagMessage& m, const TopicPlan& plan, const MessageContext& ctx) {
+    DecodeCdr(m.data, m.size, &f32_);
+    visitor_.OnFloat32MultiArray(ctx, f32_);
+    if (plan.role != Role::kRadar) return;
+    radar_.stamp_ns = m.log_time_ns;
+    radar_.sensor_id = plan.sensor_id;
+    radar_.samples.swap(f32_.data);  // no copy; swapped back below
+    visitor_.OnRadarScan(radar_);
+    radar_.samples.swap(f32_.data);
+    ++stats_.radar_scans;
+  }
+
+  void OnOdometry(const BagMessage& m, const TopicPlan& plan, const MessageContext& ctx) {
+    DecodeCdr(m.data, m.size, &odom_);
+    visitor_.OnOdometryMessage(ctx, odom_);
+    const TimestampNs header_ns =
+        static_cast<TimestampNs>(odom_.header.stamp.sec) * 1000000000 + odom_.header.stamp.nanosec;
+    const TimestampNs stamp =
+        options_.odometry_header_stamp && header_ns != 0 ? header_ns : m.log_time_ns;
+    if (plan.role == Role::kOdometry) {
+      visitor_.OnOdometry(ToOdometrySample(odom_, stamp));
+      ++stats_.odometry;
+    } else if (plan.role == Role::kGroundTruth) {
+      visitor_.OnGroundTruth(ToOdometrySample(odom_, stamp));
+      ++stats_.ground_truth;
+    }
+  }
+
+  const RobotBagOptions& options_;
+  RobotBagVisitor& visitor_;
+  RobotBagStats& stats_;
+  Float32MultiArray f32_;
+  Odometry odom_;
+  LaserScan scan_;
+  TfMessage tf_;
+  RadarScan radar_;
+};
 
 }  // namespace
 
@@ -61,92 +170,16 @@ RobotBagStats ReadRobotBag(const std::string& path, const RobotBagOptions& optio
 RobotBagStats ReadRobotBag(BagReader& reader, const RobotBagOptions& options,
                            RobotBagVisitor& visitor) {
   const BagInfo& info = reader.Info();
-  const std::string& path = info.path;
-  std::vector<TopicPlan> plans(info.topics.size());
-  for (std::size_t i = 0; i < info.topics.size(); ++i) plans[i].kind = KindOf(info.topics[i].type);
-  for (std::size_t r = 0; r < options.radar_topics.size(); ++r) {
-    const int i = reader.FindTopic(options.radar_topics[r]);
-    if (i < 0) {
-      Log(LogLevel::kWarning, path + ": no radar topic " + options.radar_topics[r]);
-      continue;
-    }
-    Expect(info, info.topics[static_cast<std::size_t>(i)], kFloat32MultiArrayType,
-           "radars[" + std::to_string(r) + "].topic");
-    plans[static_cast<std::size_t>(i)].role = Role::kRadar;
-    plans[static_cast<std::size_t>(i)].sensor_id = static_cast<int>(r);
-  }
-  const std::pair<const std::string*, Role> odom_topics[] = {
-      {&options.odometry_topic, Role::kOdometry},
-      {&options.ground_truth_topic, Role::kGroundTruth}};
-  for (const auto& [name, role] : odom_topics) {
-    if (name->empty()) continue;
-    const int i = reader.FindTopic(*name);
-    if (i < 0) {
-      if (role == Role::kOdometry) Log(LogLevel::kWarning, path + ": no odometry topic " + *name);
-      continue;
-    }
-    Expect(info, info.topics[static_cast<std::size_t>(i)], kOdometryType,
-           role == Role::kOdometry ? "the odometry topic" : "the ground-truth topic");
-    plans[static_cast<std::size_t>(i)].role = role;
-  }
-
+  const std::vector<TopicPlan> plans = PlanTopics(reader, options);
   RobotBagStats stats;
-  Float32MultiArray f32;
-  Odometry odom;
-  LaserScan scan;
-  TfMessage tf;
-  RadarScan radar;
+  MessageDispatcher dispatcher(options, visitor, &stats);
   BagMessage m;
   while (reader.Next(&m)) {
     ++stats.messages;
     const TopicInfo& topic = info.topics[static_cast<std::size_t>(m.topic)];
-    const TopicPlan& plan = plans[static_cast<std::size_t>(m.topic)];
     const MessageContext ctx{topic.name, topic.type, m.log_time_ns};
     try {
-      switch (plan.kind) {
-        case 0:
-          DecodeCdr(m.data, m.size, &f32);
-          visitor.OnFloat32MultiArray(ctx, f32);
-          if (plan.role == Role::kRadar) {
-            radar.stamp_ns = m.log_time_ns;
-            radar.sensor_id = plan.sensor_id;
-            radar.samples.swap(f32.data);  // no copy; swapped back below
-            visitor.OnRadarScan(radar);
-            radar.samples.swap(f32.data);
-            ++stats.radar_scans;
-          }
-          break;
-        case 1: {
-          DecodeCdr(m.data, m.size, &odom);
-          visitor.OnOdometryMessage(ctx, odom);
-          const TimestampNs header_ns =
-              static_cast<TimestampNs>(odom.header.stamp.sec) * 1000000000 +
-              odom.header.stamp.nanosec;
-          const TimestampNs stamp =
-              options.odometry_header_stamp && header_ns != 0 ? header_ns : m.log_time_ns;
-          if (plan.role == Role::kOdometry) {
-            visitor.OnOdometry(ToOdometrySample(odom, stamp));
-            ++stats.odometry;
-          } else if (plan.role == Role::kGroundTruth) {
-            visitor.OnGroundTruth(ToOdometrySample(odom, stamp));
-            ++stats.ground_truth;
-          }
-          break;
-        }
-        case 2:
-          DecodeCdr(m.data, m.size, &scan);
-          visitor.OnLaserScan(ctx, scan);
-          ++stats.laser_scans;
-          break;
-        case 3:
-          DecodeCdr(m.data, m.size, &tf);
-          visitor.OnTf(ctx, tf);
-          ++stats.tf;
-          break;
-        default:
-          ++stats.skipped;
-          ++stats.skipped_by_type[topic.type];
-      }
+      dispatcher.Dispatch(m, plans[static_cast<std::size_t>(m.topic)], ctx);
     } catch (const InputError& e) {
       throw InputError(info.files[static_cast<std::size_t>(m.file)] + ": message at " +
                        std::to_string(m.log_time_ns) + " ns on " + topic.name + " (" + topic.type +

@@ -45,100 +45,154 @@ double Trajectory::Profile::Rate(double t) const {
   return std::max(0.0, peak - accel * (t - t_accel - t_cruise));
 }
 
-Trajectory Trajectory::Plan(const Route& route, const SimRouteConfig& config) {
+namespace {
+
+/// Heading and length of each leg between consecutive waypoints.
+void Legs(const Route& route, std::vector<double>* heading, std::vector<double>* length) {
   const std::vector<Point2>& w = route.waypoints;
-  const std::size_t n = w.size();
-  std::vector<double> heading, length;
-  for (std::size_t i = 0; i + 1 < n; ++i) {
-    heading.push_back(std::atan2(w[i + 1].y_m - w[i].y_m, w[i + 1].x_m - w[i].x_m));
-    length.push_back(std::hypot(w[i + 1].x_m - w[i].x_m, w[i + 1].y_m - w[i].y_m));
-    if (length.back() < 1e-6) {
+  for (std::size_t i = 0; i + 1 < w.size(); ++i) {
+    heading->push_back(std::atan2(w[i + 1].y_m - w[i].y_m, w[i + 1].x_m - w[i].x_m));
+    length->push_back(std::hypot(w[i + 1].x_m - w[i].x_m, w[i + 1].y_m - w[i].y_m));
+    if (length->back() < 1e-6) {
       throw InputError("route '" + route.name + "': waypoints " + std::to_string(i) + " and " +
                        std::to_string(i + 1) + " coincide");
     }
   }
-  if (heading.empty()) throw InputError("route '" + route.name + "' needs two waypoints");
-  // Corner i sits at waypoint i (1 .. n-2): turn angle, and tangent length if rounded.
-  std::vector<double> turn(n, 0.0), tangent(n, 0.0), radius(n, 0.0);
+  if (heading->empty()) throw InputError("route '" + route.name + "' needs two waypoints");
+}
+
+/// Corner i sits at waypoint i (1 .. n-2): turn angle, and tangent length and radius
+/// if rounded (0 where the robot turns on the spot).
+struct Corners {
+  std::vector<double> turn, tangent, radius;
+};
+
+Corners PlanCorners(const std::vector<double>& heading, const std::vector<double>& length,
+                    double corner_radius_m) {
+  const std::size_t n = heading.size() + 1;
+  Corners c{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
   for (std::size_t i = 1; i + 1 < n; ++i) {
     double phi = NormalizeAngle(heading[i] - heading[i - 1]);
     if (phi < -M_PI + 1e-9) phi = M_PI;  // reversals turn left
-    turn[i] = phi;
-    if (std::abs(phi) < 1e-9 || std::abs(phi) > kMaxFilletTurnRad || config.corner_radius_m <= 0)
-      continue;
+    c.turn[i] = phi;
+    if (std::abs(phi) < 1e-9 || std::abs(phi) > kMaxFilletTurnRad || corner_radius_m <= 0) continue;
     const double half_tan = std::tan(0.5 * std::abs(phi));
-    tangent[i] =
-        std::min(config.corner_radius_m * half_tan, 0.5 * std::min(length[i - 1], length[i]));
-    radius[i] = tangent[i] / half_tan;
+    c.tangent[i] = std::min(corner_radius_m * half_tan, 0.5 * std::min(length[i - 1], length[i]));
+    c.radius[i] = c.tangent[i] / half_tan;
   }
+  return c;
+}
+
+}  // namespace
+
+// Appends phases in time order: pauses, runs (lines and arcs driven under one speed
+// profile, collected piece by piece until closed) and turns on the spot.
+class Trajectory::Planner {
+ public:
+  Planner(const SimRouteConfig& config, Trajectory* traj, const Pose2& start)
+      : config_(config), traj_(traj), pose_(start), piece_pose_(start) {
+    run_.kind = Phase::Kind::kRun;
+  }
+
+  void AddPause() {
+    Phase pause;
+    pause.duration_s = config_.pause_s;
+    AddPhase(pause);
+  }
+
+  /// Extends the open run by a line (curvature 0) or an arc.
+  void AddPiece(double len, double curvature) {
+    if (len <= 1e-9) return;
+    run_.pieces.push_back({run_length_, len, curvature, piece_pose_, run_heading_});
+    piece_pose_ = Advance(piece_pose_, curvature, len);
+    run_length_ += len;
+    run_heading_ += curvature * len;
+  }
+
+  /// A rounded corner of `radius_m` turning by `turn_rad`, within the open run.
+  void AddArc(double radius_m, double turn_rad) {
+    AddPiece(radius_m * std::abs(turn_rad), (turn_rad > 0 ? 1.0 : -1.0) / radius_m);
+    min_radius_ = std::min(min_radius_, radius_m);
+  }
+
+  /// Closes the open run, then turns on the spot by `turn_rad`.
+  void AddRotation(double turn_rad) {
+    CloseRun();
+    Phase rotate;
+    rotate.kind = Phase::Kind::kRotate;
+    rotate.rotation_rad = turn_rad;
+    rotate.profile =
+        Profile::Make(std::abs(turn_rad), config_.turn_rate_radps, config_.turn_accel_radps2);
+    rotate.duration_s = rotate.profile.Duration();
+    AddPhase(rotate);
+    pose_.yaw_rad = NormalizeAngle(pose_.yaw_rad + turn_rad);
+    total_heading_ += turn_rad;
+    piece_pose_ = pose_;
+  }
+
+  /// The open run becomes a phase, its speed limited on its tightest arc.
+  void CloseRun() {
+    if (run_.pieces.empty()) return;
+    const double v_max = std::min(config_.speed_mps, config_.turn_rate_radps * min_radius_);
+    run_.profile = Profile::Make(run_length_, v_max, config_.accel_mps2);
+    run_.duration_s = run_.profile.Duration();
+    AddPhase(run_);
+    pose_ = piece_pose_;
+    path_ += run_length_;
+    total_heading_ += run_heading_;
+    run_ = Phase{};
+    run_.kind = Phase::Kind::kRun;
+    run_length_ = run_heading_ = 0.0;
+    min_radius_ = 1e300;
+  }
+
+  void Finish() {
+    traj_->duration_s_ = t_;
+    traj_->length_m_ = path_;
+  }
+
+ private:
+  void AddPhase(Phase phase) {
+    phase.t0_s = t_;
+    phase.start = pose_;
+    phase.path0_m = path_;
+    phase.heading0_rad = total_heading_;
+    t_ += phase.duration_s;
+    traj_->phases_.push_back(std::move(phase));
+  }
+
+  const SimRouteConfig& config_;
+  Trajectory* traj_;
+  Pose2 pose_;  ///< where the next phase starts
+  double t_ = 0.0, path_ = 0.0, total_heading_ = 0.0;
+  Phase run_;  ///< the open run
+  double run_length_ = 0.0, run_heading_ = 0.0, min_radius_ = 1e300;
+  Pose2 piece_pose_;  ///< where the open run's next piece starts
+};
+
+Trajectory Trajectory::Plan(const Route& route, const SimRouteConfig& config) {
+  std::vector<double> heading, length;
+  Legs(route, &heading, &length);
+  const Corners corners = PlanCorners(heading, length, config.corner_radius_m);
+  const std::vector<Point2>& w = route.waypoints;
+  const std::size_t n = w.size();
   Trajectory traj;
   traj.name_ = route.name;
-  Pose2 pose{w[0].x_m, w[0].y_m, heading[0]};
-  double t = 0.0, path = 0.0, total_heading = 0.0;
-  auto add_phase = [&](Phase phase) {
-    phase.t0_s = t;
-    phase.start = pose;
-    phase.path0_m = path;
-    phase.heading0_rad = total_heading;
-    t += phase.duration_s;
-    traj.phases_.push_back(std::move(phase));
-  };
-  auto add_pause = [&]() {
-    Phase pause;
-    pause.duration_s = config.pause_s;
-    add_phase(pause);
-  };
-  add_pause();
-  Phase run;
-  run.kind = Phase::Kind::kRun;
-  double run_length = 0.0, run_heading = 0.0, min_radius = 1e300;
-  Pose2 piece_pose = pose;
-  auto add_piece = [&](double len, double curvature) {
-    if (len <= 1e-9) return;
-    run.pieces.push_back({run_length, len, curvature, piece_pose, run_heading});
-    piece_pose = Advance(piece_pose, curvature, len);
-    run_length += len;
-    run_heading += curvature * len;
-  };
-  auto close_run = [&]() {
-    if (run.pieces.empty()) return;
-    const double v_max = std::min(config.speed_mps, config.turn_rate_radps * min_radius);
-    run.profile = Profile::Make(run_length, v_max, config.accel_mps2);
-    run.duration_s = run.profile.Duration();
-    add_phase(run);
-    pose = piece_pose;
-    path += run_length;
-    total_heading += run_heading;
-    run = Phase{};
-    run.kind = Phase::Kind::kRun;
-    run_length = run_heading = 0.0;
-    min_radius = 1e300;
-  };
+  Planner planner(config, &traj, Pose2{w[0].x_m, w[0].y_m, heading[0]});
+  planner.AddPause();
   for (std::size_t i = 0; i + 1 < n; ++i) {
-    add_piece(length[i] - tangent[i] - tangent[i + 1], 0.0);
+    planner.AddPiece(length[i] - corners.tangent[i] - corners.tangent[i + 1], 0.0);
     const std::size_t c = i + 1;  // the corner at the segment's end
-    if (c + 1 >= n || std::abs(turn[c]) < 1e-9) continue;
-    if (radius[c] > 0.0) {
-      add_piece(radius[c] * std::abs(turn[c]), (turn[c] > 0 ? 1.0 : -1.0) / radius[c]);
-      min_radius = std::min(min_radius, radius[c]);
+    if (c + 1 >= n || std::abs(corners.turn[c]) < 1e-9) continue;
+    if (corners.radius[c] > 0.0) {
+      planner.AddArc(corners.radius[c], corners.turn[c]);
     } else {
-      close_run();
-      Phase rotate;
-      rotate.kind = Phase::Kind::kRotate;
-      rotate.rotation_rad = turn[c];
-      rotate.profile =
-          Profile::Make(std::abs(turn[c]), config.turn_rate_radps, config.turn_accel_radps2);
-      rotate.duration_s = rotate.profile.Duration();
-      add_phase(rotate);
-      pose.yaw_rad = NormalizeAngle(pose.yaw_rad + turn[c]);
-      total_heading += turn[c];
-      piece_pose = pose;
+      planner.AddRotation(corners.turn[c]);
     }
   }
-  close_run();
-  add_pause();
-  traj.duration_s_ = t;
-  traj.length_m_ = path;
+  planner.CloseRun();
+  planner.AddPause();
+  planner.Finish();
   return traj;
 }
 

@@ -39,6 +39,8 @@ class Trajectory {
   void CheckClearance(const OccupancyGrid& grid, double clearance_m) const;
 
  private:
+  class Planner;  ///< appends the phases of Plan() (trajectory.cc)
+
   /// A straight line (curvature 0) or an arc, within a run.
   struct Piece {
     double s0_m = 0.0;  ///< run distance at the piece's start

@@ -44,6 +44,44 @@ double ObservedFraction(const cv::Mat& strip, const cv::Rect& rect) {
   return static_cast<double>(cv::countNonZero(nonzero)) / static_cast<double>(crop.total());
 }
 
+/// Regions along the departing path's main world axis, from its start, kept where both
+/// passes observed at least a quarter of the region; features computed for each.
+void CutRegions(const std::vector<ImagedScan>& depart, const Config& config,
+                const RegionStudyOptions& options, RegionStudy* study_ptr) {
+  RegionStudy& study = *study_ptr;
+  const Pose2& a = depart.front().T_world_robot;
+  const Pose2& b = depart.back().T_world_robot;
+  const bool along_x = std::abs(b.x_m - a.x_m) >= std::abs(b.y_m - a.y_m);
+  const double start = along_x ? a.x_m : a.y_m;
+  const double end = along_x ? b.x_m : b.y_m;
+  const double dir = end >= start ? 1.0 : -1.0;
+  const double extent = std::abs(end - start);
+  const ImageGrid& g = study.strip_grid;
+  int index = 0;
+  for (double s = 0.0; s + options.region_length_m <= extent + 1e-6; s += options.region_step_m) {
+    const double lo = start + dir * s, hi = start + dir * (s + options.region_length_m);
+    const double v0 = std::min(lo, hi), v1 = std::max(lo, hi);
+    cv::Rect rect;
+    if (along_x) {
+      const int c0 = static_cast<int>(std::lround(g.XToCol(v0)));
+      const int c1 = static_cast<int>(std::lround(g.XToCol(v1)));
+      rect = cv::Rect(c0, 0, c1 - c0, g.rows);
+    } else {
+      const int r0 = static_cast<int>(std::lround(g.YToRow(v1)));  // rows grow towards -y
+      const int r1 = static_cast<int>(std::lround(g.YToRow(v0)));
+      rect = cv::Rect(0, r0, g.cols, r1 - r0);
+    }
+    rect &= cv::Rect(0, 0, g.cols, g.rows);
+    ++index;
+    if (rect.area() == 0 || ObservedFraction(study.d_strip, rect) < 0.25 ||
+        ObservedFraction(study.r_strip, rect) < 0.25) {
+      continue;
+    }
+    study.d_regions.push_back(MakeRegion(index, rect, g, study.d_strip, config, options.detectors));
+    study.r_regions.push_back(MakeRegion(index, rect, g, study.r_strip, config, options.detectors));
+  }
+}
+
 }  // namespace
 
 const RegionPair* RegionStudy::Find(int d, int r) const {
@@ -80,43 +118,12 @@ RegionStudy RunRegionStudy(const std::vector<ImagedScan>& depart,
   }
   study.strip_grid =
       WorldGridCovering(poses, sensors, config.keyframe.margin_m, config.imaging.pixel_size_m);
-  const bool coherent = config.imaging.mode == "coherent";
+  const bool coherent = config.imaging.coherent();
   const int threads = std::max(1, config.imaging.num_threads);
   study.d_strip = RenderScans(depart, sensors, study.strip_grid, coherent, threads).image;
   study.r_strip = RenderScans(ret, sensors, study.strip_grid, coherent, threads).image;
 
-  // Regions along the departing path's main world axis, from its start.
-  const Pose2& a = depart.front().T_world_robot;
-  const Pose2& b = depart.back().T_world_robot;
-  const bool along_x = std::abs(b.x_m - a.x_m) >= std::abs(b.y_m - a.y_m);
-  const double start = along_x ? a.x_m : a.y_m;
-  const double end = along_x ? b.x_m : b.y_m;
-  const double dir = end >= start ? 1.0 : -1.0;
-  const double extent = std::abs(end - start);
-  const ImageGrid& g = study.strip_grid;
-  int index = 0;
-  for (double s = 0.0; s + options.region_length_m <= extent + 1e-6; s += options.region_step_m) {
-    const double lo = start + dir * s, hi = start + dir * (s + options.region_length_m);
-    const double v0 = std::min(lo, hi), v1 = std::max(lo, hi);
-    cv::Rect rect;
-    if (along_x) {
-      const int c0 = static_cast<int>(std::lround(g.XToCol(v0)));
-      const int c1 = static_cast<int>(std::lround(g.XToCol(v1)));
-      rect = cv::Rect(c0, 0, c1 - c0, g.rows);
-    } else {
-      const int r0 = static_cast<int>(std::lround(g.YToRow(v1)));  // rows grow towards -y
-      const int r1 = static_cast<int>(std::lround(g.YToRow(v0)));
-      rect = cv::Rect(0, r0, g.cols, r1 - r0);
-    }
-    rect &= cv::Rect(0, 0, g.cols, g.rows);
-    ++index;
-    if (rect.area() == 0 || ObservedFraction(study.d_strip, rect) < 0.25 ||
-        ObservedFraction(study.r_strip, rect) < 0.25) {
-      continue;
-    }
-    study.d_regions.push_back(MakeRegion(index, rect, g, study.d_strip, config, options.detectors));
-    study.r_regions.push_back(MakeRegion(index, rect, g, study.r_strip, config, options.detectors));
-  }
+  CutRegions(depart, config, options, &study);
   const PlaceRecognitionConfig& pr = config.place_recognition;
   for (const StudyRegion& d : study.d_regions) {
     for (const StudyRegion& r : study.r_regions) {

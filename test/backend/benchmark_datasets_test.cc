@@ -27,7 +27,7 @@ double AteOf(const PoseGraph& g, const std::vector<Pose2>& truth) {
 
 BackendConfig PlainLeastSquares() {
   BackendConfig c;
-  c.robust_loss = "none";
+  c.robust_loss = RobustLoss::kNone;
   c.max_rejection_rounds = 0;
   c.min_loop_support = 0;
   return c;
@@ -127,7 +127,7 @@ TEST(MitBTest, ChordalStartReachesTheBasinThatSatisfiesEveryLoop) {
   const OptimizeResult g = from_guess.Optimize();
 
   BackendConfig c;
-  c.initialization = "chordal";
+  c.initialization = GraphInitialization::kChordal;
   c.min_loop_support = 0;  // every MIT-B loop is a lone one (no neighbouring loops)
   PoseGraph graph(c);
   LoadIntoPoseGraph(file, &graph);

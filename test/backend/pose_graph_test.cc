@@ -202,7 +202,7 @@ TEST(PoseGraphTest, WithoutRejectionAFalseLoopBendsTheMap) {
   // The counterpart of the test above: proves that the false loop matters.
   const SquareRun run = MakeSquareRun(2);
   BackendConfig c;
-  c.robust_loss = "none";
+  c.robust_loss = RobustLoss::kNone;
   c.max_rejection_rounds = 0;
   c.min_loop_support = 0;
   PoseGraph clean(c);
@@ -290,7 +290,7 @@ TEST(PoseGraphTest, M3500PrefixFromOdometryConvergesToPlainLeastSquares) {
   EXPECT_TRUE(r.converged) << r.termination;
   EXPECT_TRUE(r.rejected.empty());
   BackendConfig plain_config;
-  plain_config.robust_loss = "none";
+  plain_config.robust_loss = RobustLoss::kNone;
   plain_config.max_rejection_rounds = 0;
   plain_config.min_loop_support = 0;
   PoseGraph plain(plain_config);

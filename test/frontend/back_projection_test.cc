@@ -104,9 +104,8 @@ TEST(BackProjectionTest, FlatWallIsStraightRidgeAtItsDistance) {
     const auto wall = WallScatterers({-0.5, kWallY}, {3.5, kWallY}, 0.004, 0.05);
     const SyntheticRun run = SimulateRun(config, path, wall, EchoModel{}, 3);
     const tools::StripResult result = tools::ImageRun(config, run.odometry, run.scans);
-    const cv::Mat detected = config.imaging.mode == "coherent"
-                                 ? MagnitudeImage(result.strip.image)
-                                 : PaperDetection(config, result.strip.image);
+    const cv::Mat detected = config.imaging.coherent() ? MagnitudeImage(result.strip.image)
+                                                       : PaperDetection(config, result.strip.image);
     const ImageGrid& g = result.strip.grid;
     double worst = 0.0;
     int columns = 0;
@@ -143,9 +142,8 @@ TEST(BackProjectionTest, CurvedPathStillFocusesPointTargets) {
     const Config config = ConfigForMode(mode);
     const SyntheticRun run = SimulateRun(config, arc, scene, EchoModel{}, 5);
     const tools::StripResult result = tools::ImageRun(config, run.odometry, run.scans);
-    const cv::Mat detected = config.imaging.mode == "coherent"
-                                 ? MagnitudeImage(result.strip.image)
-                                 : PaperDetection(config, result.strip.image);
+    const cv::Mat detected = config.imaging.coherent() ? MagnitudeImage(result.strip.image)
+                                                       : PaperDetection(config, result.strip.image);
     for (const Point2& t : targets) {
       const Point2 range_dir{t.x_m - mid.x_m, t.y_m - mid.y_m};
       const PsfMetrics m = MeasurePsf(detected, result.strip.grid, t, range_dir);

@@ -251,7 +251,7 @@ TEST(ImagingFrontendTest, TilePixelsMapToTheWorldThroughTheAnchor) {
   // The point target must appear in a tile at T_anchor^-1 * p_world.
   Fixture fx(2.0);
   fx.config.imaging.pixel_size_m = 0.005;
-  fx.config.imaging.mode = "coherent";
+  fx.config.imaging.mode = ImagingMode::kCoherent;
   ImagingFrontend f(fx.config);
   Feed(&f, fx.run);
   const auto kfs = f.TakeKeyframes();

@@ -2,6 +2,7 @@
 // frontend and measure point-target quality. Shared by the imaging acceptance tests.
 #pragma once
 
+#include <stdexcept>
 #include <vector>
 
 #include "drivers/synthetic_run.h"
@@ -24,7 +25,7 @@ inline cv::Mat PaperDetection(const Config& config, const cv::Mat& sar) {
 
 inline Config ConfigForMode(const char* mode) {
   Config config;
-  config.imaging.mode = mode;
+  if (!EnumFromName(mode, &config.imaging.mode)) throw std::invalid_argument(mode);
   return config;
 }
 

@@ -26,7 +26,7 @@ TEST(ConfigIoTest, DefaultsMatchThePaper) {
 
 TEST(ConfigIoTest, PartialFileKeepsOtherDefaults) {
   const Config c = LoadConfigFromString("imaging:\n  mode: coherent\n", "t.yaml");
-  EXPECT_EQ(c.imaging.mode, "coherent");
+  EXPECT_EQ(c.imaging.mode, ImagingMode::kCoherent);
   EXPECT_DOUBLE_EQ(c.imaging.pixel_size_m, 0.005);
   EXPECT_EQ(c.radars.size(), 2u);
 }

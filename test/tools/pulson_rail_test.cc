@@ -30,7 +30,7 @@ struct Peak {
 /// --resolution 0.01` does; |I| of the strip.
 tools::StripResult ImageRail(const std::string& log, const std::string& config_file) {
   Config config = LoadConfig(testing::SharedDataPath("real/pulson440_rail/" + config_file));
-  config.imaging.mode = "coherent";
+  config.imaging.mode = ImagingMode::kCoherent;
   config.imaging.pixel_size_m = 0.01;
   TextLog text = ReadTextLog(testing::SharedDataPath("real/pulson440_rail/" + log));
   return tools::ImageRun(config, text.odometry, text.scans);
