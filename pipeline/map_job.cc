@@ -160,7 +160,7 @@ MapRun MapSimulation(const Config& config, const std::string& map_yaml, const st
   return MapSource(config, description, source, on_message);
 }
 
-void Feed(MapRun* run, const Message& m) {
+void CountMessage(MapRun* run, const Message& m) {
   if (m.kind == Message::Kind::kEvent) return;
   if (run->messages++ == 0) run->first_stamp_ns = m.stamp_ns;
   run->first_stamp_ns = std::min(run->first_stamp_ns, m.stamp_ns);
@@ -168,11 +168,9 @@ void Feed(MapRun* run, const Message& m) {
   switch (m.kind) {
     case Message::Kind::kRadarScan:
       ++run->radar_messages;
-      run->slam->AddScan(m.scan);
       break;
     case Message::Kind::kOdometry:
       ++run->odometry_messages;
-      run->slam->AddOdometry(m.odometry);
       break;
     case Message::Kind::kGroundTruth:
       run->ground_truth.push_back(m.odometry);
@@ -180,6 +178,16 @@ void Feed(MapRun* run, const Message& m) {
     case Message::Kind::kEvent:
       break;
   }
+}
+
+void FeedSlam(SlamSystem& slam, const Message& m) {
+  if (m.kind == Message::Kind::kRadarScan) slam.AddScan(m.scan);
+  if (m.kind == Message::Kind::kOdometry) slam.AddOdometry(m.odometry);
+}
+
+void Feed(MapRun* run, const Message& m) {
+  CountMessage(run, m);
+  FeedSlam(*run->slam, m);
 }
 
 AteResult TrajectoryError(const std::vector<std::pair<TimestampNs, Pose2>>& estimate,

@@ -49,10 +49,14 @@ MapRun MapStream(const Config& config, const std::string& description,
 MapRun MapSource(const Config& config, const std::string& description, MessageSource& source,
                  const std::function<void(MapRun*)>& on_message = nullptr);
 
-/// The one way a message enters a mapping run: counts it, keeps the first and last stamps,
-/// and hands a scan or odometry sample to the SlamSystem or keeps a ground-truth pose.
-/// Events are not SLAM's (the live recorder keeps them).
+/// The one way a message enters a mapping run, offline and live: CountMessage, then
+/// FeedSlam. Events are not SLAM's (the live recorder keeps them).
 void Feed(MapRun* run, const Message& m);
+/// Counts `m` in `run` (messages by kind; first and last stamp = the smallest and largest
+/// seen) and keeps a ground-truth pose. The live processor calls it under its lock.
+void CountMessage(MapRun* run, const Message& m);
+/// Hands a radar scan or odometry sample to `slam`; other kinds are not SLAM's.
+void FeedSlam(SlamSystem& slam, const Message& m);
 
 /// Maps a simulated run (drivers/sim: `map_yaml`, built-in route name or waypoints
 /// file, seed) in memory, with its ground truth: the demo, tests and benchmarks.
