@@ -5,6 +5,7 @@
 #include <opencv2/core.hpp>
 #include <sstream>
 
+#include "drivers/log_source.h"
 #include "imaging/enhance.h"
 #include "imaging/image_io.h"
 #include "slam/errors.h"
@@ -17,14 +18,10 @@ StripResult ImageRun(const Config& config, const std::vector<OdometrySample>& od
   StripResult result;
   ImagingFrontend frontend(config);
   frontend.SetScanObserver([&](const ImagedScan& s) { result.scans.push_back(s); });
-  std::size_t i = 0, j = 0;
-  while (i < odometry.size() || j < scans.size()) {
-    if (j >= scans.size() || (i < odometry.size() && odometry[i].stamp_ns <= scans[j].stamp_ns)) {
-      frontend.AddOdometry(odometry[i++]);
-    } else {
-      frontend.AddScan(scans[j++]);
-    }
-  }
+  LogSource(odometry, scans).Run([&](const Message& m) {
+    if (m.kind == Message::Kind::kOdometry) frontend.AddOdometry(m.odometry);
+    if (m.kind == Message::Kind::kRadarScan) frontend.AddScan(m.scan);
+  });
   frontend.Finish();
   frontend.TakeKeyframes();
   result.stats = frontend.stats();

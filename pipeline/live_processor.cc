@@ -103,23 +103,15 @@ std::optional<OdometrySample> Processor::LatestOdometry() {
 }
 
 void Processor::Process(const LiveMessage& msg) {
+  // Feed() in two halves: the counters under run_mutex_ (the snapshot thread reads them),
+  // SLAM without it.
   {
     std::lock_guard<std::mutex> lock(run_mutex_);
-    if (run_.messages++ == 0) run_.first_stamp_ns = msg.stamp_ns;
-    run_.last_stamp_ns = msg.stamp_ns;
-    if (msg.kind == LiveMessage::Kind::kScan) {
-      ++run_.radar_messages;
-    } else {
-      ++run_.odometry_messages;
-      latest_odometry_ = msg.odometry;
-    }
+    CountMessage(&run_, msg);
+    if (msg.kind == Message::Kind::kOdometry) latest_odometry_ = msg.odometry;
   }
-  if (msg.kind == LiveMessage::Kind::kScan) {
-    pending_.push_back(msg.arrival);
-    run_.slam->AddScan(msg.scan);
-  } else {
-    run_.slam->AddOdometry(msg.odometry);
-  }
+  if (msg.kind == Message::Kind::kRadarScan) pending_.push_back(msg.arrival);
+  FeedSlam(*run_.slam, msg);
   // A scan is resolved once the frontend imaged, gated or rejected it (it may wait for
   // the odometry after it); resolution is in arrival order.
   const FrontendStats s = run_.slam->frontend_stats();

@@ -65,17 +65,19 @@ void Recorder::Loop() {
 
 void Recorder::Write(const LiveMessage& m) {
   switch (m.kind) {
-    case LiveMessage::Kind::kScan: {
+    case Message::Kind::kRadarScan: {
       array_.data = m.scan.samples;
       writer_->WriteMessage(radar_topics_[static_cast<std::size_t>(m.scan.sensor_id)], m.stamp_ns,
                             array_);
       break;
     }
-    case LiveMessage::Kind::kOdometry:
+    case Message::Kind::kOdometry:
       writer_->WriteMessage(odometry_topic_, m.stamp_ns,
                             sim::ToRosOdometry(m.odometry, "odom", "base_link", true));
       break;
-    case LiveMessage::Kind::kEvent: {
+    case Message::Kind::kGroundTruth:  // live sources have none
+      return;
+    case Message::Kind::kEvent: {
       rosbag::CdrWriter cdr(&cdr_);
       cdr.WriteString(m.text);
       writer_->Write(event_topic_, m.stamp_ns, cdr_);
@@ -92,15 +94,15 @@ void Dispatcher::Dispatch(LiveMessage&& msg, bool restamp) {
     msg.arrival = SteadyClock::now();
     if (restamp) {
       msg.stamp_ns = clock_->Now();
-      if (msg.kind == LiveMessage::Kind::kScan) msg.scan.stamp_ns = msg.stamp_ns;
-      if (msg.kind == LiveMessage::Kind::kOdometry) msg.odometry.stamp_ns = msg.stamp_ns;
+      if (msg.kind == Message::Kind::kRadarScan) msg.scan.stamp_ns = msg.stamp_ns;
+      if (msg.kind == Message::Kind::kOdometry) msg.odometry.stamp_ns = msg.stamp_ns;
     }
     if (recorder_ != nullptr) {
       recorder_->Push(msg);
     } else {
       held_.push_back(msg);
     }
-    if (msg.kind != LiveMessage::Kind::kEvent && msg.for_slam) {
+    if (msg.kind != Message::Kind::kEvent && msg.for_slam) {
       if (queue_.size() >= capacity_) {
         queue_.pop_front();
         ++dropped_;
@@ -120,7 +122,7 @@ void Dispatcher::AttachRecorder(Recorder* recorder) {
 
 void Dispatcher::Event(const std::string& text) {
   LiveMessage m;
-  m.kind = LiveMessage::Kind::kEvent;
+  m.kind = Message::Kind::kEvent;
   m.text = text;
   Publish(std::move(m));
 }

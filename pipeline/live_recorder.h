@@ -19,6 +19,7 @@
 #include "drivers/live/host_clock.h"
 #include "drivers/rosbag/bag_writer.h"
 #include "slam/config.h"
+#include "slam/message.h"
 #include "slam/types.h"
 
 namespace uwbsar::tools {
@@ -28,13 +29,9 @@ using SteadyClock = std::chrono::steady_clock;
 /// The recording's topic of run events (faults, GPIO, start and stop): std_msgs/String.
 inline constexpr const char* kEventTopic = "/uwbsar/events";
 
-struct LiveMessage {
-  enum class Kind { kScan, kOdometry, kEvent };
-  Kind kind = Kind::kEvent;
-  TimestampNs stamp_ns = 0;  ///< the recording's log time and SLAM's stamp
-  RadarScan scan;
-  OdometrySample odometry;
-  std::string text;
+/// A Message (slam/message.h) as the live runtime passes it on: stamp_ns is the recording's
+/// log time and SLAM's stamp; live sources produce scans, odometry and events.
+struct LiveMessage : Message {
   bool for_slam = true;  ///< false: recorded only (e.g. a duplicate odometry sample)
   SteadyClock::time_point arrival;
 };

@@ -38,7 +38,7 @@ class Ros2Source : public LiveSource {
     callbacks.on_radar = [this](dds::RadarMessage&& r) {
       ++scans_;
       LiveMessage m;
-      m.kind = LiveMessage::Kind::kScan;
+      m.kind = Message::Kind::kRadarScan;
       m.stamp_ns = r.scan.stamp_ns;
       m.scan = std::move(r.scan);
       m.for_slam = r.in_order;  // a repeated or older stamp is recorded, not imaged
@@ -46,7 +46,7 @@ class Ros2Source : public LiveSource {
     };
     callbacks.on_odometry = [this](dds::OdometryMessage&& o) {
       LiveMessage m;
-      m.kind = LiveMessage::Kind::kOdometry;
+      m.kind = Message::Kind::kOdometry;
       m.odometry = o.sample;
       if (m.odometry.stamp_ns == 0) m.odometry.stamp_ns = o.source_stamp_ns;
       m.stamp_ns = m.odometry.stamp_ns;

@@ -55,7 +55,7 @@ class SerialSource : public LiveSource {
           name, static_cast<int>(i), config, faults,
           [this](RadarScan&& scan) {
             LiveMessage m;
-            m.kind = LiveMessage::Kind::kScan;
+            m.kind = Message::Kind::kRadarScan;
             m.stamp_ns = scan.stamp_ns;
             m.scan = std::move(scan);
             order_.Push(m.stamp_ns, SteadyNs(), std::move(m));
@@ -78,7 +78,7 @@ class SerialSource : public LiveSource {
         lc_, faults, [clock] { return clock->Now(); },
         [this](OdometrySample&& sample) {
           LiveMessage m;
-          m.kind = LiveMessage::Kind::kOdometry;
+          m.kind = Message::Kind::kOdometry;
           m.stamp_ns = sample.stamp_ns;
           m.odometry = sample;
           order_.Push(m.stamp_ns, SteadyNs(), std::move(m));

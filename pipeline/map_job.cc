@@ -9,8 +9,9 @@
 #include <cstdio>
 
 #include "drivers/rosbag/bag_reader.h"
+#include "drivers/rosbag/bag_source.h"
 #include "drivers/rosbag/robot_bag.h"
-#include "drivers/sim/sim_stream.h"
+#include "drivers/sim/sim_source.h"
 #include "slam/errors.h"
 
 namespace uwbsar::tools {
@@ -48,34 +49,14 @@ class ProgressBar {
   std::chrono::steady_clock::time_point last_;
 };
 
-class Feeder : public rosbag::RobotBagVisitor {
- public:
-  Feeder(MapRun* run, ProgressBar* bar) : run_(run), bar_(bar) {}
-  void OnRadarScan(const RadarScan& scan) override {
-    Note(scan.stamp_ns);
-    ++run_->radar_messages;
-    run_->slam->AddScan(scan);
-  }
-  void OnOdometry(const OdometrySample& odometry) override {
-    Note(odometry.stamp_ns);
-    ++run_->odometry_messages;
-    run_->slam->AddOdometry(odometry);
-  }
-  void OnGroundTruth(const OdometrySample& pose) override {
-    Note(pose.stamp_ns);
-    run_->ground_truth.push_back(pose);
-  }
-
- private:
-  void Note(TimestampNs t) {
-    if (run_->messages++ == 0) run_->first_stamp_ns = t;
-    run_->first_stamp_ns = std::min(run_->first_stamp_ns, t);
-    run_->last_stamp_ns = std::max(run_->last_stamp_ns, t);
-    bar_->Update(t);
-  }
-  MapRun* run_;
-  ProgressBar* bar_;
-};
+/// Finishes a streamed run: the last keyframes, processing time as SLAM's own, checks.
+void FinishStreamed(MapRun* run) {
+  run->slam->Finish();
+  // The source (e.g. the simulator) is not part of the mapping: count SLAM's own time.
+  const StageTimes& t = run->slam->times();
+  run->processing_s = t.imaging_s + t.features_s + t.matching_s + t.optimization_s;
+  CheckMappable(*run);
+}
 
 }  // namespace
 
@@ -134,8 +115,11 @@ MapRun MapBag(const Config& config, const std::string& bag_path, bool progress,
   const rosbag::RobotBagOptions options = rosbag::RobotBagOptionsFromConfig(config);
   {
     ProgressBar bar(progress, start, end);
-    Feeder feeder(&run, &bar);
-    rosbag::ReadRobotBag(reader, options, feeder);
+    rosbag::BagSource source(reader, options);
+    source.Run([&](const Message& m) {
+      bar.Update(m.stamp_ns);
+      Feed(&run, m);
+    });
   }
   run.slam->Finish();
   run.processing_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -150,43 +134,60 @@ MapRun MapStream(const Config& config, const std::string& description,
   run.slam = std::make_unique<SlamSystem>(config);
   while (next(&run)) {
   }
-  run.slam->Finish();
-  // The source (e.g. the simulator) is not part of the mapping: count SLAM's own time.
-  const StageTimes& t = run.slam->times();
-  run.processing_s = t.imaging_s + t.features_s + t.matching_s + t.optimization_s;
-  CheckMappable(run);
+  FinishStreamed(&run);
+  return run;
+}
+
+MapRun MapSource(const Config& config, const std::string& description, MessageSource& source,
+                 const std::function<void(MapRun*)>& on_message) {
+  MapRun run;
+  run.input = description;
+  run.slam = std::make_unique<SlamSystem>(config);
+  source.Run([&](const Message& m) {
+    Feed(&run, m);
+    if (on_message) on_message(&run);
+  });
+  FinishStreamed(&run);
   return run;
 }
 
 MapRun MapSimulation(const Config& config, const std::string& map_yaml, const std::string& route,
                      std::uint64_t seed, const std::function<void(MapRun*)>& on_message) {
   const sim::SimScenario scenario = sim::MakeScenario(config, map_yaml, route, seed);
-  sim::SimStream stream(config, scenario, seed);
-  sim::SimMessage msg;
+  sim::SimSource source(config, scenario, seed);
   const std::string description =
       "simulated " + route + " in " + map_yaml + " (seed " + std::to_string(seed) + ")";
-  return MapStream(config, description, [&](MapRun* r) {
-    if (!stream.Next(&msg)) return false;
-    if (r->messages++ == 0) r->first_stamp_ns = msg.stamp_ns;
-    r->last_stamp_ns = msg.stamp_ns;
-    switch (msg.kind) {
-      case sim::SimMessage::Kind::kGroundTruth:
-        r->ground_truth.push_back(msg.pose);
-        break;
-      case sim::SimMessage::Kind::kOdometry:
-        ++r->odometry_messages;
-        r->slam->AddOdometry(msg.pose);
-        break;
-      case sim::SimMessage::Kind::kRadarScan:
-        ++r->radar_messages;
-        r->slam->AddScan(msg.scan);
-        break;
-      case sim::SimMessage::Kind::kLaserScan:
-        break;
-    }
-    if (on_message) on_message(r);
-    return true;
-  });
+  return MapSource(config, description, source, on_message);
+}
+
+void CountMessage(MapRun* run, const Message& m) {
+  if (m.kind == Message::Kind::kEvent) return;
+  if (run->messages++ == 0) run->first_stamp_ns = m.stamp_ns;
+  run->first_stamp_ns = std::min(run->first_stamp_ns, m.stamp_ns);
+  run->last_stamp_ns = std::max(run->last_stamp_ns, m.stamp_ns);
+  switch (m.kind) {
+    case Message::Kind::kRadarScan:
+      ++run->radar_messages;
+      break;
+    case Message::Kind::kOdometry:
+      ++run->odometry_messages;
+      break;
+    case Message::Kind::kGroundTruth:
+      run->ground_truth.push_back(m.odometry);
+      break;
+    case Message::Kind::kEvent:
+      break;
+  }
+}
+
+void FeedSlam(SlamSystem& slam, const Message& m) {
+  if (m.kind == Message::Kind::kRadarScan) slam.AddScan(m.scan);
+  if (m.kind == Message::Kind::kOdometry) slam.AddOdometry(m.odometry);
+}
+
+void Feed(MapRun* run, const Message& m) {
+  CountMessage(run, m);
+  FeedSlam(*run->slam, m);
 }
 
 AteResult TrajectoryError(const std::vector<std::pair<TimestampNs, Pose2>>& estimate,

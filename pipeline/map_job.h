@@ -12,6 +12,7 @@
 #include "backend/trajectory_metrics.h"
 #include "drivers/rosbag/bag_storage.h"
 #include "pipeline/slam_system.h"
+#include "slam/message.h"
 
 namespace uwbsar::tools {
 
@@ -32,10 +33,6 @@ struct MapRun {
   double log_duration_s() const;
 };
 
-/// Emits one message of a log into a SlamSystem; returns false at the end.
-/// Used to stream the simulator without a bag on disk.
-using MessageSource = std::function<bool(MapRun* run)>;
-
 /// Maps a ROS 2 bag (directory, .db3 or .mcap). `progress` draws a bar on stderr.
 /// Throws InputError for bags that cannot be mapped (no odometry or radar topic,
 /// no scan overlapping the odometry, too short for one keyframe).
@@ -46,6 +43,20 @@ MapRun MapBag(const Config& config, const std::string& bag_path, bool progress,
 /// processing_s counts only the time spent in the SlamSystem.
 MapRun MapStream(const Config& config, const std::string& description,
                  const std::function<bool(MapRun*)>& next);
+
+/// Maps what `source` emits, each message through Feed(); `on_message` (optional) is called
+/// after each. processing_s counts only the time spent in the SlamSystem.
+MapRun MapSource(const Config& config, const std::string& description, MessageSource& source,
+                 const std::function<void(MapRun*)>& on_message = nullptr);
+
+/// The one way a message enters a mapping run, offline and live: CountMessage, then
+/// FeedSlam. Events are not SLAM's (the live recorder keeps them).
+void Feed(MapRun* run, const Message& m);
+/// Counts `m` in `run` (messages by kind; first and last stamp = the smallest and largest
+/// seen) and keeps a ground-truth pose. The live processor calls it under its lock.
+void CountMessage(MapRun* run, const Message& m);
+/// Hands a radar scan or odometry sample to `slam`; other kinds are not SLAM's.
+void FeedSlam(SlamSystem& slam, const Message& m);
 
 /// Maps a simulated run (drivers/sim: `map_yaml`, built-in route name or waypoints
 /// file, seed) in memory, with its ground truth: the demo, tests and benchmarks.
