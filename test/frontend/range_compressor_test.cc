@@ -8,8 +8,8 @@
 #include <complex>
 #include <vector>
 
-#include "frontend/pulse.h"
 #include "frontend/range_profile.h"
+#include "imaging/pulse.h"
 
 namespace uwbsar {
 namespace {
