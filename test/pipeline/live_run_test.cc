@@ -231,12 +231,13 @@ TEST(LiveRunTest, RadarStampsFollowTheAcquisitionTimesNotTheArrivals) {
   // neighbour, so 5 ms is the measure's ceiling). At normal priority: idle filtered
   // p50/p99/max 0.43/0.70/0.72 ms against raw 0.67/3.1/7.5 ms; under uwbsar_load 1.8/4.9/5.0
   // against 6.4/40/118 ms. With the link threads under SCHED_FIFO (live.driver_priority) the
-  // raw arrivals' median is near the transfer time the envelope cannot see either (raw p50
-  // 0.57-0.60 ms against filtered 0.39-0.51 ms, with a compiler and uwbsar_load running): the
-  // filter wins in the tail (raw p99 4.2-10.5 ms, filtered 0.56-4.7 ms), and its median may
-  // not be worse than the raw one by more than a tenth of a millisecond.
+  // raw arrivals are often near the transfer delay that the envelope cannot see either (raw
+  // p50 0.57-0.60 ms against filtered 0.39-0.51 ms with a compiler and uwbsar_load running;
+  // once raw 2.75 / 2.85 ms, filtered 2.84 / 2.89 ms, a constant delay): the filtered stamps
+  // may not be worse than the raw arrivals by more than a tenth of a millisecond, and are
+  // much better in the tail when the arrivals jitter (raw p99 4.2-23 ms, filtered 0.56-4.8).
   EXPECT_LT(f.p50_ms, a.p50_ms + 0.1);
-  EXPECT_LT(f.p99_ms, a.p99_ms);
+  EXPECT_LT(f.p99_ms, a.p99_ms + 0.1);
 }
 
 }  // namespace
