@@ -5,10 +5,12 @@
 // overlap and per revisit (tools/tour_eval.h). Targets: every ring closes, 0 false loops,
 // ATE <= 5 cm.
 //
-// Run by hand (about 1-2 minutes per run on 2 cores; not part of CI):
+// Run by hand (about 1-2 minutes per run on 2 cores; not part of CI; the last entry is
+// the route of TourRunTest):
 //   build/bin/uwbsar_bench --benchmark_filter=Tour
 // UWBSAR_TOUR_SEEDS=N runs seeds 1..N (default 5); UWBSAR_TOUR_CONFIG=FILE.yaml maps with
-// that configuration instead of the defaults (for comparisons).
+// that configuration instead of the defaults (for comparisons); UWBSAR_TOUR_VERBOSE=1 lists
+// every validated loop.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -36,6 +38,7 @@ const std::vector<Tour>& Tours() {
       {"two_rings", "tours/two_rings.yaml", "tours/two_rings_tour.txt"},
       {"office", "office/office.yaml", "office/route_loops.txt"},
       {"floor50", "floor50/floor50.yaml", "floor50/route_tour.txt"},
+      {"two_rings_west", "tours/two_rings.yaml", "tours/two_rings_west.txt"},  // TourRunTest
   };
   return tours;
 }
@@ -59,6 +62,14 @@ void BM_Tour(benchmark::State& state) {
           tools::MapSimulation(config, MapsFile(tour.map), MapsFile(tour.route), seed);
       const tools::TourEvaluation e = tools::EvaluateTour(run);
       std::printf("%s seed %d: %s\n", tour.name, seed, tools::FormatTourEvaluation(e).c_str());
+      if (std::getenv("UWBSAR_TOUR_VERBOSE")) {
+        for (const LoopRecord& l : run.slam->loops()) {
+          if (!l.validation.accepted) continue;
+          std::printf("  loop %d -> %d%s: akaze %d orb %d, backend %s chi2 %.2f\n", l.match_id,
+                      l.query_id, l.guided ? " guided" : "", l.akaze.good_matches,
+                      l.orb.good_matches, l.rejected_by_backend ? "rejected" : "accepted", l.chi2);
+        }
+      }
       std::fflush(stdout);
       closed += e.ring_closed;
       false_loops += e.false_accepted;
@@ -79,7 +90,7 @@ void BM_Tour(benchmark::State& state) {
     state.counters["worst_ate_cm"] = worst_ate_m * 100;
   }
 }
-BENCHMARK(BM_Tour)->DenseRange(0, 4)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_Tour)->DenseRange(0, 5)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
 }  // namespace uwbsar
