@@ -4,6 +4,27 @@
 #include <limits>
 
 namespace uwbsar {
+namespace {
+
+/// Which keypoints of o each keypoint of q may match: those within radius_m of where the
+/// predicted transform puts it (b rows x a columns, for MatchFeatures).
+cv::Mat NearPrediction(const FeatureSet& o, const ImageGrid& grid_o, const FeatureSet& q,
+                       const ImageGrid& grid_q, const Pose2& T_oq, double radius_m) {
+  cv::Mat allowed = cv::Mat::zeros(q.size(), o.size(), CV_8U);
+  const double radius_px = radius_m / grid_o.resolution_m;
+  for (int k = 0; k < q.size(); ++k) {
+    const cv::Point2f& pq = q.keypoints[static_cast<std::size_t>(k)].pt;
+    const Point2 p = T_oq * grid_q.PixelToMetric(pq.x, pq.y);
+    const double col = grid_o.XToCol(p.x_m), row = grid_o.YToRow(p.y_m);
+    for (int m = 0; m < o.size(); ++m) {
+      const cv::Point2f& po = o.keypoints[static_cast<std::size_t>(m)].pt;
+      if (std::hypot(po.x - col, po.y - row) <= radius_px) allowed.at<unsigned char>(k, m) = 1;
+    }
+  }
+  return allowed;
+}
+
+}  // namespace
 
 bool PredictGuidedPair(const KeyframeFeatures& i, const KeyframeFeatures& j, const Pose2& T_ij,
                        const KeyframeFeatures& q, const std::vector<const KeyframeFeatures*>& olds,
@@ -32,8 +53,12 @@ LoopAttempt GuidedAttempt(const GuidedPair& pair, const PlaceRecognitionConfig& 
   attempt.candidate_id = o.id;
   attempt.query_id = q.id;
   attempt.guided = true;
-  attempt.akaze = MatchFeatures(o.akaze, q.akaze, pr.matching);
-  attempt.orb = MatchFeatures(o.orb, q.orb, pr.matching);
+  attempt.akaze = MatchFeatures(o.akaze, q.akaze, pr.matching,
+                                NearPrediction(o.akaze, o.grid, q.akaze, q.grid,
+                                               pair.T_oq_predicted, pr.guided.max_offset_m));
+  attempt.orb = MatchFeatures(
+      o.orb, q.orb, pr.matching,
+      NearPrediction(o.orb, o.grid, q.orb, q.grid, pair.T_oq_predicted, pr.guided.max_offset_m));
   LoopValidationConfig rule = pr.validation;
   rule.min_good_matches = pr.guided.min_good_matches;
   attempt.validation = ValidateLoop(o.id, o.grid, q.id, q.grid, attempt.akaze, attempt.orb, rule);

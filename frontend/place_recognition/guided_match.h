@@ -2,9 +2,9 @@
 // keyframes near j lie relative to the old keyframes near i: the odometry between j and a
 // neighbour q is accurate over a few metres, so T_world_q = T_world_i T_ij T_jq. Each
 // neighbour q is paired with the old keyframe o whose tile the prediction puts closest,
-// matched with the usual matcher, and validated by the AKAZE+ORB rule with a lower
-// good-match threshold (PlaceRecognitionConfig::guided); the pair counts only when its
-// transform agrees with the prediction. A random false loop predicts pairs whose images do
+// matched where the prediction puts each feature (guided matching), and validated by the AKAZE+ORB
+// rule with a lower good-match threshold (PlaceRecognitionConfig::guided); the pair counts only
+// when its transform agrees with the prediction. A random false loop predicts pairs whose images do
 // not agree, so it finds no such neighbours; a true ring closure finds them even where the
 // unguided rule missed them, and its guided pairs support it in the backend
 // (backend/loop_support.h) instead of leaving it alone.

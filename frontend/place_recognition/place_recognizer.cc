@@ -174,6 +174,9 @@ void PlaceRecognizer::GuidedPass(const KeyframeFeatures& features, PlaceRecognit
     if (attempt.validation.accepted) {
       result->loops.push_back(attempt.validation.constraint);
       validated_pairs_.insert({pair.old_keyframe->id, q->id});
+      // Forward, a guided loop predicts the next keyframes in turn: the pass follows the
+      // revisit for as long as each keyframe finds its pair.
+      if (q == &features) last_loop_ = attempt.validation.constraint;
     }
     result->attempts.push_back(std::move(attempt));
   }
