@@ -82,8 +82,8 @@ class PlaceRecognizer {
  private:
   Point2 CentreInWorld(const KeyframeFeatures& k) const;
   /// The guided pass (guided_match.h): around the best loop validated for `features`,
-  /// its earlier neighbours; else the new keyframe itself when a loop was validated at
-  /// most guided.neighbours keyframes before it.
+  /// its earlier neighbours; else the new keyframe itself when a loop (guided ones included)
+  /// was validated at most guided.neighbours keyframes before it.
   void GuidedPass(const KeyframeFeatures& features, PlaceRecognitionResult* result);
 
   Config config_;
@@ -92,7 +92,7 @@ class PlaceRecognizer {
   double path_at_last_loop_m_ = 0.0;
   double path_at_last_global_m_ = -1e300;  ///< path of the last query without a pose prior
   bool have_path_origin_ = false;
-  LoopConstraint last_loop_;  ///< the last loop validated by the unguided rule
+  LoopConstraint last_loop_;  ///< the last loop validated (unguided, or guided forward)
   bool have_last_loop_ = false;
   std::set<std::pair<int, int>> validated_pairs_;  ///< (i, j) of every validated loop
 };
