@@ -12,6 +12,7 @@
 
 #include "backend/chordal_init.h"
 #include "backend/loop_support.h"
+#include "backend/odometry_consistency.h"
 #include "backend/se2_edge_cost.h"
 #include "slam/errors.h"
 
@@ -33,7 +34,8 @@ struct PoseGraph::SolverEdge {
   // touching the problem's structure (the wrapper is owned here, not by the problem).
   std::unique_ptr<ceres::LossFunctionWrapper> loss;
   bool rejected = false;
-  bool held_back = false;  // unsupported and not (yet) confirmed by the solution
+  bool held_back = false;     // unsupported and not (yet) confirmed by the solution
+  bool inconsistent = false;  // blamed for an odometry edge out of its noise: stays rejected
   int support = -1;
   double chi2 = 0.0;
 
@@ -228,7 +230,8 @@ bool PoseGraph::UpdateLoopStatus() {
   bool changed = false;
   for (auto& se : solver_edges_) {
     se->chi2 = se->Chi2();
-    if (!se->loss || se->held_back || config_.max_rejection_rounds == 0) continue;
+    if (!se->loss || se->held_back || se->inconsistent || config_.max_rejection_rounds == 0)
+      continue;
     const bool reject = !(se->chi2 <= config_.loop_rejection_chi2);
     if (reject != se->rejected) {
       se->rejected = reject;
@@ -297,6 +300,25 @@ void PoseGraph::ComputeSupport() {
   }
 }
 
+void PoseGraph::ConsistencyRounds(OptimizeResult* result) {
+  if (config_.max_odometry_chi2 <= 0) return;
+  for (int round = 0; round < std::max(1, config_.max_rejection_rounds); ++round) {
+    std::vector<SolvedEdge> solved;
+    solved.reserve(solver_edges_.size());
+    for (const auto& se : solver_edges_) {
+      solved.push_back({&se->edge, se->Chi2(), !se->rejected, se->support});
+    }
+    const int blamed = LoopToBlame(solved, config_.max_odometry_chi2);
+    if (blamed < 0) return;
+    SolverEdge& se = *solver_edges_[static_cast<std::size_t>(blamed)];
+    se.rejected = true;
+    se.inconsistent = true;
+    SetLoopLosses(false);
+    RunSolve(result);
+    UpdateLoopStatus();
+  }
+}
+
 double PoseGraph::HalfChi2Sum(bool accepted_only) const {
   double sum = 0.0;
   for (const auto& se : solver_edges_) {
@@ -355,6 +377,7 @@ OptimizeResult PoseGraph::Optimize() {
         RejectionRounds(false, &result);
       }
     }
+    ConsistencyRounds(&result);
   }
   for (auto& se : solver_edges_) se->chi2 = se->Chi2();
   result.final_cost = HalfChi2Sum(true);
@@ -370,7 +393,10 @@ OptimizeResult PoseGraph::Optimize() {
     r.chi2 = se->chi2;
     r.rejected = se->rejected;
     r.support = se->support;
-    r.reason = !se->rejected ? "" : (se->held_back ? "unsupported" : "chi2");
+    r.reason = !se->rejected      ? ""
+               : se->held_back    ? "unsupported"
+               : se->inconsistent ? "inconsistent"
+                                  : "chi2";
     if (r.rejected) result.rejected.push_back(r);
     if (r.kind == EdgeKind::kLoop) ++result.num_loops;
   }

@@ -15,7 +15,10 @@
 //      admitted and step 2 repeats; the others stay rejected as "unsupported"
 //      (a lone false loop into an otherwise unconstrained part of the map, e.g. the
 //      end of a run, fits perfectly once accepted, so only this order rejects it);
-//   4. with final_least_squares, a last solve without loss on the accepted loops
+//   4. consistency (max_odometry_chi2 > 0): while some odometry edge's chi2 exceeds
+//      max_odometry_chi2, an accepted loop spanning it is rejected for good ("inconsistent")
+//      and the graph re-solved (backend/odometry_consistency.h);
+//   5. with final_least_squares, a last solve without loss on the accepted loops
 //      gives the plain least-squares (maximum-likelihood) estimate of the inliers.
 // Later calls (incremental updates) start from the previous solution, which is already
 // the map without the held-back loops: those are tested first (step 3), then one plain
@@ -69,7 +72,8 @@ struct EdgeReport {
   int to_id = 0;
   EdgeKind kind = EdgeKind::kLoop;
   bool rejected = false;  ///< only loops are ever rejected
-  std::string reason;     ///< why rejected: "chi2" (residual test) or "unsupported"
+  std::string reason;     ///< why rejected: "chi2" (residual test), "unsupported" or
+                          ///< "inconsistent" (bent the odometry, backend/odometry_consistency.h)
   int support = -1;       ///< loops: neighbouring loops that agree (-1: not computed)
   double chi2 = 0.0;      ///< e^T Omega e at the last solution (0 before the first)
 };
@@ -148,6 +152,7 @@ class PoseGraph {
   bool UpdateLoopStatus();  ///< returns true when some loop changed status
   void RejectionRounds(bool robust, OptimizeResult* result);
   void ComputeSupport();
+  void ConsistencyRounds(OptimizeResult* result);  ///< backend/odometry_consistency.h
   bool AdmitConfirmedLoops();  ///< admits held-back loops that the estimate confirms
   void ChordalStart();
   double HalfChi2Sum(bool accepted_only) const;

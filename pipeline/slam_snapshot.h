@@ -23,8 +23,9 @@ namespace uwbsar {
 
 /// Every candidate pair that was matched, with the outcome.
 struct LoopRecord {
-  int query_id = 0;  ///< the new keyframe (j)
-  int match_id = 0;  ///< the earlier keyframe (i)
+  int query_id = 0;     ///< the new keyframe (j)
+  int match_id = 0;     ///< the earlier keyframe (i)
+  bool guided = false;  ///< a pair of the guided pass around a validated loop (issue 19)
   MatchResult akaze;
   MatchResult orb;
   LoopValidation validation;

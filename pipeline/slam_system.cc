@@ -227,8 +227,9 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
   const auto lock = LockForKeyframeWork();
   for (const LoopAttempt& attempt : found.attempts) {
     LoopRecord loop;
-    loop.query_id = keyframe.id;
+    loop.query_id = attempt.query_id >= 0 ? attempt.query_id : keyframe.id;
     loop.match_id = attempt.candidate_id;
+    loop.guided = attempt.guided;
     loop.akaze = attempt.akaze;
     loop.orb = attempt.orb;
     loop.validation = attempt.validation;
@@ -241,7 +242,7 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
     if (loop.validation.accepted) {
       PoseGraphEdge edge;
       edge.from_id = attempt.candidate_id;
-      edge.to_id = keyframe.id;
+      edge.to_id = loop.query_id;
       edge.T_from_to = loop.validation.constraint.T_ij;
       edge.information = loop.validation.constraint.information;
       edge.kind = EdgeKind::kLoop;

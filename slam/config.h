@@ -183,6 +183,9 @@ struct BackendConfig {
                                         ///< loop_rejection_chi2: the map's own uncertainty
                                         ///< between the ends counted as one more loop)
   bool final_least_squares = true;      ///< last solve without loss on the accepted loops
+  double max_odometry_chi2 = 30.0;      ///< after a solve, an odometry edge above this chi2
+                                        ///< gets a loop spanning it rejected (0 = off;
+                                        ///< 30 = 1e-6 tail of chi2, 3 DOF)
   double odometry_xy_information = 2500.0;    ///< x, y information of 1 m of odometry (1/m^2):
                                               ///< sigma 2 cm per metre (wheel odometry, 1-2 %),
                                               ///< divided by the edge's travelled distance
@@ -206,6 +209,7 @@ struct BackendConfig {
     v("loop_support_window", loop_support_window);
     v("unsupported_loop_chi2", unsupported_loop_chi2);
     v("final_least_squares", final_least_squares);
+    v("max_odometry_chi2", max_odometry_chi2);
     v("odometry_xy_information", odometry_xy_information);
     v("odometry_yaw_information", odometry_yaw_information);
     v("odometry_min_distance_m", odometry_min_distance_m);

@@ -127,6 +127,13 @@ void ValidatePlaceRecognition(const PlaceRecognitionConfig& p, const std::string
           "must be >= 0");
   Require(c.global_search_every_m >= 0, src, k + "candidates.global_search_every_m",
           "must be >= 0 (0 = never)");
+  const GuidedMatchConfig& g = p.guided;
+  Require(g.neighbours >= 0, src, k + "guided.neighbours", "must be >= 0 (0 = off)");
+  Require(g.min_good_matches >= 2, src, k + "guided.min_good_matches", "must be >= 2");
+  Require(g.max_offset_m > 0, src, k + "guided.max_offset_m", "must be > 0");
+  Require(g.max_yaw_deg > 0 && g.max_yaw_deg <= 180, src, k + "guided.max_yaw_deg",
+          "must be in (0, 180]");
+  Require(g.max_centre_distance_m > 0, src, k + "guided.max_centre_distance_m", "must be > 0");
 }
 
 void ValidateCompare(const CompareConfig& c, const std::string& src) {
@@ -418,6 +425,7 @@ void ValidateBackend(const BackendConfig& b, const std::string& src) {
   Require(b.loop_rejection_chi2 > 0, src, "backend.loop_rejection_chi2", "must be > 0");
   Require(b.max_rejection_rounds >= 0, src, "backend.max_rejection_rounds", "must be >= 0");
   Require(b.min_loop_support >= 0, src, "backend.min_loop_support", "must be >= 0");
+  Require(b.max_odometry_chi2 >= 0, src, "backend.max_odometry_chi2", "must be >= 0 (0 = off)");
   Require(b.loop_support_window >= 1, src, "backend.loop_support_window", "must be >= 1");
   Require(b.unsupported_loop_chi2 > 0, src, "backend.unsupported_loop_chi2", "must be > 0");
   Require(b.odometry_xy_information > 0, src, "backend.odometry_xy_information", "must be > 0");

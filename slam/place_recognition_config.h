@@ -133,12 +133,35 @@ struct CandidateSearchConfig {
   }
 };
 
+/// Guided pass around a validated loop (issue 19): the keyframes just before and after the
+/// loop's new keyframe are matched against the old keyframes the loop predicts them to
+/// overlap; the AKAZE+ORB rule runs with a lower good-match threshold, and a pair counts only
+/// when its transform agrees with the loop's prediction. The pairs become loops of their
+/// own, so a ring closure that would stand alone gets neighbours that support it.
+struct GuidedMatchConfig {
+  int neighbours = 3;                  ///< keyframes on each side of the loop's new one (0 = off)
+  int min_good_matches = 5;            ///< both detectors need more good matches than this
+  double max_offset_m = 0.15;          ///< the pair's transform within this of the prediction ...
+  double max_yaw_deg = 3.0;            ///< ... and within this rotation
+  double max_centre_distance_m = 1.0;  ///< predicted distance between the tiles' centres
+
+  template <class V>
+  void Visit(V& v) {
+    v("neighbours", neighbours);
+    v("min_good_matches", min_good_matches);
+    v("max_offset_m", max_offset_m);
+    v("max_yaw_deg", max_yaw_deg);
+    v("max_centre_distance_m", max_centre_distance_m);
+  }
+};
+
 /// Place recognition: loop-closure constraints between keyframe tiles.
 struct PlaceRecognitionConfig {
   DetectorConfig detectors;
   FeatureMatchConfig matching;
   LoopValidationConfig validation;
   CandidateSearchConfig candidates;
+  GuidedMatchConfig guided;
 
   template <class V>
   void Visit(V& v) {
@@ -146,6 +169,7 @@ struct PlaceRecognitionConfig {
     v("matching", matching);
     v("validation", validation);
     v("candidates", candidates);
+    v("guided", guided);
   }
 };
 

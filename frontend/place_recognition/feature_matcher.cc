@@ -9,6 +9,11 @@ namespace uwbsar {
 
 MatchResult MatchFeatures(const FeatureSet& a, const FeatureSet& b,
                           const FeatureMatchConfig& config) {
+  return MatchFeatures(a, b, config, cv::Mat());
+}
+
+MatchResult MatchFeatures(const FeatureSet& a, const FeatureSet& b,
+                          const FeatureMatchConfig& config, const cv::Mat& allowed) {
   MatchResult r;
   r.detector = a.detector;
   r.keypoints_a = a.size();
@@ -29,9 +34,10 @@ MatchResult MatchFeatures(const FeatureSet& a, const FeatureSet& b,
   }
   cv::BFMatcher matcher(a.norm_type, false);
   std::vector<std::vector<cv::DMatch>> knn;
-  matcher.knnMatch(b.descriptors, a.descriptors, knn, 2);
+  matcher.knnMatch(b.descriptors, a.descriptors, knn, 2, allowed);
   for (const auto& pair : knn) {
-    if (pair.size() == 2 && pair[0].distance < config.ratio * pair[1].distance) {
+    if ((pair.size() == 1 && !allowed.empty()) ||
+        (pair.size() == 2 && pair[0].distance < config.ratio * pair[1].distance)) {
       r.matches.push_back(pair[0]);
     }
   }

@@ -45,4 +45,11 @@ struct MatchResult {
 MatchResult MatchFeatures(const FeatureSet& a, const FeatureSet& b,
                           const FeatureMatchConfig& config);
 
+/// Guided matching: the same, but keypoint k of b may only match the keypoints of a that
+/// `allowed` (CV_8U, b rows x a columns, non-zero = allowed) permits, e.g. those near its
+/// predicted position; a keypoint with a single allowed neighbour keeps it without the
+/// ratio test (the prediction already singled it out).
+MatchResult MatchFeatures(const FeatureSet& a, const FeatureSet& b,
+                          const FeatureMatchConfig& config, const cv::Mat& allowed);
+
 }  // namespace uwbsar

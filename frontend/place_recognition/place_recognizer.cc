@@ -1,7 +1,10 @@
 #include "frontend/place_recognition/place_recognizer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <opencv2/imgproc.hpp>
+
+#include "frontend/place_recognition/guided_match.h"
 
 namespace uwbsar {
 namespace {
@@ -119,12 +122,64 @@ PlaceRecognitionResult PlaceRecognizer::Process(KeyframeFeatures features, doubl
     result.attempts.push_back(std::move(attempt));
   }
   if (!result.loops.empty()) path_at_last_loop_m_ = features.path_begin_m;
+  GuidedPass(features, &result);
   result.matching_ms = MsSince(start);
   const int id = features.id;
   auto stored = std::make_unique<KeyframeFeatures>(std::move(features));
   index_.Upsert(id, CentreInWorld(*stored), stored->path_begin_m);
   database_[id] = std::move(stored);
   return result;
+}
+
+void PlaceRecognizer::GuidedPass(const KeyframeFeatures& features, PlaceRecognitionResult* result) {
+  const PlaceRecognitionConfig& pr = config_.place_recognition;
+  const int k = pr.guided.neighbours;
+  if (k <= 0) return;
+  std::vector<const KeyframeFeatures*> queries;  // neighbours of the loop's new keyframe
+  const bool recent_loop = have_last_loop_ && features.id - last_loop_.j <= k;
+  for (const LoopConstraint& l : result->loops) validated_pairs_.insert({l.i, l.j});
+  if (!result->loops.empty()) {
+    const LoopConstraint* best = &result->loops.front();
+    for (const LoopConstraint& l : result->loops) {
+      if (std::min(l.good_matches_akaze, l.good_matches_orb) >
+          std::min(best->good_matches_akaze, best->good_matches_orb)) {
+        best = &l;
+      }
+    }
+    last_loop_ = *best;
+    have_last_loop_ = true;
+    // Only a loop that begins a revisit looks back: later ones have loops before them.
+    for (int q = features.id - 1; !recent_loop && q >= features.id - k; --q) {
+      if (const KeyframeFeatures* f = Find(q)) queries.push_back(f);
+    }
+  } else if (recent_loop) {
+    queries.push_back(&features);
+  }
+  if (queries.empty()) return;
+  const KeyframeFeatures* i = Find(last_loop_.i);
+  const KeyframeFeatures* j = last_loop_.j == features.id ? &features : Find(last_loop_.j);
+  if (i == nullptr || j == nullptr) return;
+  for (const KeyframeFeatures* q : queries) {
+    // Old keyframes around i, far enough back along the path from q not to share its scans.
+    std::vector<const KeyframeFeatures*> olds;
+    for (int id = i->id - 3 * k; id <= i->id + 3 * k; ++id) {
+      const KeyframeFeatures* o = Find(id);
+      if (o != nullptr && o->path_begin_m < q->path_begin_m - pr.candidates.exclude_recent_path_m)
+        olds.push_back(o);
+    }
+    GuidedPair pair;
+    if (!PredictGuidedPair(*i, *j, last_loop_.T_ij, *q, olds, pr.guided, &pair)) continue;
+    if (validated_pairs_.count({pair.old_keyframe->id, q->id})) continue;
+    LoopAttempt attempt = GuidedAttempt(pair, pr);
+    if (attempt.validation.accepted) {
+      result->loops.push_back(attempt.validation.constraint);
+      validated_pairs_.insert({pair.old_keyframe->id, q->id});
+      // Forward, a guided loop predicts the next keyframes in turn: the pass follows the
+      // revisit for as long as each keyframe finds its pair.
+      if (q == &features) last_loop_ = attempt.validation.constraint;
+    }
+    result->attempts.push_back(std::move(attempt));
+  }
 }
 
 void PlaceRecognizer::UpdatePose(int id, const Pose2& T_world_anchor) {

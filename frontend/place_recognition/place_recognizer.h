@@ -6,7 +6,9 @@
 #pragma once
 
 #include <memory>
+#include <set>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "frontend/keyframe.h"
@@ -43,6 +45,8 @@ KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe, const Config&
 
 struct LoopAttempt {
   int candidate_id = 0;  ///< i (the older keyframe); the new one is j
+  int query_id = -1;     ///< j when not the new keyframe (a guided pair before it), else -1
+  bool guided = false;   ///< from the guided pass around a validated loop (guided_match.h)
   MatchResult akaze;
   MatchResult orb;
   LoopValidation validation;
@@ -52,7 +56,8 @@ struct PlaceRecognitionResult {
   int keyframe_id = 0;
   CandidateSet candidates;
   std::vector<LoopAttempt> attempts;
-  std::vector<LoopConstraint> loops;  ///< accepted: T_ij = pose of the new keyframe j in i
+  std::vector<LoopConstraint> loops;  ///< accepted: T_ij = pose of keyframe j in i (j is the
+                                      ///< new keyframe, or an earlier one for guided pairs)
   double features_ms = 0.0;
   double matching_ms = 0.0;  ///< all candidates, matching and validation
 };
@@ -76,6 +81,10 @@ class PlaceRecognizer {
 
  private:
   Point2 CentreInWorld(const KeyframeFeatures& k) const;
+  /// The guided pass (guided_match.h): around the best loop validated for `features`,
+  /// its earlier neighbours; else the new keyframe itself when a loop (guided ones included)
+  /// was validated at most guided.neighbours keyframes before it.
+  void GuidedPass(const KeyframeFeatures& features, PlaceRecognitionResult* result);
 
   Config config_;
   KeyframeIndex index_;
@@ -83,6 +92,9 @@ class PlaceRecognizer {
   double path_at_last_loop_m_ = 0.0;
   double path_at_last_global_m_ = -1e300;  ///< path of the last query without a pose prior
   bool have_path_origin_ = false;
+  LoopConstraint last_loop_;  ///< the last loop validated (unguided, or guided forward)
+  bool have_last_loop_ = false;
+  std::set<std::pair<int, int>> validated_pairs_;  ///< (i, j) of every validated loop
 };
 
 }  // namespace uwbsar

@@ -1,0 +1,96 @@
+// Building tours (issue 19): the three generated floors of config/maps/tours and tours on
+// office and floor50, each mapped with the default configuration over several seeds.
+// Reported per run: ring closed (SLAM ATE >= 3x better than odometry), ATE, odometry ATE,
+// loops accepted / validated / candidates, false loops, recall per candidate with true
+// overlap and per revisit (tools/tour_eval.h). Targets: every ring closes, 0 false loops,
+// ATE <= 5 cm.
+//
+// Run by hand (about 1-2 minutes per run on 2 cores; not part of CI; the last entry is
+// the route of TourRunTest):
+//   build/bin/uwbsar_bench --benchmark_filter=Tour
+// UWBSAR_TOUR_SEEDS=N runs seeds 1..N (default 5); UWBSAR_TOUR_CONFIG=FILE.yaml maps with
+// that configuration instead of the defaults (for comparisons); UWBSAR_TOUR_VERBOSE=1 lists
+// every validated loop.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "pipeline/tour_eval.h"
+#include "slam/config_io.h"
+
+namespace uwbsar {
+namespace {
+
+struct Tour {
+  const char* name;
+  const char* map;
+  const char* route;
+};
+
+const std::vector<Tour>& Tours() {
+  static const std::vector<Tour> tours = {
+      {"ring_offices", "tours/ring_offices.yaml", "tours/ring_offices_tour.txt"},
+      {"hall_wing", "tours/hall_wing.yaml", "tours/hall_wing_tour.txt"},
+      {"two_rings", "tours/two_rings.yaml", "tours/two_rings_tour.txt"},
+      {"office", "office/office.yaml", "office/route_loops.txt"},
+      {"floor50", "floor50/floor50.yaml", "floor50/route_tour.txt"},
+      {"two_rings_west", "tours/two_rings.yaml", "tours/two_rings_west.txt"},  // TourRunTest
+  };
+  return tours;
+}
+
+std::string MapsFile(const std::string& name) {
+  return std::string(UWBSAR_SOURCE_DIR) + "/config/maps/" + name;
+}
+
+void BM_Tour(benchmark::State& state) {
+  const Tour& tour = Tours()[static_cast<std::size_t>(state.range(0))];
+  const char* seeds_env = std::getenv("UWBSAR_TOUR_SEEDS");
+  const int seeds = seeds_env ? std::atoi(seeds_env) : 5;
+  const char* config_env = std::getenv("UWBSAR_TOUR_CONFIG");
+  Config config = config_env ? LoadConfig(config_env) : Config{};
+  config.simulator.route.clearance_m = 0.3;  // every route keeps 0.45 m from obstacles
+  for (auto _ : state) {
+    int closed = 0, false_loops = 0, overlap = 0, overlap_accepted = 0, revisits = 0, recalled = 0;
+    double worst_ate_m = 0.0;
+    for (int seed = 1; seed <= seeds; ++seed) {
+      const tools::MapRun run =
+          tools::MapSimulation(config, MapsFile(tour.map), MapsFile(tour.route), seed);
+      const tools::TourEvaluation e = tools::EvaluateTour(run);
+      std::printf("%s seed %d: %s\n", tour.name, seed, tools::FormatTourEvaluation(e).c_str());
+      if (std::getenv("UWBSAR_TOUR_VERBOSE")) {
+        for (const LoopRecord& l : run.slam->loops()) {
+          if (!l.validation.accepted) continue;
+          std::printf("  loop %d -> %d%s: akaze %d orb %d, backend %s chi2 %.2f\n", l.match_id,
+                      l.query_id, l.guided ? " guided" : "", l.akaze.good_matches,
+                      l.orb.good_matches, l.rejected_by_backend ? "rejected" : "accepted", l.chi2);
+        }
+      }
+      std::fflush(stdout);
+      closed += e.ring_closed;
+      false_loops += e.false_accepted;
+      worst_ate_m = std::max(worst_ate_m, e.ate_m);
+      overlap += e.overlap_candidates;
+      overlap_accepted += e.overlap_accepted;
+      revisits += e.revisits;
+      recalled += e.revisits_recalled;
+    }
+    std::printf(
+        "%s: %d/%d rings closed, %d false loops, worst ATE %.2f cm, recall %.2f of "
+        "candidates, %.2f of revisits\n",
+        tour.name, closed, seeds, false_loops, worst_ate_m * 100,
+        overlap ? double(overlap_accepted) / overlap : 0.0,
+        revisits ? double(recalled) / revisits : 0.0);
+    state.counters["closed"] = closed;
+    state.counters["false"] = false_loops;
+    state.counters["worst_ate_cm"] = worst_ate_m * 100;
+  }
+}
+BENCHMARK(BM_Tour)->DenseRange(0, 5)->Unit(benchmark::kSecond)->Iterations(1);
+
+}  // namespace
+}  // namespace uwbsar

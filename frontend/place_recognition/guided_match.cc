@@ -1,0 +1,77 @@
+#include "frontend/place_recognition/guided_match.h"
+
+#include <cmath>
+#include <limits>
+
+namespace uwbsar {
+namespace {
+
+/// Which keypoints of o each keypoint of q may match: those within radius_m of where the
+/// predicted transform puts it (b rows x a columns, for MatchFeatures).
+cv::Mat NearPrediction(const FeatureSet& o, const ImageGrid& grid_o, const FeatureSet& q,
+                       const ImageGrid& grid_q, const Pose2& T_oq, double radius_m) {
+  cv::Mat allowed = cv::Mat::zeros(q.size(), o.size(), CV_8U);
+  const double radius_px = radius_m / grid_o.resolution_m;
+  for (int k = 0; k < q.size(); ++k) {
+    const cv::Point2f& pq = q.keypoints[static_cast<std::size_t>(k)].pt;
+    const Point2 p = T_oq * grid_q.PixelToMetric(pq.x, pq.y);
+    const double col = grid_o.XToCol(p.x_m), row = grid_o.YToRow(p.y_m);
+    for (int m = 0; m < o.size(); ++m) {
+      const cv::Point2f& po = o.keypoints[static_cast<std::size_t>(m)].pt;
+      if (std::hypot(po.x - col, po.y - row) <= radius_px) allowed.at<unsigned char>(k, m) = 1;
+    }
+  }
+  return allowed;
+}
+
+}  // namespace
+
+bool PredictGuidedPair(const KeyframeFeatures& i, const KeyframeFeatures& j, const Pose2& T_ij,
+                       const KeyframeFeatures& q, const std::vector<const KeyframeFeatures*>& olds,
+                       const GuidedMatchConfig& guided, GuidedPair* pair) {
+  const Pose2 T_world_q = i.T_world_anchor * T_ij * Between(j.T_world_anchor, q.T_world_anchor);
+  const Point2 centre_q = T_world_q * q.centre_anchor;
+  double best_m = std::numeric_limits<double>::infinity();
+  for (const KeyframeFeatures* o : olds) {
+    if (o->id == q.id) continue;
+    const Point2 centre_o = o->T_world_anchor * o->centre_anchor;
+    const double d = std::hypot(centre_o.x_m - centre_q.x_m, centre_o.y_m - centre_q.y_m);
+    if (d <= guided.max_centre_distance_m && d < best_m) {
+      best_m = d;
+      pair->old_keyframe = o;
+      pair->query = &q;
+      pair->T_oq_predicted = Between(o->T_world_anchor, T_world_q);
+    }
+  }
+  return std::isfinite(best_m);
+}
+
+LoopAttempt GuidedAttempt(const GuidedPair& pair, const PlaceRecognitionConfig& pr) {
+  const KeyframeFeatures& o = *pair.old_keyframe;
+  const KeyframeFeatures& q = *pair.query;
+  LoopAttempt attempt;
+  attempt.candidate_id = o.id;
+  attempt.query_id = q.id;
+  attempt.guided = true;
+  attempt.akaze = MatchFeatures(o.akaze, q.akaze, pr.matching,
+                                NearPrediction(o.akaze, o.grid, q.akaze, q.grid,
+                                               pair.T_oq_predicted, pr.guided.max_offset_m));
+  attempt.orb = MatchFeatures(
+      o.orb, q.orb, pr.matching,
+      NearPrediction(o.orb, o.grid, q.orb, q.grid, pair.T_oq_predicted, pr.guided.max_offset_m));
+  LoopValidationConfig rule = pr.validation;
+  rule.min_good_matches = pr.guided.min_good_matches;
+  attempt.validation = ValidateLoop(o.id, o.grid, q.id, q.grid, attempt.akaze, attempt.orb, rule);
+  if (!attempt.validation.accepted) return attempt;
+  const Pose2& T = attempt.validation.constraint.T_ij;
+  const Pose2& P = pair.T_oq_predicted;
+  const double offset_m = std::hypot(T.x_m - P.x_m, T.y_m - P.y_m);
+  const double yaw_deg = std::abs(NormalizeAngle(T.yaw_rad - P.yaw_rad)) * 180.0 / M_PI;
+  if (offset_m > pr.guided.max_offset_m || yaw_deg > pr.guided.max_yaw_deg) {
+    attempt.validation.accepted = false;
+    attempt.validation.reason = "guided: disagrees with the loop's prediction";
+  }
+  return attempt;
+}
+
+}  // namespace uwbsar
