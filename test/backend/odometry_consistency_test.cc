@@ -55,7 +55,7 @@ TEST(OdometryConsistencyTest, BlamesTheLeastSupportedLoopSpanningTheWorstEdge) {
 TEST(OdometryConsistencyTest, PoseGraphRejectsALoopThatBendsAShortChain) {
   BackendConfig config;
   config.min_loop_support = 0;  // the loop alone: only the consistency test can catch it
-  config.robust_loss = "none";
+  config.robust_loss = RobustLoss::kNone;
   PoseGraph graph(config);
   for (int k = 0; k <= 5; ++k) graph.AddNode(k, {static_cast<double>(k), 0.0, 0.0});
   for (int k = 0; k < 5; ++k) graph.AddOdometryEdge(k, k + 1, {1.0, 0.0, 0.0});
