@@ -11,6 +11,7 @@
 #include "slam/dds_config.h"
 #include "slam/live_config.h"
 #include "slam/place_recognition_config.h"
+#include "slam/session_config.h"
 #include "slam/simulator_config.h"
 
 namespace uwbsar {
@@ -317,6 +318,7 @@ struct Config {
   LiveConfig live;
   DdsConfig dds;
   LimitsConfig limits;
+  SessionConfig session;
 
   template <class V>
   void Visit(V& v) {
@@ -334,6 +336,7 @@ struct Config {
     v("live", live);
     v("dds", dds);
     v("limits", limits);
+    v("session", session);
   }
 };
 

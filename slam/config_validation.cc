@@ -345,6 +345,13 @@ void ValidateConfig(const Config& c, const std::string& src) {
   ValidateDds(c.dds, src);
   ValidateSimulator(c.simulator, src);
   ValidatePlaceRecognition(c.place_recognition, src);
+  Require(c.session.connect_min_loops >= 1, src, "session.connect_min_loops", "must be >= 1");
+  Require(c.session.connect_agree_m > 0, src, "session.connect_agree_m", "must be > 0");
+  Require(c.session.connect_agree_deg > 0, src, "session.connect_agree_deg", "must be > 0");
+  Require(c.session.search_radius_m > 0, src, "session.search_radius_m", "must be > 0");
+  Require(c.session.localize_lost_after_m > 0, src, "session.localize_lost_after_m", "must be > 0");
+  Require(c.session.localize_window_keyframes >= 2, src, "session.localize_window_keyframes",
+          "must be >= 2");
   Require(c.pulse.center_frequency_hz > 0, src, "pulse.center_frequency_hz", "must be > 0");
   Require(c.pulse.bandwidth_hz > 0, src, "pulse.bandwidth_hz", "must be > 0");
   Require(c.pulse.sampling_frequency_hz > 2 * c.pulse.center_frequency_hz, src,

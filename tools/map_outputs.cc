@@ -339,6 +339,9 @@ MapOutputs MapOutputStage::CommitState(const MapState& run, const MapRun* exact_
         names.push_back(fs::path(f).filename().string());
       }
     }
+    if (extra_outputs_) {
+      for (const std::string& name : extra_outputs_(stage.string())) names.push_back(name);
+    }
     WriteTextAtomic(staged("summary.json"), s.dump(2) + "\n");
 
     // Commit: drop a previous run's summary first, then the outputs this run does not
