@@ -115,8 +115,8 @@ LocalizeRun LocalizeBag(const SessionData& map, const Config& config, const std:
 
 LocalizeRun LocalizeSimulation(const SessionData& map, const Config& config,
                                const std::string& map_yaml, const std::string& route,
-                               std::uint64_t seed) {
-  const sim::SimScenario scenario = sim::MakeScenario(config, map_yaml, route, seed);
+                               std::uint64_t scene_seed, std::uint64_t seed) {
+  const sim::SimScenario scenario = sim::MakeScenario(config, map_yaml, route, scene_seed);
   sim::SimStream stream(config, scenario, seed);
   sim::SimMessage msg;
   const std::string description =

@@ -48,10 +48,10 @@ LocalizeRun LocalizeStream(const SessionData& map, const Config& config,
                            const std::function<bool(const LocalizeFeed&)>& source);
 /// A ROS 2 bag.
 LocalizeRun LocalizeBag(const SessionData& map, const Config& config, const std::string& bag);
-/// A simulated run (as MapSimulation).
+/// A simulated run (as MapSimulationInScene: the scene from scene_seed).
 LocalizeRun LocalizeSimulation(const SessionData& map, const Config& config,
                                const std::string& map_yaml, const std::string& route,
-                               std::uint64_t seed);
+                               std::uint64_t scene_seed, std::uint64_t seed);
 
 /// trajectory.tum, localize.csv and summary.json (last) into out_dir; returns the summary.
 nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& out_dir);

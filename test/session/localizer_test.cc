@@ -12,6 +12,7 @@
 #include "test/shared_data.h"
 #include "tools/localize_job.h"
 #include "tools/map_job.h"
+#include "tools/scene_simulation.h"
 #include "tools/session_capture.h"
 
 namespace uwbsar {
@@ -42,7 +43,7 @@ TEST(LocalizerTest, TurnedRunIsPlacedWithinThreeMetresWithTrueFixesOnly) {
   const tools::MapRun a = tools::MapSimulation(config, lidar, "depart-return", 1);
   const SessionData map = tools::CaptureSession(a);
   const tools::LocalizeRun run =
-      tools::LocalizeSimulation(map, config_b, lidar, "depart-return", 2);
+      tools::LocalizeSimulation(map, config_b, lidar, "depart-return", 1, 2);
   ASSERT_GE(run.first_fix, 0);
   EXPECT_LE(run.first_fix_path_m, 3.0);
 
@@ -85,13 +86,14 @@ TEST(LocalizerTest, RunOutsideTheMapReportsLost) {
   UWBSAR_NEED_SEED_LAB_MAP();
   Config config = ShortConfig();
   config.simulator.route.depart_distance_m = 3.0;
-  Config config_b = config;
-  config_b.simulator.route.start_x_m += 9.0;  // the far end of the room, never seen by the map
+  const Config& config_b = config;
+  // Another room (the bundled seed_hall), never seen by the map.
+  const std::string hall = std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_hall/seed_hall.yaml";
   const std::string lidar = ::uwbsar::testing::SeedLabLidarMap();
   const tools::MapRun a = tools::MapSimulation(config, lidar, "depart-return", 1);
   const SessionData map = tools::CaptureSession(a);
   const tools::LocalizeRun run =
-      tools::LocalizeSimulation(map, config_b, lidar, "depart-return", 2);
+      tools::LocalizeSimulation(map, config_b, hall, "depart-return", 1, 2);
   EXPECT_EQ(run.first_fix, -1);
   for (const LocalizedKeyframe& k : run.keyframes) {
     EXPECT_EQ(k.status, LocalizeStatus::kLost) << "keyframe " << k.id;

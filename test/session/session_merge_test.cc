@@ -11,6 +11,7 @@
 
 #include "test/shared_data.h"
 #include "tools/map_job.h"
+#include "tools/scene_simulation.h"
 #include "tools/session_capture.h"
 #include "tools/session_outputs.h"
 
@@ -54,7 +55,7 @@ TEST(SessionMergeTest, SecondRunTurnedAndShiftedIsPlacedWithinThreeMetresWithout
   config_b.simulator.route.depart_distance_m = 2.5;
   const std::string map = ::uwbsar::testing::SeedLabLidarMap();
   const tools::MapRun a = tools::MapSimulation(config_a, map, "depart-return", 1);
-  const tools::MapRun b = tools::MapSimulation(config_b, map, "depart-return", 2);
+  const tools::MapRun b = tools::MapSimulationInScene(config_b, map, "depart-return", 1, 2);
   const SessionData sa = tools::CaptureSession(a);
   const SessionData sb = tools::CaptureSession(b);
   MergeReport report;
@@ -95,11 +96,12 @@ TEST(SessionMergeTest, RunThatNeverSeesTheMapIsNotConnected) {
   UWBSAR_NEED_SEED_LAB_MAP();
   Config config_a = ShortConfig();
   config_a.simulator.route.depart_distance_m = 3.0;
-  Config config_b = config_a;
-  config_b.simulator.route.start_x_m += 9.0;  // the far end of the room, never seen by A
+  const Config& config_b = config_a;
+  // Another room (the bundled seed_hall), never seen by A.
+  const std::string hall = std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_hall/seed_hall.yaml";
   const std::string map = ::uwbsar::testing::SeedLabLidarMap();
   const tools::MapRun a = tools::MapSimulation(config_a, map, "depart-return", 1);
-  const tools::MapRun b = tools::MapSimulation(config_b, map, "depart-return", 2);
+  const tools::MapRun b = tools::MapSimulationInScene(config_b, hall, "depart-return", 1, 2);
   MergeReport report;
   const SessionData merged =
       MergeSessions(tools::CaptureSession(a), tools::CaptureSession(b), config_a, &report);
