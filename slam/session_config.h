@@ -6,9 +6,10 @@
 namespace uwbsar {
 
 struct SessionConfig {
-  int connect_min_loops = 2;           ///< validated loops into the saved map that agree on where
-                                       ///< the new run lies before it is connected (a lone false
-                                       ///< loop cannot place a run that has no other tie)
+  int connect_min_loops = 1;           ///< validated loops into the saved map that agree on where
+                                       ///< the new run lies before it is connected (the issue: one
+                                       ///< accepted loop; 2: a lone false loop cannot place a
+                                       ///< run, but placement comes later)
   double connect_agree_m = 0.3;        ///< two such loops agree when the run's placements they
   double connect_agree_deg = 5.0;      ///< imply differ by less than this
   double search_radius_m = 2.0;        ///< once placed: saved keyframes this close to a new

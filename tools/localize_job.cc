@@ -115,7 +115,8 @@ LocalizeRun LocalizeBag(const SessionData& map, const Config& config, const std:
 
 LocalizeRun LocalizeSimulation(const SessionData& map, const Config& config,
                                const std::string& map_yaml, const std::string& route,
-                               std::uint64_t scene_seed, std::uint64_t seed) {
+                               std::uint64_t scene_seed, std::uint64_t seed,
+                               const Pose2& T_odom_world) {
   const sim::SimScenario scenario = sim::MakeScenario(config, map_yaml, route, scene_seed);
   sim::SimStream stream(config, scenario, seed);
   sim::SimMessage msg;
@@ -128,6 +129,7 @@ LocalizeRun LocalizeSimulation(const SessionData& map, const Config& config,
         feed.ground_truth(msg.pose);
         break;
       case sim::SimMessage::Kind::kOdometry:
+        msg.pose.T_world_robot = T_odom_world * msg.pose.T_world_robot;
         feed.odometry(msg.pose);
         break;
       case sim::SimMessage::Kind::kRadarScan:

@@ -48,10 +48,12 @@ LocalizeRun LocalizeStream(const SessionData& map, const Config& config,
                            const std::function<bool(const LocalizeFeed&)>& source);
 /// A ROS 2 bag.
 LocalizeRun LocalizeBag(const SessionData& map, const Config& config, const std::string& bag);
-/// A simulated run (as MapSimulationInScene: the scene from scene_seed).
+/// A simulated run (as MapSimulationInScene: the scene from scene_seed, odometry in its
+/// own frame T_odom_world).
 LocalizeRun LocalizeSimulation(const SessionData& map, const Config& config,
                                const std::string& map_yaml, const std::string& route,
-                               std::uint64_t scene_seed, std::uint64_t seed);
+                               std::uint64_t scene_seed, std::uint64_t seed,
+                               const Pose2& T_odom_world = {});
 
 /// trajectory.tum, localize.csv and summary.json (last) into out_dir; returns the summary.
 nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& out_dir);

@@ -1,12 +1,14 @@
 #include "tools/scene_simulation.h"
 
+#include <cmath>
+
 #include "drivers/sim/sim_stream.h"
 
 namespace uwbsar::tools {
 
 MapRun MapSimulationInScene(const Config& config, const std::string& map_yaml,
-                            const std::string& route, std::uint64_t scene_seed,
-                            std::uint64_t seed) {
+                            const std::string& route, std::uint64_t scene_seed, std::uint64_t seed,
+                            const Pose2& T_odom_world) {
   const sim::SimScenario scenario = sim::MakeScenario(config, map_yaml, route, scene_seed);
   sim::SimStream stream(config, scenario, seed);
   sim::SimMessage msg;
@@ -23,6 +25,7 @@ MapRun MapSimulationInScene(const Config& config, const std::string& map_yaml,
         break;
       case sim::SimMessage::Kind::kOdometry:
         ++r->odometry_messages;
+        msg.pose.T_world_robot = T_odom_world * msg.pose.T_world_robot;
         r->slam->AddOdometry(msg.pose);
         break;
       case sim::SimMessage::Kind::kRadarScan:
@@ -34,6 +37,11 @@ MapRun MapSimulationInScene(const Config& config, const std::string& map_yaml,
     }
     return true;
   });
+}
+
+Pose2 RouteStart(const Config& config) {
+  const auto& r = config.simulator.route;
+  return {r.start_x_m, r.start_y_m, r.start_yaw_deg * M_PI / 180.0};
 }
 
 }  // namespace uwbsar::tools

@@ -11,8 +11,15 @@
 
 namespace uwbsar::tools {
 
-/// As MapSimulation, with the scene from `scene_seed`.
+/// As MapSimulation, with the scene from `scene_seed`. The wheel odometry is reported in a
+/// frame of its own: T_odom_world * (the simulator's odometry, which starts at the true
+/// start pose), e.g. RouteStart^-1 for odometry that starts at zero, as a robot's does; the
+/// ground truth stays in the world (map file) frame.
 MapRun MapSimulationInScene(const Config& config, const std::string& map_yaml,
-                            const std::string& route, std::uint64_t scene_seed, std::uint64_t seed);
+                            const std::string& route, std::uint64_t scene_seed, std::uint64_t seed,
+                            const Pose2& T_odom_world = {});
+
+/// The pose a built-in route starts at (simulator.route.start_*), in the world frame.
+Pose2 RouteStart(const Config& config);
 
 }  // namespace uwbsar::tools

@@ -42,8 +42,8 @@ TEST(LocalizerTest, TurnedRunIsPlacedWithinThreeMetresWithTrueFixesOnly) {
   const std::string lidar = ::uwbsar::testing::SeedLabLidarMap();
   const tools::MapRun a = tools::MapSimulation(config, lidar, "depart-return", 1);
   const SessionData map = tools::CaptureSession(a);
-  const tools::LocalizeRun run =
-      tools::LocalizeSimulation(map, config_b, lidar, "depart-return", 1, 2);
+  const tools::LocalizeRun run = tools::LocalizeSimulation(
+      map, config_b, lidar, "depart-return", 1, 2, tools::RouteStart(config_b).Inverse());
   ASSERT_GE(run.first_fix, 0);
   EXPECT_LE(run.first_fix_path_m, 3.0);
 

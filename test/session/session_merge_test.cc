@@ -55,7 +55,8 @@ TEST(SessionMergeTest, SecondRunTurnedAndShiftedIsPlacedWithinThreeMetresWithout
   config_b.simulator.route.depart_distance_m = 2.5;
   const std::string map = ::uwbsar::testing::SeedLabLidarMap();
   const tools::MapRun a = tools::MapSimulation(config_a, map, "depart-return", 1);
-  const tools::MapRun b = tools::MapSimulationInScene(config_b, map, "depart-return", 1, 2);
+  const tools::MapRun b = tools::MapSimulationInScene(config_b, map, "depart-return", 1, 2,
+                                                      tools::RouteStart(config_b).Inverse());
   const SessionData sa = tools::CaptureSession(a);
   const SessionData sb = tools::CaptureSession(b);
   MergeReport report;
