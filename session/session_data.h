@@ -79,9 +79,6 @@ struct SessionData {
   int MaxTrajectoryId() const;  ///< -1 when empty
   /// Optimised T_map_anchor by keyframe id.
   std::map<int, Pose2> Poses() const;
-  /// One run's odometry corrected by its optimised keyframes (as
-  /// SlamSystem::CorrectedTrajectory), in the map frame.
-  std::vector<std::pair<TimestampNs, Pose2>> CorrectedTrajectory(int trajectory) const;
 };
 
 }  // namespace uwbsar

@@ -15,6 +15,7 @@
 #include "frontend/image_io.h"
 #include "session/session_file.h"
 #include "session/session_merge.h"
+#include "slam/slam_snapshot.h"
 #include "tools/commands.h"
 #include "tools/map_job.h"
 #include "tools/report_html.h"
@@ -76,6 +77,27 @@ nlohmann::json AteJson(const AteResult& a) {
 
 }  // namespace
 
+std::vector<std::pair<TimestampNs, Pose2>> CorrectedTrajectory(const SessionData& session,
+                                                               int trajectory) {
+  std::vector<const SessionKeyframe*> run;
+  for (const SessionKeyframe& k : session.keyframes) {
+    if (k.trajectory == trajectory) run.push_back(&k);
+  }
+  std::stable_sort(run.begin(), run.end(), [](const SessionKeyframe* a, const SessionKeyframe* b) {
+    return a->stamp_ns < b->stamp_ns;
+  });
+  std::vector<std::pair<TimestampNs, Pose2>> out;
+  for (const SessionOdometry& o : session.odometry) {
+    if (o.trajectory != trajectory) continue;
+    const Pose2 correction = InterpolatedCorrection(
+        run.size(), [&](std::size_t i) { return run[i]->stamp_ns; },
+        [&](std::size_t i) -> const Pose2& { return run[i]->T_odom_anchor; },
+        [&](std::size_t i) { return run[i]->T_map_anchor; }, o.stamp_ns);
+    out.push_back({o.stamp_ns, correction * o.T_odom_robot});
+  }
+  return out;
+}
+
 nlohmann::json MergeReportJson(const MergeReport& r) {
   nlohmann::json j = {{"connected", r.connected},   {"keyframe_pairs_matched", r.candidates},
                       {"validated", r.validated},   {"dropped_before_placement", r.dropped},
@@ -95,7 +117,7 @@ nlohmann::json MergeReportJson(const MergeReport& r) {
 AteResult CommonFrameError(const SessionData& session,
                            const std::map<int, std::vector<OdometrySample>>& ground_truth) {
   std::vector<Pose2> est, ref;
-  for (const auto& [id, gt] : ground_truth) Pair(session.CorrectedTrajectory(id), gt, &est, &ref);
+  for (const auto& [id, gt] : ground_truth) Pair(CorrectedTrajectory(session, id), gt, &est, &ref);
   if (est.size() < 2) return AteResult{};
   return ComputeAte(est, ref);
 }
@@ -152,7 +174,7 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
   nlohmann::json runs_json = nlohmann::json::array();
   for (std::size_t n = 0; n < runs.size(); ++n) {
     const int id = runs[n];
-    const auto traj = session.CorrectedTrajectory(id);
+    const auto traj = CorrectedTrajectory(session, id);
     for (std::size_t i = 1; i < traj.size(); ++i) {
       cv::line(png, pixel(traj[i - 1].second), pixel(traj[i].second), kBgr[n % 4], 2, cv::LINE_AA);
     }

@@ -37,6 +37,11 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
 AteResult CommonFrameError(const SessionData& session,
                            const std::map<int, std::vector<OdometrySample>>& ground_truth);
 
+/// One run's odometry corrected by its optimised keyframes (as
+/// SlamSystem::CorrectedTrajectory), in the session's map frame.
+std::vector<std::pair<TimestampNs, Pose2>> CorrectedTrajectory(const SessionData& session,
+                                                               int trajectory);
+
 /// The merge report as JSON (summary.json's "merge").
 nlohmann::json MergeReportJson(const MergeReport& report);
 
