@@ -1,4 +1,4 @@
-// Consistency of the map after a solve (issue 19): a loop that does not belong bends the
+// Consistency of the map after a solve: a loop that does not belong bends the
 // odometry chain between its ends, and where the chain is short the bend shows as an
 // odometry edge far outside its noise even when the loop's own residual looks fine (the
 // robust loss lets the loop win). After each solve the odometry edge with the largest

@@ -1,4 +1,4 @@
-// Building tours (issue 19): the three generated floors of config/maps/tours and tours on
+// Building tours: the three generated floors of config/maps/tours and tours on
 // office and floor50, each mapped with the default configuration over several seeds.
 // Reported per run: ring closed (SLAM ATE >= 3x better than odometry), ATE, odometry ATE,
 // loops accepted / validated / candidates, false loops, recall per candidate with true

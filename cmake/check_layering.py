@@ -27,6 +27,7 @@ LAYERS = [
     "drivers",   # sensors, bags, simulator, live device drivers, DDS (drivers/dds)
     "frontend",  # scans -> keyframe SAR tiles, place recognition
     "backend",   # pose graph, global map, occupancy, map comparison (backend/compare)
+    "session",   # saved sessions (session.uwbsar), joining them, localising in them
     "pipeline",  # SlamSystem, mapping and imaging jobs, map outputs, live runtime
     "tools",     # the `uwbsar` command line: flags and printing
 ]

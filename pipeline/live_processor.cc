@@ -4,6 +4,8 @@
 #include <cmath>
 #include <thread>
 
+#include "pipeline/session_capture.h"
+#include "session/session_file.h"
 #include "slam/log.h"
 
 namespace uwbsar::tools {
@@ -66,16 +68,23 @@ void Processor::Snapshot() {
     // Only the copy is made under the state lock (time linear in keyframes, no I/O); the
     // mosaic, the report and the files are made from the copy while SLAM goes on.
     MapState state;
+    SessionData session;  // session.uwbsar at every snapshot
     {
       const auto lock_start = SteadyClock::now();
       const auto lock = view.slam->LockState();
       if (view.slam->keyframes().empty()) return;
       state = CaptureMapState(view);
+      session = CaptureSession(view);
       snapshot_lock_max_s_ =
           std::max(snapshot_lock_max_s_,
                    std::chrono::duration<double>(SteadyClock::now() - lock_start).count());
     }
-    last_outputs_ = WriteMapOutputs(state, options_.out_dir);
+    MapOutputStage stage(options_.out_dir);
+    stage.SetExtraOutputs([&session](const std::string& dir) {
+      WriteSession(dir + "/" + kSessionFileName, session);
+      return std::vector<std::string>{kSessionFileName};
+    });
+    last_outputs_ = stage.Commit(state);
     ++snapshots_;
     if (hooks_.after_snapshot) hooks_.after_snapshot(state, last_outputs_);
   } catch (const std::exception& e) {

@@ -53,6 +53,7 @@ const std::vector<std::string>& AllMapOutputNames() {
                                                  "map_exact_float.tif",
                                                  "map_exact_grid.yaml",
                                                  "map_exact.png",
+                                                 "session.uwbsar",
                                                  "summary.json"};
   return names;
 }

@@ -319,6 +319,9 @@ MapOutputs MapOutputStage::CommitState(const MapState& run, const MapRun* exact_
       names.push_back(fs::path(f).filename().string());
     }
   }
+  if (extra_outputs_) {
+    for (const std::string& name : extra_outputs_(stage.string())) names.push_back(name);
+  }
   WriteTextAtomic((stage / "summary.json").string(), result.summary.dump(2) + "\n");
   CommitStagedOutputs(stage, out_dir_, names, &result.files);
   return result;

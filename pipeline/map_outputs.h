@@ -6,6 +6,7 @@
 // a summary.json holds one complete result, and a failed run leaves none.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -57,6 +58,10 @@ class MapOutputStage {
   MapOutputStage& operator=(const MapOutputStage&) = delete;
 
   const std::string& path() const { return stage_; }
+  /// More files for the next commits: `write(stage_dir)` writes them into the staging
+  /// folder and returns their names, committed with the rest (e.g. session.uwbsar).
+  using ExtraOutputs = std::function<std::vector<std::string>(const std::string& stage_dir)>;
+  void SetExtraOutputs(ExtraOutputs write) { extra_outputs_ = std::move(write); }
   /// CaptureMapState(run), then the outputs from it (and the exact map from `run`).
   MapOutputs Commit(const MapRun& run, const MapOutputOptions& options = {});
   /// The outputs of a captured state (no exact map: that needs the scans' profiles).
@@ -67,6 +72,7 @@ class MapOutputStage {
 
   std::string out_dir_, stage_;
   std::unique_ptr<RemoveOnInterrupt> guard_;
+  ExtraOutputs extra_outputs_;
 };
 
 /// Every file name a `uwbsar map` run may commit into DIR.

@@ -25,7 +25,7 @@ namespace uwbsar {
 struct LoopRecord {
   int query_id = 0;     ///< the new keyframe (j)
   int match_id = 0;     ///< the earlier keyframe (i)
-  bool guided = false;  ///< a pair of the guided pass around a validated loop (issue 19)
+  bool guided = false;  ///< a pair of the guided pass around a validated loop
   MatchResult akaze;
   MatchResult orb;
   LoopValidation validation;

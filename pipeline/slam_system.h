@@ -74,6 +74,8 @@ class SlamSystem {
   /// Stage times so far (any thread).
   StageTimes times() const;
   const PoseGraph& graph() const { return *graph_; }
+  /// The keyframes' cached AKAZE/ORB features (same rules as keyframes()).
+  const PlaceRecognizer& recognizer() const { return *recognizer_; }
 
   /// Optimised T_world_anchor of every keyframe (odometry before the first solve).
   std::map<int, Pose2> KeyframePoses() const;

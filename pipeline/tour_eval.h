@@ -1,4 +1,4 @@
-// Scoring of a simulated tour mapped by SlamSystem against its ground truth (issue 19):
+// Scoring of a simulated tour mapped by SlamSystem against its ground truth:
 // ATE of SLAM and of odometry alone, loops (candidates, validated, accepted, false ones),
 // whether the ring closed, and recall at revisits.
 //

@@ -12,6 +12,7 @@
 #include "slam/live_config.h"
 #include "slam/named_enum.h"
 #include "slam/place_recognition_config.h"
+#include "slam/session_config.h"
 #include "slam/simulator_config.h"
 
 namespace uwbsar {
@@ -356,6 +357,7 @@ struct Config {
   LiveConfig live;
   DdsConfig dds;
   LimitsConfig limits;
+  SessionConfig session;
 
   template <class V>
   void Visit(V& v) {
@@ -373,6 +375,7 @@ struct Config {
     v("live", live);
     v("dds", dds);
     v("limits", limits);
+    v("session", session);
   }
 };
 

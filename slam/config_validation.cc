@@ -439,6 +439,17 @@ void ValidateBackend(const BackendConfig& b, const std::string& src) {
   Require(b.num_threads >= 1, src, "backend.num_threads", "must be >= 1");
 }
 
+/// Joining and localising in saved sessions.
+void ValidateSession(const SessionConfig& s, const std::string& src) {
+  Require(s.connect_min_loops >= 1, src, "session.connect_min_loops", "must be >= 1");
+  Require(s.connect_agree_m > 0, src, "session.connect_agree_m", "must be > 0");
+  Require(s.connect_agree_deg > 0, src, "session.connect_agree_deg", "must be > 0");
+  Require(s.search_radius_m > 0, src, "session.search_radius_m", "must be > 0");
+  Require(s.localize_lost_after_m > 0, src, "session.localize_lost_after_m", "must be > 0");
+  Require(s.localize_window_keyframes >= 2, src, "session.localize_window_keyframes",
+          "must be >= 2");
+}
+
 }  // namespace
 
 void ValidateConfig(const Config& c, const std::string& src) {
@@ -447,6 +458,7 @@ void ValidateConfig(const Config& c, const std::string& src) {
   ValidateDds(c.dds, src);
   ValidateSimulator(c.simulator, src);
   ValidatePlaceRecognition(c.place_recognition, src);
+  ValidateSession(c.session, src);
   ValidateSensors(c, src);
   ValidateSlam(c, src);
   ValidateImaging(c, src);

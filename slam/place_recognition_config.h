@@ -133,7 +133,7 @@ struct CandidateSearchConfig {
   }
 };
 
-/// Guided pass around a validated loop (issue 19): the keyframes just before and after the
+/// Guided pass around a validated loop: the keyframes just before and after the
 /// loop's new keyframe are matched against the old keyframes the loop predicts them to
 /// overlap; the AKAZE+ORB rule runs with a lower good-match threshold, and a pair counts only
 /// when its transform agrees with the loop's prediction. The pairs become loops of their

@@ -3,7 +3,10 @@
 
 #include "drivers/tum_reader.h"
 #include "pipeline/map_outputs.h"
+#include "pipeline/session_capture.h"
+#include "session/session_file.h"
 #include "tools/commands.h"
+#include "tools/map_resume.h"
 
 namespace uwbsar::tools {
 
@@ -27,7 +30,7 @@ void PrintMapSummary(const MapRun& run, const MapOutputs& outputs, const std::st
 
 void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
   struct Options {
-    std::string bag, out_dir, ground_truth;
+    std::string bag, out_dir, ground_truth, resume;
     bool exact = false;
     bool skip_damaged = false;
   };
@@ -44,6 +47,9 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_flag("--skip-damaged", opts->skip_damaged,
                 "MCAP: skip a chunk that fails its CRC or cannot be decompressed (warns with its "
                 "offset and message count) instead of failing the whole run");
+  cmd->add_option("--resume", opts->resume,
+                  "Continue a saved session (folder or session.uwbsar): this run joins its map "
+                  "as a new trajectory once a loop places it");
   cmd->callback([opts, &globals] {
     Config config = LoadConfigFor(globals);
     if (opts->exact) config.slam.keep_scan_profiles = true;  // the exact map re-images them
@@ -51,11 +57,21 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
     // output folder's staging folder created first.
     std::vector<OdometrySample> ground_truth;
     if (!opts->ground_truth.empty()) ground_truth = ReadTum(opts->ground_truth);
+    SessionData saved;  // read before the work: an incompatible session is refused first
+    if (!opts->resume.empty()) saved = LoadSessionToResume(opts->resume, config);
     MapOutputStage stage(opts->out_dir);
     rosbag::BagReadOptions read_options;
     read_options.skip_damaged_chunks = opts->skip_damaged;
     MapRun run = MapBag(config, opts->bag, !globals.quiet, read_options);
     if (!opts->ground_truth.empty()) run.ground_truth = std::move(ground_truth);
+    if (!opts->resume.empty()) {
+      WriteResumedMap(saved, run, &stage, opts->out_dir, globals.quiet);
+      return;
+    }
+    stage.SetExtraOutputs([&run](const std::string& dir) {
+      WriteSession(dir + "/" + kSessionFileName, CaptureSession(run));
+      return std::vector<std::string>{kSessionFileName};
+    });
     MapOutputOptions output_options;
     output_options.exact = opts->exact;
     const MapOutputs outputs = stage.Commit(run, output_options);

@@ -29,6 +29,7 @@ struct SimulateOptions {
   std::string targets_path;
   std::string text_log_path;
   std::uint64_t seed = 1;
+  std::string scene_seed;  ///< empty: the seed
   bool laser = false;
 };
 
@@ -52,7 +53,9 @@ void RunSimulate(const SimulateOptions& o, const GlobalOptions& globals) {
   CheckOutputFolder(parent.empty() ? "." : parent);
   if (!o.text_log_path.empty()) CheckOutputFile(o.text_log_path);
   const auto start = std::chrono::steady_clock::now();
-  const sim::SimScenario scenario = sim::MakeScenario(config, o.map_path, o.route, o.seed, targets);
+  const std::uint64_t scene_seed = o.scene_seed.empty() ? o.seed : std::stoull(o.scene_seed);
+  const sim::SimScenario scenario =
+      sim::MakeScenario(config, o.map_path, o.route, scene_seed, targets);
   sim::SimStream stream(config, scenario, o.seed);
   sim::SimBagSummary summary;
   {
@@ -113,6 +116,11 @@ void AddSimulateCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--seed", o->seed, "Random seed (same seed, same bytes)")
       ->check(CheckSeed, "integer 0..2^64-1")
       ->capture_default_str();
+  cmd->add_option(
+         "--scene-seed", o->scene_seed,
+         "Seed of the scene alone (the scatterers of the occupied cells; default: --seed): "
+         "runs with one scene seed and different seeds revisit the same building")
+      ->check(CheckSeed, "integer 0..2^64-1");
   cmd->add_option("--targets", o->targets_path,
                   "Point targets file (YAML: point_targets: [{x_m, y_m, rcs_m2}, ...])")
       ->check(CLI::ExistingFile);

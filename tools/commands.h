@@ -59,5 +59,7 @@ void AddSimulateCommand(CLI::App& app, const GlobalOptions& globals);
 void AddCompareCommand(CLI::App& app, const GlobalOptions& globals);
 void AddExportPcdCommand(CLI::App& app, const GlobalOptions& globals);
 void AddRunCommand(CLI::App& app, const GlobalOptions& globals);
+void AddMergeCommand(CLI::App& app, const GlobalOptions& globals);
+void AddLocalizeCommand(CLI::App& app, const GlobalOptions& globals);
 
 }  // namespace uwbsar::tools

@@ -44,6 +44,8 @@ int main(int argc, char** argv) {
   AddCompareCommand(app, globals);
   AddExportPcdCommand(app, globals);
   AddRunCommand(app, globals);
+  AddMergeCommand(app, globals);
+  AddLocalizeCommand(app, globals);
 
   try {
     app.parse(argc, argv);

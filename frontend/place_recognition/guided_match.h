@@ -1,4 +1,4 @@
-// Guided pass around a validated loop (issue 19). A loop (i, j) predicts where the
+// Guided pass around a validated loop. A loop (i, j) predicts where the
 // keyframes near j lie relative to the old keyframes near i: the odometry between j and a
 // neighbour q is accurate over a few metres, so T_world_q = T_world_i T_ij T_jq. Each
 // neighbour q is paired with the old keyframe o whose tile the prediction puts closest,

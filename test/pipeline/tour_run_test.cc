@@ -1,4 +1,4 @@
-// Issue 19: a ring closed only after 50 m on a generated building floor
+// A ring closed only after 50 m on a generated building floor
 // (config/maps/tours/two_rings.yaml, the west ring of the figure of eight, 55 m), mapped
 // with the default configuration: the ring's closure itself is accepted (a loop between
 // the tour's start and its end), no false loop, SLAM beats odometry alone. Measured (seed

@@ -34,7 +34,7 @@ TOUR_B = [(5.0, 5.0), (25.0, 5.0), (25.0, 45.0), (45.0, 45.0), (45.0, 25.0), (5.
           (5.0, 5.0)]
 ROUTE = TOUR_A + (TOUR_B[1:] + TOUR_A[1:]) * 2 + TOUR_B[1:] + TOUR_A[1:3]
 CLEARANCE_ROUTE = TOUR_A + TOUR_B[1:]  # every segment the route drives, once
-# An 87 m tour (issue 19): the south-west block's ring (80 m), closed, then 7 m more.
+# An 87 m tour: the south-west block's ring (80 m), closed, then 7 m more.
 TOUR_SW = [(5.0, 5.0), (25.0, 5.0), (25.0, 25.0), (5.0, 25.0), (5.0, 5.0), (12.0, 5.0)]
 
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Generates three building-scale floors with long tours (issue 19): corridor rings of
+"""Generates three building-scale floors with long tours: corridor rings of
 50-100 m with offices off the corridors, a large hall, and routes that close a ring only
 after 50 m or more. Each floor is a map_server trinary grid (0.05 m cells) plus a route
 (waypoints). Deterministic: running it again rewrites the same bytes.

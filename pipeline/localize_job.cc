@@ -1,0 +1,194 @@
+#include "pipeline/localize_job.h"
+
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "backend/g2o_io.h"
+#include "drivers/rosbag/bag_reader.h"
+#include "drivers/rosbag/robot_bag.h"
+#include "drivers/sim/sim_stream.h"
+#include "frontend/imaging_frontend.h"
+#include "imaging/image_io.h"
+#include "pipeline/map_job.h"
+#include "pipeline/output_folder.h"
+#include "slam/errors.h"
+
+namespace uwbsar::tools {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+class BagFeeder : public rosbag::RobotBagVisitor {
+ public:
+  explicit BagFeeder(const LocalizeFeed& feed) : feed_(feed) {}
+  void OnRadarScan(const RadarScan& scan) override { feed_.scan(scan); }
+  void OnOdometry(const OdometrySample& odometry) override { feed_.odometry(odometry); }
+  void OnGroundTruth(const OdometrySample& pose) override { feed_.ground_truth(pose); }
+
+ private:
+  const LocalizeFeed& feed_;
+};
+
+}  // namespace
+
+std::vector<std::pair<TimestampNs, Pose2>> LocalizeRun::Trajectory(bool tracking_only) const {
+  std::vector<std::pair<TimestampNs, Pose2>> out;
+  if (first_fix < 0) return out;
+  std::size_t k = static_cast<std::size_t>(first_fix);
+  for (const OdometryEntry& e : odometry) {
+    while (k + 1 < keyframes.size() && keyframes[k + 1].stamp_ns <= e.stamp_ns) ++k;
+    const LocalizedKeyframe& kf = keyframes[k];
+    if (tracking_only && kf.status == LocalizeStatus::kLost) continue;
+    out.push_back({e.stamp_ns, kf.T_map_anchor * kf.T_odom_anchor.Inverse() * e.T_world_robot});
+  }
+  return out;
+}
+
+LocalizeRun LocalizeStream(const SessionData& map, const Config& config,
+                           const std::string& description,
+                           const std::function<bool(const LocalizeFeed&)>& source) {
+  LocalizeRun run;
+  run.input = description;
+  ImagingFrontend frontend(config);
+  Localizer localizer(map, config);
+  frontend.SetOdometryObserver([&](const OdometryEntry& e) { run.odometry.push_back(e); });
+  double busy_s = 0.0;
+  auto process = [&] {
+    for (const Keyframe& k : frontend.TakeKeyframes()) {
+      const KeyframeFeatures f = ExtractKeyframeFeatures(k, config);
+      const LocalizedKeyframe& l = localizer.Add(f, k.T_world_anchor, k.stamp_ns, k.path_end_m);
+      run.keyframes.push_back(l);
+      if (run.first_fix < 0 && l.placed) {
+        run.first_fix = static_cast<int>(run.keyframes.size()) - 1;
+        run.first_fix_path_m = k.path_end_m - (run.odometry.empty() ? 0 : run.odometry[0].path_m);
+        // The tile closes at its last scan: that is when the fix is known.
+        const TimestampNs t = k.scans.empty() ? k.stamp_ns : k.scans.back().stamp_ns;
+        run.first_fix_time_s =
+            run.odometry.empty() ? 0 : NsToSeconds(t - run.odometry.front().stamp_ns);
+      }
+    }
+  };
+  LocalizeFeed feed;
+  feed.odometry = [&](const OdometrySample& s) {
+    const auto t0 = Clock::now();
+    frontend.AddOdometry(s);
+    process();
+    busy_s += std::chrono::duration<double>(Clock::now() - t0).count();
+  };
+  feed.scan = [&](const RadarScan& s) {
+    const auto t0 = Clock::now();
+    frontend.AddScan(s);
+    process();
+    busy_s += std::chrono::duration<double>(Clock::now() - t0).count();
+  };
+  feed.ground_truth = [&](const OdometrySample& g) { run.ground_truth.push_back(g); };
+  while (source(feed)) {
+  }
+  const auto t0 = Clock::now();
+  frontend.Finish();
+  process();
+  busy_s += std::chrono::duration<double>(Clock::now() - t0).count();
+  run.processing_s = busy_s;
+  if (run.odometry.size() >= 2) {
+    run.log_duration_s = NsToSeconds(run.odometry.back().stamp_ns - run.odometry.front().stamp_ns);
+  }
+  if (run.keyframes.empty()) {
+    throw InputError(description + ": no keyframe could be imaged (odometry and radar topics?)");
+  }
+  return run;
+}
+
+LocalizeRun LocalizeBag(const SessionData& map, const Config& config, const std::string& bag) {
+  rosbag::BagReader reader(bag);
+  const rosbag::RobotBagOptions options = rosbag::RobotBagOptionsFromConfig(config);
+  bool done = false;
+  return LocalizeStream(map, config, bag, [&](const LocalizeFeed& feed) {
+    if (done) return false;
+    BagFeeder feeder(feed);
+    rosbag::ReadRobotBag(reader, options, feeder);
+    done = true;
+    return false;
+  });
+}
+
+LocalizeRun LocalizeSimulation(const SessionData& map, const Config& config,
+                               const std::string& map_yaml, const std::string& route,
+                               std::uint64_t scene_seed, std::uint64_t seed,
+                               const Pose2& T_odom_world) {
+  const sim::SimScenario scenario = sim::MakeScenario(config, map_yaml, route, scene_seed);
+  sim::SimStream stream(config, scenario, seed);
+  sim::SimMessage msg;
+  const std::string description =
+      "simulated " + route + " in " + map_yaml + " (seed " + std::to_string(seed) + ")";
+  return LocalizeStream(map, config, description, [&](const LocalizeFeed& feed) {
+    if (!stream.Next(&msg)) return false;
+    switch (msg.kind) {
+      case sim::SimMessage::Kind::kGroundTruth:
+        feed.ground_truth(msg.pose);
+        break;
+      case sim::SimMessage::Kind::kOdometry:
+        msg.pose.T_world_robot = T_odom_world * msg.pose.T_world_robot;
+        feed.odometry(msg.pose);
+        break;
+      case sim::SimMessage::Kind::kRadarScan:
+        feed.scan(msg.scan);
+        break;
+      case sim::SimMessage::Kind::kLaserScan:
+        break;
+    }
+    return true;
+  });
+}
+
+nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& out_dir) {
+  EnsureDirectory(out_dir);
+  const auto trajectory = run.Trajectory(false);
+  std::vector<std::pair<double, Pose2>> tum;
+  for (const auto& [t, p] : trajectory) tum.push_back({NsToSeconds(t), p});
+  WriteTum(out_dir + "/trajectory.tum", tum);
+  std::ostringstream csv;
+  csv << "keyframe_id,stamp_s,path_m,status,x_m,y_m,yaw_deg,candidates,loops\n";
+  csv << std::fixed;
+  int tracking = 0, lost = 0, relocalised = 0;
+  for (const LocalizedKeyframe& k : run.keyframes) {
+    tracking += k.status == LocalizeStatus::kTracking;
+    lost += k.status == LocalizeStatus::kLost;
+    relocalised += k.status == LocalizeStatus::kRelocalised;
+    csv << k.id << "," << std::setprecision(6) << NsToSeconds(k.stamp_ns) << ","
+        << std::setprecision(3) << k.path_end_m << "," << LocalizeStatusName(k.status) << ",";
+    if (k.placed) {
+      csv << std::setprecision(4) << k.T_map_anchor.x_m << "," << k.T_map_anchor.y_m << ","
+          << std::setprecision(3) << k.T_map_anchor.yaw_rad * 180 / M_PI;
+    } else {
+      csv << ",,";
+    }
+    csv << "," << k.candidates << "," << k.loops << "\n";
+  }
+  WriteTextAtomic(out_dir + "/localize.csv", csv.str());
+  nlohmann::json s;
+  s["input"] = run.input;
+  s["processing_s"] = run.processing_s;
+  s["log_duration_s"] = run.log_duration_s;
+  s["real_time_factor"] = run.processing_s > 0 ? run.log_duration_s / run.processing_s : 0.0;
+  s["keyframes"] = {{"total", run.keyframes.size()},
+                    {"tracking", tracking},
+                    {"lost", lost},
+                    {"relocalised", relocalised}};
+  if (run.first_fix >= 0) {
+    s["first_fix"] = {{"keyframe_id", run.keyframes[run.first_fix].id},
+                      {"path_m", run.first_fix_path_m},
+                      {"time_s", run.first_fix_time_s}};
+  } else {
+    s["first_fix"] = nullptr;
+  }
+  if (!run.ground_truth.empty() && run.first_fix >= 0) {
+    const AteResult ate = TrajectoryError(run.Trajectory(true), run.ground_truth);
+    s["ate_tracking"] = {{"poses", ate.num_poses}, {"rmse_m", ate.rmse_m}, {"max_m", ate.max_m}};
+  }
+  WriteTextAtomic(out_dir + "/summary.json", s.dump(2) + "\n");
+  return s;
+}
+
+}  // namespace uwbsar::tools

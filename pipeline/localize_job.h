@@ -1,0 +1,61 @@
+// `uwbsar localize BAG --map SESSION`: a log imaged keyframe by keyframe (the imaging
+// frontend only: no place recognition within the run, no map growth) and each keyframe
+// localised in the saved map (session/localizer.h). Outputs: trajectory.tum in the map
+// frame (from the first fix on), localize.csv (status per keyframe), summary.json.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "backend/trajectory_metrics.h"
+#include "frontend/odometry_buffer.h"
+#include "session/localizer.h"
+#include "session/session_data.h"
+
+namespace uwbsar::tools {
+
+struct LocalizeRun {
+  std::string input;
+  std::vector<LocalizedKeyframe> keyframes;
+  std::vector<OdometryEntry> odometry;
+  std::vector<OdometrySample> ground_truth;
+  double processing_s = 0.0;  ///< imaging, features and localisation (not the log source)
+  double log_duration_s = 0.0;
+  int first_fix = -1;             ///< index into keyframes, -1 when never placed
+  double first_fix_path_m = 0.0;  ///< odometry path from the start to the first fix
+  double first_fix_time_s = 0.0;  ///< log time from the first odometry to the first fix
+
+  /// The odometry in the map frame, each sample corrected by the latest placed keyframe at
+  /// or before it (earliest placed one before that); `tracking_only` drops the samples
+  /// whose keyframe is lost. Empty when never placed.
+  std::vector<std::pair<TimestampNs, Pose2>> Trajectory(bool tracking_only) const;
+};
+
+/// Feeds the frontend; the callbacks the message source calls.
+struct LocalizeFeed {
+  std::function<void(const OdometrySample&)> odometry;
+  std::function<void(const RadarScan&)> scan;
+  std::function<void(const OdometrySample&)> ground_truth;
+};
+
+/// Localises what `source` emits (it calls the feed until it returns false).
+LocalizeRun LocalizeStream(const SessionData& map, const Config& config,
+                           const std::string& description,
+                           const std::function<bool(const LocalizeFeed&)>& source);
+/// A ROS 2 bag.
+LocalizeRun LocalizeBag(const SessionData& map, const Config& config, const std::string& bag);
+/// A simulated run (as MapSimulationInScene: the scene from scene_seed, odometry in its
+/// own frame T_odom_world).
+LocalizeRun LocalizeSimulation(const SessionData& map, const Config& config,
+                               const std::string& map_yaml, const std::string& route,
+                               std::uint64_t scene_seed, std::uint64_t seed,
+                               const Pose2& T_odom_world = {});
+
+/// trajectory.tum, localize.csv and summary.json (last) into out_dir; returns the summary.
+nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& out_dir);
+
+}  // namespace uwbsar::tools

@@ -1,0 +1,30 @@
+// The session file `session.uwbsar` (README "Session file"): an sqlite3 database that
+// opens without uwbsar (`sqlite3 session.uwbsar .tables`). Tables: meta (format, version,
+// config YAML, config fingerprint), trajectories, keyframes (poses, tile, feature grid),
+// features (AKAZE/ORB keypoints and descriptors), edges (pose graph with information),
+// loops and odometry. Tiles and descriptors are stored losslessly (blob_codec.h).
+#pragma once
+
+#include <string>
+
+#include "session/session_data.h"
+#include "slam/config.h"
+
+namespace uwbsar {
+
+/// The file name `uwbsar map` writes into its output folder.
+constexpr const char* kSessionFileName = "session.uwbsar";
+
+/// Writes `data` to `path` atomically: into `path`.tmp-<pid> first, renamed at the end.
+/// Throws std::runtime_error when the folder cannot be written.
+void WriteSession(const std::string& path, const SessionData& data);
+
+/// A folder holding session.uwbsar, or the file itself.
+std::string ResolveSessionPath(const std::string& dir_or_file);
+
+/// Reads a session. Throws InputError (one line naming the file) for a missing, foreign or
+/// damaged file and for another format version; with `config`, also when its
+/// compatibility-relevant settings (config_fingerprint.h) differ, naming the first key.
+SessionData ReadSession(const std::string& path, const Config* config = nullptr);
+
+}  // namespace uwbsar

@@ -1,0 +1,44 @@
+// Joining a run to a saved map (points 2 and 4): `uwbsar map --resume` and
+// `uwbsar merge`. The new session's keyframes are matched, in their order, against the
+// saved map: until the new run is placed, every saved keyframe is a candidate (its start
+// pose is unknown: global search, as drought re-localisation does); a validated loop
+// implies where the whole new run lies in the map frame, and the run is placed once
+// session.connect_min_loops such loops agree. From then on the candidates are the saved
+// keyframes near each new keyframe's placed estimate. Loops found before placement that
+// disagree with it are dropped as false. Then one pose graph holds both sessions (the
+// saved map's gauge, both runs' odometry and loops, the new loops between them) and is
+// optimised together.
+#pragma once
+
+#include <string>
+
+#include "backend/pose_graph.h"
+#include "session/session_data.h"
+#include "slam/config.h"
+
+namespace uwbsar {
+
+struct MergeReport {
+  bool connected = false;
+  std::string reason;            ///< why not connected
+  int connect_keyframe_id = -1;  ///< the new keyframe (merged id) whose loop placed the run
+  double connect_path_m = 0.0;   ///< the new run's path when it was placed (end of that tile)
+  Pose2 T_mapA_mapB;             ///< the placement of the new session's frame
+  int candidates = 0;            ///< keyframe pairs matched
+  int validated = 0;             ///< of those, passed the validator
+  int dropped = 0;               ///< validated before placement but disagreeing with it
+  int loop_edges = 0;            ///< new loops between the sessions put into the graph
+  int loop_edges_rejected = 0;   ///< of those, rejected by the backend
+  int id_offset = 0;             ///< added to the new session's keyframe ids
+  int trajectory_offset = 0;     ///< added to its trajectory ids
+  OptimizeResult optimization;
+};
+
+/// `b` joined to `a` (both read under `config`). The result holds a's keyframes with their
+/// ids and b's with ids + report->id_offset, in a's map frame; when b cannot be connected
+/// it is `a` unchanged plus b's trajectories (report->connected false, reason set) and b's
+/// keyframes are not in it.
+SessionData MergeSessions(const SessionData& a, const SessionData& b, const Config& config,
+                          MergeReport* report);
+
+}  // namespace uwbsar

@@ -1,0 +1,31 @@
+// Configuration of saved sessions: joining a new run to a saved map
+// (`uwbsar map --resume`, `uwbsar merge`) and localising in one (`uwbsar localize`).
+// Part of the configuration (slam/config.h includes it).
+#pragma once
+
+namespace uwbsar {
+
+struct SessionConfig {
+  int connect_min_loops = 1;           ///< validated loops into the saved map that agree on where
+                                       ///< the new run lies before it is connected (the issue: one
+                                       ///< accepted loop; 2: a lone false loop cannot place a
+                                       ///< run, but placement comes later)
+  double connect_agree_m = 0.3;        ///< two such loops agree when the run's placements they
+  double connect_agree_deg = 5.0;      ///< imply differ by less than this
+  double search_radius_m = 2.0;        ///< once placed: saved keyframes this close to a new
+                                       ///< keyframe's estimate are its candidates
+  double localize_lost_after_m = 3.0;  ///< localize: no fix for this much path = "lost"
+  int localize_window_keyframes = 10;  ///< localize: keyframes in the sliding window
+
+  template <class V>
+  void Visit(V& v) {
+    v("connect_min_loops", connect_min_loops);
+    v("connect_agree_m", connect_agree_m);
+    v("connect_agree_deg", connect_agree_deg);
+    v("search_radius_m", search_radius_m);
+    v("localize_lost_after_m", localize_lost_after_m);
+    v("localize_window_keyframes", localize_window_keyframes);
+  }
+};
+
+}  // namespace uwbsar

@@ -1,0 +1,135 @@
+// The session commands as a user meets them, on short simulated runs in the
+// bundled seed_hall room: `map` writes session.uwbsar; `map --resume` joins a revisit and
+// writes one map with a trajectory per run; `localize` places a revisit without changing
+// the map; `merge` joins two sessions and refuses two of different buildings; a session
+// of an incompatible configuration or a file that is not a session ends with one line and
+// exit code 3.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "test/cli_runner.h"
+
+namespace uwbsar {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::CliRun;
+using testing::Uwbsar;
+
+nlohmann::json Json(const std::string& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+int Lines(const std::string& text) {
+  int n = 0;
+  for (char c : text) n += c == '\n';
+  return n;
+}
+
+class SessionCliTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new std::string(
+        (fs::temp_directory_path() / ("uwbsar_session_cli_" + std::to_string(::getpid())))
+            .string());
+    fs::remove_all(*dir_);
+    fs::create_directories(*dir_);
+    const std::string hall =
+        std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_hall/seed_hall.yaml";
+    std::ofstream(*dir_ + "/a.yaml") << "simulator:\n  route:\n    depart_distance_m: 3.0\n";
+    std::ofstream(*dir_ + "/b.yaml")
+        << "simulator:\n  route:\n    depart_distance_m: 2.0\n    start_x_m: 1.0\n"
+           "    start_yaw_deg: 15.0\n";
+    for (const auto& [name, args] : std::vector<std::pair<std::string, std::string>>{
+             {"a", "--config " + *dir_ + "/a.yaml simulate --seed 1"},
+             {"b", "--config " + *dir_ + "/b.yaml simulate --scene-seed 1 --seed 2"},
+             {"c", "--config " + *dir_ + "/a.yaml simulate --scene-seed 7 --seed 3"}}) {
+      const CliRun r =
+          Uwbsar(args + " --map " + hall + " --route depart-return --out " + Bag(name));
+      ASSERT_EQ(r.exit_code, 0) << r.output;
+    }
+    for (const std::string name : {"a", "b", "c"}) {
+      const CliRun r = Uwbsar("-q map " + Bag(name) + " --out " + *dir_ + "/map_" + name);
+      ASSERT_EQ(r.exit_code, 0) << r.output;
+    }
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete dir_;
+    dir_ = nullptr;
+  }
+  static std::string Bag(const std::string& name) { return *dir_ + "/bag_" + name; }
+  static std::string Map(const std::string& name) { return *dir_ + "/map_" + name; }
+  static std::string* dir_;
+};
+std::string* SessionCliTest::dir_ = nullptr;
+
+TEST_F(SessionCliTest, MapWritesAnSqliteSession) {
+  const std::string path = Map("a") + "/session.uwbsar";
+  ASSERT_TRUE(fs::exists(path));
+  std::ifstream in(path, std::ios::binary);
+  std::string magic(15, '\0');
+  in.read(magic.data(), 15);
+  EXPECT_EQ(magic, "SQLite format 3");
+}
+
+TEST_F(SessionCliTest, ResumeJoinsTheRevisitAsASecondRun) {
+  const std::string out = *dir_ + "/resumed";
+  const CliRun r = Uwbsar("--config " + *dir_ + "/b.yaml map " + Bag("b") + " --resume " +
+                          Map("a") + " --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json s = Json(out + "/summary.json");
+  EXPECT_TRUE(s["merge"]["connected"].get<bool>()) << s.dump(2);
+  EXPECT_LE(s["merge"]["connect_path_m"].get<double>(), 3.0);
+  EXPECT_EQ(s["runs"].size(), 2u);
+  for (const char* f : {"trajectory_0.tum", "trajectory_1.tum", "map.png", "report.html",
+                        "session.uwbsar", "map_grid.yaml", "map.yaml", "graph.g2o"}) {
+    EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
+  }
+  // The joined session can be resumed again: it reads back.
+  const CliRun again = Uwbsar("merge " + out + " " + Map("b") + " --out " + *dir_ + "/again");
+  EXPECT_EQ(again.exit_code, 0) << again.output;
+}
+
+TEST_F(SessionCliTest, LocalizePlacesTheRevisitWithoutChangingTheMap) {
+  const std::string out = *dir_ + "/localized";
+  const auto before = fs::last_write_time(Map("a") + "/session.uwbsar");
+  const CliRun r = Uwbsar("localize " + Bag("b") + " --map " + Map("a") + " --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json s = Json(out + "/summary.json");
+  ASSERT_FALSE(s["first_fix"].is_null()) << s.dump(2);
+  EXPECT_LE(s["first_fix"]["path_m"].get<double>(), 3.0);
+  EXPECT_TRUE(fs::exists(out + "/localize.csv"));
+  EXPECT_TRUE(fs::exists(out + "/trajectory.tum"));
+  EXPECT_EQ(fs::last_write_time(Map("a") + "/session.uwbsar"), before);
+}
+
+TEST_F(SessionCliTest, MergeRefusesSessionsThatNoLoopConnects) {
+  const CliRun r = Uwbsar("merge " + Map("a") + " " + Map("c") + " --out " + *dir_ + "/m_ac");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("cannot be merged"), std::string::npos) << r.output;
+  EXPECT_EQ(Lines(r.output), 1) << r.output;
+}
+
+TEST_F(SessionCliTest, IncompatibleOrForeignSessionsEndWithOneLine) {
+  std::ofstream(*dir_ + "/coarse.yaml") << "imaging:\n  pixel_size_m: 0.01\n";
+  const CliRun r = Uwbsar("--config " + *dir_ + "/coarse.yaml map " + Bag("b") + " --resume " +
+                          Map("a") + " --out " + *dir_ + "/r_bad");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("imaging.pixel_size_m"), std::string::npos) << r.output;
+  EXPECT_EQ(Lines(r.output), 1) << r.output;
+  std::ofstream(*dir_ + "/fake.uwbsar") << "not a session\n";
+  const CliRun f =
+      Uwbsar("localize " + Bag("b") + " --map " + *dir_ + "/fake.uwbsar --out " + *dir_ + "/l_bad");
+  EXPECT_EQ(f.exit_code, 3) << f.output;
+  EXPECT_NE(f.output.find("not a uwbsar session"), std::string::npos) << f.output;
+  EXPECT_EQ(Lines(f.output), 1) << f.output;
+}
+
+}  // namespace
+}  // namespace uwbsar

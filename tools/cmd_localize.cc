@@ -1,0 +1,44 @@
+// `uwbsar localize BAG --map SESSION --out DIR`: localise a log in a saved map without
+// changing it (tools/localize_job.h).
+#include <cstdio>
+
+#include "pipeline/localize_job.h"
+#include "session/session_file.h"
+#include "tools/commands.h"
+
+namespace uwbsar::tools {
+
+void AddLocalizeCommand(CLI::App& app, const GlobalOptions& globals) {
+  struct Options {
+    std::string bag, map, out_dir;
+  };
+  auto opts = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand(
+      "localize", "Localise a ROS 2 bag in a saved map (session.uwbsar); the map is not changed");
+  cmd->add_option("bag", opts->bag, "Bag directory, .db3 or .mcap")->required();
+  cmd->add_option("--map", opts->map, "Saved session (folder or session.uwbsar)")->required();
+  cmd->add_option("--out", opts->out_dir, "Output folder")->required();
+  cmd->callback([opts, &globals] {
+    const Config config = LoadConfigFor(globals);
+    CheckOutputFolder(opts->out_dir);
+    const SessionData map = ReadSession(ResolveSessionPath(opts->map), &config);
+    const LocalizeRun run = LocalizeBag(map, config, opts->bag);
+    const nlohmann::json s = WriteLocalizeOutputs(run, opts->out_dir);
+    if (globals.quiet) return;
+    std::printf(
+        "localised %.1f s of log in %.2f s: %zu keyframes (%d tracking, %d lost, %d "
+        "relocalised)\n",
+        run.log_duration_s, run.processing_s, run.keyframes.size(),
+        s["keyframes"]["tracking"].get<int>(), s["keyframes"]["lost"].get<int>(),
+        s["keyframes"]["relocalised"].get<int>());
+    if (run.first_fix >= 0) {
+      std::printf("first fix after %.2f m (%.1f s of log)\n", run.first_fix_path_m,
+                  run.first_fix_time_s);
+    } else {
+      std::printf("never placed in the map: lost\n");
+    }
+    std::printf("outputs: %s/trajectory.tum, localize.csv, summary.json\n", opts->out_dir.c_str());
+  });
+}
+
+}  // namespace uwbsar::tools

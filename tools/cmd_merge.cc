@@ -1,0 +1,50 @@
+// `uwbsar merge SESSION_A SESSION_B --out DIR`: two sessions of the same building joined by
+// loops found between them (session/session_merge.h), written as one map.
+#include <cstdio>
+
+#include "pipeline/session_outputs.h"
+#include "session/session_file.h"
+#include "session/session_merge.h"
+#include "slam/errors.h"
+#include "tools/commands.h"
+
+namespace uwbsar::tools {
+
+void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
+  struct Options {
+    std::string a, b, out_dir;
+  };
+  auto opts = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand(
+      "merge",
+      "Join two saved sessions of the same building into one map (refused without a loop)");
+  cmd->add_option("session_a", opts->a, "The map kept fixed (folder or session.uwbsar)")
+      ->required();
+  cmd->add_option("session_b", opts->b, "The session joined to it")->required();
+  cmd->add_option("--out", opts->out_dir, "Output folder")->required();
+  cmd->callback([opts, &globals] {
+    const Config config = LoadConfigFor(globals);
+    CheckOutputFolder(opts->out_dir);
+    const SessionData a = ReadSession(ResolveSessionPath(opts->a), &config);
+    const SessionData b = ReadSession(ResolveSessionPath(opts->b), &config);
+    MergeReport report;
+    const SessionData merged = MergeSessions(a, b, config, &report);
+    if (!report.connected) {
+      throw InputError(opts->b + " cannot be merged into " + opts->a + ": " + report.reason);
+    }
+    nlohmann::json extra;
+    extra["inputs"] = {opts->a, opts->b};
+    extra["merge"] = MergeReportJson(report);
+    WriteSessionOutputs(merged, config, opts->out_dir, {}, extra,
+                        "uwbsar merge: " + opts->a + " + " + opts->b);
+    if (globals.quiet) return;
+    std::printf(
+        "merged: %zu + %zu keyframes, %d loops between the sessions (%d rejected by the "
+        "backend), placed after %.2f m of the second\n",
+        a.keyframes.size(), b.keyframes.size(), report.loop_edges, report.loop_edges_rejected,
+        report.connect_path_m);
+    std::printf("report: %s/report.html\n", opts->out_dir.c_str());
+  });
+}
+
+}  // namespace uwbsar::tools
