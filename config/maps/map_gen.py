@@ -127,6 +127,42 @@ def write_route(path, route, header_lines):
     os.replace(path + ".tmp", path)
 
 
+def splits(rng, a, b, lo, hi):
+    """Cut positions dividing [a, b] into pieces lo .. hi long (the last may be longer)."""
+    cuts, s = [], a
+    while b - s > hi:
+        s += rng.uniform(lo, hi)
+        if b - s < lo:
+            break
+        cuts.append(round(s / 0.05) * 0.05)
+    return cuts
+
+
+def room_row(g, rng, doors, rooms, walls, along, across):
+    """A row of rooms along one corridor wall.
+
+    along = (a, b): the span along the wall; across = (c0, c1): from the corridor wall c0
+    into the rooms up to c1; `walls` = 'h' when the corridor wall is horizontal. Partition
+    walls every 3 - 5.5 m, one 0.9 m door per room in the corridor wall (appended to `doors`
+    as draw_corridor_clutter expects), each room's box appended to `rooms`.
+    """
+    a, b = along
+    c0, c1 = across
+    cuts = [a] + splits(rng, a, b, 3.0, 5.5) + [b]
+    for s0, s1 in zip(cuts, cuts[1:]):
+        if s0 != a:
+            if walls == "h":
+                g.vwall(s0, min(c0, c1), max(c0, c1))
+            else:
+                g.hwall(s0, min(c0, c1), max(c0, c1))
+        d0 = rng.uniform(s0 + 0.4, s1 - 1.3)
+        doors.append((walls, c0, d0, d0 + 0.9))
+        if walls == "h":
+            rooms.append((s0, min(c0, c1), s1, max(c0, c1)))
+        else:
+            rooms.append((min(c0, c1), s0, max(c0, c1), s1))
+
+
 def near_door(doors, x, y, margin):
     """True when (x, y) lies within margin of one of `doors` (see draw_corridor_clutter)."""
     for kind, c, a, b in doors:

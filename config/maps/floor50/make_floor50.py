@@ -38,39 +38,6 @@ CLEARANCE_ROUTE = TOUR_A + TOUR_B[1:]  # every segment the route drives, once
 TOUR_SW = [(5.0, 5.0), (25.0, 5.0), (25.0, 25.0), (5.0, 25.0), (5.0, 5.0), (12.0, 5.0)]
 
 
-def splits(rng, a, b, lo, hi):
-    """Cut positions dividing [a, b] into pieces lo .. hi long (the last may be longer)."""
-    cuts, s = [], a
-    while b - s > hi:
-        s += rng.uniform(lo, hi)
-        if b - s < lo:
-            break
-        cuts.append(round(s / 0.05) * 0.05)
-    return cuts
-
-
-def room_row(g, rng, doors, rooms, walls, along, across):
-    """A row of rooms along one corridor wall.
-
-    along = (a, b): the span along the wall; across = (c0, c1): from the corridor wall c0
-    into the rooms up to c1; `walls` = 'h' when the corridor wall is horizontal. Partition
-    walls at irregular spacing, one door per room in the corridor wall.
-    """
-    a, b = along
-    c0, c1 = across
-    cuts = [a] + splits(rng, a, b, 3.0, 5.5) + [b]
-    for s0, s1 in zip(cuts, cuts[1:]):
-        if s0 != a:
-            if walls == "h":
-                g.vwall(s0, min(c0, c1), max(c0, c1))
-            else:
-                g.hwall(s0, min(c0, c1), max(c0, c1))
-        d0 = rng.uniform(s0 + 0.4, s1 - 1.3)
-        doors.append((walls, c0, d0, d0 + 0.9))
-        if walls == "h":
-            rooms.append((s0, min(c0, c1), s1, max(c0, c1)))
-        else:
-            rooms.append((min(c0, c1), s0, max(c0, c1), s1))
 
 
 def main():
@@ -87,10 +54,10 @@ def main():
 
     doors, rooms, corridor_walls = [], [], []
     # Offices along the outside walls (the band between the outer ring and the boundary).
-    room_row(g, rng, doors, rooms, "h", (lo, hi), (lo, 0.1))
-    room_row(g, rng, doors, rooms, "h", (lo, hi), (hi, SIZE_M - 0.1))
-    room_row(g, rng, doors, rooms, "v", (lo, hi), (lo, 0.1))
-    room_row(g, rng, doors, rooms, "v", (lo, hi), (hi, SIZE_M - 0.1))
+    map_gen.room_row(g, rng, doors, rooms, "h", (lo, hi), (lo, 0.1))
+    map_gen.room_row(g, rng, doors, rooms, "h", (lo, hi), (hi, SIZE_M - 0.1))
+    map_gen.room_row(g, rng, doors, rooms, "v", (lo, hi), (lo, 0.1))
+    map_gen.room_row(g, rng, doors, rooms, "v", (lo, hi), (hi, SIZE_M - 0.1))
     corridor_walls += [("h", lo, lo, hi, +1), ("h", hi, lo, hi, -1), ("v", lo, lo, hi, +1),
                        ("v", hi, lo, hi, -1)]
 
@@ -108,10 +75,10 @@ def main():
             g.hwall(iy1, bx0, bx1)
             g.vwall(ix0, iy0, iy1)
             g.vwall(ix1, iy0, iy1)
-            room_row(g, rng, doors, rooms, "h", (bx0, bx1), (by0, iy0))
-            room_row(g, rng, doors, rooms, "h", (bx0, bx1), (by1, iy1))
-            room_row(g, rng, doors, rooms, "v", (iy0, iy1), (bx0, ix0))
-            room_row(g, rng, doors, rooms, "v", (iy0, iy1), (bx1, ix1))
+            map_gen.room_row(g, rng, doors, rooms, "h", (bx0, bx1), (by0, iy0))
+            map_gen.room_row(g, rng, doors, rooms, "h", (bx0, bx1), (by1, iy1))
+            map_gen.room_row(g, rng, doors, rooms, "v", (iy0, iy1), (bx0, ix0))
+            map_gen.room_row(g, rng, doors, rooms, "v", (iy0, iy1), (bx1, ix1))
             rooms.append((ix0, iy0, ix1, iy1))  # the core, reached from no corridor
             corridor_walls += [("h", by0, bx0, bx1, -1), ("h", by1, bx0, bx1, +1),
                                ("v", bx0, by0, by1, -1), ("v", bx1, by0, by1, +1)]

@@ -31,36 +31,6 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROUTE_CLEARANCE_M = 0.5  # clutter and furniture keep this far from the route's centre line
 
 
-def splits(rng, a, b, lo, hi):
-    """Cut positions dividing [a, b] into pieces lo .. hi long (the last may be longer)."""
-    cuts, s = [], a
-    while b - s > hi:
-        s += rng.uniform(lo, hi)
-        if b - s < lo:
-            break
-        cuts.append(round(s / 0.05) * 0.05)
-    return cuts
-
-
-def room_row(g, rng, doors, rooms, walls, along, across):
-    """A row of offices along one corridor wall: along = (a, b) the span along the wall,
-    across = (c0, c1) from the corridor wall c0 into the rooms; walls = 'h' when the
-    corridor wall is horizontal. Partitions every 3 - 5.5 m, one 0.9 m door per room."""
-    a, b = along
-    c0, c1 = across
-    cuts = [a] + splits(rng, a, b, 3.0, 5.5) + [b]
-    for s0, s1 in zip(cuts, cuts[1:]):
-        if s0 != a:
-            if walls == "h":
-                g.vwall(s0, min(c0, c1), max(c0, c1))
-            else:
-                g.hwall(s0, min(c0, c1), max(c0, c1))
-        d0 = rng.uniform(s0 + 0.4, s1 - 1.3)
-        doors.append((walls, c0, d0, d0 + 0.9))
-        if walls == "h":
-            rooms.append((s0, min(c0, c1), s1, max(c0, c1)))
-        else:
-            rooms.append((min(c0, c1), s0, max(c0, c1), s1))
 
 
 def ring_block(g, rng, doors, rooms, corridor_walls, x0, y0, x1, y1):
@@ -72,8 +42,8 @@ def ring_block(g, rng, doors, rooms, corridor_walls, x0, y0, x1, y1):
     g.vwall(x1, y0, y1)
     ym = round((y0 + y1) / 2 / 0.05) * 0.05
     g.hwall(ym, x0, x1)
-    room_row(g, rng, doors, rooms, "h", (x0, x1), (y0, ym))
-    room_row(g, rng, doors, rooms, "h", (x0, x1), (y1, ym))
+    map_gen.room_row(g, rng, doors, rooms, "h", (x0, x1), (y0, ym))
+    map_gen.room_row(g, rng, doors, rooms, "h", (x0, x1), (y1, ym))
     corridor_walls += [("h", y0, x0, x1, -1), ("h", y1, x0, x1, +1), ("v", x0, y0, y1, -1),
                        ("v", x1, y0, y1, +1)]
 
@@ -83,16 +53,16 @@ def outer_offices(g, rng, doors, rooms, corridor_walls, lo_x, lo_y, hi_x, hi_y, 
     """Offices between the corridor ring's outer walls (lo_x .. hi_x, lo_y .. hi_y) and the
     building's outside walls (0 .. w, 0 .. h), on the given sides."""
     if "s" in sides:
-        room_row(g, rng, doors, rooms, "h", (lo_x, hi_x), (lo_y, 0.1))
+        map_gen.room_row(g, rng, doors, rooms, "h", (lo_x, hi_x), (lo_y, 0.1))
         corridor_walls.append(("h", lo_y, lo_x, hi_x, +1))
     if "n" in sides:
-        room_row(g, rng, doors, rooms, "h", (lo_x, hi_x), (hi_y, h - 0.1))
+        map_gen.room_row(g, rng, doors, rooms, "h", (lo_x, hi_x), (hi_y, h - 0.1))
         corridor_walls.append(("h", hi_y, lo_x, hi_x, -1))
     if "w" in sides:
-        room_row(g, rng, doors, rooms, "v", (lo_y, hi_y), (lo_x, 0.1))
+        map_gen.room_row(g, rng, doors, rooms, "v", (lo_y, hi_y), (lo_x, 0.1))
         corridor_walls.append(("v", lo_x, lo_y, hi_y, +1))
     if "e" in sides:
-        room_row(g, rng, doors, rooms, "v", (lo_y, hi_y), (hi_x, w - 0.1))
+        map_gen.room_row(g, rng, doors, rooms, "v", (lo_y, hi_y), (hi_x, w - 0.1))
         corridor_walls.append(("v", hi_x, lo_y, hi_y, -1))
 
 
@@ -160,9 +130,9 @@ def hall_wing():
     g.hwall(20.0, 14.0, 38.0)
     g.vwall(38.0, 4.0, 20.0)
     doors, rooms, walls = [], [], []
-    room_row(g, rng, doors, rooms, "h", (14.0, 38.0), (4.0, 0.1))
-    room_row(g, rng, doors, rooms, "h", (14.0, 38.0), (20.0, h - 0.1))
-    room_row(g, rng, doors, rooms, "v", (4.0, 20.0), (38.0, w - 0.1))
+    map_gen.room_row(g, rng, doors, rooms, "h", (14.0, 38.0), (4.0, 0.1))
+    map_gen.room_row(g, rng, doors, rooms, "h", (14.0, 38.0), (20.0, h - 0.1))
+    map_gen.room_row(g, rng, doors, rooms, "v", (4.0, 20.0), (38.0, w - 0.1))
     walls += [("h", 4.0, 14.0, 38.0, +1), ("h", 20.0, 14.0, 38.0, -1), ("v", 38.0, 4.0, 20.0, -1)]
     ring_block(g, rng, doors, rooms, walls, 16.0, 6.0, 36.0, 18.0)
     # Hall contents: square pillars, TV stands (two thin poles), tables along the walls.
