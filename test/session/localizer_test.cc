@@ -13,32 +13,19 @@
 #include "pipeline/map_job.h"
 #include "pipeline/scene_simulation.h"
 #include "pipeline/session_capture.h"
+#include "test/session/session_test_util.h"
 #include "test/shared_data.h"
 
 namespace uwbsar {
 namespace {
 
-const OdometrySample& Nearest(const std::vector<OdometrySample>& gt, TimestampNs t) {
-  const OdometrySample* best = &gt.front();
-  for (const OdometrySample& g : gt) {
-    if (std::llabs(g.stamp_ns - t) < std::llabs(best->stamp_ns - t)) best = &g;
-  }
-  return *best;
-}
-
-Config ShortConfig() {
-  Config c;
-  c.simulator.route.depart_distance_m = 4.0;
-  return c;
-}
+using ::uwbsar::testing::NearestGroundTruth;
+using ::uwbsar::testing::ShortSessionConfig;
 
 TEST(LocalizerTest, TurnedRunIsPlacedWithinThreeMetresWithTrueFixesOnly) {
   UWBSAR_NEED_SEED_LAB_MAP();
-  const Config config = ShortConfig();
-  Config config_b = config;
-  config_b.simulator.route.start_x_m += 2.0;
-  config_b.simulator.route.start_yaw_deg += 20.0;
-  config_b.simulator.route.depart_distance_m = 2.5;
+  const Config config = ShortSessionConfig();
+  const Config config_b = ::uwbsar::testing::TurnedRevisitConfig(config);
   const std::string lidar = ::uwbsar::testing::SeedLabLidarMap();
   const tools::MapRun a = tools::MapSimulation(config, lidar, "depart-return", 1);
   const SessionData map = tools::CaptureSession(a);
@@ -49,7 +36,7 @@ TEST(LocalizerTest, TurnedRunIsPlacedWithinThreeMetresWithTrueFixesOnly) {
 
   // The map frame in the world: its fixed first keyframe sits at its odometry pose.
   const SessionKeyframe& k0 = map.keyframes.front();
-  const Pose2 T_world_k0 = Nearest(a.ground_truth, k0.stamp_ns).T_world_robot *
+  const Pose2 T_world_k0 = NearestGroundTruth(a.ground_truth, k0.stamp_ns).T_world_robot *
                            (k0.T_odom_robot.Inverse() * k0.T_odom_anchor);
   const Pose2 T_world_map = T_world_k0 * k0.T_map_anchor.Inverse();
   int false_fixes = 0, fixes = 0;
@@ -64,7 +51,7 @@ TEST(LocalizerTest, TurnedRunIsPlacedWithinThreeMetresWithTrueFixesOnly) {
           best = &e;
       return best->T_world_robot;
     }();
-    const Pose2 truth = Nearest(run.ground_truth, k.stamp_ns).T_world_robot *
+    const Pose2 truth = NearestGroundTruth(run.ground_truth, k.stamp_ns).T_world_robot *
                         (T_odom_robot.Inverse() * k.T_odom_anchor);
     const Pose2 err = Between(truth, T_world_map * k.T_map_anchor);
     false_fixes += std::hypot(err.x_m, err.y_m) > 0.2 || std::abs(err.yaw_rad) > 5.0 * M_PI / 180.0;
@@ -84,7 +71,7 @@ TEST(LocalizerTest, TurnedRunIsPlacedWithinThreeMetresWithTrueFixesOnly) {
 
 TEST(LocalizerTest, RunOutsideTheMapReportsLost) {
   UWBSAR_NEED_SEED_LAB_MAP();
-  Config config = ShortConfig();
+  Config config = ShortSessionConfig();
   config.simulator.route.depart_distance_m = 3.0;
   const Config& config_b = config;
   // Another room (the bundled seed_hall), never seen by the map.

@@ -13,6 +13,7 @@
 #include "pipeline/scene_simulation.h"
 #include "pipeline/session_capture.h"
 #include "pipeline/session_outputs.h"
+#include "test/session/session_test_util.h"
 #include "test/shared_data.h"
 
 namespace uwbsar {
@@ -27,11 +28,8 @@ std::map<int, Pose2> TrueAnchors(const SessionData& s, int trajectory,
   std::map<int, Pose2> out;
   for (const SessionKeyframe& k : s.keyframes) {
     if (k.trajectory != trajectory) continue;
-    const OdometrySample* best = &gt.front();
-    for (const OdometrySample& g : gt) {
-      if (std::llabs(g.stamp_ns - k.stamp_ns) < std::llabs(best->stamp_ns - k.stamp_ns)) best = &g;
-    }
-    out[k.id + id_offset] = best->T_world_robot * (k.T_odom_robot.Inverse() * k.T_odom_anchor);
+    out[k.id + id_offset] = ::uwbsar::testing::NearestGroundTruth(gt, k.stamp_ns).T_world_robot *
+                            (k.T_odom_robot.Inverse() * k.T_odom_anchor);
   }
   return out;
 }
@@ -40,19 +38,12 @@ struct Runs {
   tools::MapRun a, b;
 };
 
-Config ShortConfig() {
-  Config c;
-  c.simulator.route.depart_distance_m = 4.0;
-  return c;
-}
+using ::uwbsar::testing::ShortSessionConfig;
 
 TEST(SessionMergeTest, SecondRunTurnedAndShiftedIsPlacedWithinThreeMetresWithoutFalseLoops) {
   UWBSAR_NEED_SEED_LAB_MAP();
-  const Config config_a = ShortConfig();
-  Config config_b = config_a;
-  config_b.simulator.route.start_x_m += 2.0;
-  config_b.simulator.route.start_yaw_deg += 20.0;
-  config_b.simulator.route.depart_distance_m = 2.5;
+  const Config config_a = ShortSessionConfig();
+  const Config config_b = ::uwbsar::testing::TurnedRevisitConfig(config_a);
   const std::string map = ::uwbsar::testing::SeedLabLidarMap();
   const tools::MapRun a = tools::MapSimulation(config_a, map, "depart-return", 1);
   const tools::MapRun b = tools::MapSimulationInScene(config_b, map, "depart-return", 1, 2,
@@ -95,7 +86,7 @@ TEST(SessionMergeTest, SecondRunTurnedAndShiftedIsPlacedWithinThreeMetresWithout
 
 TEST(SessionMergeTest, RunThatNeverSeesTheMapIsNotConnected) {
   UWBSAR_NEED_SEED_LAB_MAP();
-  Config config_a = ShortConfig();
+  Config config_a = ShortSessionConfig();
   config_a.simulator.route.depart_distance_m = 3.0;
   const Config& config_b = config_a;
   // Another room (the bundled seed_hall), never seen by A.

@@ -1,0 +1,38 @@
+// Shared set-up of the session tests on short simulated seed_lab runs.
+#pragma once
+
+#include <cstdlib>
+#include <vector>
+
+#include "slam/config.h"
+#include "slam/types.h"
+
+namespace uwbsar::testing {
+
+/// Run A: a 4 m depart-and-return.
+inline Config ShortSessionConfig() {
+  Config c;
+  c.simulator.route.depart_distance_m = 4.0;
+  return c;
+}
+
+/// Run B of `a`: starts 2 m further along and 20 deg turned, 2.5 m out and back.
+inline Config TurnedRevisitConfig(const Config& a) {
+  Config b = a;
+  b.simulator.route.start_x_m += 2.0;
+  b.simulator.route.start_yaw_deg += 20.0;
+  b.simulator.route.depart_distance_m = 2.5;
+  return b;
+}
+
+/// The ground-truth sample nearest `t` (`gt` not empty).
+inline const OdometrySample& NearestGroundTruth(const std::vector<OdometrySample>& gt,
+                                                TimestampNs t) {
+  const OdometrySample* best = &gt.front();
+  for (const OdometrySample& g : gt) {
+    if (std::llabs(g.stamp_ns - t) < std::llabs(best->stamp_ns - t)) best = &g;
+  }
+  return *best;
+}
+
+}  // namespace uwbsar::testing
