@@ -7,13 +7,15 @@
 #include <string>
 
 #include "slam/config_io.h"
+#include "slam/config_validation_parts.h"
 
 namespace uwbsar {
 namespace {
 
-void Require(bool ok, const std::string& source, const std::string& key, const std::string& rule) {
-  if (!ok) throw ConfigError(source + ": '" + key + "' " + rule);
-}
+using config_validation::Require;
+using config_validation::ValidateDds;
+using config_validation::ValidateLimits;
+using config_validation::ValidateLive;
 
 void ValidateSimulator(const SimulatorConfig& s, const std::string& src) {
   const std::string k = "simulator.";
@@ -158,191 +160,6 @@ void ValidateCompare(const CompareConfig& c, const std::string& src) {
   Require(c.pcd_peak_fraction >= 0 && c.pcd_peak_fraction < 1, src, k + "pcd_peak_fraction",
           "must be in [0, 1)");
   Require(c.pcd_peak_radius_m > 0, src, k + "pcd_peak_radius_m", "must be > 0");
-}
-
-void ValidateDds(const DdsConfig& d, const std::string& src) {
-  const std::string k = "dds.";
-  // DDS domain ids map to UDP ports; 232 is the largest that fits (ROS 2 documents 0-232).
-  Require(d.domain_id >= -1 && d.domain_id <= 232, src, k + "domain_id",
-          "must be -1 ($ROS_DOMAIN_ID) or in [0, 232]");
-  Require(d.reliability == "reliable" || d.reliability == "best_effort", src, k + "reliability",
-          "must be 'reliable' or 'best_effort'");
-  Require(d.history_depth >= 1, src, k + "history_depth", "must be >= 1");
-  for (const auto& [key, topic] :
-       {std::make_pair("map_topic", &d.map_topic), std::make_pair("pose_topic", &d.pose_topic),
-        std::make_pair("path_topic", &d.path_topic),
-        std::make_pair("loops_topic", &d.loops_topic)}) {
-    Require(!topic->empty() && (*topic)[0] == '/', src, k + key,
-            "must be an absolute ROS 2 topic name (starting with '/')");
-  }
-  Require(!d.map_frame.empty(), src, k + "map_frame", "must not be empty");
-  Require(!d.odom_frame.empty() && d.odom_frame != d.map_frame, src, k + "odom_frame",
-          "must not be empty nor equal to dds.map_frame");
-  Require(d.publish_pose_period_s >= 0, src, k + "publish_pose_period_s", "must be >= 0");
-  Require(d.silence_timeout_s >= 0, src, k + "silence_timeout_s", "must be >= 0");
-  Require(d.reorder_window_s >= 0 && d.reorder_window_s <= 10, src, k + "reorder_window_s",
-          "must be in [0, 10]");
-}
-
-void ValidateLive(const LiveConfig& l, const std::string& src) {
-  const std::string k = "live.";
-  for (std::size_t i = 0; i < l.radar_devices.size(); ++i) {
-    Require(!l.radar_devices[i].empty(), src, k + "radar_devices[" + std::to_string(i) + "]",
-            "must not be empty");
-  }
-  Require(l.radar_baud > 0, src, k + "radar_baud", "must be > 0");
-  Require(l.kobuki_baud > 0, src, k + "kobuki_baud", "must be > 0");
-  const Lt102Config& t = l.lt102;
-  const std::string kt = k + "lt102.";
-  Require(t.channel >= 0 && t.channel <= 4, src, kt + "channel",
-          "must be in [0, 4] (0-3 one channel, 4 combined; 5 = all is not supported)");
-  Require(t.sample_format >= 0 && t.sample_format <= 4, src, kt + "sample_format",
-          "must be in [0, 4] (0 Q7, 1 Q15, 2 Q31, 3 F32, 4 F16)");
-  Require(std::isfinite(t.range_min_m) && t.range_min_m >= 0, src, kt + "range_min_m",
-          "must be >= 0");
-  Require(std::isfinite(t.range_max_m) && t.range_max_m > t.range_min_m, src, kt + "range_max_m",
-          "must be > live.lt102.range_min_m");
-  Require(t.frame_rate_fps >= 1 && t.frame_rate_fps <= 32767, src, kt + "frame_rate_fps",
-          "must be in [1, 32767]");
-  Require(t.crc == "auto" || t.crc == "off" || t.crc == "on", src, kt + "crc",
-          "must be auto, off or on");
-  Require(t.crc_polynomial >= 0 && t.crc_polynomial <= 255, src, kt + "crc_polynomial",
-          "must be in [0, 255]");
-  Require(t.crc_init >= 0 && t.crc_init <= 255, src, kt + "crc_init", "must be in [0, 255]");
-  Require(t.answer_timeout_s > 0, src, kt + "answer_timeout_s", "must be > 0");
-  Require(t.frame_timeout_s > 0, src, kt + "frame_timeout_s", "must be > 0");
-  Require(t.startup_wait_s >= 0, src, kt + "startup_wait_s", "must be >= 0");
-  Require(!l.kobuki_device.empty(), src, k + "kobuki_device", "must not be empty");
-  Require(l.kobuki_wheel_radius_m > 0, src, k + "kobuki_wheel_radius_m", "must be > 0");
-  Require(l.kobuki_wheelbase_m > 0, src, k + "kobuki_wheelbase_m", "must be > 0");
-  Require(l.kobuki_ticks_per_revolution > 0, src, k + "kobuki_ticks_per_revolution", "must be > 0");
-  Require(l.max_wheel_speed_mps > 0, src, k + "max_wheel_speed_mps", "must be > 0");
-  Require(l.odometry_stall_s > 0, src, k + "odometry_stall_s", "must be > 0");
-  const std::size_t n = l.radar_devices.size();
-  Require(l.radar_power_lines.empty() || l.radar_power_lines.size() == n, src,
-          k + "radar_power_lines", "must be empty or list one line per radar_devices entry");
-  Require(l.radar_reset_lines.empty() || l.radar_reset_lines.size() == n, src,
-          k + "radar_reset_lines", "must be empty or list one line per radar_devices entry");
-  for (int line : l.radar_power_lines) {
-    Require(line >= 0, src, k + "radar_power_lines", "line offsets must be >= 0");
-  }
-  for (int line : l.radar_reset_lines) {
-    Require(line >= 0, src, k + "radar_reset_lines", "line offsets must be >= 0");
-  }
-  Require(l.status_led_line >= -1, src, k + "status_led_line", "must be >= 0, or -1 (none)");
-  const bool wired =
-      !l.radar_power_lines.empty() || !l.radar_reset_lines.empty() || l.status_led_line >= 0;
-  Require(!wired || !l.gpio_chip.empty(), src, k + "gpio_chip",
-          "must name a chip when GPIO lines are configured");
-  Require(l.reset_pulse_s > 0, src, k + "reset_pulse_s", "must be > 0");
-  Require(l.power_settle_s >= 0, src, k + "power_settle_s", "must be >= 0");
-  Require(l.power_off_s > 0, src, k + "power_off_s", "must be > 0");
-  Require(l.power_cycle_after_failures >= 1, src, k + "power_cycle_after_failures", "must be >= 1");
-  Require(l.read_timeout_s > 0, src, k + "read_timeout_s", "must be > 0");
-  Require(l.reconnect_initial_s > 0, src, k + "reconnect_initial_s", "must be > 0");
-  Require(l.reconnect_max_s >= l.reconnect_initial_s, src, k + "reconnect_max_s",
-          "must be >= reconnect_initial_s");
-  Require(l.driver_priority >= 0 && l.driver_priority <= 99, src, k + "driver_priority",
-          "must be 0 (normal priority) or a SCHED_FIFO priority 1..99");
-  Require(l.processing_queue_size >= 1, src, k + "processing_queue_size", "must be >= 1");
-  Require(l.snapshot_period_s >= 0, src, k + "snapshot_period_s", "must be >= 0");
-  Require(l.recording_storage == "mcap" || l.recording_storage == "sqlite3", src,
-          k + "recording_storage", "must be 'mcap' or 'sqlite3'");
-  Require(l.recording_flush_period_s > 0 && l.recording_flush_period_s <= 1, src,
-          k + "recording_flush_period_s", "must be in (0, 1]");
-  Require(l.clock_step_threshold_s > 0, src, k + "clock_step_threshold_s", "must be > 0");
-}
-
-std::string Num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.3g", v);
-  return buf;
-}
-
-/// A derived size against its budget: "<key> (<value>) makes <what> <size>, more than
-/// limits.<limit> (<budget>)".
-void RequireWithin(double size, double budget, const std::string& src, const std::string& key,
-                   double value, const std::string& what, const std::string& limit) {
-  if (size <= budget) return;  // NaN/Inf sizes fail too
-  throw ConfigError(src + ": '" + key + "' (" + Num(value) + ") makes " + what + " " + Num(size) +
-                    ", more than limits." + limit + " (" + Num(budget) + ")");
-}
-
-/// Sizes the imaging and map settings imply, checked against `limits:` before any work
-/// (see KeyframeBuilder and GlobalMap for what they allocate). Runs after the plain range
-/// checks, so every size here is positive.
-void ValidateLimits(const Config& c, const std::string& src) {
-  const LimitsConfig& l = c.limits;
-  for (const auto& [key, value] :
-       {std::make_pair("max_tile_pixels", l.max_tile_pixels),
-        std::make_pair("max_imaging_memory_mb", l.max_imaging_memory_mb),
-        std::make_pair("max_keyframes_per_m", l.max_keyframes_per_m),
-        std::make_pair("max_range_samples", l.max_range_samples),
-        std::make_pair("max_image_pixels", l.max_image_pixels),
-        std::make_pair("max_map_image_pixels", l.max_map_image_pixels)}) {
-    Require(value > 0, src, std::string("limits.") + key, "must be > 0");
-  }
-  const bool coherent = c.imaging.coherent();
-  for (std::size_t i = 0; i < c.radars.size(); ++i) {
-    const double samples = static_cast<double>(c.radars[i].num_samples) *
-                           (coherent ? c.imaging.coherent_oversampling : 1);
-    const bool oversampling = coherent && c.radars[i].num_samples <= l.max_range_samples;
-    RequireWithin(samples, l.max_range_samples, src,
-                  oversampling ? "imaging.coherent_oversampling"
-                               : "radars[" + std::to_string(i) + "].num_samples",
-                  oversampling ? c.imaging.coherent_oversampling : c.radars[i].num_samples,
-                  "range samples per scan", "max_range_samples");
-  }
-  const KeyframeConfig& k = c.keyframe;
-  RequireWithin(1.0 / k.tile_spacing_m, l.max_keyframes_per_m, src, "keyframe.tile_spacing_m",
-                k.tile_spacing_m, "keyframes per metre", "max_keyframes_per_m");
-  // A segment's canvas covers the robot's reach over one spacing plus every sensor's
-  // sector (within max_range_m of the antenna) plus the margin (KeyframeBuilder).
-  double reach_m = 0.0;
-  std::size_t reach_radar = 0;
-  for (std::size_t i = 0; i < c.radars.size(); ++i) {
-    const RadarConfig& r = c.radars[i];
-    const double reach = std::hypot(r.mount_x_m, r.mount_y_m) + r.max_range_m;
-    if (reach > reach_m) reach_m = reach, reach_radar = i;
-  }
-  const double spacing_term_m = 1.05 * k.tile_spacing_m;
-  const double half_m = spacing_term_m + reach_m + k.margin_m;
-  auto canvas_pixels = [&](double pixel_m) {
-    const double side = 2.0 * std::ceil(half_m / pixel_m) + 1.0;
-    return side * side;
-  };
-  const double pixel_m = c.imaging.pixel_size_m;
-  const double canvas = canvas_pixels(pixel_m);
-  if (canvas > l.max_tile_pixels) {
-    // Blame the pixel size if the geometry fits at the default one, else the longest term.
-    std::string key = "imaging.pixel_size_m";
-    double value = pixel_m;
-    if (canvas_pixels(std::max(pixel_m, ImagingConfig{}.pixel_size_m)) > l.max_tile_pixels) {
-      if (reach_m >= spacing_term_m && reach_m >= k.margin_m) {
-        key = "radars[" + std::to_string(reach_radar) + "].max_range_m";
-        value = c.radars[reach_radar].max_range_m;
-      } else if (k.margin_m >= spacing_term_m) {
-        key = "keyframe.margin_m", value = k.margin_m;
-      } else {
-        key = "keyframe.tile_spacing_m", value = k.tile_spacing_m;
-      }
-    }
-    RequireWithin(canvas, l.max_tile_pixels, src, key, value,
-                  "one tile canvas (pixels, at imaging.pixel_size_m " + Num(pixel_m) + " m)",
-                  "max_tile_pixels");
-  }
-  const double segments = std::round(k.tile_length_m / k.tile_spacing_m);
-  const double canvas_mb = canvas * (coherent ? 8.0 : 4.0) / (1024.0 * 1024.0);
-  RequireWithin((segments + 1.0) * canvas_mb, l.max_imaging_memory_mb, src,
-                "keyframe.tile_length_m", k.tile_length_m,
-                "the segment canvases alive at once (MB)", "max_imaging_memory_mb");
-  // A tile spans its segments' canvases; the map warps it at slam.map_resolution_m (the
-  // tile is never upsampled, so a finer map still costs the footprint at map resolution).
-  const double tile_side_m = 2.0 * half_m + (segments - 1.0) * spacing_term_m;
-  const double map_m = c.slam.map_resolution_m;
-  RequireWithin(tile_side_m * tile_side_m / (map_m * map_m), l.max_tile_pixels, src,
-                "slam.map_resolution_m", map_m, "one tile's footprint in the map (pixels)",
-                "max_tile_pixels");
 }
 
 /// Pulse and radars.

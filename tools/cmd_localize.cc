@@ -1,5 +1,5 @@
 // `uwbsar localize BAG --map SESSION --out DIR`: localise a log in a saved map without
-// changing it (tools/localize_job.h).
+// changing it (pipeline/localize_job.h).
 #include <cstdio>
 
 #include "pipeline/localize_job.h"
