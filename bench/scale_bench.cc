@@ -45,7 +45,7 @@ double ResidentMiB() {
 /// The state of the run when the odometry path first reached a whole metre.
 struct Sample {
   double path_m = 0.0;
-  StageTimes times;
+  pipeline::StageTimes times;
   std::size_t keyframes = 0;
   std::size_t loops = 0;
   int validated = 0;              ///< loops the validator accepted so far
@@ -53,7 +53,7 @@ struct Sample {
   double rss_mib = 0.0;
 };
 
-double Total(const StageTimes& t) {
+double Total(const pipeline::StageTimes& t) {
   return t.imaging_s + t.features_s + t.matching_s + t.optimization_s;
 }
 
@@ -75,9 +75,9 @@ void BM_ScaleFloor50OneKm(benchmark::State& state) {
     std::vector<Sample> samples;  // one per metre of odometry path
     std::vector<OdometrySample> ground_truth;
     long long ground_truth_seen = 0;
-    tools::MapRun run = tools::MapSimulation(
+    pipeline::MapRun run = pipeline::MapSimulation(
         config, Floor50File("floor50.yaml"), Floor50File("route_1km.txt"), /*seed=*/1,
-        [&](tools::MapRun* r) {
+        [&](pipeline::MapRun* r) {
           // Ground truth comes at 200 Hz; keep 50 Hz (the odometry rate) for the ATE so the
           // harness itself stays small.
           for (const OdometrySample& g : r->ground_truth) {
@@ -95,7 +95,8 @@ void BM_ScaleFloor50OneKm(benchmark::State& state) {
           s.times = r->slam->times();
           s.keyframes = r->slam->keyframes().size();
           s.loops = r->slam->loops().size();
-          for (const LoopRecord& l : r->slam->loops()) s.validated += l.validation.accepted;
+          for (const pipeline::LoopRecord& l : r->slam->loops())
+            s.validated += l.validation.accepted;
           if (!ground_truth.empty()) {
             const Pose2& truth = ground_truth.back().T_world_robot;
             const Pose2& odom = odometry.back().T_world_robot;
@@ -149,12 +150,13 @@ void BM_ScaleFloor50OneKm(benchmark::State& state) {
     for (const OdometryEntry& e : run.slam->odometry()) {
       odometry.push_back({e.stamp_ns, e.T_world_robot});
     }
-    const AteResult ate = tools::TrajectoryError(run.slam->CorrectedTrajectory(), run.ground_truth);
-    const AteResult odom = tools::TrajectoryError(odometry, run.ground_truth);
+    const AteResult ate =
+        pipeline::TrajectoryError(run.slam->CorrectedTrajectory(), run.ground_truth);
+    const AteResult odom = pipeline::TrajectoryError(odometry, run.ground_truth);
     // A loop is false when its transform is more than 0.2 m or 5 deg from the truth; true
     // anchor poses: the anchor is rigidly attached to the robot at the keyframe's stamp.
     std::map<int, Pose2> true_anchor;
-    for (const KeyframeRecord& k : run.slam->keyframes()) {
+    for (const pipeline::KeyframeRecord& k : run.slam->keyframes()) {
       auto it =
           std::lower_bound(run.ground_truth.begin(), run.ground_truth.end(), k.keyframe.stamp_ns,
                            [](const OdometrySample& g, TimestampNs t) { return g.stamp_ns < t; });
@@ -163,7 +165,7 @@ void BM_ScaleFloor50OneKm(benchmark::State& state) {
       true_anchor[k.keyframe.id] = it->T_world_robot * T_robot_anchor;
     }
     int accepted = 0, false_accepted = 0;
-    for (const LoopRecord& l : run.slam->loops()) {
+    for (const pipeline::LoopRecord& l : run.slam->loops()) {
       if (!l.accepted()) continue;
       ++accepted;
       const Pose2 truth = Between(true_anchor[l.match_id], true_anchor[l.query_id]);
@@ -175,7 +177,7 @@ void BM_ScaleFloor50OneKm(benchmark::State& state) {
     // range profiles of the scans it imaged (shared between overlapping tiles).
     double detected_bytes = 0.0, profile_bytes = 0.0;
     std::set<const RangeProfile*> profiles;
-    for (const KeyframeRecord& k : run.slam->keyframes()) {
+    for (const pipeline::KeyframeRecord& k : run.slam->keyframes()) {
       detected_bytes += static_cast<double>(k.detected.total() * k.detected.elemSize());
       for (const ImagedScan& scan : k.keyframe.scans) {
         if (scan.profile && profiles.insert(scan.profile.get()).second) {
@@ -186,7 +188,7 @@ void BM_ScaleFloor50OneKm(benchmark::State& state) {
     }
 
     state.counters["travel_m"] = last.path_m;
-    state.counters["peak_rss_MiB"] = tools::PeakMemoryMiB();
+    state.counters["peak_rss_MiB"] = pipeline::PeakMemoryMiB();
     state.counters["first100_ms_per_m"] = w_first.total * 1e3;
     state.counters["last100_ms_per_m"] = w_last.total * 1e3;
     state.counters["last_over_first"] = w_last.total / w_first.total;

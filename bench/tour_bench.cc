@@ -58,12 +58,12 @@ void BM_Tour(benchmark::State& state) {
     int closed = 0, false_loops = 0, overlap = 0, overlap_accepted = 0, revisits = 0, recalled = 0;
     double worst_ate_m = 0.0;
     for (int seed = 1; seed <= seeds; ++seed) {
-      const tools::MapRun run =
-          tools::MapSimulation(config, MapsFile(tour.map), MapsFile(tour.route), seed);
-      const tools::TourEvaluation e = tools::EvaluateTour(run);
-      std::printf("%s seed %d: %s\n", tour.name, seed, tools::FormatTourEvaluation(e).c_str());
+      const pipeline::MapRun run =
+          pipeline::MapSimulation(config, MapsFile(tour.map), MapsFile(tour.route), seed);
+      const pipeline::TourEvaluation e = pipeline::EvaluateTour(run);
+      std::printf("%s seed %d: %s\n", tour.name, seed, pipeline::FormatTourEvaluation(e).c_str());
       if (std::getenv("UWBSAR_TOUR_VERBOSE")) {
-        for (const LoopRecord& l : run.slam->loops()) {
+        for (const pipeline::LoopRecord& l : run.slam->loops()) {
           if (!l.validation.accepted) continue;
           std::printf("  loop %d -> %d%s: akaze %d orb %d, backend %s chi2 %.2f\n", l.match_id,
                       l.query_id, l.guided ? " guided" : "", l.akaze.good_matches,

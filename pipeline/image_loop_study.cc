@@ -11,7 +11,7 @@
 #include "pipeline/image_match_report.h"
 #include "slam/errors.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 namespace {
 
 namespace fs = std::filesystem;
@@ -225,4 +225,4 @@ cv::Mat DrawLoopMatrix(const ImageLoopStudy& study) {
   return img;
 }
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

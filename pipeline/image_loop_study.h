@@ -12,7 +12,7 @@
 #include "frontend/place_recognition/image_match.h"
 #include "frontend/place_recognition/loop_stats.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 
 struct ImagePairResult {
   int d = 0;
@@ -43,4 +43,4 @@ std::string PairsMarkdown(const ImageLoopStudy& study);
 /// matches, accepted pairs green with a tick.
 cv::Mat DrawLoopMatrix(const ImageLoopStudy& study);
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

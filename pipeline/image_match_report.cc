@@ -8,7 +8,7 @@
 
 #include "slam/errors.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 namespace {
 
 std::string LowerName(DetectorKind kind) {
@@ -95,4 +95,4 @@ std::vector<DetectorKind> ParseDetectorList(const std::string& list) {
   return out;
 }
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

@@ -10,7 +10,7 @@
 #include "imaging/image_io.h"
 #include "slam/errors.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 
 StripResult ImageRun(const Config& config, const std::vector<OdometrySample>& odometry,
                      const std::vector<RadarScan>& scans) {
@@ -101,4 +101,4 @@ std::vector<Scatterer> DemoScatterers() {
   return scene;
 }
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

@@ -10,7 +10,7 @@
 #include "frontend/strip_renderer.h"
 #include "slam/config.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 
 struct StripResult {
   StripImage strip;
@@ -36,4 +36,4 @@ std::vector<std::string> WriteStripOutputs(const std::string& dir, const std::st
 std::vector<Scatterer> DemoScatterers();
 std::vector<Point2> DemoPointTargets();
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

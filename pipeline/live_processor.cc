@@ -8,7 +8,7 @@
 #include "session/session_file.h"
 #include "slam/log.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 
 Processor::Processor(const Config& config, const LiveRunOptions& options, Dispatcher* dispatcher)
     : config_(config), options_(options), dispatcher_(dispatcher) {
@@ -141,4 +141,4 @@ double Percentile(std::vector<double> v, double p) {
   return v[std::min(k, v.size() - 1)];
 }
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

@@ -17,7 +17,7 @@
 #include "pipeline/live_recorder.h"
 #include "pipeline/live_runner.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 
 class Processor {
  public:
@@ -79,4 +79,4 @@ class Processor {
 /// The p-th percentile (nearest rank) of `v`; 0 when empty.
 double Percentile(std::vector<double> v, double p);
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

@@ -5,7 +5,7 @@
 #include "drivers/rosbag/cdr_writer.h"
 #include "drivers/sim/sim_bag_writer.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 
 Recorder::Recorder(const Config& config, const std::string& dir)
     : period_s_(config.live.recording_flush_period_s) {
@@ -144,4 +144,4 @@ std::string DefaultRecordingName() {
   return buffer;
 }
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

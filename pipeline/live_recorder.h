@@ -22,7 +22,7 @@
 #include "slam/message.h"
 #include "slam/types.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 
 using SteadyClock = std::chrono::steady_clock;
 
@@ -101,4 +101,4 @@ class Dispatcher {
 /// rosbag2_<date>-<time>, like `ros2 bag record`.
 std::string DefaultRecordingName();
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

@@ -4,7 +4,7 @@
 
 #include "slam/occupancy_grid.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 namespace {
 
 /// The accepted loops as lines between the two keyframes' corrected anchors.
@@ -77,4 +77,4 @@ SerialModePublishing MaybePublishInSerialMode(const Config& config, live::FaultL
   return out;
 }
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

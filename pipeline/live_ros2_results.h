@@ -11,7 +11,7 @@
 #include "drivers/live/fault_log.h"
 #include "pipeline/live_processor.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 
 class LiveResultPublisher {
  public:
@@ -39,4 +39,4 @@ struct SerialModePublishing {
 SerialModePublishing MaybePublishInSerialMode(const Config& config, live::FaultLog* faults,
                                               Processor* processor);
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

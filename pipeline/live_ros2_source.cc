@@ -10,7 +10,7 @@
 #include "pipeline/stamp_order_buffer.h"
 #include "slam/log.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 namespace {
 
 std::int64_t SteadyNs() {
@@ -109,4 +109,4 @@ std::unique_ptr<LiveSource> MakeRos2Source(const Config& config, Dispatcher* dis
   return std::make_unique<Ros2Source>(config, dispatcher, faults, processor);
 }
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

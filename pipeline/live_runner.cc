@@ -16,7 +16,7 @@
 #include "slam/errors.h"
 #include "slam/log.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 namespace {
 
 void WriteLiveJson(const LiveRunResult& result, const std::string& source,
@@ -195,4 +195,4 @@ LiveRunResult RunLive(const Config& config, LiveRunOptions options) {
   return result;
 }
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

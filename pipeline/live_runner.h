@@ -27,7 +27,7 @@
 #include "pipeline/map_job.h"
 #include "pipeline/map_outputs.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 
 struct LiveRunOptions {
   std::string source = "serial";  ///< serial (the robot's devices) or ros2 (DDS)
@@ -72,4 +72,4 @@ struct LiveRunResult {
 /// (device list not matching the radars, GPIO chip or line missing, DDS refusing).
 LiveRunResult RunLive(const Config& config, LiveRunOptions options);
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

@@ -16,7 +16,7 @@
 #include "pipeline/stamp_order_buffer.h"
 #include "slam/errors.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 namespace {
 
 class SerialSource : public LiveSource {
@@ -208,4 +208,4 @@ std::unique_ptr<LiveSource> MakeSerialSource(const Config& config, LiveRunOption
   return std::make_unique<SerialSource>(config, options, dispatcher, faults, clock);
 }
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

@@ -13,7 +13,7 @@
 #include "drivers/live/lt102_driver.h"
 #include "pipeline/live_processor.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 
 class LiveSource {
  public:
@@ -48,4 +48,4 @@ std::unique_ptr<LiveSource> MakeSerialSource(const Config& config, LiveRunOption
 std::unique_ptr<LiveSource> MakeRos2Source(const Config& config, Dispatcher* dispatcher,
                                            live::FaultLog* faults, Processor* processor);
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

@@ -15,7 +15,7 @@
 #include "pipeline/output_folder.h"
 #include "slam/errors.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -191,4 +191,4 @@ nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& o
   return s;
 }
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

@@ -16,7 +16,7 @@
 #include "session/localizer.h"
 #include "session/session_data.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 
 struct LocalizeRun {
   std::string input;
@@ -58,4 +58,4 @@ LocalizeRun LocalizeSimulation(const SessionData& map, const Config& config,
 /// trajectory.tum, localize.csv and summary.json (last) into out_dir; returns the summary.
 nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& out_dir);
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

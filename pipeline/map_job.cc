@@ -14,7 +14,7 @@
 #include "drivers/sim/sim_source.h"
 #include "slam/errors.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 namespace {
 
 /// A progress bar on stderr, redrawn at most 5 times a second; silent when stderr
@@ -223,4 +223,4 @@ double PeakMemoryMiB() {
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
 }
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

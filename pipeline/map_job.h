@@ -14,7 +14,7 @@
 #include "pipeline/slam_system.h"
 #include "slam/message.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 
 struct MapRun {
   std::shared_ptr<SlamSystem> slam;  ///< shared: a live snapshot writer reads it on its own thread
@@ -76,4 +76,4 @@ AteResult TrajectoryError(const std::vector<std::pair<TimestampNs, Pose2>>& esti
 /// Peak resident memory of this process so far, in MiB.
 double PeakMemoryMiB();
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

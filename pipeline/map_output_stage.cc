@@ -12,7 +12,7 @@
 #include "pipeline/output_folder.h"
 #include "slam/errors.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 namespace fs = std::filesystem;
 namespace {
 
@@ -86,4 +86,4 @@ MapOutputs WriteMapOutputs(const MapState& state, const std::string& out_dir) {
   return stage.Commit(state);
 }
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

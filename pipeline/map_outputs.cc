@@ -26,7 +26,7 @@
 #include "pipeline/report_html.h"
 #include "slam/errors.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 namespace fs = std::filesystem;
 namespace {
 
@@ -365,4 +365,4 @@ std::vector<std::string> WriteExactMap(const MapRun& run, const std::string& out
   return {base + "_float.tif", base + "_grid.yaml", base + ".png"};
 }
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

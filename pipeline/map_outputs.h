@@ -15,7 +15,7 @@
 #include "pipeline/map_job.h"
 #include "slam/interrupt_cleanup.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 
 struct MapOutputs {
   std::vector<std::string> files;  ///< final paths written
@@ -91,4 +91,4 @@ MapOutputs WriteMapOutputs(const MapState& state, const std::string& out_dir);
 /// with slam.keep_scan_profiles (std::logic_error otherwise).
 std::vector<std::string> WriteExactMap(const MapRun& run, const std::string& out_dir);
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

@@ -4,7 +4,7 @@
 #include <iomanip>
 #include <sstream>
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 namespace {
 
 /// The key figures at the top of the page.
@@ -119,4 +119,4 @@ RunReport BuildMapReport(const MapState& run, const MapOutputs& outputs,
   return report;
 }
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

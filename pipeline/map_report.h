@@ -9,7 +9,7 @@
 #include "pipeline/map_outputs.h"
 #include "pipeline/report_html.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 
 /// A trajectory as written to the TUM files, stamps in nanoseconds.
 using StampedPoses = std::vector<std::pair<TimestampNs, Pose2>>;
@@ -38,4 +38,4 @@ RunReport BuildMapReport(const MapState& state, const MapOutputs& outputs,
 /// `v` with `digits` digits after the point (as the report and loops.csv print numbers).
 std::string Fixed(double v, int digits);
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

@@ -9,7 +9,7 @@
 
 #include "slam/errors.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 
 namespace {
 
@@ -68,4 +68,4 @@ void CheckOutputFile(const std::string& path) {
   if (!error.empty()) throw InputError(path + ": output file cannot be written: " + error);
 }
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

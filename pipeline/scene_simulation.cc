@@ -4,7 +4,7 @@
 
 #include "drivers/sim/sim_stream.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 
 MapRun MapSimulationInScene(const Config& config, const std::string& map_yaml,
                             const std::string& route, std::uint64_t scene_seed, std::uint64_t seed,
@@ -44,4 +44,4 @@ Pose2 RouteStart(const Config& config) {
   return {r.start_x_m, r.start_y_m, r.start_yaw_deg * M_PI / 180.0};
 }
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

@@ -9,7 +9,7 @@
 
 #include "pipeline/map_job.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 
 /// As MapSimulation, with the scene from `scene_seed`. The wheel odometry is reported in a
 /// frame of its own: T_odom_world * (the simulator's odometry, which starts at the true
@@ -22,4 +22,4 @@ MapRun MapSimulationInScene(const Config& config, const std::string& map_yaml,
 /// The pose a built-in route starts at (simulator.route.start_*), in the world frame.
 Pose2 RouteStart(const Config& config);
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

@@ -5,7 +5,7 @@
 #include "slam/config_fingerprint.h"
 #include "slam/config_io.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 
 SessionData CaptureSession(const MapRun& run) {
   const SlamSystem& slam = *run.slam;
@@ -59,4 +59,4 @@ SessionData CaptureSession(const MapRun& run) {
   return d;
 }
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

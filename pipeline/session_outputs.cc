@@ -20,7 +20,7 @@
 #include "session/session_file.h"
 #include "session/session_merge.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 namespace {
 
 /// One colour per run (BGR for map.png, CSS for report.html): white, orange, green, magenta.
@@ -249,4 +249,4 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
   return result;
 }
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

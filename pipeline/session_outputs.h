@@ -16,7 +16,7 @@
 #include "slam/config.h"
 #include "slam/types.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 
 struct SessionOutputs {
   std::vector<std::string> files;
@@ -45,4 +45,4 @@ std::vector<std::pair<TimestampNs, Pose2>> CorrectedTrajectory(const SessionData
 /// The merge report as JSON (summary.json's "merge").
 nlohmann::json MergeReportJson(const MergeReport& report);
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

@@ -1,6 +1,6 @@
 #include "pipeline/slam_snapshot.h"
 
-namespace uwbsar {
+namespace uwbsar::pipeline {
 
 Pose2 SlamSnapshot::CorrectionAt(TimestampNs stamp_ns) const {
   return InterpolatedCorrection(
@@ -18,4 +18,4 @@ std::vector<std::pair<TimestampNs, Pose2>> SlamSnapshot::CorrectedTrajectory() c
   return out;
 }
 
-}  // namespace uwbsar
+}  // namespace uwbsar::pipeline

@@ -19,7 +19,7 @@
 #include "slam/pose2.h"
 #include "slam/types.h"
 
-namespace uwbsar {
+namespace uwbsar::pipeline {
 
 /// Every candidate pair that was matched, with the outcome.
 struct LoopRecord {
@@ -108,4 +108,4 @@ struct SlamSnapshot {
   std::vector<std::pair<TimestampNs, Pose2>> CorrectedTrajectory() const;
 };
 
-}  // namespace uwbsar
+}  // namespace uwbsar::pipeline

@@ -9,7 +9,7 @@
 #include "slam/errors.h"
 #include "slam/log.h"
 
-namespace uwbsar {
+namespace uwbsar::pipeline {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -339,4 +339,4 @@ std::vector<std::pair<TimestampNs, Pose2>> SlamSystem::CorrectedTrajectory() con
   return out;
 }
 
-}  // namespace uwbsar
+}  // namespace uwbsar::pipeline

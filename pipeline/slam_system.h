@@ -35,7 +35,7 @@
 #include "pipeline/slam_snapshot.h"
 #include "slam/config.h"
 
-namespace uwbsar {
+namespace uwbsar::pipeline {
 
 /// A keyframe as SLAM keeps it (its features live in the PlaceRecognizer).
 struct KeyframeRecord {
@@ -148,4 +148,4 @@ class SlamSystem {
   std::thread worker_;
 };
 
-}  // namespace uwbsar
+}  // namespace uwbsar::pipeline

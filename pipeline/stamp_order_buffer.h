@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 
 template <class T>
 class StampOrderBuffer {
@@ -81,4 +81,4 @@ class StampOrderBuffer {
   long long late_ = 0;
 };
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

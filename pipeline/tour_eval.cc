@@ -6,7 +6,7 @@
 #include <map>
 #include <set>
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 namespace {
 
 constexpr double kFalseLoopM = 0.2;
@@ -103,4 +103,4 @@ std::string FormatTourEvaluation(const TourEvaluation& e) {
   return line;
 }
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

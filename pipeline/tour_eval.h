@@ -17,7 +17,7 @@
 
 #include "pipeline/map_job.h"
 
-namespace uwbsar::tools {
+namespace uwbsar::pipeline {
 
 struct TourEvaluation {
   double travel_m = 0.0;  ///< true path length
@@ -49,4 +49,4 @@ TourEvaluation EvaluateTour(const MapRun& run, double overlap_m = 1.0);
 /// One line: travel, ATE (odometry, ratio), loops, false loops, recalls.
 std::string FormatTourEvaluation(const TourEvaluation& e);
 
-}  // namespace uwbsar::tools
+}  // namespace uwbsar::pipeline

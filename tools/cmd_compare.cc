@@ -85,7 +85,7 @@ AlignRequest MakeAlignRequest(const CompareOptions& opts, const Config& config) 
 
 void RunCompare(const CompareOptions& opts, const GlobalOptions& globals) {
   Config config = LoadConfigFor(globals);
-  CheckOutputFolder(opts.out_dir);  // before the work, creating nothing
+  pipeline::CheckOutputFolder(opts.out_dir);  // before the work, creating nothing
   if (opts.tolerance_cells >= 0) config.compare.tolerance_cells = opts.tolerance_cells;
   const AlignRequest request = MakeAlignRequest(opts, config);
   // Everything is computed before the output folder is touched: bad input leaves nothing.
@@ -95,7 +95,7 @@ void RunCompare(const CompareOptions& opts, const GlobalOptions& globals) {
   rule.reference_percentile = config.slam.occupancy_reference_percentile;
   const ComparisonReport report = CompareMapFiles(opts.sar, opts.lidar, request, config.compare,
                                                   rule, config.limits.max_map_image_pixels);
-  EnsureDirectory(opts.out_dir);
+  pipeline::EnsureDirectory(opts.out_dir);
   const auto files = WriteComparisonOutputs(report, opts.out_dir, config.compare);
   if (opts.json) {
     std::cout << ComparisonToJson(report) << "\n";

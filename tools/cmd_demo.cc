@@ -38,10 +38,11 @@ void AddDemoCommand(CLI::App& app, const GlobalOptions& globals) {
       ->check(CLI::ExistingFile);
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
-    MapOutputStage stage(opts->out_dir);
-    MapRun run = MapSimulation(config, opts->map_path.empty() ? BundledMap() : opts->map_path,
-                               "depart-return", opts->seed);
-    const MapOutputs outputs = stage.Commit(run);
+    pipeline::MapOutputStage stage(opts->out_dir);
+    pipeline::MapRun run =
+        pipeline::MapSimulation(config, opts->map_path.empty() ? BundledMap() : opts->map_path,
+                                "depart-return", opts->seed);
+    const pipeline::MapOutputs outputs = stage.Commit(run);
     if (!globals.quiet) PrintMapSummary(run, outputs, opts->out_dir);
   });
 }

@@ -54,9 +54,9 @@ struct Outputs {
 void WriteTable3(const RegionStudy& s, const RegionStudyOptions& options, double px_m, Outputs* o) {
   o->t3_csv << "detector,loop,keypoints_d,keypoints_r,ratio_matches,good_matches,good_pct,"
                "detect_ms,match_ms,scale,tx_mm,ty_mm,rot_deg\n";
-  o->t3_md
-      << "| Desc. | Loop | #Keypts D, R | %Good matches | Matching time (ms) | scale, tx (mm), "
-         "ty (mm), rot (deg) |\n|---|---|---|---|---|---|\n";
+  o->t3_md << "| Desc. | pipeline::Loop | #Keypts D, R | %Good matches | Matching time (ms) | "
+              "scale, tx (mm), "
+              "ty (mm), rot (deg) |\n|---|---|---|---|---|---|\n";
   for (DetectorKind kind : options.detectors) {
     double time_sum = 0.0;
     int n = 0;
@@ -187,7 +187,7 @@ RegionStudyOptions StudyOptions(const DetectorsOptions& opts) {
       throw InputError("--regions: length and step must be > 0");
     }
   }
-  if (!opts.detectors.empty()) options.detectors = ParseDetectorList(opts.detectors);
+  if (!opts.detectors.empty()) options.detectors = pipeline::ParseDetectorList(opts.detectors);
   return options;
 }
 
@@ -247,8 +247,8 @@ void WriteDetectorOutputs(const std::string& dir, const Outputs& out, const Regi
 
 void RunDetectors(const DetectorsOptions& opts, const GlobalOptions& globals) {
   const Config config = LoadConfigFor(globals);
-  EnsureDirectory(opts.out_dir);  // every output is checked before the work
-  if (!opts.no_images) EnsureDirectory(opts.out_dir + "/matches");
+  pipeline::EnsureDirectory(opts.out_dir);  // every output is checked before the work
+  if (!opts.no_images) pipeline::EnsureDirectory(opts.out_dir + "/matches");
   const RegionStudyOptions options = StudyOptions(opts);
   ImagingFrontend frontend(config);
   const std::vector<ImagedScan> scans = ImageBag(opts.bag, config, &frontend);

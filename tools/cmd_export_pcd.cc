@@ -47,7 +47,7 @@ void AddExportPcdCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_flag("--ascii", opts->ascii, "ASCII PCD instead of binary");
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
-    CheckOutputFile(opts->out);  // before the work
+    pipeline::CheckOutputFile(opts->out);  // before the work
     std::vector<IntensityPoint> points;
     const char* what = "occupied cells";
     if (HasTiffExtension(opts->map)) {

@@ -30,7 +30,7 @@ void AddImageCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--prefix", opts->prefix, "Output file prefix")->capture_default_str();
   cmd->callback([opts, &globals] {
     Config config = LoadConfigFor(globals);
-    EnsureDirectory(opts->out_dir);  // every output is checked before the work
+    pipeline::EnsureDirectory(opts->out_dir);  // every output is checked before the work
     if (!opts->mode.empty()) EnumFromName(opts->mode, &config.imaging.mode);  // checked above
     if (opts->resolution_m > 0) {
       config.imaging.pixel_size_m = opts->resolution_m;
@@ -45,14 +45,15 @@ void AddImageCommand(CLI::App& app, const GlobalOptions& globals) {
     } else if (!opts->synthetic.empty()) {
       SyntheticPath path;
       if (opts->synthetic == "arc") path.turn_radius_m = 4.0;
-      SyntheticRun run = SimulateRun(config, path, DemoScatterers(), EchoModel{}, 1);
+      SyntheticRun run = SimulateRun(config, path, pipeline::DemoScatterers(), EchoModel{}, 1);
       odometry = std::move(run.odometry);
       scans = std::move(run.scans);
     } else {
       throw CLI::RequiredError("--log or --synthetic");
     }
-    const StripResult result = ImageRun(config, odometry, scans);
-    const auto files = WriteStripOutputs(opts->out_dir, opts->prefix, result.strip, config.enhance);
+    const pipeline::StripResult result = pipeline::ImageRun(config, odometry, scans);
+    const auto files =
+        pipeline::WriteStripOutputs(opts->out_dir, opts->prefix, result.strip, config.enhance);
     if (globals.quiet) return;
     const FrontendStats& s = result.stats;
     std::printf("scans: %lld received, %lld imaged, %lld gated, %lld rejected\n", s.scans_received,

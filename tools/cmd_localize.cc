@@ -20,10 +20,10 @@ void AddLocalizeCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--out", opts->out_dir, "Output folder")->required();
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
-    CheckOutputFolder(opts->out_dir);
+    pipeline::CheckOutputFolder(opts->out_dir);
     const SessionData map = ReadSession(ResolveSessionPath(opts->map), &config);
-    const LocalizeRun run = LocalizeBag(map, config, opts->bag);
-    const nlohmann::json s = WriteLocalizeOutputs(run, opts->out_dir);
+    const pipeline::LocalizeRun run = pipeline::LocalizeBag(map, config, opts->bag);
+    const nlohmann::json s = pipeline::WriteLocalizeOutputs(run, opts->out_dir);
     if (globals.quiet) return;
     std::printf(
         "localised %.1f s of log in %.2f s: %zu keyframes (%d tracking, %d lost, %d "

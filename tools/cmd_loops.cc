@@ -42,13 +42,14 @@ nlohmann::json MatrixJson(const LoopMatrix& m) {
   return {{"loops", m.loops}, {"d", m.d_ids}, {"r", m.r_ids}};
 }
 
-void WriteStudy(const ImageLoopStudy& study, const std::string& out_dir) {
-  EnsureDirectory(out_dir);
+void WriteStudy(const pipeline::ImageLoopStudy& study, const std::string& out_dir) {
+  pipeline::EnsureDirectory(out_dir);
   const std::filesystem::path dir(out_dir);
-  WriteTextAtomic((dir / "pairs.csv").string(), PairsCsv(study));
-  WriteTextAtomic((dir / "pairs.md").string(), PairsMarkdown(study));
-  WriteTextAtomic((dir / "loops.json").string(), ImageLoopStudyJson(study).dump(2) + "\n");
-  WriteImageAtomic((dir / "matrix.png").string(), DrawLoopMatrix(study));
+  WriteTextAtomic((dir / "pairs.csv").string(), pipeline::PairsCsv(study));
+  WriteTextAtomic((dir / "pairs.md").string(), pipeline::PairsMarkdown(study));
+  WriteTextAtomic((dir / "loops.json").string(),
+                  pipeline::ImageLoopStudyJson(study).dump(2) + "\n");
+  WriteImageAtomic((dir / "matrix.png").string(), pipeline::DrawLoopMatrix(study));
 }
 
 }  // namespace
@@ -97,13 +98,13 @@ void AddLoopsCommand(CLI::App& app, const GlobalOptions& globals) {
                              config.place_recognition.validation);
       json = MatrixJson(m);
     } else {
-      const std::vector<DetectorKind> detectors = ParseDetectorList(opts->detectors);
-      if (!opts->out_dir.empty()) EnsureDirectory(opts->out_dir);
-      const ImageLoopStudy study =
-          RunImageLoopStudy(opts->images_dir, opts->resolution_m, detectors, config);
+      const std::vector<DetectorKind> detectors = pipeline::ParseDetectorList(opts->detectors);
+      if (!opts->out_dir.empty()) pipeline::EnsureDirectory(opts->out_dir);
+      const pipeline::ImageLoopStudy study =
+          pipeline::RunImageLoopStudy(opts->images_dir, opts->resolution_m, detectors, config);
       if (!opts->out_dir.empty()) WriteStudy(study, opts->out_dir);
       m = study.matrix;
-      json = ImageLoopStudyJson(study);
+      json = pipeline::ImageLoopStudyJson(study);
     }
     if (opts->json) {
       std::cout << json.dump() << "\n";

@@ -10,7 +10,8 @@
 
 namespace uwbsar::tools {
 
-void PrintMapSummary(const MapRun& run, const MapOutputs& outputs, const std::string& out_dir) {
+void PrintMapSummary(const pipeline::MapRun& run, const pipeline::MapOutputs& outputs,
+                     const std::string& out_dir) {
   const auto& s = outputs.summary;
   std::printf("mapped %.1f s of log (%.1f m) in %.2f s: real-time factor %.1f\n",
               run.log_duration_s(), s["path_length_m"].get<double>(), run.processing_s,
@@ -59,22 +60,22 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
     if (!opts->ground_truth.empty()) ground_truth = ReadTum(opts->ground_truth);
     SessionData saved;  // read before the work: an incompatible session is refused first
     if (!opts->resume.empty()) saved = LoadSessionToResume(opts->resume, config);
-    MapOutputStage stage(opts->out_dir);
+    pipeline::MapOutputStage stage(opts->out_dir);
     rosbag::BagReadOptions read_options;
     read_options.skip_damaged_chunks = opts->skip_damaged;
-    MapRun run = MapBag(config, opts->bag, !globals.quiet, read_options);
+    pipeline::MapRun run = pipeline::MapBag(config, opts->bag, !globals.quiet, read_options);
     if (!opts->ground_truth.empty()) run.ground_truth = std::move(ground_truth);
     if (!opts->resume.empty()) {
       WriteResumedMap(saved, run, &stage, opts->out_dir, globals.quiet);
       return;
     }
     stage.SetExtraOutputs([&run](const std::string& dir) {
-      WriteSession(dir + "/" + kSessionFileName, CaptureSession(run));
+      WriteSession(dir + "/" + kSessionFileName, pipeline::CaptureSession(run));
       return std::vector<std::string>{kSessionFileName};
     });
-    MapOutputOptions output_options;
+    pipeline::MapOutputOptions output_options;
     output_options.exact = opts->exact;
-    const MapOutputs outputs = stage.Commit(run, output_options);
+    const pipeline::MapOutputs outputs = stage.Commit(run, output_options);
     if (!globals.quiet) PrintMapSummary(run, outputs, opts->out_dir);
   });
 }

@@ -81,8 +81,8 @@ void AddMatchCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--out", opts->out_dir, "Also write match.png (good matches) and match.json");
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
-    const std::vector<DetectorKind> detectors = ParseDetectorList(opts->detectors);
-    if (!opts->out_dir.empty()) EnsureDirectory(opts->out_dir);
+    const std::vector<DetectorKind> detectors = pipeline::ParseDetectorList(opts->detectors);
+    if (!opts->out_dir.empty()) pipeline::EnsureDirectory(opts->out_dir);
     const double max_pixels = config.limits.max_map_image_pixels;
     const SarImageFile a = ReadSarImageFile(opts->a, opts->resolution_m, max_pixels);
     const SarImageFile b = ReadSarImageFile(opts->b, opts->resolution_m, max_pixels);
@@ -92,10 +92,10 @@ void AddMatchCommand(CLI::App& app, const GlobalOptions& globals) {
     const ImageFeatures fa = ExtractImageFeatures(a, detectors, config, feature_m);
     const ImageFeatures fb = ExtractImageFeatures(b, detectors, config, feature_m);
     const ImageMatch m = MatchImages(fa, fb, config);
-    const nlohmann::json json = ImageMatchJson(m);
+    const nlohmann::json json = pipeline::ImageMatchJson(m);
     if (!opts->out_dir.empty()) {
       const std::filesystem::path dir(opts->out_dir);
-      WriteImageAtomic((dir / "match.png").string(), DrawImageMatch(fa, fb, m));
+      WriteImageAtomic((dir / "match.png").string(), pipeline::DrawImageMatch(fa, fb, m));
       WriteTextAtomic((dir / "match.json").string(), json.dump(2) + "\n");
     }
     if (opts->json) {

@@ -24,7 +24,7 @@ void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--out", opts->out_dir, "Output folder")->required();
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
-    CheckOutputFolder(opts->out_dir);
+    pipeline::CheckOutputFolder(opts->out_dir);
     const SessionData a = ReadSession(ResolveSessionPath(opts->a), &config);
     const SessionData b = ReadSession(ResolveSessionPath(opts->b), &config);
     MergeReport report;
@@ -34,9 +34,9 @@ void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
     }
     nlohmann::json extra;
     extra["inputs"] = {opts->a, opts->b};
-    extra["merge"] = MergeReportJson(report);
-    WriteSessionOutputs(merged, config, opts->out_dir, {}, extra,
-                        "uwbsar merge: " + opts->a + " + " + opts->b);
+    extra["merge"] = pipeline::MergeReportJson(report);
+    pipeline::WriteSessionOutputs(merged, config, opts->out_dir, {}, extra,
+                                  "uwbsar merge: " + opts->a + " + " + opts->b);
     if (globals.quiet) return;
     std::printf(
         "merged: %zu + %zu keyframes, %d loops between the sessions (%d rejected by the "

@@ -111,7 +111,7 @@ void PrintOptimizeText(const OptimizeResult& r, const std::string& out) {
 void Optimize(const OptimizeOptions& opts, const GlobalOptions& globals) {
   Config config = LoadConfigFor(globals);
   for (const std::string* out : {&opts.out, &opts.tum, &opts.png}) {
-    if (!out->empty()) CheckOutputFile(*out);  // before the work
+    if (!out->empty()) pipeline::CheckOutputFile(*out);  // before the work
   }
   if (!opts.init.empty()) EnumFromName(opts.init, &config.backend.initialization);  // checked
   G2oReadOptions read;

@@ -73,11 +73,11 @@ struct Emulation {
 
 /// Points the live config at emulated devices on pseudo-terminals in <out>/dev and
 /// starts them playing a simulated depart-and-return run.
-void StartEmulation(const RunOptions& opts, Config* config, LiveRunOptions* options,
+void StartEmulation(const RunOptions& opts, Config* config, pipeline::LiveRunOptions* options,
                     Emulation* emulation) {
-  EnsureDirectory(opts.out_dir);
+  pipeline::EnsureDirectory(opts.out_dir);
   const std::string dev_dir = (std::filesystem::path(opts.out_dir) / "dev").string();
-  EnsureDirectory(dev_dir);
+  pipeline::EnsureDirectory(dev_dir);
   config->live.radar_devices.clear();
   for (std::size_t i = 0; i < config->radars.size(); ++i) {
     config->live.radar_devices.push_back(dev_dir + "/radar" + std::to_string(i));
@@ -106,7 +106,7 @@ void StartEmulation(const RunOptions& opts, Config* config, LiveRunOptions* opti
   });
 }
 
-void PrintRunResult(const LiveRunResult& result, const std::string& out_dir) {
+void PrintRunResult(const pipeline::LiveRunResult& result, const std::string& out_dir) {
   std::printf(
       "live run: %lld scans, %lld odometry, %lld recorded messages, %lld dropped from "
       "processing\n",
@@ -131,7 +131,7 @@ void Run(const RunOptions& opts, const GlobalOptions& globals) {
   SetInterruptHandler([] { g_stop = true; });
   std::signal(SIGINT, OnStopSignal);
   std::signal(SIGTERM, OnStopSignal);
-  LiveRunOptions options;
+  pipeline::LiveRunOptions options;
   options.out_dir = opts.out_dir;
   options.recording_dir = opts.recording;
   options.source = opts.source;
@@ -142,7 +142,7 @@ void Run(const RunOptions& opts, const GlobalOptions& globals) {
   options.quiet = globals.quiet;
   Emulation emulation;
   if (opts.emulate) StartEmulation(opts, &config, &options, &emulation);
-  LiveRunResult result = RunLive(config, std::move(options));
+  pipeline::LiveRunResult result = pipeline::RunLive(config, std::move(options));
   if (emulation.watcher.joinable()) emulation.watcher.join();
   if (emulation.player) emulation.player->Stop();
   if (!globals.quiet) PrintRunResult(result, opts.out_dir);

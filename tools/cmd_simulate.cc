@@ -50,8 +50,8 @@ void RunSimulate(const SimulateOptions& o, const GlobalOptions& globals) {
     throw InputError(partial + ": exists (an interrupted recording?); remove it first");
   }
   const std::string parent = fs::path(partial).parent_path().string();
-  CheckOutputFolder(parent.empty() ? "." : parent);
-  if (!o.text_log_path.empty()) CheckOutputFile(o.text_log_path);
+  pipeline::CheckOutputFolder(parent.empty() ? "." : parent);
+  if (!o.text_log_path.empty()) pipeline::CheckOutputFile(o.text_log_path);
   const auto start = std::chrono::steady_clock::now();
   const std::uint64_t scene_seed = o.scene_seed.empty() ? o.seed : std::stoull(o.scene_seed);
   const sim::SimScenario scenario =

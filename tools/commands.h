@@ -10,10 +10,12 @@
 #include "pipeline/output_folder.h"  // EnsureDirectory, CheckOutputFolder, CheckOutputFile
 #include "slam/config.h"
 
-namespace uwbsar::tools {
-
+namespace uwbsar::pipeline {
 struct MapOutputs;
 struct MapRun;
+}  // namespace uwbsar::pipeline
+
+namespace uwbsar::tools {
 
 /// Exit codes, documented in `uwbsar --help`.
 enum ExitCode : int {
@@ -44,7 +46,8 @@ std::string CheckSeed(const std::string& text);
 std::string CheckPositiveFinite(const std::string& text);
 
 /// The five-line summary printed by `uwbsar map`, `uwbsar demo` and `uwbsar run`.
-void PrintMapSummary(const MapRun& run, const MapOutputs& outputs, const std::string& out_dir);
+void PrintMapSummary(const pipeline::MapRun& run, const pipeline::MapOutputs& outputs,
+                     const std::string& out_dir);
 
 void AddConfigCommand(CLI::App& app, const GlobalOptions& globals);
 void AddImageCommand(CLI::App& app, const GlobalOptions& globals);

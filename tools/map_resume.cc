@@ -15,20 +15,20 @@ SessionData LoadSessionToResume(const std::string& dir_or_file, const Config& co
   return ReadSession(ResolveSessionPath(dir_or_file), &config);
 }
 
-void WriteResumedMap(const SessionData& saved, const MapRun& run, MapOutputStage* stage,
-                     const std::string& out_dir, bool quiet) {
+void WriteResumedMap(const SessionData& saved, const pipeline::MapRun& run,
+                     pipeline::MapOutputStage* stage, const std::string& out_dir, bool quiet) {
   const Config& config = run.slam->config();
   MergeReport report;
-  const SessionData merged = MergeSessions(saved, CaptureSession(run), config, &report);
+  const SessionData merged = MergeSessions(saved, pipeline::CaptureSession(run), config, &report);
   if (!report.connected) {
     std::fprintf(stderr,
                  "warning: the run is not connected to the saved map (%s): wrote it alone\n",
                  report.reason.c_str());
     stage->SetExtraOutputs([&run](const std::string& dir) {
-      WriteSession(dir + "/" + kSessionFileName, CaptureSession(run));
+      WriteSession(dir + "/" + kSessionFileName, pipeline::CaptureSession(run));
       return std::vector<std::string>{kSessionFileName};
     });
-    const MapOutputs outputs = stage->Commit(run);
+    const pipeline::MapOutputs outputs = stage->Commit(run);
     if (!quiet) PrintMapSummary(run, outputs, out_dir);
     return;
   }
@@ -37,9 +37,9 @@ void WriteResumedMap(const SessionData& saved, const MapRun& run, MapOutputStage
   nlohmann::json extra;
   extra["input"] = run.input;
   extra["processing_s"] = run.processing_s;
-  extra["merge"] = MergeReportJson(report);
-  const SessionOutputs out = WriteSessionOutputs(merged, config, out_dir, ground_truth, extra,
-                                                 "uwbsar map --resume: " + run.input);
+  extra["merge"] = pipeline::MergeReportJson(report);
+  const pipeline::SessionOutputs out = pipeline::WriteSessionOutputs(
+      merged, config, out_dir, ground_truth, extra, "uwbsar map --resume: " + run.input);
   if (quiet) return;
   std::printf("mapped %.1f s of log in %.2f s: %zu keyframes\n", run.log_duration_s(),
               run.processing_s, run.slam->keyframes().size());

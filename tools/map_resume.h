@@ -17,7 +17,7 @@ namespace uwbsar::tools {
 SessionData LoadSessionToResume(const std::string& dir_or_file, const Config& config);
 
 /// Joins `run` to `saved` and writes the outputs into out_dir; prints a summary unless quiet.
-void WriteResumedMap(const SessionData& saved, const MapRun& run, MapOutputStage* stage,
-                     const std::string& out_dir, bool quiet);
+void WriteResumedMap(const SessionData& saved, const pipeline::MapRun& run,
+                     pipeline::MapOutputStage* stage, const std::string& out_dir, bool quiet);
 
 }  // namespace uwbsar::tools

@@ -32,7 +32,7 @@ struct Outcome {
 Outcome MapShifted(const Config& config, const std::vector<sim::SimMessage>& messages, double dx_m,
                    double dy_m) {
   std::size_t next = 0;
-  const tools::MapRun run = tools::MapStream(config, "shifted", [&](tools::MapRun* r) {
+  const pipeline::MapRun run = pipeline::MapStream(config, "shifted", [&](pipeline::MapRun* r) {
     if (next == messages.size()) return false;
     const sim::SimMessage& m = messages[next++];
     if (r->messages++ == 0) r->first_stamp_ns = m.stamp_ns;
@@ -54,11 +54,11 @@ Outcome MapShifted(const Config& config, const std::vector<sim::SimMessage>& mes
   Outcome out;
   out.keyframes = run.slam->keyframes().size();
   out.candidates = run.slam->loops().size();
-  for (const LoopRecord& l : run.slam->loops()) {
+  for (const pipeline::LoopRecord& l : run.slam->loops()) {
     if (l.accepted()) out.accepted_loops.insert({l.match_id, l.query_id});
   }
   const auto trajectory = run.slam->CorrectedTrajectory();
-  out.ate = tools::TrajectoryError(trajectory, run.ground_truth);
+  out.ate = pipeline::TrajectoryError(trajectory, run.ground_truth);
   for (const auto& [stamp, pose] : trajectory) {
     out.trajectory.push_back({stamp, {pose.x_m - dx_m, pose.y_m - dy_m, pose.yaw_rad}});
   }

@@ -14,8 +14,8 @@ struct Released {
   std::vector<bool> late;
 };
 
-StampOrderBuffer<int> MakeBuffer(Released* out, std::int64_t window_ns = 50 * kMs) {
-  return StampOrderBuffer<int>(window_ns, [out](int&& item, bool late) {
+pipeline::StampOrderBuffer<int> MakeBuffer(Released* out, std::int64_t window_ns = 50 * kMs) {
+  return pipeline::StampOrderBuffer<int>(window_ns, [out](int&& item, bool late) {
     out->items.push_back(item);
     out->late.push_back(late);
   });

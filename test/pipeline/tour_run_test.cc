@@ -22,10 +22,10 @@ std::string ToursFile(const std::string& name) {
 TEST(TourRunTest, RingClosedAfterFiftyMetresWithoutFalseLoops) {
   Config config;
   config.simulator.route.clearance_m = 0.3;  // the route keeps 0.45 m from every obstacle
-  const tools::MapRun run = tools::MapSimulation(config, ToursFile("two_rings.yaml"),
-                                                 ToursFile("two_rings_west.txt"), /*seed=*/1);
-  const tools::TourEvaluation e = tools::EvaluateTour(run);
-  std::printf("two_rings west ring: %s\n", tools::FormatTourEvaluation(e).c_str());
+  const pipeline::MapRun run = pipeline::MapSimulation(config, ToursFile("two_rings.yaml"),
+                                                       ToursFile("two_rings_west.txt"), /*seed=*/1);
+  const pipeline::TourEvaluation e = pipeline::EvaluateTour(run);
+  std::printf("two_rings west ring: %s\n", pipeline::FormatTourEvaluation(e).c_str());
   ASSERT_GE(e.travel_m, 50.0);
   EXPECT_EQ(e.false_accepted, 0);
   EXPECT_GE(e.longest_loop_path_m, 45.0);  // the ring's closure itself was accepted

@@ -35,7 +35,7 @@ std::map<int, Pose2> TrueAnchors(const SessionData& s, int trajectory,
 }
 
 struct Runs {
-  tools::MapRun a, b;
+  pipeline::MapRun a, b;
 };
 
 using ::uwbsar::testing::ShortSessionConfig;
@@ -45,11 +45,11 @@ TEST(SessionMergeTest, SecondRunTurnedAndShiftedIsPlacedWithinThreeMetresWithout
   const Config config_a = ShortSessionConfig();
   const Config config_b = ::uwbsar::testing::TurnedRevisitConfig(config_a);
   const std::string map = ::uwbsar::testing::SeedLabLidarMap();
-  const tools::MapRun a = tools::MapSimulation(config_a, map, "depart-return", 1);
-  const tools::MapRun b = tools::MapSimulationInScene(config_b, map, "depart-return", 1, 2,
-                                                      tools::RouteStart(config_b).Inverse());
-  const SessionData sa = tools::CaptureSession(a);
-  const SessionData sb = tools::CaptureSession(b);
+  const pipeline::MapRun a = pipeline::MapSimulation(config_a, map, "depart-return", 1);
+  const pipeline::MapRun b = pipeline::MapSimulationInScene(
+      config_b, map, "depart-return", 1, 2, pipeline::RouteStart(config_b).Inverse());
+  const SessionData sa = pipeline::CaptureSession(a);
+  const SessionData sb = pipeline::CaptureSession(b);
   MergeReport report;
   const SessionData merged = MergeSessions(sa, sb, config_a, &report);
   ASSERT_TRUE(report.connected) << report.reason;
@@ -72,8 +72,9 @@ TEST(SessionMergeTest, SecondRunTurnedAndShiftedIsPlacedWithinThreeMetresWithout
 
   std::map<int, std::vector<OdometrySample>> gt = {{0, a.ground_truth},
                                                    {report.trajectory_offset, b.ground_truth}};
-  const AteResult common = tools::CommonFrameError(merged, gt);
-  const AteResult alone_a = tools::TrajectoryError(a.slam->CorrectedTrajectory(), a.ground_truth);
+  const AteResult common = pipeline::CommonFrameError(merged, gt);
+  const AteResult alone_a =
+      pipeline::TrajectoryError(a.slam->CorrectedTrajectory(), a.ground_truth);
   EXPECT_LE(common.rmse_m, 0.05);
   std::printf(
       "merge: placed after %.2f m of the second run (keyframe %d), %d keyframe pairs matched, "
@@ -92,11 +93,11 @@ TEST(SessionMergeTest, RunThatNeverSeesTheMapIsNotConnected) {
   // Another room (the bundled seed_hall), never seen by A.
   const std::string hall = std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_hall/seed_hall.yaml";
   const std::string map = ::uwbsar::testing::SeedLabLidarMap();
-  const tools::MapRun a = tools::MapSimulation(config_a, map, "depart-return", 1);
-  const tools::MapRun b = tools::MapSimulationInScene(config_b, hall, "depart-return", 1, 2);
+  const pipeline::MapRun a = pipeline::MapSimulation(config_a, map, "depart-return", 1);
+  const pipeline::MapRun b = pipeline::MapSimulationInScene(config_b, hall, "depart-return", 1, 2);
   MergeReport report;
   const SessionData merged =
-      MergeSessions(tools::CaptureSession(a), tools::CaptureSession(b), config_a, &report);
+      MergeSessions(pipeline::CaptureSession(a), pipeline::CaptureSession(b), config_a, &report);
   EXPECT_FALSE(report.connected);
   EXPECT_FALSE(report.reason.empty());
   EXPECT_EQ(merged.keyframes.size(), a.slam->keyframes().size());

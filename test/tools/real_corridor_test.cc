@@ -35,8 +35,8 @@ std::string FreshDir(const std::string& name) {
   return dir.string();
 }
 
-const tools::ImageLoopStudy& Study() {
-  static const tools::ImageLoopStudy study = tools::RunImageLoopStudy(
+const pipeline::ImageLoopStudy& Study() {
+  static const pipeline::ImageLoopStudy study = pipeline::RunImageLoopStudy(
       RegionsDir(), 0.005, {DetectorKind::kAkaze, DetectorKind::kOrb}, Config{});
   return study;
 }
@@ -44,7 +44,7 @@ const tools::ImageLoopStudy& Study() {
 TEST(RealCorridorTest, AllSixLoopsAreAcceptedWithTheDefaultConfiguration) {
   UWBSAR_NEED_SHARED_DATA(kRegions);
   int accepted = 0;
-  for (const tools::ImagePairResult& p : Study().pairs) {
+  for (const pipeline::ImagePairResult& p : Study().pairs) {
     if (p.d != p.r) continue;
     const ImageMatch& m = p.match;
     const auto& a = m.matches.at(DetectorKind::kAkaze);
@@ -65,7 +65,7 @@ TEST(RealCorridorTest, AllSixLoopsAreAcceptedWithTheDefaultConfiguration) {
 TEST(RealCorridorTest, NoFalseLoopAmongTheThirtyNonLoopPairs) {
   UWBSAR_NEED_SHARED_DATA(kRegions);
   int accepted_off_diagonal = 0;
-  for (const tools::ImagePairResult& p : Study().pairs) {
+  for (const pipeline::ImagePairResult& p : Study().pairs) {
     if (p.d == p.r || !p.match.accepted()) continue;
     ++accepted_off_diagonal;
     const CentredTransform& t = p.match.transform;
