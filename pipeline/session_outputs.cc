@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <opencv2/imgcodecs.hpp>
@@ -247,6 +248,22 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
   WriteTextAtomic(path("report.html"), RenderReportHtml(report));
   WriteTextAtomic(path("summary.json"), s.dump(2) + "\n");
   return result;
+}
+
+SessionOutputs CommitSessionOutputs(MapOutputStage* stage, const SessionData& session,
+                                    const Config& config,
+                                    const std::map<int, std::vector<OdometrySample>>& ground_truth,
+                                    const nlohmann::json& extra, const std::string& title) {
+  SessionOutputs out;
+  out.files = stage->CommitWritten([&](const std::string& dir) {
+    out = WriteSessionOutputs(session, config, dir, ground_truth, extra, title);
+    std::vector<std::string> names;
+    for (const std::string& f : out.files) {
+      names.push_back(std::filesystem::path(f).filename().string());
+    }
+    return names;
+  });
+  return out;
 }
 
 }  // namespace uwbsar::tools

@@ -1,0 +1,94 @@
+// `uwbsar run --localize-in SESSION` on a short emulated run: a saved seed_lab map (4 m
+// depart-and-return, seed 1) and a live run through emulated devices starting 2 m further
+// along and 20 deg turned with another seed: the live run is placed, and the map -> odom
+// correction it records (summary.json, live.json; the same one it publishes on /tf) puts
+// the robot where it truly is in the map frame.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "live_test_util.h"
+#include "pipeline/map_job.h"
+#include "pipeline/session_capture.h"
+#include "session/session_file.h"
+#include "test/session/session_test_util.h"
+#include "test/shared_data.h"
+
+namespace uwbsar::live {
+namespace {
+
+using ::uwbsar::testing::NearestGroundTruth;
+
+TEST(LiveLocalizeTest, LiveRunInASavedSessionIsPlacedAndItsMapToOdomIsTrue) {
+  UWBSAR_NEED_SEED_LAB_MAP();
+  Config config = ::uwbsar::testing::ShortSessionConfig();
+  config.live.snapshot_period_s = 1.0;
+  const std::string lidar = ::uwbsar::testing::SeedLabLidarMap();
+  const tools::MapRun a = tools::MapSimulation(config, lidar, "depart-return", 1);
+  const SessionData map = tools::CaptureSession(a);
+  const std::string session_dir =
+      (std::filesystem::temp_directory_path() / ("uwbsar_live_map_" + std::to_string(::getpid())))
+          .string();
+  std::filesystem::create_directories(session_dir);
+  WriteSession(session_dir + "/" + kSessionFileName, map);
+
+  const Config config_b = ::uwbsar::testing::TurnedRevisitConfig(config);
+  const EmulatedRun live = RunEmulated(config_b, "localize", 2.5, 0.0, {}, 2, session_dir);
+  std::filesystem::remove_all(session_dir);
+  const tools::LiveRunResult& r = live.result;
+  ASSERT_TRUE(r.localized);
+  EXPECT_FALSE(r.run.slam);  // nothing mapped
+  EXPECT_EQ(r.dropped_from_processing, 0);
+  EXPECT_GE(r.recorded_messages, r.scans_received + r.odometry_received);
+  const tools::LocalizeRun& run = r.localize;
+  ASSERT_GE(run.first_fix, 0) << "never placed";
+  EXPECT_LE(run.first_fix_path_m, 3.0);
+
+  // The correction recorded (and published) is the last placed keyframe's.
+  std::ifstream in(live.out_dir + "/summary.json");
+  const nlohmann::json s = nlohmann::json::parse(in);
+  ASSERT_TRUE(s["T_map_odom"].is_object());
+  const Pose2 T_map_odom{s["T_map_odom"]["x_m"].get<double>(), s["T_map_odom"]["y_m"].get<double>(),
+                         s["T_map_odom"]["yaw_deg"].get<double>() * M_PI / 180.0};
+  std::ifstream live_in(live.out_dir + "/live.json");
+  const nlohmann::json lj = nlohmann::json::parse(live_in);
+  EXPECT_EQ(lj["mode"], "localize");
+  EXPECT_EQ(lj["localize"]["T_map_odom"], s["T_map_odom"]);
+  EXPECT_FALSE(std::filesystem::exists(live.out_dir + "/" + kSessionFileName));
+
+  // The map frame in the world: the map's first keyframe sits at its odometry pose.
+  const SessionKeyframe& k0 = map.keyframes.front();
+  const Pose2 T_world_map = NearestGroundTruth(a.ground_truth, k0.stamp_ns).T_world_robot *
+                            (k0.T_odom_robot.Inverse() * k0.T_odom_anchor) *
+                            k0.T_map_anchor.Inverse();
+  // Where that correction puts the robot at the keyframe it came from, against the truth.
+  const int id = s["T_map_odom"]["keyframe_id"].get<int>();
+  TimestampNs stamp = 0;
+  for (const LocalizedKeyframe& k : run.keyframes) {
+    if (k.id == id) stamp = k.stamp_ns;
+  }
+  ASSERT_NE(stamp, 0);
+  const OdometryEntry* odom = &run.odometry.front();
+  for (const OdometryEntry& e : run.odometry) {
+    if (std::llabs(e.stamp_ns - stamp) < std::llabs(odom->stamp_ns - stamp)) odom = &e;
+  }
+  const Pose2 truth = NearestGroundTruth(live.ground_truth, odom->stamp_ns).T_world_robot;
+  const Pose2 err = Between(truth, T_world_map * T_map_odom * odom->T_world_robot);
+  const double err_m = std::hypot(err.x_m, err.y_m);
+  EXPECT_LT(err_m, 0.05);
+  EXPECT_LT(std::abs(err.yaw_rad), 2.0 * M_PI / 180.0);
+  ASSERT_TRUE(s.contains("ate_tracking"));
+  EXPECT_LT(s["ate_tracking"]["rmse_m"].get<double>(), 0.05);
+  std::printf(
+      "live localize: %zu keyframes, first fix after %.2f m; map->odom puts the robot %.2f cm "
+      "/ %.2f deg from the truth; ATE while tracking %.2f cm\n",
+      run.keyframes.size(), run.first_fix_path_m, err_m * 100, err.yaw_rad * 180 / M_PI,
+      s["ate_tracking"]["rmse_m"].get<double>() * 100);
+}
+
+}  // namespace
+}  // namespace uwbsar::live
