@@ -127,8 +127,10 @@ void BM_Session(benchmark::State& state) {
     const AteResult ate_b = tools::TrajectoryError(b.slam->CorrectedTrajectory(), b.ground_truth);
 
     // Localise B in A.
+    const auto t_loc = std::chrono::steady_clock::now();
     const tools::LocalizeRun loc =
         tools::LocalizeSimulation(sa, s.config_b, s.map_yaml, s.route_b, 1, 2, T_odom_world_b);
+    const double localize_b_wall_s = Seconds(t_loc);
     const SessionKeyframe& k0 = sa.keyframes.front();
     const Pose2 T_world_map = TrueAnchor(k0, a.ground_truth) * k0.T_map_anchor.Inverse();
     int fixes = 0, false_fixes = 0;
