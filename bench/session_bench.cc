@@ -19,13 +19,20 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
 #include <map>
 #include <string>
 
+#include "backend/compare/map_comparison.h"
+#include "backend/global_map.h"
+#include "imaging/image_io.h"
 #include "pipeline/localize_job.h"
 #include "pipeline/map_job.h"
 #include "pipeline/scene_simulation.h"
 #include "pipeline/session_capture.h"
+#include "pipeline/session_mosaic.h"
 #include "pipeline/session_outputs.h"
 #include "session/session_merge.h"
 #include "test/shared_data.h"
@@ -85,6 +92,71 @@ bool IsFalse(const Pose2& estimate, const Pose2& truth) {
   return err_m > kFalseM || err_deg > kFalseDeg;
 }
 
+/// The session's map (as `map` / `map --resume` write it) scored against the grid
+/// (`compare`, ICP from `T_lidar_sar`).
+MapMetrics Score(const SessionData& session, const Config& config, const std::string& grid_yaml,
+                 const std::string& name, const Pose2& T_lidar_sar = {}) {
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("uwbsar_session_bench_" + name)).string();
+  std::filesystem::remove_all(dir);
+  tools::WriteSessionOutputs(session, config, dir, {}, {}, name);
+  AlignRequest request;
+  request.T_lidar_sar = T_lidar_sar;
+  SarOccupancyRule rule;
+  rule.cell_m = config.slam.occupancy_resolution_m;
+  rule.occupied_fraction = config.slam.occupied_fraction;
+  rule.reference_percentile = config.slam.occupancy_reference_percentile;
+  const ComparisonReport report =
+      CompareMapFiles(dir + "/map_grid.yaml", grid_yaml, request, config.compare, rule);
+  std::filesystem::remove_all(dir);
+  return report.comparison.metrics;
+}
+
+/// The mosaic of `session` (every run), kept only where the tiles of run `trajectory` (at
+/// their joined poses) observed, scored like Score: the joined map on one run's area.
+MapMetrics ScoreOnRunArea(const SessionData& session, int trajectory, const Config& config,
+                          const std::string& grid_yaml, const std::string& name) {
+  const double res = config.slam.map_resolution_m;
+  GlobalMap run(res);
+  for (const SessionKeyframe& k : session.keyframes) {
+    if (k.trajectory == trajectory) run.AddTile(k.detected, k.detected_grid, k.T_map_anchor);
+  }
+  ImageGrid grid, run_grid;
+  cv::Mat observed, run_observed;
+  cv::Mat map = tools::RenderSessionMosaic(session, config, &grid, &observed);
+  run.Render(&run_grid, &run_observed);
+  // Both on the world lattice: the run's canvas is a block-aligned part of the whole one.
+  const int c0 = static_cast<int>(std::lround((run_grid.x0_m - grid.x0_m) / res));
+  const int r0 = static_cast<int>(std::lround((grid.y0_m - run_grid.y0_m) / res));
+  cv::Mat mask = cv::Mat::zeros(map.size(), CV_8UC1);
+  run_observed.copyTo(mask(cv::Rect(c0, r0, run_grid.cols, run_grid.rows)));
+  map.setTo(0.0f, ~mask);
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("uwbsar_session_bench_" + name)).string();
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  WriteFloatTiff(dir + "/map_float.tif", map);
+  std::ofstream(dir + "/map_grid.yaml")
+      << std::setprecision(12) << "image: map_float.tif\nx0_m: " << grid.x0_m
+      << "\ny0_m: " << grid.y0_m << "\nresolution_m: " << res << "\nrows: " << grid.rows
+      << "\ncols: " << grid.cols << "\n";
+  SarOccupancyRule rule;
+  rule.cell_m = config.slam.occupancy_resolution_m;
+  rule.occupied_fraction = config.slam.occupied_fraction;
+  rule.reference_percentile = config.slam.occupancy_reference_percentile;
+  const ComparisonReport report =
+      CompareMapFiles(dir + "/map_grid.yaml", grid_yaml, AlignRequest{}, config.compare, rule);
+  std::filesystem::remove_all(dir);
+  return report.comparison.metrics;
+}
+
+std::string Describe(const MapMetrics& m) {
+  char text[160];
+  std::snprintf(text, sizeof text, "difference %.2f %%, F1 %.3f (P %.3f R %.3f) over %lld cells",
+                m.difference_ratio * 100, m.f1, m.precision, m.recall, m.evaluated_cells);
+  return text;
+}
+
 double Seconds(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -125,6 +197,39 @@ void BM_Session(benchmark::State& state) {
         merged, {{0, a.ground_truth}, {report.trajectory_offset, b.ground_truth}});
     const AteResult ate_a = tools::TrajectoryError(a.slam->CorrectedTrajectory(), a.ground_truth);
     const AteResult ate_b = tools::TrajectoryError(b.slam->CorrectedTrajectory(), b.ground_truth);
+
+    // The maps against the grid: A alone, B alone (its own frame: ICP from its start),
+    // both joined.
+    const MapMetrics score_a = Score(sa, s.config_a, s.map_yaml, "a");
+    const MapMetrics score_b = Score(sb, s.config_a, s.map_yaml, "b", T_odom_world_b.Inverse());
+    const MapMetrics score_joined = Score(merged, s.config_a, s.map_yaml, "joined");
+    std::printf("%s maps vs the grid: A %s; B %s; joined %s\n", s.name, Describe(score_a).c_str(),
+                Describe(score_b).c_str(), Describe(score_joined).c_str());
+    // Like for like: the joined map on each run's own area.
+    const MapMetrics joined_on_a = ScoreOnRunArea(merged, 0, s.config_a, s.map_yaml, "on_a");
+    const MapMetrics joined_on_b =
+        ScoreOnRunArea(merged, report.trajectory_offset, s.config_a, s.map_yaml, "on_b");
+    std::printf("%s joined map on A's area: %s; on B's area: %s\n", s.name,
+                Describe(joined_on_a).c_str(), Describe(joined_on_b).c_str());
+    // The other mosaic, for comparison; and A's tiles alone at their joined poses (what
+    // the joint optimisation moved, without B's tiles).
+    Config other = s.config_a;
+    other.session.joined_mosaic = other.session.joined_mosaic == "mean" ? "normalized_max" : "mean";
+    std::printf(
+        "%s joined with session.joined_mosaic %s: %s; on A's area %s; on B's area %s\n", s.name,
+        other.session.joined_mosaic.c_str(),
+        Describe(Score(merged, other, s.map_yaml, "joined")).c_str(),
+        Describe(ScoreOnRunArea(merged, 0, other, s.map_yaml, "on_a")).c_str(),
+        Describe(ScoreOnRunArea(merged, report.trajectory_offset, other, s.map_yaml, "on_b"))
+            .c_str());
+    SessionData a_joined = merged;
+    a_joined.keyframes.clear();
+    for (const SessionKeyframe& k : merged.keyframes) {
+      if (k.trajectory == 0) a_joined.keyframes.push_back(k);
+    }
+    std::printf("%s A's tiles at the joined poses: %s\n", s.name,
+                Describe(Score(a_joined, s.config_a, s.map_yaml, "a_joined")).c_str());
+    std::fflush(stdout);
 
     // Localise B in A.
     const auto t_loc = std::chrono::steady_clock::now();
@@ -177,6 +282,16 @@ void BM_Session(benchmark::State& state) {
     state.counters["map_b_s"] = map_b_wall_s;
     state.counters["localize_b_s"] = localize_b_wall_s;
     state.counters["merge_s"] = merge_s;
+    state.counters["diff_a_pct"] = score_a.difference_ratio * 100;
+    state.counters["diff_b_pct"] = score_b.difference_ratio * 100;
+    state.counters["diff_joined_pct"] = score_joined.difference_ratio * 100;
+    state.counters["f1_a"] = score_a.f1;
+    state.counters["f1_b"] = score_b.f1;
+    state.counters["f1_joined"] = score_joined.f1;
+    state.counters["diff_joined_on_a_pct"] = joined_on_a.difference_ratio * 100;
+    state.counters["diff_joined_on_b_pct"] = joined_on_b.difference_ratio * 100;
+    state.counters["f1_joined_on_a"] = joined_on_a.f1;
+    state.counters["f1_joined_on_b"] = joined_on_b.f1;
   }
 }
 BENCHMARK(BM_Session)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1);

@@ -17,6 +17,7 @@
 #include "pipeline/map_job.h"
 #include "pipeline/output_folder.h"
 #include "pipeline/report_html.h"
+#include "pipeline/session_mosaic.h"
 #include "pipeline/slam_snapshot.h"
 #include "session/session_file.h"
 #include "session/session_merge.h"
@@ -134,13 +135,9 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
     return out_dir + "/" + name;
   };
   const std::map<int, Pose2> poses = session.Poses();
-  GlobalMap global(config.slam.map_resolution_m);
-  for (const SessionKeyframe& k : session.keyframes) {
-    global.AddTile(k.detected, k.detected_grid, k.T_map_anchor);
-  }
   ImageGrid grid;
   cv::Mat observed;
-  const cv::Mat map = global.Render(&grid, &observed);
+  const cv::Mat map = RenderSessionMosaic(session, config, &grid, &observed);
   WriteFloatTiff(path("map_float.tif"), map);
   std::ostringstream yaml;
   yaml.precision(12);
