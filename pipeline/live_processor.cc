@@ -10,11 +10,53 @@
 
 namespace uwbsar::pipeline {
 
-Processor::Processor(const Config& config, const LiveRunOptions& options, Dispatcher* dispatcher)
+Processor::Processor(const Config& config, const LiveRunOptions& options, Dispatcher* dispatcher,
+                     const SessionData* localize_map)
     : config_(config), options_(options), dispatcher_(dispatcher) {
   run_.input = "live run";
-  run_.slam = std::make_shared<SlamSystem>(config);
+  if (localize_map) {
+    localize_ = std::make_unique<LocalizePipeline>(*localize_map, config, run_.input);
+  } else {
+    run_.slam = std::make_shared<SlamSystem>(config);
+  }
   start_ = SteadyClock::now();
+}
+
+void Processor::Finish() {
+  if (localize_) {
+    localize_->Finish();
+  } else {
+    run_.slam->Finish();
+  }
+}
+
+LocalizeRun Processor::LocalizeResult() {
+  LocalizeRun run = localize_->Result();
+  run.processing_s = std::chrono::duration<double>(SteadyClock::now() - start_).count();
+  if (run.odometry.size() >= 2) {
+    run.log_duration_s = NsToSeconds(run.odometry.back().stamp_ns - run.odometry.front().stamp_ns);
+  }
+  if (options_.ground_truth) run.ground_truth = options_.ground_truth();
+  return run;
+}
+
+std::optional<Pose2> Processor::CorrectionAt(TimestampNs stamp_ns) {
+  if (localize_) return localize_->T_map_odom();
+  const auto lock = run_.slam->LockState();
+  return run_.slam->CorrectionAt(stamp_ns);
+}
+
+double Processor::keyframe_lock_wait_max_s() const {
+  return localize_ ? 0.0 : run_.slam->keyframe_lock_wait_max_s();
+}
+
+/// Localising: the outputs of the run so far (each file atomic), then the hook.
+void Processor::SnapshotLocalize() {
+  const LocalizeRun run = LocalizeResult();
+  if (run.keyframes.empty()) return;
+  last_localize_summary_ = WriteLocalizeOutputs(run, options_.out_dir);
+  ++snapshots_;
+  if (hooks_.after_localize) hooks_.after_localize(run);
 }
 
 void Processor::Loop(const std::atomic<bool>& stop) {
@@ -51,6 +93,17 @@ void Processor::SnapshotLoop(const std::atomic<bool>& stop) {
 
 void Processor::Snapshot() {
   const auto t0 = SteadyClock::now();
+  if (localize_) {
+    try {
+      SnapshotLocalize();
+    } catch (const std::exception& e) {
+      Log(LogLevel::kWarning, std::string("snapshot not written: ") + e.what());
+    }
+    const double took_s = std::chrono::duration<double>(SteadyClock::now() - t0).count();
+    snapshot_max_s_ = std::max(snapshot_max_s_, took_s);
+    snapshot_s_.push_back(took_s);
+    return;
+  }
   MapRun view;  // the counters as of now, the same SlamSystem
   {
     std::lock_guard<std::mutex> lock(run_mutex_);
@@ -120,10 +173,15 @@ void Processor::Process(const LiveMessage& msg) {
     if (msg.kind == Message::Kind::kOdometry) latest_odometry_ = msg.odometry;
   }
   if (msg.kind == Message::Kind::kRadarScan) pending_.push_back(msg.arrival);
-  FeedSlam(*run_.slam, msg);
+  if (localize_) {
+    if (msg.kind == Message::Kind::kRadarScan) localize_->AddScan(msg.scan);
+    if (msg.kind == Message::Kind::kOdometry) localize_->AddOdometry(msg.odometry);
+  } else {
+    FeedSlam(*run_.slam, msg);
+  }
   // A scan is resolved once the frontend imaged, gated or rejected it (it may wait for
   // the odometry after it); resolution is in arrival order.
-  const FrontendStats s = run_.slam->frontend_stats();
+  const FrontendStats s = localize_ ? localize_->frontend_stats() : run_.slam->frontend_stats();
   const long long resolved = s.scans_imaged + s.scans_gated + s.scans_rejected();
   const auto now = SteadyClock::now();
   while (resolved_ < resolved && !pending_.empty()) {

@@ -5,17 +5,23 @@
 // live.snapshot_period_s from a copy of the SLAM state taken under the SlamSystem's state
 // lock (CaptureMapState, linear in keyframes), rendering and writing after releasing it:
 // the feeding thread never waits for a snapshot, the keyframe thread only for the copy.
+// With a saved map (LiveRunOptions::localize_in) the feeding thread feeds a
+// LocalizePipeline instead (pipeline/localize_pipeline.h: the map is fixed, nothing is
+// added to it) and the snapshots write the localisation outputs (WriteLocalizeOutputs).
 #pragma once
 
 #include <atomic>
 #include <deque>
 #include <functional>
+#include <memory>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <vector>
 
 #include "pipeline/live_recorder.h"
 #include "pipeline/live_runner.h"
+#include "pipeline/localize_pipeline.h"
 
 namespace uwbsar::pipeline {
 
@@ -24,12 +30,16 @@ class Processor {
   /// Optional hooks on the snapshot thread (e.g. ROS 2 publishers): `after_snapshot`
   /// runs after each snapshot with the state it was written from (no lock held);
   /// `tick` every 20 ms.
+  /// `after_localize` replaces `after_snapshot` when localising in a saved map.
   struct Hooks {
     std::function<void(const MapState& state, const MapOutputs& outputs)> after_snapshot;
     std::function<void()> tick;
+    std::function<void(const LocalizeRun& run)> after_localize;
   };
 
-  Processor(const Config& config, const LiveRunOptions& options, Dispatcher* dispatcher);
+  /// With `localize_map` (outliving the processor): localisation in that map, no mapping.
+  Processor(const Config& config, const LiveRunOptions& options, Dispatcher* dispatcher,
+            const SessionData* localize_map = nullptr);
   void set_hooks(Hooks hooks) { hooks_ = std::move(hooks); }
 
   /// Feeds SLAM until `stop` is set and the queue is empty.
@@ -41,13 +51,26 @@ class Processor {
   /// After both threads stopped: the run with its last counters and ground truth.
   MapRun FinalRun();
 
+  /// After both threads stopped: flushes SLAM (or the localisation) and solves a last time.
+  void Finish();
+  /// Mapping only (not when localising).
   SlamSystem& slam() { return *run_.slam; }
+  bool localizing() const { return localize_ != nullptr; }
+  /// Localising: the run so far with its processing time and ground truth.
+  LocalizeRun LocalizeResult();
+  /// The map <- odometry correction at `stamp_ns` (any thread): SLAM's, interpolated
+  /// between keyframes; localising, the latest fix's; none before the first keyframe / fix.
+  std::optional<Pose2> CorrectionAt(TimestampNs stamp_ns);
+  /// The keyframe thread's longest wait for the state lock (0 when localising).
+  double keyframe_lock_wait_max_s() const;
   long long odometry_messages();
   /// The last odometry sample fed to SLAM (any thread).
   std::optional<OdometrySample> LatestOdometry();
   std::vector<double>& latencies_ms() { return latencies_ms_; }
   int snapshots() const { return snapshots_; }
   const MapOutputs& last_outputs() const { return last_outputs_; }
+  /// Localising: summary.json of the last snapshot (null before one).
+  const nlohmann::json& last_localize_summary() const { return last_localize_summary_; }
   double snapshot_max_s() const { return snapshot_max_s_; }
   /// Every snapshot's duration (copy, render and write), seconds.
   const std::vector<double>& snapshot_s() const { return snapshot_s_; }
@@ -56,6 +79,7 @@ class Processor {
 
  private:
   void Process(const LiveMessage& msg);
+  void SnapshotLocalize();
 
   const Config& config_;
   const LiveRunOptions& options_;
@@ -74,6 +98,8 @@ class Processor {
   double snapshot_lock_max_s_ = 0.0;
   std::vector<double> snapshot_s_;
   MapOutputs last_outputs_;
+  std::unique_ptr<LocalizePipeline> localize_;
+  nlohmann::json last_localize_summary_;
 };
 
 /// The p-th percentile (nearest rank) of `v`; 0 when empty.

@@ -29,7 +29,8 @@ LiveResultPublisher::LiveResultPublisher(dds::Participant& participant, const Dd
   processor->set_hooks({[this](const MapState& state, const MapOutputs& outputs) {
                           PublishSnapshot(state, outputs);
                         },
-                        [this] { PublishPose(); }});
+                        [this] { PublishPose(); },
+                        [this](const LocalizeRun& run) { PublishLocalized(run); }});
 }
 
 // Snapshot thread: what was just written to disk (from `state`), to RViz2.
@@ -48,19 +49,27 @@ void LiveResultPublisher::PublishSnapshot(const MapState& state, const MapOutput
   }
 }
 
-// Snapshot thread: the corrected robot pose, at most every dds.publish_pose_period_s.
+// Snapshot thread, localising in a saved map: the trajectory in the map frame.
+void LiveResultPublisher::PublishLocalized(const LocalizeRun& run) {
+  try {
+    const auto trajectory = run.Trajectory(false);
+    if (!trajectory.empty()) publisher_.PublishPath(trajectory.back().first, trajectory);
+  } catch (const std::exception& e) {
+    faults_->Report("ros2: publishing failed", e.what());
+  }
+}
+
+// Snapshot thread: the corrected robot pose, at most every dds.publish_pose_period_s
+// (localising: from the first fix on, with the latest fix's correction).
 void LiveResultPublisher::PublishPose() {
   const std::optional<OdometrySample> odom = processor_->LatestOdometry();
   if (!odom || odom->stamp_ns == last_pose_stamp_ns_) return;
+  const std::optional<Pose2> correction = processor_->CorrectionAt(odom->stamp_ns);
+  if (!correction) return;
   last_pose_stamp_ns_ = odom->stamp_ns;
-  Pose2 correction;
-  {
-    const auto state = processor_->slam().LockState();
-    correction = processor_->slam().CorrectionAt(odom->stamp_ns);
-  }
   try {
-    if (publisher_.PublishPose(odom->stamp_ns, correction * odom->T_world_robot)) {
-      publisher_.PublishMapToOdom(odom->stamp_ns, correction);
+    if (publisher_.PublishPose(odom->stamp_ns, *correction * odom->T_world_robot)) {
+      publisher_.PublishMapToOdom(odom->stamp_ns, *correction);
     }
   } catch (const std::exception& e) {
     faults_->Report("ros2: publishing failed", e.what());

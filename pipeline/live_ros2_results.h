@@ -2,6 +2,8 @@
 // map (as just written to map.yaml), the corrected trajectory and the accepted loops; every
 // dds.publish_pose_period_s the corrected robot pose and the map -> odom transform on /tf.
 // Used by the ros2 source, and with the serial source when dds.publish_in_serial_mode.
+// Localising in a saved map (run --localize-in): the localised path at every snapshot and,
+// from the first fix on, the localised pose and map -> odom on /tf.
 #pragma once
 
 #include <memory>
@@ -23,6 +25,7 @@ class LiveResultPublisher {
  private:
   void PublishSnapshot(const MapState& state, const MapOutputs& outputs);
   void PublishPose();
+  void PublishLocalized(const LocalizeRun& run);
 
   live::FaultLog* faults_;
   Processor* processor_;

@@ -13,6 +13,7 @@
 #include "pipeline/live_ros2_results.h"
 #include "pipeline/live_source.h"
 #include "pipeline/output_folder.h"
+#include "session/session_file.h"
 #include "slam/errors.h"
 #include "slam/log.h"
 
@@ -38,6 +39,8 @@ void WriteLiveJson(const LiveRunResult& result, const std::string& source,
   live["snapshot_lock_max_ms"] = result.snapshot_lock_max_s * 1e3;
   live["keyframe_lock_wait_max_ms"] = result.keyframe_lock_wait_max_s * 1e3;
   live["faults"] = result.faults;
+  live["mode"] = result.localized ? "localize" : "map";
+  if (result.localized) live["localize"] = result.localize_summary;
   nlohmann::json radars = nlohmann::json::object();
   for (const auto& [name, s] : result.radars) {
     radars[name] = {
@@ -114,7 +117,7 @@ LiveRunResult FinishRun(const LiveRunOptions& options, const live::FaultLog& fau
   Processor& processor = *processor_ptr;
   Recorder& recorder = *recorder_ptr;
   LiveRunResult result;
-  processor.slam().Finish();
+  processor.Finish();
   result.faults = faults.Counts();
   result.dropped_from_processing = dispatcher.dropped();
   auto& lat = processor.latencies_ms();
@@ -134,7 +137,12 @@ LiveRunResult FinishRun(const LiveRunOptions& options, const live::FaultLog& fau
   result.snapshot_max_s = processor.snapshot_max_s();
   result.snapshot_p50_s = Percentile(processor.snapshot_s(), 50);
   result.snapshot_lock_max_s = processor.snapshot_lock_max_s();
-  result.keyframe_lock_wait_max_s = processor.slam().keyframe_lock_wait_max_s();
+  result.keyframe_lock_wait_max_s = processor.keyframe_lock_wait_max_s();
+  result.localized = processor.localizing();
+  if (result.localized) {
+    result.localize = processor.LocalizeResult();
+    result.localize_summary = processor.last_localize_summary();
+  }
   WriteLiveJson(result, options.source, options.out_dir);
   result.outputs = processor.last_outputs();
   result.run = processor.FinalRun();
@@ -179,7 +187,13 @@ LiveRunResult RunLive(const Config& config, LiveRunOptions options) {
     source->Start();
     source->ConfigureImaging(&run_config);
   }
-  Processor processor(run_config, options, &dispatcher);
+  // The saved map is read (and checked against the imaging geometry) before recording.
+  std::unique_ptr<SessionData> localize_map;
+  if (!options.localize_in.empty()) {
+    localize_map = std::make_unique<SessionData>(
+        ReadSession(ResolveSessionPath(options.localize_in), &run_config));
+  }
+  Processor processor(run_config, options, &dispatcher, localize_map.get());
   if (!serial) source = MakeRos2Source(run_config, &dispatcher, &faults, &processor);
   const SerialModePublishing serial_publishing =
       serial ? MaybePublishInSerialMode(run_config, &faults, &processor) : SerialModePublishing{};

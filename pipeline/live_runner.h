@@ -12,7 +12,9 @@
 // source stops, the queue is drained, the graph is solved a last time, the final outputs
 // and live.json are written and the recording is closed. With serial devices the radars
 // start (and report their range) before SLAM is built: the echoed range, not the YAML,
-// sets each radar's range of sample 0 and sample count for imaging.
+// sets each radar's range of sample 0 and sample count for imaging. With
+// LiveRunOptions::localize_in the run localises in a saved map instead of mapping
+// (pipeline/live_processor.h); it records and publishes as a mapping run does.
 #pragma once
 
 #include <atomic>
@@ -24,6 +26,7 @@
 
 #include "drivers/live/gpio.h"
 #include "drivers/live/lt102_driver.h"
+#include "pipeline/localize_job.h"
 #include "pipeline/map_job.h"
 #include "pipeline/map_outputs.h"
 
@@ -40,11 +43,17 @@ struct LiveRunOptions {
   /// Called on the SLAM thread before each snapshot: ground truth for the summary (tests).
   std::function<std::vector<OdometrySample>()> ground_truth;
   bool quiet = false;
+  /// A saved session (folder or session.uwbsar): localise in it instead of mapping (the
+  /// map is fixed; snapshots write trajectory.tum, localize.csv and summary.json).
+  std::string localize_in;
 };
 
 struct LiveRunResult {
-  MapRun run;
+  MapRun run;  ///< localising: the message counters only (no SlamSystem)
   MapOutputs outputs;
+  bool localized = false;           ///< LiveRunOptions::localize_in was set
+  LocalizeRun localize;             ///< localising: the run in the saved map's frame
+  nlohmann::json localize_summary;  ///< localising: summary.json as last written
   std::string recording_path;
   long long scans_received = 0;
   long long odometry_received = 0;

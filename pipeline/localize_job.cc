@@ -11,6 +11,7 @@
 #include "drivers/sim/sim_stream.h"
 #include "frontend/imaging_frontend.h"
 #include "imaging/image_io.h"
+#include "pipeline/localize_pipeline.h"
 #include "pipeline/map_job.h"
 #include "pipeline/output_folder.h"
 #include "slam/errors.h"
@@ -49,47 +50,30 @@ std::vector<std::pair<TimestampNs, Pose2>> LocalizeRun::Trajectory(bool tracking
 LocalizeRun LocalizeStream(const SessionData& map, const Config& config,
                            const std::string& description,
                            const std::function<bool(const LocalizeFeed&)>& source) {
-  LocalizeRun run;
-  run.input = description;
-  ImagingFrontend frontend(config);
-  Localizer localizer(map, config);
-  frontend.SetOdometryObserver([&](const OdometryEntry& e) { run.odometry.push_back(e); });
+  LocalizePipeline pipeline(map, config, description);
+  std::vector<OdometrySample> ground_truth;
+  // The feeding thread's time (imaging, hand-over, waiting for the keyframe thread when
+  // it falls behind and at the end), not the source's.
   double busy_s = 0.0;
-  auto process = [&] {
-    for (const Keyframe& k : frontend.TakeKeyframes()) {
-      const KeyframeFeatures f = ExtractKeyframeFeatures(k, config);
-      const LocalizedKeyframe& l = localizer.Add(f, k.T_world_anchor, k.stamp_ns, k.path_end_m);
-      run.keyframes.push_back(l);
-      if (run.first_fix < 0 && l.placed) {
-        run.first_fix = static_cast<int>(run.keyframes.size()) - 1;
-        run.first_fix_path_m = k.path_end_m - (run.odometry.empty() ? 0 : run.odometry[0].path_m);
-        // The tile closes at its last scan: that is when the fix is known.
-        const TimestampNs t = k.scans.empty() ? k.stamp_ns : k.scans.back().stamp_ns;
-        run.first_fix_time_s =
-            run.odometry.empty() ? 0 : NsToSeconds(t - run.odometry.front().stamp_ns);
-      }
-    }
-  };
   LocalizeFeed feed;
   feed.odometry = [&](const OdometrySample& s) {
     const auto t0 = Clock::now();
-    frontend.AddOdometry(s);
-    process();
+    pipeline.AddOdometry(s);
     busy_s += std::chrono::duration<double>(Clock::now() - t0).count();
   };
   feed.scan = [&](const RadarScan& s) {
     const auto t0 = Clock::now();
-    frontend.AddScan(s);
-    process();
+    pipeline.AddScan(s);
     busy_s += std::chrono::duration<double>(Clock::now() - t0).count();
   };
-  feed.ground_truth = [&](const OdometrySample& g) { run.ground_truth.push_back(g); };
+  feed.ground_truth = [&](const OdometrySample& g) { ground_truth.push_back(g); };
   while (source(feed)) {
   }
   const auto t0 = Clock::now();
-  frontend.Finish();
-  process();
+  pipeline.Finish();
   busy_s += std::chrono::duration<double>(Clock::now() - t0).count();
+  LocalizeRun run = pipeline.Result();
+  run.ground_truth = std::move(ground_truth);
   run.processing_s = busy_s;
   if (run.odometry.size() >= 2) {
     run.log_duration_s = NsToSeconds(run.odometry.back().stamp_ns - run.odometry.front().stamp_ns);
@@ -182,6 +166,17 @@ nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& o
                       {"time_s", run.first_fix_time_s}};
   } else {
     s["first_fix"] = nullptr;
+  }
+  // The map -> odom correction of the latest placed keyframe (what run publishes on /tf).
+  s["T_map_odom"] = nullptr;
+  for (auto k = run.keyframes.rbegin(); k != run.keyframes.rend(); ++k) {
+    if (!k->placed) continue;
+    const Pose2 T = k->T_map_anchor * k->T_odom_anchor.Inverse();
+    s["T_map_odom"] = {{"keyframe_id", k->id},
+                       {"x_m", T.x_m},
+                       {"y_m", T.y_m},
+                       {"yaw_deg", T.yaw_rad * 180 / M_PI}};
+    break;
   }
   if (!run.ground_truth.empty() && run.first_fix >= 0) {
     const AteResult ate = TrajectoryError(run.Trajectory(true), run.ground_truth);

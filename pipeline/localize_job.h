@@ -1,7 +1,9 @@
 // `uwbsar localize BAG --map SESSION`: a log imaged keyframe by keyframe (the imaging
 // frontend only: no place recognition within the run, no map growth) and each keyframe
-// localised in the saved map (session/localizer.h). Outputs: trajectory.tum in the map
-// frame (from the first fix on), localize.csv (status per keyframe), summary.json.
+// localised in the saved map (session/localizer.h), imaging on the feeding thread and the
+// features and localisation on a keyframe thread (pipeline/localize_pipeline.h). Outputs:
+// trajectory.tum in the map frame (from the first fix on), localize.csv (status per
+// keyframe), summary.json (with the latest map -> odom correction).
 #pragma once
 
 #include <cstdint>

@@ -125,6 +125,18 @@ std::string GridYaml(const ImageGrid& grid, const std::string& what, const std::
   return yaml.str();
 }
 
+/// trajectory_<digits>.tum: one run of a joined session (pipeline/session_outputs.h).
+bool IsRunTrajectoryName(const std::string& name) {
+  const std::string prefix = "trajectory_", suffix = ".tum";
+  if (name.size() <= prefix.size() + suffix.size() || name.rfind(prefix, 0) != 0 ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
+    return false;
+  }
+  const std::string digits =
+      name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  return digits.find_first_not_of("0123456789") == std::string::npos;
+}
+
 void RemoveOutput(const fs::path& path) {
   std::error_code ec;
   fs::remove(path, ec);
@@ -283,10 +295,17 @@ nlohmann::json SummaryJson(const MapState& run, const MapOutputs& outputs,
 void CommitStagedOutputs(const fs::path& stage, const std::string& out_dir,
                          std::vector<std::string> names, std::vector<std::string>* files) {
   RemoveOutput(fs::path(out_dir) / "summary.json");
+  auto written = [&names](const std::string& name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+  };
   for (const std::string& name : AllMapOutputNames()) {
-    if (std::find(names.begin(), names.end(), name) == names.end()) {
-      RemoveOutput(fs::path(out_dir) / name);
-    }
+    if (!written(name)) RemoveOutput(fs::path(out_dir) / name);
+  }
+  // A joined session's per-run trajectories (trajectory_<run>.tum) of an earlier commit.
+  std::error_code ec;
+  for (fs::directory_iterator it(out_dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (IsRunTrajectoryName(name) && !written(name)) RemoveOutput(it->path());
   }
   names.push_back("summary.json");
   for (const std::string& name : names) {
@@ -325,6 +344,17 @@ MapOutputs MapOutputStage::CommitState(const MapState& run, const MapRun* exact_
   WriteTextAtomic((stage / "summary.json").string(), result.summary.dump(2) + "\n");
   CommitStagedOutputs(stage, out_dir_, names, &result.files);
   return result;
+}
+
+std::vector<std::string> MapOutputStage::CommitWritten(const ExtraOutputs& write) {
+  std::vector<std::string> names = write(stage_);
+  names.erase(std::remove(names.begin(), names.end(), "summary.json"), names.end());
+  if (!fs::exists(fs::path(stage_) / "summary.json")) {
+    throw std::logic_error("CommitWritten: the writer wrote no summary.json");
+  }
+  std::vector<std::string> files;
+  CommitStagedOutputs(stage_, out_dir_, names, &files);
+  return files;
 }
 
 std::vector<std::string> WriteExactMap(const MapRun& run, const std::string& out_dir) {

@@ -66,6 +66,11 @@ class MapOutputStage {
   MapOutputs Commit(const MapRun& run, const MapOutputOptions& options = {});
   /// The outputs of a captured state (no exact map: that needs the scans' profiles).
   MapOutputs Commit(const MapState& state);
+  /// Commits, as one set like Commit, the files `write(stage_dir)` writes into the staging
+  /// folder: it returns their names and writes summary.json last (e.g. a joined session's
+  /// outputs, `map --resume`). When `write` throws nothing in DIR is changed. Returns the
+  /// committed paths, summary.json last.
+  std::vector<std::string> CommitWritten(const ExtraOutputs& write);
 
  private:
   MapOutputs CommitState(const MapState& state, const MapRun* exact_from);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <opencv2/imgcodecs.hpp>
@@ -16,6 +17,7 @@
 #include "pipeline/map_job.h"
 #include "pipeline/output_folder.h"
 #include "pipeline/report_html.h"
+#include "pipeline/session_mosaic.h"
 #include "pipeline/slam_snapshot.h"
 #include "session/session_file.h"
 #include "session/session_merge.h"
@@ -133,13 +135,9 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
     return out_dir + "/" + name;
   };
   const std::map<int, Pose2> poses = session.Poses();
-  GlobalMap global(config.slam.map_resolution_m);
-  for (const SessionKeyframe& k : session.keyframes) {
-    global.AddTile(k.detected, k.detected_grid, k.T_map_anchor);
-  }
   ImageGrid grid;
   cv::Mat observed;
-  const cv::Mat map = global.Render(&grid, &observed);
+  const cv::Mat map = RenderSessionMosaic(session, config, &grid, &observed);
   WriteFloatTiff(path("map_float.tif"), map);
   std::ostringstream yaml;
   yaml.precision(12);
@@ -247,6 +245,22 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
   WriteTextAtomic(path("report.html"), RenderReportHtml(report));
   WriteTextAtomic(path("summary.json"), s.dump(2) + "\n");
   return result;
+}
+
+SessionOutputs CommitSessionOutputs(MapOutputStage* stage, const SessionData& session,
+                                    const Config& config,
+                                    const std::map<int, std::vector<OdometrySample>>& ground_truth,
+                                    const nlohmann::json& extra, const std::string& title) {
+  SessionOutputs out;
+  out.files = stage->CommitWritten([&](const std::string& dir) {
+    out = WriteSessionOutputs(session, config, dir, ground_truth, extra, title);
+    std::vector<std::string> names;
+    for (const std::string& f : out.files) {
+      names.push_back(std::filesystem::path(f).filename().string());
+    }
+    return names;
+  });
+  return out;
 }
 
 }  // namespace uwbsar::pipeline

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "backend/trajectory_metrics.h"
+#include "pipeline/map_outputs.h"
 #include "session/session_data.h"
 #include "session/session_merge.h"
 #include "slam/config.h"
@@ -31,6 +32,14 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
                                    const std::string& out_dir,
                                    const std::map<int, std::vector<OdometrySample>>& ground_truth,
                                    const nlohmann::json& extra, const std::string& title);
+
+/// WriteSessionOutputs into `stage`'s staging folder, committed into its DIR as one set
+/// (pipeline/map_outputs.h MapOutputStage::CommitWritten): a failure leaves DIR as it was.
+/// The returned files are the committed paths.
+SessionOutputs CommitSessionOutputs(MapOutputStage* stage, const SessionData& session,
+                                    const Config& config,
+                                    const std::map<int, std::vector<OdometrySample>>& ground_truth,
+                                    const nlohmann::json& extra, const std::string& title);
 
 /// The ATE of several runs after one SE(2) alignment of all of them together (the common
 /// frame), pairing poses by nearest stamp per run as TrajectoryError does.

@@ -265,6 +265,8 @@ void ValidateSession(const SessionConfig& s, const std::string& src) {
   Require(s.localize_lost_after_m > 0, src, "session.localize_lost_after_m", "must be > 0");
   Require(s.localize_window_keyframes >= 2, src, "session.localize_window_keyframes",
           "must be >= 2");
+  Require(s.joined_mosaic == "normalized_max" || s.joined_mosaic == "mean", src,
+          "session.joined_mosaic", "must be 'normalized_max' or 'mean'");
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 // Part of the configuration (slam/config.h includes it).
 #pragma once
 
+#include <string>
+
 namespace uwbsar {
 
 struct SessionConfig {
@@ -16,6 +18,11 @@ struct SessionConfig {
                                        ///< keyframe's estimate are its candidates
   double localize_lost_after_m = 3.0;  ///< localize: no fix for this much path = "lost"
   int localize_window_keyframes = 10;  ///< localize: keyframes in the sliding window
+  /// The map of several runs (map --resume, merge): "normalized_max" = each run's mean
+  /// mosaic divided by its own slam.occupancy_reference_percentile level, the runs combined
+  /// by the per-pixel max (a run that saw a wall weakly neither dilutes nor out-shines the
+  /// run that saw it well); "mean" = every tile averaged, as within one run.
+  std::string joined_mosaic = "normalized_max";
 
   template <class V>
   void Visit(V& v) {
@@ -25,6 +32,7 @@ struct SessionConfig {
     v("search_radius_m", search_radius_m);
     v("localize_lost_after_m", localize_lost_after_m);
     v("localize_window_keyframes", localize_window_keyframes);
+    v("joined_mosaic", joined_mosaic);
   }
 };
 

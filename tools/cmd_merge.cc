@@ -35,8 +35,9 @@ void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
     nlohmann::json extra;
     extra["inputs"] = {opts->a, opts->b};
     extra["merge"] = pipeline::MergeReportJson(report);
-    pipeline::WriteSessionOutputs(merged, config, opts->out_dir, {}, extra,
-                                  "uwbsar merge: " + opts->a + " + " + opts->b);
+    pipeline::MapOutputStage stage(opts->out_dir);  // the outputs committed as one set
+    pipeline::CommitSessionOutputs(&stage, merged, config, {}, extra,
+                                   "uwbsar merge: " + opts->a + " + " + opts->b);
     if (globals.quiet) return;
     std::printf(
         "merged: %zu + %zu keyframes, %d loops between the sessions (%d rejected by the "

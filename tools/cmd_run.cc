@@ -34,7 +34,8 @@ struct RunOptions {
   double duration_s = 0.0;
   std::uint64_t seed = 1;
   std::string source = "serial";
-  std::string map_path;  ///< --emulate: the map to simulate in
+  std::string map_path;     ///< --emulate: the map to simulate in
+  std::string localize_in;  ///< a saved session: localise in it instead of mapping
 };
 
 void AddRunOptions(CLI::App* cmd, RunOptions* opts) {
@@ -61,6 +62,9 @@ void AddRunOptions(CLI::App* cmd, RunOptions* opts) {
   cmd->add_option("--map", opts->map_path,
                   "--emulate: map_server map to simulate in (default: the bundled seed_hall)")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--localize-in", opts->localize_in,
+                  "Saved session (folder or session.uwbsar): localise in it instead of mapping "
+                  "(the map is not changed; outputs as `localize`, pose and map->odom on /tf)");
 }
 
 /// The emulated devices of --emulate and the thread that stops the run when they end.
@@ -119,6 +123,19 @@ void PrintRunResult(const pipeline::LiveRunResult& result, const std::string& ou
     std::printf("fault %s: %lld\n", kind.c_str(), count);
   }
   std::printf("recording: %s\n", result.recording_path.c_str());
+  if (result.localized) {
+    const pipeline::LocalizeRun& l = result.localize;
+    std::printf("localised %zu keyframes in the saved map; ", l.keyframes.size());
+    if (l.first_fix >= 0) {
+      std::printf("first fix after %.2f m (%.1f s of log)\n", l.first_fix_path_m,
+                  l.first_fix_time_s);
+    } else {
+      std::printf("never placed in the map: lost\n");
+    }
+    std::printf("outputs: %s/trajectory.tum, localize.csv, summary.json, live.json\n",
+                out_dir.c_str());
+    return;
+  }
   if (result.run.slam && !result.run.slam->keyframes().empty()) {
     PrintMapSummary(result.run, result.outputs, out_dir);
   }
@@ -140,6 +157,7 @@ void Run(const RunOptions& opts, const GlobalOptions& globals) {
   }
   options.stop = &g_stop;
   options.quiet = globals.quiet;
+  options.localize_in = opts.localize_in;
   Emulation emulation;
   if (opts.emulate) StartEmulation(opts, &config, &options, &emulation);
   pipeline::LiveRunResult result = pipeline::RunLive(config, std::move(options));

@@ -38,8 +38,9 @@ void WriteResumedMap(const SessionData& saved, const pipeline::MapRun& run,
   extra["input"] = run.input;
   extra["processing_s"] = run.processing_s;
   extra["merge"] = pipeline::MergeReportJson(report);
-  const pipeline::SessionOutputs out = pipeline::WriteSessionOutputs(
-      merged, config, out_dir, ground_truth, extra, "uwbsar map --resume: " + run.input);
+  // Staged and committed as one set, like the plain map's outputs.
+  pipeline::CommitSessionOutputs(stage, merged, config, ground_truth, extra,
+                                 "uwbsar map --resume: " + run.input);
   if (quiet) return;
   std::printf("mapped %.1f s of log in %.2f s: %zu keyframes\n", run.log_duration_s(),
               run.processing_s, run.slam->keyframes().size());

@@ -38,8 +38,11 @@ inline std::set<std::pair<int, int>> AcceptedPairs(const pipeline::SlamSystem& s
 
 inline std::string SeedLabMapPath() { return ::uwbsar::testing::SeedLabLidarMap(); }
 
+/// `seed`: the simulation seed of the played run (the scene is always seed 1's);
+/// `localize_in`: LiveRunOptions::localize_in.
 inline EmulatedRun RunEmulated(Config config, const std::string& name, double speed,
-                               double duration_s, const EmulatorFaults& faults = {}) {
+                               double duration_s, const EmulatorFaults& faults = {},
+                               std::uint64_t seed = 1, const std::string& localize_in = {}) {
   namespace fs = std::filesystem;
   EmulatedRun out;
   out.out_dir =
@@ -54,7 +57,7 @@ inline EmulatedRun RunEmulated(Config config, const std::string& name, double sp
   const sim::SimScenario scenario = sim::MakeScenario(config, SeedLabMapPath(), "depart-return", 1);
   HostClock truth_clock(speed);
   SimDevicePlayer player(
-      config, scenario, 1, config.live.radar_devices, config.live.kobuki_device, speed, faults,
+      config, scenario, seed, config.live.radar_devices, config.live.kobuki_device, speed, faults,
       [&] { return truth_clock.Now(); }, duration_s);
   std::atomic<bool> stop{false};
   pipeline::LiveRunOptions options;
@@ -64,6 +67,7 @@ inline EmulatedRun RunEmulated(Config config, const std::string& name, double sp
   options.stop = &stop;
   options.quiet = true;
   options.ground_truth = [&] { return player.ground_truth(); };
+  options.localize_in = localize_in;
   player.Start();
   std::thread watcher([&] {
     while (!player.done()) std::this_thread::sleep_for(std::chrono::milliseconds(20));

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 
 #include "test/cli_runner.h"
@@ -94,6 +95,25 @@ TEST_F(SessionCliTest, ResumeJoinsTheRevisitAsASecondRun) {
   // The joined session can be resumed again: it reads back.
   const CliRun again = Uwbsar("merge " + out + " " + Map("b") + " --out " + *dir_ + "/again");
   EXPECT_EQ(again.exit_code, 0) << again.output;
+}
+
+TEST_F(SessionCliTest, ResumeIntoAPlainMapsFolderReplacesItsOutputsAsOneSet) {
+  // Resuming into the saved map's own folder: the joined set replaces the plain map's files
+  // (no trajectory.tum, odometry.tum or loops.csv of the earlier run is left beside it).
+  const std::string out = *dir_ + "/resumed_in_place";
+  fs::copy(Map("a"), out, fs::copy_options::recursive);
+  std::ofstream(out + "/trajectory_9.tum") << "stale\n";
+  const CliRun r = Uwbsar("-q --config " + *dir_ + "/b.yaml map " + Bag("b") + " --resume " + out +
+                          " --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::set<std::string> names;
+  for (const auto& e : fs::directory_iterator(out)) names.insert(e.path().filename().string());
+  const std::set<std::string> expected = {"trajectory_0.tum", "trajectory_1.tum", "map.png",
+                                          "map_float.tif",    "map_grid.yaml",    "map.yaml",
+                                          "map.pgm",          "graph.g2o",        "session.uwbsar",
+                                          "report.html",      "summary.json"};
+  EXPECT_EQ(names, expected);
+  EXPECT_EQ(Json(out + "/summary.json")["runs"].size(), 2u);
 }
 
 TEST_F(SessionCliTest, LocalizePlacesTheRevisitWithoutChangingTheMap) {

@@ -1,0 +1,303 @@
+// Sessions (issue 18) on the long scenarios of README "Sessions": a saved map of run A,
+// then run B of the same building (scene seed 1, noise seed 2, odometry starting at zero:
+// its start pose unknown) joined to it (`map B --resume A`, the same MergeSessions as
+// `merge`) and localised in it (`localize B --map A`).
+//   seed_lab: A = the paper's depart-and-return (7.5 m, seed 1); B starts 2 m further along
+//             and 20 deg turned and drives 3 m out and back.
+//   office:   A = route_loops.txt (74 m); B = route_ring_cw.txt (36 m); clearance 0.3 m.
+// Counters (the acceptance figures): connected_after_m (B's path when placed), loops_between
+// (accepted loops between the runs), false_loops (> 0.2 m or 5 deg from the truth),
+// ate_common_cm (both runs after one alignment), ate_a_cm / ate_b_cm (each mapped alone),
+// first_fix_m, false_fixes, ate_tracking_cm (localised keyframes), map_b_s / localize_b_s
+// (wall clock of mapping / localising B, the simulator included in both), merge_s.
+//
+// Run by hand (about 1 minute for seed_lab, 3-4 for office on 2 cores; not part of CI):
+//   build/bin/uwbsar_bench --benchmark_filter=Session
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <string>
+
+#include "backend/compare/map_comparison.h"
+#include "backend/global_map.h"
+#include "imaging/image_io.h"
+#include "pipeline/localize_job.h"
+#include "pipeline/map_job.h"
+#include "pipeline/scene_simulation.h"
+#include "pipeline/session_capture.h"
+#include "pipeline/session_mosaic.h"
+#include "pipeline/session_outputs.h"
+#include "session/session_merge.h"
+#include "test/shared_data.h"
+
+namespace uwbsar {
+namespace {
+
+constexpr double kFalseM = 0.2;
+constexpr double kFalseDeg = 5.0;
+
+struct Scenario {
+  const char* name;
+  std::string map_yaml;
+  std::string route_a, route_b;
+  Config config_a, config_b;
+};
+
+Scenario SeedLab() {
+  Scenario s;
+  s.name = "seed_lab";
+  s.map_yaml = ::uwbsar::testing::SeedLabLidarMap();
+  s.route_a = s.route_b = "depart-return";
+  s.config_b.simulator.route.start_x_m += 2.0;
+  s.config_b.simulator.route.start_yaw_deg += 20.0;
+  s.config_b.simulator.route.depart_distance_m = 3.0;
+  return s;
+}
+
+Scenario Office() {
+  Scenario s;
+  s.name = "office";
+  const std::string dir = std::string(UWBSAR_SOURCE_DIR) + "/config/maps/office/";
+  s.map_yaml = dir + "office.yaml";
+  s.route_a = dir + "route_loops.txt";
+  s.route_b = dir + "route_ring_cw.txt";
+  s.config_a.simulator.route.clearance_m = 0.3;
+  s.config_b = s.config_a;
+  return s;
+}
+
+const OdometrySample& NearestTruth(const std::vector<OdometrySample>& gt, TimestampNs t) {
+  const OdometrySample* best = &gt.front();
+  for (const OdometrySample& g : gt) {
+    if (std::llabs(g.stamp_ns - t) < std::llabs(best->stamp_ns - t)) best = &g;
+  }
+  return *best;
+}
+
+/// The true pose of a session keyframe's anchor (rigid to the robot at its stamp).
+Pose2 TrueAnchor(const SessionKeyframe& k, const std::vector<OdometrySample>& gt) {
+  return NearestTruth(gt, k.stamp_ns).T_world_robot * (k.T_odom_robot.Inverse() * k.T_odom_anchor);
+}
+
+bool IsFalse(const Pose2& estimate, const Pose2& truth) {
+  const double err_m = std::hypot(estimate.x_m - truth.x_m, estimate.y_m - truth.y_m);
+  const double err_deg = std::abs(NormalizeAngle(estimate.yaw_rad - truth.yaw_rad)) * 180 / M_PI;
+  return err_m > kFalseM || err_deg > kFalseDeg;
+}
+
+/// The session's map (as `map` / `map --resume` write it) scored against the grid
+/// (`compare`, ICP from `T_lidar_sar`).
+MapMetrics Score(const SessionData& session, const Config& config, const std::string& grid_yaml,
+                 const std::string& name, const Pose2& T_lidar_sar = {}) {
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("uwbsar_session_bench_" + name)).string();
+  std::filesystem::remove_all(dir);
+  pipeline::WriteSessionOutputs(session, config, dir, {}, {}, name);
+  AlignRequest request;
+  request.T_lidar_sar = T_lidar_sar;
+  SarOccupancyRule rule;
+  rule.cell_m = config.slam.occupancy_resolution_m;
+  rule.occupied_fraction = config.slam.occupied_fraction;
+  rule.reference_percentile = config.slam.occupancy_reference_percentile;
+  const ComparisonReport report =
+      CompareMapFiles(dir + "/map_grid.yaml", grid_yaml, request, config.compare, rule);
+  std::filesystem::remove_all(dir);
+  return report.comparison.metrics;
+}
+
+/// The mosaic of `session` (every run), kept only where the tiles of run `trajectory` (at
+/// their joined poses) observed, scored like Score: the joined map on one run's area.
+MapMetrics ScoreOnRunArea(const SessionData& session, int trajectory, const Config& config,
+                          const std::string& grid_yaml, const std::string& name) {
+  const double res = config.slam.map_resolution_m;
+  GlobalMap run(res);
+  for (const SessionKeyframe& k : session.keyframes) {
+    if (k.trajectory == trajectory) run.AddTile(k.detected, k.detected_grid, k.T_map_anchor);
+  }
+  ImageGrid grid, run_grid;
+  cv::Mat observed, run_observed;
+  cv::Mat map = pipeline::RenderSessionMosaic(session, config, &grid, &observed);
+  run.Render(&run_grid, &run_observed);
+  // Both on the world lattice: the run's canvas is a block-aligned part of the whole one.
+  const int c0 = static_cast<int>(std::lround((run_grid.x0_m - grid.x0_m) / res));
+  const int r0 = static_cast<int>(std::lround((grid.y0_m - run_grid.y0_m) / res));
+  cv::Mat mask = cv::Mat::zeros(map.size(), CV_8UC1);
+  run_observed.copyTo(mask(cv::Rect(c0, r0, run_grid.cols, run_grid.rows)));
+  map.setTo(0.0f, ~mask);
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("uwbsar_session_bench_" + name)).string();
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  WriteFloatTiff(dir + "/map_float.tif", map);
+  std::ofstream(dir + "/map_grid.yaml")
+      << std::setprecision(12) << "image: map_float.tif\nx0_m: " << grid.x0_m
+      << "\ny0_m: " << grid.y0_m << "\nresolution_m: " << res << "\nrows: " << grid.rows
+      << "\ncols: " << grid.cols << "\n";
+  SarOccupancyRule rule;
+  rule.cell_m = config.slam.occupancy_resolution_m;
+  rule.occupied_fraction = config.slam.occupied_fraction;
+  rule.reference_percentile = config.slam.occupancy_reference_percentile;
+  const ComparisonReport report =
+      CompareMapFiles(dir + "/map_grid.yaml", grid_yaml, AlignRequest{}, config.compare, rule);
+  std::filesystem::remove_all(dir);
+  return report.comparison.metrics;
+}
+
+std::string Describe(const MapMetrics& m) {
+  char text[160];
+  std::snprintf(text, sizeof text, "difference %.2f %%, F1 %.3f (P %.3f R %.3f) over %lld cells",
+                m.difference_ratio * 100, m.f1, m.precision, m.recall, m.evaluated_cells);
+  return text;
+}
+
+double Seconds(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void BM_Session(benchmark::State& state) {
+  const Scenario s = state.range(0) == 0 ? SeedLab() : Office();
+  if (!std::filesystem::exists(s.map_yaml)) {
+    state.SkipWithError(("missing " + s.map_yaml).c_str());
+    return;
+  }
+  const Pose2 T_odom_world_b = pipeline::RouteStart(s.config_b).Inverse();  // B's odometry from 0
+  for (auto _ : state) {
+    const pipeline::MapRun a = pipeline::MapSimulation(s.config_a, s.map_yaml, s.route_a, 1);
+    const auto t_map_b = std::chrono::steady_clock::now();
+    const pipeline::MapRun b =
+        pipeline::MapSimulationInScene(s.config_b, s.map_yaml, s.route_b, 1, 2, T_odom_world_b);
+    const double map_b_wall_s = Seconds(t_map_b);
+    const SessionData sa = pipeline::CaptureSession(a);
+    const SessionData sb = pipeline::CaptureSession(b);
+
+    // Resume / merge: B joined to A.
+    const auto t_merge = std::chrono::steady_clock::now();
+    MergeReport report;
+    const SessionData merged = MergeSessions(sa, sb, s.config_a, &report);
+    const double merge_s = Seconds(t_merge);
+    std::map<int, Pose2> truth;
+    for (const SessionKeyframe& k : sa.keyframes) truth[k.id] = TrueAnchor(k, a.ground_truth);
+    for (const SessionKeyframe& k : sb.keyframes) {
+      truth[k.id + report.id_offset] = TrueAnchor(k, b.ground_truth);
+    }
+    int between = 0, false_loops = 0;
+    for (const SessionLoop& l : merged.loops) {
+      if (!l.accepted || l.reason != "between sessions") continue;
+      ++between;
+      false_loops += IsFalse(l.T_ij, Between(truth.at(l.match_id), truth.at(l.query_id)));
+    }
+    const AteResult common = pipeline::CommonFrameError(
+        merged, {{0, a.ground_truth}, {report.trajectory_offset, b.ground_truth}});
+    const AteResult ate_a =
+        pipeline::TrajectoryError(a.slam->CorrectedTrajectory(), a.ground_truth);
+    const AteResult ate_b =
+        pipeline::TrajectoryError(b.slam->CorrectedTrajectory(), b.ground_truth);
+
+    // The maps against the grid: A alone, B alone (its own frame: ICP from its start),
+    // both joined.
+    const MapMetrics score_a = Score(sa, s.config_a, s.map_yaml, "a");
+    const MapMetrics score_b = Score(sb, s.config_a, s.map_yaml, "b", T_odom_world_b.Inverse());
+    const MapMetrics score_joined = Score(merged, s.config_a, s.map_yaml, "joined");
+    std::printf("%s maps vs the grid: A %s; B %s; joined %s\n", s.name, Describe(score_a).c_str(),
+                Describe(score_b).c_str(), Describe(score_joined).c_str());
+    // Like for like: the joined map on each run's own area.
+    const MapMetrics joined_on_a = ScoreOnRunArea(merged, 0, s.config_a, s.map_yaml, "on_a");
+    const MapMetrics joined_on_b =
+        ScoreOnRunArea(merged, report.trajectory_offset, s.config_a, s.map_yaml, "on_b");
+    std::printf("%s joined map on A's area: %s; on B's area: %s\n", s.name,
+                Describe(joined_on_a).c_str(), Describe(joined_on_b).c_str());
+    // The other mosaic, for comparison; and A's tiles alone at their joined poses (what
+    // the joint optimisation moved, without B's tiles).
+    Config other = s.config_a;
+    other.session.joined_mosaic = other.session.joined_mosaic == "mean" ? "normalized_max" : "mean";
+    std::printf(
+        "%s joined with session.joined_mosaic %s: %s; on A's area %s; on B's area %s\n", s.name,
+        other.session.joined_mosaic.c_str(),
+        Describe(Score(merged, other, s.map_yaml, "joined")).c_str(),
+        Describe(ScoreOnRunArea(merged, 0, other, s.map_yaml, "on_a")).c_str(),
+        Describe(ScoreOnRunArea(merged, report.trajectory_offset, other, s.map_yaml, "on_b"))
+            .c_str());
+    SessionData a_joined = merged;
+    a_joined.keyframes.clear();
+    for (const SessionKeyframe& k : merged.keyframes) {
+      if (k.trajectory == 0) a_joined.keyframes.push_back(k);
+    }
+    std::printf("%s A's tiles at the joined poses: %s\n", s.name,
+                Describe(Score(a_joined, s.config_a, s.map_yaml, "a_joined")).c_str());
+    std::fflush(stdout);
+
+    // Localise B in A.
+    const auto t_loc = std::chrono::steady_clock::now();
+    const pipeline::LocalizeRun loc =
+        pipeline::LocalizeSimulation(sa, s.config_b, s.map_yaml, s.route_b, 1, 2, T_odom_world_b);
+    const double localize_b_wall_s = Seconds(t_loc);
+    const SessionKeyframe& k0 = sa.keyframes.front();
+    const Pose2 T_world_map = TrueAnchor(k0, a.ground_truth) * k0.T_map_anchor.Inverse();
+    int fixes = 0, false_fixes = 0;
+    for (const LocalizedKeyframe& k : loc.keyframes) {
+      if (k.status == LocalizeStatus::kLost || k.loops == 0) continue;
+      ++fixes;
+      SessionKeyframe as_session;  // the localised keyframe's true anchor, as TrueAnchor
+      as_session.stamp_ns = k.stamp_ns;
+      as_session.T_odom_anchor = k.T_odom_anchor;
+      const OdometryEntry* odom = &loc.odometry.front();
+      for (const OdometryEntry& e : loc.odometry) {
+        if (std::llabs(e.stamp_ns - k.stamp_ns) < std::llabs(odom->stamp_ns - k.stamp_ns))
+          odom = &e;
+      }
+      as_session.T_odom_robot = odom->T_world_robot;
+      false_fixes +=
+          IsFalse(T_world_map * k.T_map_anchor, TrueAnchor(as_session, loc.ground_truth));
+    }
+    const AteResult ate_tracking =
+        pipeline::TrajectoryError(loc.Trajectory(true), loc.ground_truth);
+
+    std::printf(
+        "%s resume: %s after %.2f m of B, %d loops between the runs (%d rejected, %d dropped), "
+        "%d false; ATE common frame %.2f cm (A alone %.2f, B alone %.2f); merge %.2f s\n",
+        s.name, report.connected ? "connected" : "NOT connected", report.connect_path_m, between,
+        report.loop_edges_rejected, report.dropped, false_loops, common.rmse_m * 100,
+        ate_a.rmse_m * 100, ate_b.rmse_m * 100, merge_s);
+    std::printf(
+        "%s localize: first fix after %.2f m, %zu keyframes, %d with fixes, %d false; ATE "
+        "while tracking %.2f cm; wall clock with the simulator: %.2f s localising B vs %.2f s "
+        "mapping B\n",
+        s.name, loc.first_fix >= 0 ? loc.first_fix_path_m : -1.0, loc.keyframes.size(), fixes,
+        false_fixes, ate_tracking.rmse_m * 100, localize_b_wall_s, map_b_wall_s);
+    std::fflush(stdout);
+    state.counters["connected"] = report.connected;
+    state.counters["connected_after_m"] = report.connect_path_m;
+    state.counters["loops_between"] = between;
+    state.counters["false_loops"] = false_loops;
+    state.counters["ate_common_cm"] = common.rmse_m * 100;
+    state.counters["ate_a_cm"] = ate_a.rmse_m * 100;
+    state.counters["ate_b_cm"] = ate_b.rmse_m * 100;
+    state.counters["first_fix_m"] = loc.first_fix >= 0 ? loc.first_fix_path_m : -1.0;
+    state.counters["false_fixes"] = false_fixes;
+    state.counters["ate_tracking_cm"] = ate_tracking.rmse_m * 100;
+    state.counters["map_b_s"] = map_b_wall_s;
+    state.counters["localize_b_s"] = localize_b_wall_s;
+    state.counters["merge_s"] = merge_s;
+    state.counters["diff_a_pct"] = score_a.difference_ratio * 100;
+    state.counters["diff_b_pct"] = score_b.difference_ratio * 100;
+    state.counters["diff_joined_pct"] = score_joined.difference_ratio * 100;
+    state.counters["f1_a"] = score_a.f1;
+    state.counters["f1_b"] = score_b.f1;
+    state.counters["f1_joined"] = score_joined.f1;
+    state.counters["diff_joined_on_a_pct"] = joined_on_a.difference_ratio * 100;
+    state.counters["diff_joined_on_b_pct"] = joined_on_b.difference_ratio * 100;
+    state.counters["f1_joined_on_a"] = joined_on_a.f1;
+    state.counters["f1_joined_on_b"] = joined_on_b.f1;
+  }
+}
+BENCHMARK(BM_Session)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1);
+
+}  // namespace
+}  // namespace uwbsar
