@@ -16,7 +16,7 @@
 #include "drivers/live/lt102_commands.h"
 #include "drivers/live/lt102_protocol.h"
 #include "drivers/live/serial_port.h"
-#include "slam/live_config.h"
+#include "drivers/live/live_config.h"
 
 namespace uwbsar::live {
 

@@ -19,7 +19,7 @@
 #include "drivers/dds/dds_events.h"
 #include "drivers/dds/participant.h"
 #include "drivers/dds/ros2_subscriber.h"
-#include "slam/dds_config.h"
+#include "drivers/dds/dds_config.h"
 
 namespace uwbsar::dds::testing {
 
