@@ -44,7 +44,7 @@ struct FrontendStats {
 
 class ImagingFrontend {
  public:
-  explicit ImagingFrontend(const Config& config);
+  explicit ImagingFrontend(const CoreConfig& config);
   ~ImagingFrontend();
 
   void AddOdometry(const OdometrySample& sample);
@@ -73,7 +73,7 @@ class ImagingFrontend {
   void ImageScan(RadarScan&& scan, const OdometryEntry& odom);
   void CountImplausible();
 
-  Config config_;
+  CoreConfig config_;
   std::vector<SensorGeometry> sensors_;
   std::vector<std::unique_ptr<RangeCompressor>> compressors_;
   std::vector<bool> have_last_;

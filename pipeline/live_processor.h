@@ -14,6 +14,7 @@
 #include <optional>
 #include <vector>
 
+#include "pipeline/app_config.h"
 #include "pipeline/live_recorder.h"
 #include "pipeline/live_runner.h"
 

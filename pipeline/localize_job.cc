@@ -11,6 +11,7 @@
 #include "drivers/sim/sim_stream.h"
 #include "frontend/imaging_frontend.h"
 #include "imaging/image_io.h"
+#include "pipeline/app_config.h"
 #include "pipeline/map_job.h"
 #include "pipeline/output_folder.h"
 #include "slam/errors.h"

@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "backend/trajectory_metrics.h"
+#include "pipeline/app_config.h"
 #include "session/session_data.h"
 #include "session/session_merge.h"
-#include "slam/config.h"
 #include "slam/types.h"
 
 namespace uwbsar::tools {

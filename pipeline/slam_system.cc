@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "imaging/enhance.h"
+#include "pipeline/app_config.h"
 #include "slam/errors.h"
 #include "slam/log.h"
 

@@ -32,8 +32,8 @@
 #include "backend/pose_graph.h"
 #include "frontend/imaging_frontend.h"
 #include "frontend/place_recognition/place_recognizer.h"
+#include "pipeline/app_config.h"
 #include "pipeline/slam_snapshot.h"
-#include "slam/config.h"
 
 namespace uwbsar {
 

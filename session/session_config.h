@@ -1,7 +1,9 @@
 // Configuration of saved sessions: joining a new run to a saved map
 // (`uwbsar map --resume`, `uwbsar merge`) and localising in one (`uwbsar localize`).
-// Part of the configuration (slam/config.h includes it).
+// Part of the configuration (pipeline/app_config.h aggregates it).
 #pragma once
+
+#include <string>
 
 namespace uwbsar {
 
@@ -27,5 +29,9 @@ struct SessionConfig {
     v("localize_window_keyframes", localize_window_keyframes);
   }
 };
+
+/// Semantic checks of session.* (ranges, names, consistency); throws ConfigError naming the
+/// dotted key and `source_name`.
+void Validate(const SessionConfig& config, const std::string& source_name);
 
 }  // namespace uwbsar

@@ -1,18 +1,15 @@
 // Configuration structs. Every field has an in-class default equal to the
 // paper's value (or the reference code's where the paper is silent), and a
 // Visit() that lists the fields by their YAML key so that one generic loader
-// (slam/config_io.h) reads, checks and writes them all.
+// (slam/config_io.h) reads, checks and writes them all. The sections owned by higher
+// folders (simulator, live, dds, compare, session) live beside their code and join these
+// in the whole file's struct, pipeline/app_config.h.
 // config/default.yaml documents every field; a test keeps the two in sync.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "backend/compare/compare_config.h"
-#include "drivers/dds/dds_config.h"
-#include "drivers/live/live_config.h"
-#include "drivers/sim/simulator_config.h"
-#include "session/session_config.h"
 #include "slam/named_enum.h"
 #include "slam/place_recognition_config.h"
 
@@ -33,6 +30,8 @@ struct PulseConfig {
     v("amplitude_v", amplitude_v);
   }
 };
+/// Semantic checks of pulse.*; throws ConfigError naming the dotted key.
+void Validate(const PulseConfig& config, const std::string& source_name);
 
 /// One radar: where it sits on the robot, where it looks, what it sees.
 struct RadarConfig {
@@ -74,6 +73,8 @@ inline std::vector<RadarConfig> DefaultRadars() {
   right.boresight_yaw_deg = -90.0;
   return {left, right};
 }
+/// Semantic checks of radars[*]; throws ConfigError naming the dotted key.
+void Validate(const std::vector<RadarConfig>& radars, const std::string& source_name);
 
 /// imaging.mode: "paper": real samples, linear interpolation (as the paper); "coherent":
 /// analytic signal with exp(j 4 pi fc R / c) phase.
@@ -101,6 +102,8 @@ struct ImagingConfig {
     v("num_threads", num_threads);
   }
 };
+/// Semantic checks of imaging.*; throws ConfigError naming the dotted key.
+void Validate(const ImagingConfig& config, const std::string& source_name);
 
 /// Scan gating and odometry sanity checks.
 struct GatingConfig {
@@ -121,6 +124,8 @@ struct GatingConfig {
     v("max_odom_turn_rate_radps", max_odom_turn_rate_radps);
   }
 };
+/// Semantic checks of gating.*; throws ConfigError naming the dotted key.
+void Validate(const GatingConfig& config, const std::string& source_name);
 
 /// Keyframe tiles: overlapping SAR images of L metres of path (the paper's regions).
 struct KeyframeConfig {
@@ -136,6 +141,8 @@ struct KeyframeConfig {
     v("margin_m", margin_m);
   }
 };
+/// Semantic checks of keyframe.*; throws ConfigError naming the dotted key.
+void Validate(const KeyframeConfig& config, const std::string& source_name);
 
 /// Image enhancement for display and features (paper section "UWB SAR Imaging").
 struct EnhanceConfig {
@@ -150,6 +157,8 @@ struct EnhanceConfig {
     v("colormap", colormap);
   }
 };
+/// Semantic checks of enhance.*; throws ConfigError naming the dotted key.
+void Validate(const EnhanceConfig& config, const std::string& source_name);
 
 /// backend.initialization: the first solve starts from the nodes' initial estimates
 /// (guess) or from a chordal relaxation (chordal).
@@ -222,6 +231,8 @@ struct BackendConfig {
     v("num_threads", num_threads);
   }
 };
+/// Semantic checks of backend.*; throws ConfigError naming the dotted key.
+void Validate(const BackendConfig& config, const std::string& source_name);
 
 /// The SLAM pipeline as `uwbsar map` and live mode run it.
 struct SlamConfig {
@@ -265,6 +276,9 @@ struct SlamConfig {
     v("occupancy_reference_percentile", occupancy_reference_percentile);
   }
 };
+/// Semantic checks of slam.* (the rules joining it to radars[] are in ValidateCoreConfig); throws
+/// ConfigError naming the dotted key.
+void Validate(const SlamConfig& config, const std::string& source_name);
 
 /// Budgets on the sizes the other settings imply (README "What uwbsar refuses"): the
 /// configuration is refused before any work starts when a setting would exceed them, and
@@ -292,8 +306,11 @@ struct LimitsConfig {
   }
 };
 
-/// The whole configuration; config/default.yaml mirrors it field by field.
-struct Config {
+/// The core sections: what drivers, frontend, backend and session code may be given (each
+/// module takes only its own sections). The whole file's struct, `Config`
+/// (pipeline/app_config.h), adds the sections owned by higher folders (simulator, live,
+/// dds, compare, session); its Visit lists every section in the file's order.
+struct CoreConfig {
   PulseConfig pulse;
   std::vector<RadarConfig> radars = DefaultRadars();
   ImagingConfig imaging;
@@ -301,15 +318,10 @@ struct Config {
   KeyframeConfig keyframe;
   EnhanceConfig enhance;
   BackendConfig backend;
-  SimulatorConfig simulator;
   PlaceRecognitionConfig place_recognition;
-  CompareConfig compare;
 
   SlamConfig slam;
-  LiveConfig live;
-  DdsConfig dds;
   LimitsConfig limits;
-  SessionConfig session;
 
   template <class V>
   void Visit(V& v) {
@@ -321,13 +333,8 @@ struct Config {
     v("keyframe", keyframe);
     v("enhance", enhance);
     v("backend", backend);
-    v("simulator", simulator);
     v("place_recognition", place_recognition);
-    v("compare", compare);
-    v("live", live);
-    v("dds", dds);
     v("limits", limits);
-    v("session", session);
   }
 };
 

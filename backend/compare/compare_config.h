@@ -58,4 +58,8 @@ struct CompareConfig {
   }
 };
 
+/// Semantic checks of compare.* (ranges, names, consistency); throws ConfigError naming the
+/// dotted key and `source_name`.
+void Validate(const CompareConfig& config, const std::string& source_name);
+
 }  // namespace uwbsar

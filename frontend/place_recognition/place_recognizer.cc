@@ -16,7 +16,7 @@ double MsSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe, const Config& config) {
+KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe, const CoreConfig& config) {
   const DetectorConfig& d = config.place_recognition.detectors;
   KeyframeFeatures k;
   k.id = keyframe.id;
@@ -46,7 +46,7 @@ KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe, const Config&
   return k;
 }
 
-double FeatureDownsampling(const Config& config) {
+double FeatureDownsampling(const CoreConfig& config) {
   const double r = config.place_recognition.detectors.feature_resolution_m;
   return r > config.imaging.pixel_size_m ? r / config.imaging.pixel_size_m : 1.0;
 }
@@ -62,7 +62,7 @@ PlaceRecognitionConfig AtFeatureResolution(PlaceRecognitionConfig pr, double fac
   return pr;
 }
 
-PlaceRecognizer::PlaceRecognizer(const Config& config)
+PlaceRecognizer::PlaceRecognizer(const CoreConfig& config)
     : config_(config), index_(config.place_recognition.candidates.grid_cell_m) {
   config_.place_recognition =
       AtFeatureResolution(config.place_recognition, FeatureDownsampling(config));

@@ -32,7 +32,7 @@ struct KeyframeFeatures {
 };
 
 /// Tile pixels per feature pixel (detectors.feature_resolution_m / imaging.pixel_size_m, >= 1).
-double FeatureDownsampling(const Config& config);
+double FeatureDownsampling(const CoreConfig& config);
 
 /// `pr` with its pixel thresholds (RANSAC, AKAZE/ORB agreement, inlier spread, residual
 /// floor), which are the paper's at the tile resolution, divided by `factor` (feature pixel
@@ -41,7 +41,7 @@ PlaceRecognitionConfig AtFeatureResolution(PlaceRecognitionConfig pr, double fac
 
 /// Computes a keyframe's cached features (AKAZE and ORB) from its tile, at
 /// detectors.feature_resolution_m (`grid` is then the downsampled tile's grid).
-KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe, const Config& config);
+KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe, const CoreConfig& config);
 
 struct LoopAttempt {
   int candidate_id = 0;  ///< i (the older keyframe); the new one is j
@@ -64,7 +64,7 @@ struct PlaceRecognitionResult {
 
 class PlaceRecognizer {
  public:
-  explicit PlaceRecognizer(const Config& config);
+  explicit PlaceRecognizer(const CoreConfig& config);
 
   /// Processes a new keyframe: features, candidates, matching, validation; then adds it
   /// to the database. `T_world_anchor_estimate` is the best current estimate of its
@@ -86,7 +86,7 @@ class PlaceRecognizer {
   /// was validated at most guided.neighbours keyframes before it.
   void GuidedPass(const KeyframeFeatures& features, PlaceRecognitionResult* result);
 
-  Config config_;
+  CoreConfig config_;
   KeyframeIndex index_;
   std::unordered_map<int, std::unique_ptr<KeyframeFeatures>> database_;
   double path_at_last_loop_m_ = 0.0;

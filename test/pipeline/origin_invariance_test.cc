@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "drivers/sim/sim_stream.h"
+#include "pipeline/app_config.h"
 #include "pipeline/map_job.h"
 #include "pipeline/slam_system.h"
 #include "test/shared_data.h"
