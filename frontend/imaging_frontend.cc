@@ -5,7 +5,7 @@
 
 namespace uwbsar {
 
-ImagingFrontend::ImagingFrontend(const CoreConfig& config)
+ImagingFrontend::ImagingFrontend(const ImagingFrontendConfig& config)
     : config_(config), odometry_(config.gating) {
   const bool coherent = config.imaging.coherent();
   for (const RadarConfig& radar : config.radars) {

@@ -46,6 +46,8 @@ struct KeyframeRecord {
 
 class SlamSystem {
  public:
+  /// Hands each module only its sections (ImagingFrontendConfig, BackendConfig,
+  /// PlaceRecognizerConfig); keeps the whole file for config() (what a session records).
   explicit SlamSystem(const Config& config);
   ~SlamSystem();
 
