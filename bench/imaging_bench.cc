@@ -8,6 +8,7 @@
 #include "drivers/echo_simulator.h"
 #include "frontend/back_projection.h"
 #include "frontend/range_profile.h"
+#include "pipeline/app_config.h"
 
 namespace uwbsar {
 namespace {

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "pipeline/app_config.h"
 #include "pipeline/map_job.h"
 
 namespace uwbsar {

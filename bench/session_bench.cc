@@ -216,10 +216,12 @@ void BM_Session(benchmark::State& state) {
     // The other mosaic, for comparison; and A's tiles alone at their joined poses (what
     // the joint optimisation moved, without B's tiles).
     Config other = s.config_a;
-    other.session.joined_mosaic = other.session.joined_mosaic == "mean" ? "normalized_max" : "mean";
+    other.session.joined_mosaic = other.session.joined_mosaic == JoinedMosaic::kMean
+                                      ? JoinedMosaic::kNormalizedMax
+                                      : JoinedMosaic::kMean;
     std::printf(
         "%s joined with session.joined_mosaic %s: %s; on A's area %s; on B's area %s\n", s.name,
-        other.session.joined_mosaic.c_str(),
+        EnumName(other.session.joined_mosaic),
         Describe(Score(merged, other, s.map_yaml, "joined")).c_str(),
         Describe(ScoreOnRunArea(merged, 0, other, s.map_yaml, "on_a")).c_str(),
         Describe(ScoreOnRunArea(merged, report.trajectory_offset, other, s.map_yaml, "on_b"))

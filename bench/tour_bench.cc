@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "pipeline/app_config_io.h"
 #include "pipeline/tour_eval.h"
-#include "slam/config_io.h"
 
 namespace uwbsar {
 namespace {

@@ -12,7 +12,7 @@ Pose2 PathPose(const SyntheticPath& path, double s_m) {
   return path.start * Pose2{r * std::sin(yaw), r * (1.0 - std::cos(yaw)), yaw};
 }
 
-SyntheticRun SimulateRun(const Config& config, const SyntheticPath& path,
+SyntheticRun SimulateRun(const CoreConfig& config, const SyntheticPath& path,
                          const std::vector<Scatterer>& scatterers, const EchoModel& model,
                          std::uint64_t seed) {
   SyntheticRun run;

@@ -32,7 +32,7 @@ struct SyntheticRun {
 /// Pose along the path after travelling `s_m`.
 Pose2 PathPose(const SyntheticPath& path, double s_m);
 
-SyntheticRun SimulateRun(const Config& config, const SyntheticPath& path,
+SyntheticRun SimulateRun(const CoreConfig& config, const SyntheticPath& path,
                          const std::vector<Scatterer>& scatterers, const EchoModel& model,
                          std::uint64_t seed);
 

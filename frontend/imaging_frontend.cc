@@ -5,7 +5,8 @@
 
 namespace uwbsar {
 
-ImagingFrontend::ImagingFrontend(const Config& config) : config_(config), odometry_(config.gating) {
+ImagingFrontend::ImagingFrontend(const ImagingFrontendConfig& config)
+    : config_(config), odometry_(config.gating) {
   const bool coherent = config.imaging.coherent();
   for (const RadarConfig& radar : config.radars) {
     sensors_.push_back(SensorGeometry::FromConfig(radar, config.pulse));

@@ -42,9 +42,29 @@ struct FrontendStats {
   }
 };
 
+/// The sections the imaging frontend reads: the pulse and radars (range compression, sensor
+/// geometry), imaging (pixel size, mode), gating and keyframe tiling. Nothing else of the
+/// configuration reaches it.
+struct ImagingFrontendConfig {
+  PulseConfig pulse;
+  std::vector<RadarConfig> radars = DefaultRadars();
+  ImagingConfig imaging;
+  GatingConfig gating;
+  KeyframeConfig keyframe;
+
+  ImagingFrontendConfig() = default;
+  /// Its sections of a configuration (implicit: callers hand the configuration they hold).
+  ImagingFrontendConfig(const CoreConfig& config)  // NOLINT(google-explicit-constructor)
+      : pulse(config.pulse),
+        radars(config.radars),
+        imaging(config.imaging),
+        gating(config.gating),
+        keyframe(config.keyframe) {}
+};
+
 class ImagingFrontend {
  public:
-  explicit ImagingFrontend(const Config& config);
+  explicit ImagingFrontend(const ImagingFrontendConfig& config);
   ~ImagingFrontend();
 
   void AddOdometry(const OdometrySample& sample);
@@ -73,7 +93,7 @@ class ImagingFrontend {
   void ImageScan(RadarScan&& scan, const OdometryEntry& odom);
   void CountImplausible();
 
-  Config config_;
+  ImagingFrontendConfig config_;
   std::vector<SensorGeometry> sensors_;
   std::vector<std::unique_ptr<RangeCompressor>> compressors_;
   std::vector<bool> have_last_;

@@ -8,6 +8,7 @@
 #include <regex>
 #include <sstream>
 
+#include "pipeline/app_config.h"
 #include "pipeline/image_match_report.h"
 #include "slam/errors.h"
 

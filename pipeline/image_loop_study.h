@@ -11,6 +11,7 @@
 
 #include "frontend/place_recognition/image_match.h"
 #include "frontend/place_recognition/loop_stats.h"
+#include "pipeline/app_config.h"
 
 namespace uwbsar::pipeline {
 

@@ -8,6 +8,7 @@
 #include "drivers/log_source.h"
 #include "imaging/enhance.h"
 #include "imaging/image_io.h"
+#include "pipeline/app_config.h"
 #include "slam/errors.h"
 
 namespace uwbsar::pipeline {

@@ -8,7 +8,7 @@
 #include "drivers/synthetic_run.h"
 #include "frontend/imaging_frontend.h"
 #include "frontend/strip_renderer.h"
-#include "slam/config.h"
+#include "pipeline/app_config.h"
 
 namespace uwbsar::pipeline {
 

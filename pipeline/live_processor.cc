@@ -4,6 +4,7 @@
 #include <cmath>
 #include <thread>
 
+#include "pipeline/app_config.h"
 #include "pipeline/session_capture.h"
 #include "session/session_file.h"
 #include "slam/log.h"

@@ -19,6 +19,7 @@
 #include <optional>
 #include <vector>
 
+#include "pipeline/app_config.h"
 #include "pipeline/live_recorder.h"
 #include "pipeline/live_runner.h"
 #include "pipeline/localize_pipeline.h"

@@ -4,6 +4,7 @@
 
 #include "drivers/rosbag/cdr_writer.h"
 #include "drivers/sim/sim_bag_writer.h"
+#include "pipeline/app_config.h"
 
 namespace uwbsar::pipeline {
 

@@ -18,7 +18,7 @@
 
 #include "drivers/live/host_clock.h"
 #include "drivers/rosbag/bag_writer.h"
-#include "slam/config.h"
+#include "pipeline/app_config.h"
 #include "slam/message.h"
 #include "slam/types.h"
 

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "pipeline/app_config.h"
 #include "slam/occupancy_grid.h"
 
 namespace uwbsar::pipeline {

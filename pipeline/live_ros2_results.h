@@ -11,6 +11,7 @@
 #include "drivers/dds/participant.h"
 #include "drivers/dds/ros2_publisher.h"
 #include "drivers/live/fault_log.h"
+#include "pipeline/app_config.h"
 #include "pipeline/live_processor.h"
 
 namespace uwbsar::pipeline {

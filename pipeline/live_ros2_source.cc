@@ -5,6 +5,7 @@
 
 #include "drivers/dds/participant.h"
 #include "drivers/dds/ros2_subscriber.h"
+#include "pipeline/app_config.h"
 #include "pipeline/live_ros2_results.h"
 #include "pipeline/live_source.h"
 #include "pipeline/stamp_order_buffer.h"

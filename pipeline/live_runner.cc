@@ -8,6 +8,7 @@
 #include "drivers/live/fault_log.h"
 #include "drivers/live/host_clock.h"
 #include "imaging/image_io.h"
+#include "pipeline/app_config.h"
 #include "pipeline/live_processor.h"
 #include "pipeline/live_recorder.h"
 #include "pipeline/live_ros2_results.h"

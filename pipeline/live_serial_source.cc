@@ -12,6 +12,7 @@
 #include "drivers/live/kobuki_driver.h"
 #include "drivers/live/lt102_driver.h"
 #include "drivers/live/radar_power.h"
+#include "pipeline/app_config.h"
 #include "pipeline/live_source.h"
 #include "pipeline/stamp_order_buffer.h"
 #include "slam/errors.h"

@@ -11,6 +11,7 @@
 
 #include "drivers/live/fault_log.h"
 #include "drivers/live/lt102_driver.h"
+#include "pipeline/app_config.h"
 #include "pipeline/live_processor.h"
 
 namespace uwbsar::pipeline {

@@ -12,6 +12,7 @@
 #include "frontend/imaging_frontend.h"
 #include "imaging/image_io.h"
 #include "pipeline/localize_pipeline.h"
+#include "pipeline/app_config.h"
 #include "pipeline/map_job.h"
 #include "pipeline/output_folder.h"
 #include "slam/errors.h"

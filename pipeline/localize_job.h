@@ -15,6 +15,7 @@
 
 #include "backend/trajectory_metrics.h"
 #include "frontend/odometry_buffer.h"
+#include "pipeline/app_config.h"
 #include "session/localizer.h"
 #include "session/session_data.h"
 

@@ -12,6 +12,7 @@
 #include "drivers/rosbag/bag_source.h"
 #include "drivers/rosbag/robot_bag.h"
 #include "drivers/sim/sim_source.h"
+#include "pipeline/app_config.h"
 #include "slam/errors.h"
 
 namespace uwbsar::pipeline {

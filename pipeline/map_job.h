@@ -11,6 +11,7 @@
 
 #include "backend/trajectory_metrics.h"
 #include "drivers/rosbag/bag_storage.h"
+#include "pipeline/app_config.h"
 #include "pipeline/slam_system.h"
 #include "slam/message.h"
 

@@ -21,6 +21,7 @@
 #include "frontend/strip_renderer.h"
 #include "imaging/enhance.h"
 #include "imaging/image_io.h"
+#include "pipeline/app_config.h"
 #include "pipeline/imaging_job.h"
 #include "pipeline/map_report.h"
 #include "pipeline/report_html.h"

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "drivers/sim/sim_stream.h"
+#include "pipeline/app_config.h"
 
 namespace uwbsar::pipeline {
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 
+#include "pipeline/app_config.h"
 #include "pipeline/map_job.h"
 
 namespace uwbsar::pipeline {

@@ -2,8 +2,8 @@
 
 #include <stdexcept>
 
+#include "pipeline/app_config_io.h"
 #include "slam/config_fingerprint.h"
-#include "slam/config_io.h"
 
 namespace uwbsar::pipeline {
 

@@ -31,15 +31,14 @@ float ReferenceLevel(const cv::Mat& map, const cv::Mat& observed, double percent
 
 cv::Mat RenderSessionMosaic(const SessionData& session, const Config& config, ImageGrid* grid,
                             cv::Mat* observed) {
-  const SessionMosaic mode =
-      config.session.joined_mosaic == "mean" ? SessionMosaic::kMean : SessionMosaic::kNormalizedMax;
+  const JoinedMosaic mode = config.session.joined_mosaic;
   return RenderSessionMosaic(session, config.slam.map_resolution_m, mode, grid, observed,
                              config.slam.occupancy_reference_percentile);
 }
 
-cv::Mat RenderSessionMosaic(const SessionData& session, double resolution_m, SessionMosaic mode,
+cv::Mat RenderSessionMosaic(const SessionData& session, double resolution_m, JoinedMosaic mode,
                             ImageGrid* grid, cv::Mat* observed, double reference_percentile) {
-  if (mode == SessionMosaic::kMean) {
+  if (mode == JoinedMosaic::kMean) {
     GlobalMap global(resolution_m);
     for (const SessionKeyframe& k : session.keyframes) {
       global.AddTile(k.detected, k.detected_grid, k.T_map_anchor);

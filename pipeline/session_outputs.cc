@@ -14,6 +14,7 @@
 #include "backend/occupancy_io.h"
 #include "imaging/enhance.h"
 #include "imaging/image_io.h"
+#include "pipeline/app_config.h"
 #include "pipeline/map_job.h"
 #include "pipeline/output_folder.h"
 #include "pipeline/report_html.h"

@@ -12,9 +12,9 @@
 
 #include "backend/trajectory_metrics.h"
 #include "pipeline/map_outputs.h"
+#include "pipeline/app_config.h"
 #include "session/session_data.h"
 #include "session/session_merge.h"
-#include "slam/config.h"
 #include "slam/types.h"
 
 namespace uwbsar::pipeline {

@@ -15,7 +15,7 @@
 #include "frontend/imaging_frontend.h"
 #include "frontend/odometry_buffer.h"
 #include "frontend/place_recognition/place_recognizer.h"
-#include "slam/config.h"
+#include "pipeline/app_config.h"
 #include "slam/pose2.h"
 #include "slam/types.h"
 

@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "imaging/enhance.h"
+#include "pipeline/app_config.h"
 #include "slam/errors.h"
 #include "slam/log.h"
 
@@ -38,9 +39,9 @@ void MakeDetected(const Keyframe& k, const Config& config, cv::Mat* detected, Im
 
 SlamSystem::SlamSystem(const Config& config)
     : config_(config),
-      frontend_(std::make_unique<ImagingFrontend>(config)),
+      frontend_(std::make_unique<ImagingFrontend>(ImagingFrontendConfig(config))),
       graph_(std::make_unique<PoseGraph>(config.backend)),
-      recognizer_(std::make_unique<PlaceRecognizer>(config)) {
+      recognizer_(std::make_unique<PlaceRecognizer>(PlaceRecognizerConfig(config))) {
   frontend_->SetOdometryObserver(
       [this](const OdometryEntry& e) { pending_odometry_.push_back(e); });
   if (config_.slam.keyframe_thread) worker_ = std::thread([this] { WorkerLoop(); });

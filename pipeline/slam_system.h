@@ -32,8 +32,8 @@
 #include "backend/pose_graph.h"
 #include "frontend/imaging_frontend.h"
 #include "frontend/place_recognition/place_recognizer.h"
+#include "pipeline/app_config.h"
 #include "pipeline/slam_snapshot.h"
-#include "slam/config.h"
 
 namespace uwbsar::pipeline {
 
@@ -46,6 +46,8 @@ struct KeyframeRecord {
 
 class SlamSystem {
  public:
+  /// Hands each module only its sections (ImagingFrontendConfig, BackendConfig,
+  /// PlaceRecognizerConfig); keeps the whole file for config() (what a session records).
   explicit SlamSystem(const Config& config);
   ~SlamSystem();
 

@@ -30,7 +30,7 @@ bool Agree(const Pose2& x, const Pose2& y, const SessionConfig& c) {
 
 }  // namespace
 
-Localizer::Localizer(const SessionData& map, const Config& config)
+Localizer::Localizer(const SessionData& map, const SessionSettings& config)
     : map_(map),
       config_(config),
       pr_(AtFeatureResolution(config.place_recognition, FeatureDownsampling(config))) {}

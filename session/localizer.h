@@ -15,7 +15,7 @@
 
 #include "frontend/place_recognition/place_recognizer.h"
 #include "session/session_data.h"
-#include "slam/config.h"
+#include "session/session_settings.h"
 
 namespace uwbsar {
 
@@ -38,7 +38,7 @@ struct LocalizedKeyframe {
 class Localizer {
  public:
   /// `map` must outlive the localizer.
-  Localizer(const SessionData& map, const Config& config);
+  Localizer(const SessionData& map, const SessionSettings& config);
 
   /// One new keyframe: its features (grid, centre) and odometry anchor pose, its stamp and
   /// the odometry path at its end. Returns what was decided for it.
@@ -61,7 +61,7 @@ class Localizer {
   void SolveWindow();
 
   const SessionData& map_;
-  Config config_;
+  SessionSettings config_;
   PlaceRecognitionConfig pr_;
   std::vector<LocalizedKeyframe> keyframes_;
   std::deque<Loop> window_loops_;  ///< loops of the keyframes in the window

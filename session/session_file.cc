@@ -225,7 +225,7 @@ std::string ResolveSessionPath(const std::string& dir_or_file) {
   return dir_or_file;
 }
 
-SessionData ReadSession(const std::string& path, const Config* config) {
+SessionData ReadSession(const std::string& path, const CoreConfig* config) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw InputError(path + ": no session file there");
   SqliteDb db(path, /*create=*/false);

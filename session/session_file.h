@@ -25,6 +25,6 @@ std::string ResolveSessionPath(const std::string& dir_or_file);
 /// Reads a session. Throws InputError (one line naming the file) for a missing, foreign or
 /// damaged file and for another format version; with `config`, also when its
 /// compatibility-relevant settings (config_fingerprint.h) differ, naming the first key.
-SessionData ReadSession(const std::string& path, const Config* config = nullptr);
+SessionData ReadSession(const std::string& path, const CoreConfig* config = nullptr);
 
 }  // namespace uwbsar

@@ -50,8 +50,8 @@ SessionData Renumbered(const SessionData& b, int id_offset, int trajectory_offse
 
 }  // namespace
 
-SessionData MergeSessions(const SessionData& a, const SessionData& b_in, const Config& config,
-                          MergeReport* report) {
+SessionData MergeSessions(const SessionData& a, const SessionData& b_in,
+                          const SessionSettings& config, MergeReport* report) {
   MergeReport& r = *report;
   r = MergeReport{};
   r.id_offset = a.MaxKeyframeId() + 1;

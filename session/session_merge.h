@@ -14,7 +14,7 @@
 
 #include "backend/pose_graph.h"
 #include "session/session_data.h"
-#include "slam/config.h"
+#include "session/session_settings.h"
 
 namespace uwbsar {
 
@@ -38,7 +38,7 @@ struct MergeReport {
 /// ids and b's with ids + report->id_offset, in a's map frame; when b cannot be connected
 /// it is `a` unchanged plus b's trajectories (report->connected false, reason set) and b's
 /// keyframes are not in it.
-SessionData MergeSessions(const SessionData& a, const SessionData& b, const Config& config,
+SessionData MergeSessions(const SessionData& a, const SessionData& b, const SessionSettings& config,
                           MergeReport* report);
 
 }  // namespace uwbsar

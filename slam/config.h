@@ -1,19 +1,17 @@
 // Configuration structs. Every field has an in-class default equal to the
 // paper's value (or the reference code's where the paper is silent), and a
 // Visit() that lists the fields by their YAML key so that one generic loader
-// (slam/config_io.h) reads, checks and writes them all.
+// (slam/config_io.h) reads, checks and writes them all. The sections owned by higher
+// folders (simulator, live, dds, compare, session) live beside their code and join these
+// in the whole file's struct, pipeline/app_config.h.
 // config/default.yaml documents every field; a test keeps the two in sync.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "slam/dds_config.h"
-#include "slam/live_config.h"
 #include "slam/named_enum.h"
 #include "slam/place_recognition_config.h"
-#include "slam/session_config.h"
-#include "slam/simulator_config.h"
 
 namespace uwbsar {
 
@@ -32,6 +30,8 @@ struct PulseConfig {
     v("amplitude_v", amplitude_v);
   }
 };
+/// Semantic checks of pulse.*; throws ConfigError naming the dotted key.
+void Validate(const PulseConfig& config, const std::string& source_name);
 
 /// One radar: where it sits on the robot, where it looks, what it sees.
 struct RadarConfig {
@@ -73,6 +73,8 @@ inline std::vector<RadarConfig> DefaultRadars() {
   right.boresight_yaw_deg = -90.0;
   return {left, right};
 }
+/// Semantic checks of radars[*]; throws ConfigError naming the dotted key.
+void Validate(const std::vector<RadarConfig>& radars, const std::string& source_name);
 
 /// imaging.mode: "paper": real samples, linear interpolation (as the paper); "coherent":
 /// analytic signal with exp(j 4 pi fc R / c) phase.
@@ -100,6 +102,8 @@ struct ImagingConfig {
     v("num_threads", num_threads);
   }
 };
+/// Semantic checks of imaging.*; throws ConfigError naming the dotted key.
+void Validate(const ImagingConfig& config, const std::string& source_name);
 
 /// Scan gating and odometry sanity checks.
 struct GatingConfig {
@@ -120,6 +124,8 @@ struct GatingConfig {
     v("max_odom_turn_rate_radps", max_odom_turn_rate_radps);
   }
 };
+/// Semantic checks of gating.*; throws ConfigError naming the dotted key.
+void Validate(const GatingConfig& config, const std::string& source_name);
 
 /// Keyframe tiles: overlapping SAR images of L metres of path (the paper's regions).
 struct KeyframeConfig {
@@ -135,6 +141,8 @@ struct KeyframeConfig {
     v("margin_m", margin_m);
   }
 };
+/// Semantic checks of keyframe.*; throws ConfigError naming the dotted key.
+void Validate(const KeyframeConfig& config, const std::string& source_name);
 
 /// Image enhancement for display and features (paper section "UWB SAR Imaging").
 struct EnhanceConfig {
@@ -149,6 +157,8 @@ struct EnhanceConfig {
     v("colormap", colormap);
   }
 };
+/// Semantic checks of enhance.*; throws ConfigError naming the dotted key.
+void Validate(const EnhanceConfig& config, const std::string& source_name);
 
 /// backend.initialization: the first solve starts from the nodes' initial estimates
 /// (guess) or from a chordal relaxation (chordal).
@@ -221,55 +231,8 @@ struct BackendConfig {
     v("num_threads", num_threads);
   }
 };
-
-/// compare.align: ICP between the occupied cells (from the map origins or --init), or
-/// the map origins trusted.
-enum class CompareAlign { kIcp, kOrigin };
-template <>
-struct EnumNames<CompareAlign> {
-  static constexpr std::pair<CompareAlign, const char*> kNames[] = {
-      {CompareAlign::kIcp, "icp"}, {CompareAlign::kOrigin, "origin"}};
-};
-
-/// Map comparison against a LiDAR occupancy grid (`uwbsar compare`) and PCD export
-/// (`uwbsar export-pcd`). Evaluation rule: see backend/compare/map_metrics.h.
-struct CompareConfig {
-  CompareAlign align = CompareAlign::kIcp;    ///< icp (from the map origins or --init) or origin
-  std::string icp_method = "point_to_plane";  ///< point_to_plane (2-D normals) or point_to_point
-  std::vector<double> icp_max_correspondence_m = {
-      1.0, 0.5, 0.25, 0.1};                  ///< coarse-to-fine
-                                             ///< ICP stages: pairs farther apart are ignored
-  int icp_max_iterations = 50;               ///< ICP iterations per stage
-  double icp_transformation_epsilon = 1e-9;  ///< a stage stops when the transform changes less
-                                             ///< (PCL: squared translation + rotation change)
-  int icp_normal_neighbours = 6;             ///< point_to_plane: cells used for each normal
-  double icp_min_inlier_fraction = 0.3;      ///< fewer SAR cells within the last stage's
-                                             ///< distance: ICP rejected, initial transform kept
-  bool grey_205_unknown = true;              ///< trinary maps: grey 205 is unknown even where
-                                             ///< the YAML's free_thresh (Nav2: 0.25) says free
-  int tolerance_cells = 1;                   ///< precision / recall / F1 match distance
-                                             ///< (cells, 8-neighbourhood)
-  int overlay_pixels_per_cell = 4;           ///< overlay.png scale
-  double pcd_peak_fraction = 0.2;            ///< export-pcd of a float SAR map: peaks weaker
-                                             ///< than this fraction of the strongest are dropped
-  double pcd_peak_radius_m = 0.05;           ///< export-pcd: a peak is the maximum within this
-
-  template <class V>
-  void Visit(V& v) {
-    v("align", align);
-    v("icp_method", icp_method);
-    v("icp_max_correspondence_m", icp_max_correspondence_m);
-    v("icp_max_iterations", icp_max_iterations);
-    v("icp_transformation_epsilon", icp_transformation_epsilon);
-    v("icp_normal_neighbours", icp_normal_neighbours);
-    v("icp_min_inlier_fraction", icp_min_inlier_fraction);
-    v("grey_205_unknown", grey_205_unknown);
-    v("tolerance_cells", tolerance_cells);
-    v("overlay_pixels_per_cell", overlay_pixels_per_cell);
-    v("pcd_peak_fraction", pcd_peak_fraction);
-    v("pcd_peak_radius_m", pcd_peak_radius_m);
-  }
-};
+/// Semantic checks of backend.*; throws ConfigError naming the dotted key.
+void Validate(const BackendConfig& config, const std::string& source_name);
 
 /// The SLAM pipeline as `uwbsar map` and live mode run it.
 struct SlamConfig {
@@ -313,6 +276,9 @@ struct SlamConfig {
     v("occupancy_reference_percentile", occupancy_reference_percentile);
   }
 };
+/// Semantic checks of slam.* (the rules joining it to radars[] are in ValidateCoreConfig); throws
+/// ConfigError naming the dotted key.
+void Validate(const SlamConfig& config, const std::string& source_name);
 
 /// Budgets on the sizes the other settings imply (README "What uwbsar refuses"): the
 /// configuration is refused before any work starts when a setting would exceed them, and
@@ -340,8 +306,11 @@ struct LimitsConfig {
   }
 };
 
-/// The whole configuration; config/default.yaml mirrors it field by field.
-struct Config {
+/// The core sections: what drivers, frontend, backend and session code may be given (each
+/// module takes only its own sections). The whole file's struct, `Config`
+/// (pipeline/app_config.h), adds the sections owned by higher folders (simulator, live,
+/// dds, compare, session); its Visit lists every section in the file's order.
+struct CoreConfig {
   PulseConfig pulse;
   std::vector<RadarConfig> radars = DefaultRadars();
   ImagingConfig imaging;
@@ -349,15 +318,10 @@ struct Config {
   KeyframeConfig keyframe;
   EnhanceConfig enhance;
   BackendConfig backend;
-  SimulatorConfig simulator;
   PlaceRecognitionConfig place_recognition;
-  CompareConfig compare;
 
   SlamConfig slam;
-  LiveConfig live;
-  DdsConfig dds;
   LimitsConfig limits;
-  SessionConfig session;
 
   template <class V>
   void Visit(V& v) {
@@ -369,13 +333,8 @@ struct Config {
     v("keyframe", keyframe);
     v("enhance", enhance);
     v("backend", backend);
-    v("simulator", simulator);
     v("place_recognition", place_recognition);
-    v("compare", compare);
-    v("live", live);
-    v("dds", dds);
     v("limits", limits);
-    v("session", session);
   }
 };
 

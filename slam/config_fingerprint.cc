@@ -32,7 +32,7 @@ void Flatten(const YAML::Node& node, const std::string& prefix,
 
 }  // namespace
 
-std::vector<std::pair<std::string, std::string>> CompatibilityKeys(const Config& config) {
+std::vector<std::pair<std::string, std::string>> CompatibilityKeys(const CoreConfig& config) {
   const YAML::Node root = YAML::Load(ConfigToYaml(config));
   std::vector<std::pair<std::string, std::string>> out;
   for (const char* section : {"pulse", "radars", "imaging", "keyframe", "enhance"}) {
@@ -43,13 +43,13 @@ std::vector<std::pair<std::string, std::string>> CompatibilityKeys(const Config&
   return out;
 }
 
-std::string ConfigFingerprint(const Config& config) {
+std::string ConfigFingerprint(const CoreConfig& config) {
   std::ostringstream text;
   for (const auto& [key, value] : CompatibilityKeys(config)) text << key << ": " << value << "\n";
   return text.str();
 }
 
-std::string FingerprintDifference(const std::string& stored, const Config& config) {
+std::string FingerprintDifference(const std::string& stored, const CoreConfig& config) {
   std::map<std::string, std::string> saved;
   std::istringstream in(stored);
   std::string line;

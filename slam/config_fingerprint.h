@@ -15,14 +15,14 @@ namespace uwbsar {
 /// (dotted key, value as YAML scalar text) of every compatibility-relevant setting, in a
 /// fixed order: pulse.*, radars[*].*, imaging.* (not num_threads), keyframe.*, enhance.*
 /// (not colormap), place_recognition.detectors.*, slam.map_resolution_m.
-std::vector<std::pair<std::string, std::string>> CompatibilityKeys(const Config& config);
+std::vector<std::pair<std::string, std::string>> CompatibilityKeys(const CoreConfig& config);
 
 /// CompatibilityKeys as text, one `key: value` line each (what a session stores).
-std::string ConfigFingerprint(const Config& config);
+std::string ConfigFingerprint(const CoreConfig& config);
 
 /// Empty when `stored` (a ConfigFingerprint text) matches `config`; otherwise one line
 /// naming the first key that differs, e.g. "imaging.pixel_size_m is 0.01 in the session,
 /// 0.005 in this configuration".
-std::string FingerprintDifference(const std::string& stored, const Config& config);
+std::string FingerprintDifference(const std::string& stored, const CoreConfig& config);
 
 }  // namespace uwbsar

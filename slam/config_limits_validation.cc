@@ -1,14 +1,16 @@
 // Resource budgets (limits.*): the sizes the imaging and map settings imply, checked before
-// any work; part of ValidateConfig.
+// any work; the last step of ValidateCoreConfig.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
-#include "slam/config_validation_parts.h"
+#include "slam/config_require.h"
 
-namespace uwbsar::config_validation {
+namespace uwbsar {
 namespace {
+
+using config_validation::Require;
 
 std::string Num(double v) {
   char buf[32];
@@ -30,7 +32,7 @@ void RequireWithin(double size, double budget, const std::string& src, const std
 /// Sizes the imaging and map settings imply, checked against `limits:` before any work
 /// (see KeyframeBuilder and GlobalMap for what they allocate). Runs after the plain range
 /// checks, so every size here is positive.
-void ValidateLimits(const Config& c, const std::string& src) {
+void ValidateLimits(const CoreConfig& c, const std::string& src) {
   const LimitsConfig& l = c.limits;
   for (const auto& [key, value] :
        {std::make_pair("max_tile_pixels", l.max_tile_pixels),
@@ -104,4 +106,4 @@ void ValidateLimits(const Config& c, const std::string& src) {
                 "max_tile_pixels");
 }
 
-}  // namespace uwbsar::config_validation
+}  // namespace uwbsar

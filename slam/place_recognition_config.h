@@ -173,4 +173,8 @@ struct PlaceRecognitionConfig {
   }
 };
 
+/// Semantic checks of place_recognition.* (the feature resolution against imaging is in
+/// ValidateCoreConfig); throws ConfigError naming the dotted key.
+void Validate(const PlaceRecognitionConfig& config, const std::string& source_name);
+
 }  // namespace uwbsar

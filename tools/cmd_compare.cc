@@ -8,6 +8,7 @@
 
 #include "backend/compare/map_comparison.h"
 #include "backend/compare/metrics_json.h"
+#include "pipeline/app_config.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

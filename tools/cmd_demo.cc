@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "pipeline/app_config.h"
 #include "pipeline/map_outputs.h"
 #include "tools/commands.h"
 

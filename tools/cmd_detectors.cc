@@ -14,6 +14,7 @@
 #include "frontend/imaging_frontend.h"
 #include "frontend/place_recognition/region_study.h"
 #include "imaging/image_io.h"
+#include "pipeline/app_config.h"
 #include "pipeline/image_match_report.h"
 #include "slam/errors.h"
 #include "tools/commands.h"

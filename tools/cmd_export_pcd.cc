@@ -5,6 +5,7 @@
 
 #include "backend/compare/pcd_export.h"
 #include "backend/compare/sar_peaks.h"
+#include "pipeline/app_config.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

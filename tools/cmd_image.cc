@@ -4,8 +4,8 @@
 #include <iostream>
 
 #include "drivers/text_log.h"
+#include "pipeline/app_config_io.h"
 #include "pipeline/imaging_job.h"
-#include "slam/config_io.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

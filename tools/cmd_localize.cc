@@ -2,6 +2,7 @@
 // changing it (pipeline/localize_job.h).
 #include <cstdio>
 
+#include "pipeline/app_config.h"
 #include "pipeline/localize_job.h"
 #include "session/session_file.h"
 #include "tools/commands.h"

@@ -9,6 +9,7 @@
 
 #include "frontend/place_recognition/loop_stats.h"
 #include "imaging/image_io.h"
+#include "pipeline/app_config.h"
 #include "pipeline/image_loop_study.h"
 #include "pipeline/image_match_report.h"
 #include "slam/errors.h"

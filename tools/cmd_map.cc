@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "drivers/tum_reader.h"
+#include "pipeline/app_config.h"
 #include "pipeline/map_outputs.h"
 #include "pipeline/session_capture.h"
 #include "session/session_file.h"

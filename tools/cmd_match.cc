@@ -8,6 +8,7 @@
 
 #include "frontend/place_recognition/image_match.h"
 #include "imaging/image_io.h"
+#include "pipeline/app_config.h"
 #include "pipeline/image_match_report.h"
 #include "slam/errors.h"
 #include "tools/commands.h"

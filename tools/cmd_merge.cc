@@ -2,6 +2,7 @@
 // loops found between them (session/session_merge.h), written as one map.
 #include <cstdio>
 
+#include "pipeline/app_config.h"
 #include "pipeline/session_outputs.h"
 #include "session/session_file.h"
 #include "session/session_merge.h"

@@ -14,6 +14,7 @@
 #include "drivers/live/host_clock.h"
 #include "drivers/live/sim_device_player.h"
 #include "drivers/sim/sim_stream.h"
+#include "pipeline/app_config.h"
 #include "pipeline/live_runner.h"
 #include "slam/interrupt_cleanup.h"
 #include "tools/commands.h"
@@ -92,7 +93,7 @@ void StartEmulation(const RunOptions& opts, Config* config, pipeline::LiveRunOpt
   config->live.radar_reset_lines.clear();
   config->live.status_led_line = -1;
   options->time_scale = opts.speed;
-  live::ConfigureLiveForEmulation(config, opts.speed);
+  live::ConfigureLiveForEmulation(config->simulator, opts.speed, &config->live);
   const sim::SimScenario scenario = sim::MakeScenario(
       *config, opts.map_path.empty() ? BundledMap() : opts.map_path, "depart-return", opts.seed);
   // Ground truth on a clock started with the run's: the same timeline within microseconds.

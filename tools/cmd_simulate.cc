@@ -14,7 +14,7 @@
 #include "drivers/sim/sim_bag_writer.h"
 #include "drivers/sim/sim_recorder.h"
 #include "drivers/sim/sim_stream.h"
-#include "slam/config_io.h"
+#include "pipeline/app_config_io.h"
 #include "slam/interrupt_cleanup.h"
 #include "tools/commands.h"
 

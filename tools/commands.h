@@ -7,8 +7,8 @@
 #include <memory>
 #include <string>
 
+#include "pipeline/app_config.h"
 #include "pipeline/output_folder.h"  // EnsureDirectory, CheckOutputFolder, CheckOutputFile
-#include "slam/config.h"
 
 namespace uwbsar::pipeline {
 struct MapOutputs;

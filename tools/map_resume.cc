@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "pipeline/app_config.h"
 #include "pipeline/map_outputs.h"
 #include "pipeline/session_capture.h"
 #include "pipeline/session_outputs.h"

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "drivers/rosbag/bag_storage.h"
+#include "pipeline/app_config.h"
 #include "pipeline/map_job.h"
 #include "pipeline/map_outputs.h"
 #include "session/session_data.h"

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "backend/compare/compare_config.h"
 #include "slam/config.h"
 #include "slam/occupancy_grid.h"
 #include "slam/pose2.h"

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "backend/compare/compare_config.h"
 #include "backend/compare/grid_alignment.h"
 #include "backend/compare/map_metrics.h"
 #include "backend/compare/sar_image_occupancy.h"

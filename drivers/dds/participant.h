@@ -8,7 +8,7 @@
 
 #include <string>
 
-#include "slam/dds_config.h"
+#include "drivers/dds/dds_config.h"
 
 namespace uwbsar::dds {
 

@@ -13,8 +13,8 @@
 #include <utility>
 #include <vector>
 
+#include "drivers/dds/dds_config.h"
 #include "drivers/dds/participant.h"
-#include "slam/dds_config.h"
 #include "slam/occupancy_grid.h"
 #include "slam/pose2.h"
 #include "slam/types.h"

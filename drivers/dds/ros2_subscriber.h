@@ -18,10 +18,10 @@
 #include <thread>
 #include <vector>
 
+#include "drivers/dds/dds_config.h"
 #include "drivers/dds/dds_events.h"
 #include "drivers/dds/participant.h"
 #include "drivers/dds/publication_monitor.h"
-#include "slam/dds_config.h"
 #include "slam/types.h"
 
 namespace uwbsar::dds {

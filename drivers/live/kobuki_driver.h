@@ -15,6 +15,7 @@
 
 #include "drivers/live/device_link.h"
 #include "drivers/live/kobuki_odometry.h"
+#include "drivers/live/live_config.h"
 #include "drivers/live/stream_clock.h"
 #include "slam/config.h"
 

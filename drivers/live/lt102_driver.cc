@@ -22,9 +22,9 @@ double PercentileMs(std::vector<double> v, double p) {
 
 }  // namespace
 
-Lt102Driver::Lt102Driver(std::string name, int sensor_id, const Config& config, FaultLog* faults,
-                         ScanSink sink, EventSink events, std::function<TimestampNs()> clock,
-                         double clock_scale)
+Lt102Driver::Lt102Driver(std::string name, int sensor_id, const LiveSettings& config,
+                         FaultLog* faults, ScanSink sink, EventSink events,
+                         std::function<TimestampNs()> clock, double clock_scale)
     : name_(std::move(name)),
       sensor_id_(sensor_id),
       config_(config),

@@ -27,9 +27,9 @@
 #include <vector>
 
 #include "drivers/live/device_link.h"
+#include "drivers/live/live_settings.h"
 #include "drivers/live/lt102_startup.h"
 #include "drivers/live/stream_clock.h"
-#include "slam/config.h"
 #include "slam/types.h"
 
 namespace uwbsar::live {
@@ -63,7 +63,7 @@ class Lt102Driver : public LinkProtocol {
 
   /// `name` labels faults and events (e.g. "radar left").
   /// `clock` (optional) gives host-clock stamps running `clock_scale` times wall time.
-  Lt102Driver(std::string name, int sensor_id, const Config& config, FaultLog* faults,
+  Lt102Driver(std::string name, int sensor_id, const LiveSettings& config, FaultLog* faults,
               ScanSink sink, EventSink events = {}, std::function<TimestampNs()> clock = {},
               double clock_scale = 1.0);
 
@@ -91,7 +91,7 @@ class Lt102Driver : public LinkProtocol {
 
   std::string name_;
   int sensor_id_;
-  Config config_;
+  LiveSettings config_;
   FaultLog* faults_;
   ScanSink sink_;
   EventSink events_;

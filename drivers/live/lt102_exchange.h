@@ -13,10 +13,10 @@
 #include <string>
 
 #include "drivers/live/fault_log.h"
+#include "drivers/live/live_config.h"
 #include "drivers/live/lt102_commands.h"
 #include "drivers/live/lt102_protocol.h"
 #include "drivers/live/serial_port.h"
-#include "slam/live_config.h"
 
 namespace uwbsar::live {
 

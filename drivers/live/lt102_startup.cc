@@ -98,7 +98,7 @@ void StoreAnswer(std::uint8_t code, double value, Lt102Setup* setup) {
 }
 
 /// The echoed range sets the samples per scan; a range giving fewer than two is refused.
-void SetSamplesPerScan(const Config& config, const std::string& name, Lt102Setup* setup) {
+void SetSamplesPerScan(const LiveSettings& config, const std::string& name, Lt102Setup* setup) {
   const double bin_m = kSpeedOfLight / (2.0 * config.pulse.sampling_frequency_hz);
   setup->samples_per_scan = Lt102SampleCount(setup->range_min_m, setup->range_max_m, bin_m);
   if (!std::isfinite(setup->range_min_m) || !std::isfinite(setup->range_max_m) ||
@@ -113,7 +113,7 @@ void SetSamplesPerScan(const Config& config, const std::string& name, Lt102Setup
 }
 
 /// The radar's carrier must be within kCarrierTolerance of pulse.center_frequency_hz.
-void CheckCarrier(double carrier_mhz, const Lt102Setup& setup, const Config& config,
+void CheckCarrier(double carrier_mhz, const Lt102Setup& setup, const LiveSettings& config,
                   const std::string& name) {
   const double fc_hz = config.pulse.center_frequency_hz;
   const double off = std::abs(carrier_mhz * 1e6 - fc_hz) / fc_hz;
@@ -129,7 +129,7 @@ void CheckCarrier(double carrier_mhz, const Lt102Setup& setup, const Config& con
 
 }  // namespace
 
-Lt102Setup RunLt102Startup(SerialPort& port, Lt102Exchange& exchange, const Config& config,
+Lt102Setup RunLt102Startup(SerialPort& port, Lt102Exchange& exchange, const LiveSettings& config,
                            const std::string& name) {
   Lt102Setup setup;
   for (const Lt102Request& request : Lt102StartupRequests(config.live.lt102)) {

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "drivers/live/live_settings.h"
 #include "drivers/live/lt102_exchange.h"
-#include "slam/config.h"
 
 namespace uwbsar::live {
 
@@ -34,7 +34,7 @@ std::vector<Lt102Request> Lt102StartupRequests(const Lt102Config& config);
 
 /// Runs the sequence on `port`. Throws Lt102ConfigError (a setting refused or contradicting
 /// the configuration) or SerialError (no or wrong answers after a retry, port gone).
-Lt102Setup RunLt102Startup(SerialPort& port, Lt102Exchange& exchange, const Config& config,
+Lt102Setup RunLt102Startup(SerialPort& port, Lt102Exchange& exchange, const LiveSettings& config,
                            const std::string& name);
 
 /// Samples of a scan from `range_min_m` to `range_max_m` at `bin_m` spacing.

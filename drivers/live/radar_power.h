@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "drivers/live/gpio.h"
+#include "drivers/live/live_config.h"
 #include "slam/config.h"
 
 namespace uwbsar::live {

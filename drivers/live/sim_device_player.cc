@@ -13,7 +13,7 @@ using Clock = std::chrono::steady_clock;
 constexpr double kSpeedOfLight = 299792458.0;
 }  // namespace
 
-SimDevicePlayer::SimDevicePlayer(const Config& config, const sim::SimScenario& scenario,
+SimDevicePlayer::SimDevicePlayer(const EmulatorSettings& config, const sim::SimScenario& scenario,
                                  std::uint64_t seed, std::vector<std::string> radar_links,
                                  std::string kobuki_link, double speed,
                                  const EmulatorFaults& faults, std::function<std::int64_t()> clock,
@@ -76,9 +76,8 @@ EmulatorCounts SimDevicePlayer::counts() const {
   return c;
 }
 
-void ConfigureLiveForEmulation(Config* config, double speed) {
-  config->live.lt102.frame_rate_fps =
-      static_cast<int>(std::lround(config->simulator.radar.rate_hz * speed));
+void ConfigureLiveForEmulation(const SimulatorConfig& simulator, double speed, LiveConfig* live) {
+  live->lt102.frame_rate_fps = static_cast<int>(std::lround(simulator.radar.rate_hz * speed));
 }
 
 std::vector<std::vector<TimestampNs>> SimDevicePlayer::scan_send_ns() const {

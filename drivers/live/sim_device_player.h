@@ -21,10 +21,10 @@
 #include <thread>
 #include <vector>
 
+#include "drivers/live/live_settings.h"
 #include "drivers/live/lt102_emulator.h"
 #include "drivers/live/pty_device.h"
 #include "drivers/sim/sim_stream.h"
-#include "slam/config.h"
 
 namespace uwbsar::live {
 
@@ -62,9 +62,9 @@ class SimDevicePlayer {
   /// real time. `clock` stamps the ground truth (the drivers' clock). `max_duration_s` > 0
   /// stops early (shortened runs). The drivers must poll at the emulated frame rate:
   /// see ConfigureLiveForEmulation.
-  SimDevicePlayer(const Config& config, const sim::SimScenario& scenario, std::uint64_t seed,
-                  std::vector<std::string> radar_links, std::string kobuki_link, double speed,
-                  const EmulatorFaults& faults, std::function<std::int64_t()> clock,
+  SimDevicePlayer(const EmulatorSettings& config, const sim::SimScenario& scenario,
+                  std::uint64_t seed, std::vector<std::string> radar_links, std::string kobuki_link,
+                  double speed, const EmulatorFaults& faults, std::function<std::int64_t()> clock,
                   double max_duration_s = 0.0);
   ~SimDevicePlayer();
 
@@ -85,7 +85,7 @@ class SimDevicePlayer {
   void SendScan(int radar, const RadarScan& scan, std::chrono::steady_clock::time_point due);
   void SendOdometry(TimestampNs sim_stamp_ns, const OdometrySample& odometry);
 
-  Config config_;
+  EmulatorSettings config_;
   sim::SimStream stream_;
   double speed_;
   EmulatorFaults faults_;
@@ -109,6 +109,6 @@ class SimDevicePlayer {
 
 /// The live settings that must match the emulated devices at playback `speed`: the LT102
 /// frame rate (the simulated scan rate, scaled) that the drivers poll at.
-void ConfigureLiveForEmulation(Config* config, double speed);
+void ConfigureLiveForEmulation(const SimulatorConfig& simulator, double speed, LiveConfig* live);
 
 }  // namespace uwbsar::live

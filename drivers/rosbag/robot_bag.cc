@@ -141,7 +141,7 @@ class MessageDispatcher {
 
 }  // namespace
 
-RobotBagOptions RobotBagOptionsFromConfig(const Config& config) {
+RobotBagOptions RobotBagOptionsFromConfig(const CoreConfig& config) {
   RobotBagOptions options;
   options.radar_topics.clear();
   for (const RadarConfig& r : config.radars) options.radar_topics.push_back(r.topic);

@@ -31,7 +31,7 @@ struct RobotBagOptions {
 /// Every topic from the configuration (radars[i].topic, slam.odometry_topic,
 /// slam.ground_truth_topic): the one place that maps configuration to bag topics, used
 /// by every command that reads bags (map, detectors, info --decode).
-RobotBagOptions RobotBagOptionsFromConfig(const Config& config);
+RobotBagOptions RobotBagOptionsFromConfig(const CoreConfig& config);
 
 struct MessageContext {
   const std::string& topic;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "drivers/sim/grid_ray_caster.h"
+#include "drivers/sim/simulator_config.h"
 #include "slam/config.h"
 #include "slam/types.h"
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "drivers/sim/simulator_config.h"
 #include "slam/config.h"
 #include "slam/errors.h"
 #include "slam/occupancy_grid.h"

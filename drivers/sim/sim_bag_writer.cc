@@ -60,7 +60,7 @@ rosbag::LaserScan ToRosLaserScan(const SimLaserScan& scan) {
   return msg;
 }
 
-SimBagSummary WriteSimBag(SimStream* stream, const Config& config, const std::string& bag_dir,
+SimBagSummary WriteSimBag(SimStream* stream, const SimSettings& config, const std::string& bag_dir,
                           const std::string& storage, const std::string& tum_path) {
   rosbag::BagWriterOptions options;
   options.storage = storage;

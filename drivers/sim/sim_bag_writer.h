@@ -27,7 +27,7 @@ struct SimBagSummary {
 /// Drains `stream` into a bag at `bag_dir` (storage "sqlite3" or "mcap") and the ground
 /// truth into `tum_path` (empty: not written). Throws InputError if the bag exists or
 /// cannot be written.
-SimBagSummary WriteSimBag(SimStream* stream, const Config& config, const std::string& bag_dir,
+SimBagSummary WriteSimBag(SimStream* stream, const SimSettings& config, const std::string& bag_dir,
                           const std::string& storage, const std::string& tum_path);
 
 /// The ROS messages of one simulated message (exposed for tests).

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "drivers/sim/simulator_config.h"
 #include "slam/config.h"
 #include "slam/occupancy_grid.h"
 

@@ -14,7 +14,7 @@ bool ToMessage(const SimMessage& msg, Message* out);
 
 class SimSource : public MessageSource {
  public:
-  SimSource(const Config& config, const SimScenario& scenario, std::uint64_t seed)
+  SimSource(const SimSettings& config, const SimScenario& scenario, std::uint64_t seed)
       : stream_(config, scenario, seed) {}
   void Run(const MessageSink& sink) override;
 

@@ -18,7 +18,7 @@ long long CountFor(double duration_s, double rate_hz) {
 
 }  // namespace
 
-SimScenario MakeScenario(const Config& config, const std::string& map_yaml,
+SimScenario MakeScenario(const SimSettings& config, const std::string& map_yaml,
                          const std::string& route_spec, std::uint64_t seed,
                          const std::vector<PointTargetConfig>& extra_targets) {
   SimRadarConfig radar = config.simulator.radar;
@@ -33,7 +33,7 @@ SimScenario MakeScenario(const Config& config, const std::string& map_yaml,
   return scenario;
 }
 
-SimStream::SimStream(const Config& config, const SimScenario& scenario, std::uint64_t seed)
+SimStream::SimStream(const SimSettings& config, const SimScenario& scenario, std::uint64_t seed)
     : config_(config),
       scenario_(scenario),
       seed_(seed),

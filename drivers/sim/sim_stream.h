@@ -18,9 +18,9 @@
 #include "drivers/sim/laser_simulator.h"
 #include "drivers/sim/radar_simulator.h"
 #include "drivers/sim/sim_environment.h"
+#include "drivers/sim/sim_settings.h"
 #include "drivers/sim/trajectory.h"
 #include "drivers/sim/wheel_odometry.h"
-#include "slam/config.h"
 #include "slam/types.h"
 
 namespace uwbsar::sim {
@@ -44,14 +44,14 @@ struct SimScenario {
 /// Loads the map, resolves the route (built-in name or waypoints file), plans the motion
 /// and checks the route's clearance. `extra_targets` are added to the configured point
 /// targets. Throws InputError on bad input (map, route, collision).
-SimScenario MakeScenario(const Config& config, const std::string& map_yaml,
+SimScenario MakeScenario(const SimSettings& config, const std::string& map_yaml,
                          const std::string& route_spec, std::uint64_t seed,
                          const std::vector<PointTargetConfig>& extra_targets = {});
 
 class SimStream {
  public:
   /// Uses config.simulator (rates, odometry, radar and laser models) and config.radars.
-  SimStream(const Config& config, const SimScenario& scenario, std::uint64_t seed);
+  SimStream(const SimSettings& config, const SimScenario& scenario, std::uint64_t seed);
 
   /// The next message in time order (ties: ground truth, odometry, radars in order,
   /// laser); false once the run is over.
@@ -75,7 +75,7 @@ class SimStream {
     return static_cast<double>(clock.next) / clock.rate_hz;
   }
 
-  Config config_;
+  SimSettings config_;
   SimScenario scenario_;
   std::uint64_t seed_;
   TimestampNs start_ns_ = 0;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "drivers/sim/route.h"
+#include "drivers/sim/simulator_config.h"
 #include "slam/config.h"
 #include "slam/occupancy_grid.h"
 

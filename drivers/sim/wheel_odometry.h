@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <random>
 
+#include "drivers/sim/simulator_config.h"
 #include "drivers/sim/trajectory.h"
 #include "slam/config.h"
 #include "slam/types.h"

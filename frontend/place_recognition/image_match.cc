@@ -40,8 +40,8 @@ CentredTransform AboutCentre(const Pose2& T_BA, const Point2& centre_a) {
 }
 
 ImageFeatures ExtractImageFeatures(const SarImageFile& file,
-                                   const std::vector<DetectorKind>& detectors, const Config& config,
-                                   double feature_resolution_m) {
+                                   const std::vector<DetectorKind>& detectors,
+                                   const CoreConfig& config, double feature_resolution_m) {
   const DetectorConfig& d = config.place_recognition.detectors;
   ImageFeatures out;
   out.source_resolution_m = file.grid.resolution_m;
@@ -61,12 +61,13 @@ ImageFeatures ExtractImageFeatures(const SarImageFile& file,
   return out;
 }
 
-double ImageFeatureResolution(double resolution_a_m, double resolution_b_m, const Config& config) {
+double ImageFeatureResolution(double resolution_a_m, double resolution_b_m,
+                              const CoreConfig& config) {
   return std::max(
       {config.place_recognition.detectors.feature_resolution_m, resolution_a_m, resolution_b_m});
 }
 
-ImageMatch MatchImages(const ImageFeatures& a, const ImageFeatures& b, const Config& config) {
+ImageMatch MatchImages(const ImageFeatures& a, const ImageFeatures& b, const CoreConfig& config) {
   // Pixel thresholds at the feature resolution, as the place recognizer uses them.
   const PlaceRecognitionConfig pr = AtFeatureResolution(
       config.place_recognition, a.grid.resolution_m / config.imaging.pixel_size_m);

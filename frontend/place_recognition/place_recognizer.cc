@@ -16,7 +16,8 @@ double MsSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe, const Config& config) {
+KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe,
+                                         const PlaceRecognizerConfig& config) {
   const DetectorConfig& d = config.place_recognition.detectors;
   KeyframeFeatures k;
   k.id = keyframe.id;
@@ -25,7 +26,7 @@ KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe, const Config&
   k.T_world_anchor = keyframe.T_world_anchor;
   const FeatureImage image =
       DownsampleFeatureImage(MakeFeatureImage(keyframe.image, config.enhance, d.mask_erode_px),
-                             FeatureDownsampling(config), d.white_percentile, &k.grid);
+                             config.feature_downsampling, d.white_percentile, &k.grid);
   k.akaze = ComputeFeatures(image, DetectorKind::kAkaze, d);
   k.orb = ComputeFeatures(image, DetectorKind::kOrb, d);
   // Where the robot drove while imaging the tile: a better "position" of the tile than
@@ -46,9 +47,13 @@ KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe, const Config&
   return k;
 }
 
-double FeatureDownsampling(const Config& config) {
-  const double r = config.place_recognition.detectors.feature_resolution_m;
-  return r > config.imaging.pixel_size_m ? r / config.imaging.pixel_size_m : 1.0;
+double FeatureDownsampling(const DetectorConfig& detectors, double tile_pixel_m) {
+  const double r = detectors.feature_resolution_m;
+  return r > tile_pixel_m ? r / tile_pixel_m : 1.0;
+}
+
+double FeatureDownsampling(const CoreConfig& config) {
+  return FeatureDownsampling(config.place_recognition.detectors, config.imaging.pixel_size_m);
 }
 
 PlaceRecognitionConfig AtFeatureResolution(PlaceRecognitionConfig pr, double factor) {
@@ -62,10 +67,10 @@ PlaceRecognitionConfig AtFeatureResolution(PlaceRecognitionConfig pr, double fac
   return pr;
 }
 
-PlaceRecognizer::PlaceRecognizer(const Config& config)
+PlaceRecognizer::PlaceRecognizer(const PlaceRecognizerConfig& config)
     : config_(config), index_(config.place_recognition.candidates.grid_cell_m) {
   config_.place_recognition =
-      AtFeatureResolution(config.place_recognition, FeatureDownsampling(config));
+      AtFeatureResolution(config.place_recognition, config.feature_downsampling);
 }
 
 Point2 PlaceRecognizer::CentreInWorld(const KeyframeFeatures& k) const {

@@ -31,8 +31,29 @@ struct KeyframeFeatures {
   Pose2 T_world_anchor;  ///< latest estimate (odometry, or optimised via UpdatePose)
 };
 
-/// Tile pixels per feature pixel (detectors.feature_resolution_m / imaging.pixel_size_m, >= 1).
-double FeatureDownsampling(const Config& config);
+/// Tile pixels per feature pixel (detectors.feature_resolution_m / `tile_pixel_m`, >= 1): the
+/// one value derived from the tile pixel size (imaging.pixel_size_m) that place recognition
+/// uses. Computed once per configuration (PlaceRecognizerConfig) and handed down.
+double FeatureDownsampling(const DetectorConfig& detectors, double tile_pixel_m);
+/// The same, from a configuration's place_recognition.detectors and imaging.pixel_size_m.
+double FeatureDownsampling(const CoreConfig& config);
+
+/// What place recognition reads: its own section, the enhancement of the feature image, and
+/// the feature downsampling derived from the tile pixel size. Nothing else of the
+/// configuration reaches it.
+struct PlaceRecognizerConfig {
+  PlaceRecognitionConfig place_recognition;
+  EnhanceConfig enhance;
+  double feature_downsampling = 1.0;  ///< tile pixels per feature pixel (FeatureDownsampling)
+
+  PlaceRecognizerConfig() = default;
+  /// Its sections of a configuration, with feature_downsampling derived from
+  /// imaging.pixel_size_m (implicit: callers hand the configuration they hold).
+  PlaceRecognizerConfig(const CoreConfig& config)  // NOLINT(google-explicit-constructor)
+      : place_recognition(config.place_recognition),
+        enhance(config.enhance),
+        feature_downsampling(FeatureDownsampling(config)) {}
+};
 
 /// `pr` with its pixel thresholds (RANSAC, AKAZE/ORB agreement, inlier spread, residual
 /// floor), which are the paper's at the tile resolution, divided by `factor` (feature pixel
@@ -41,7 +62,8 @@ PlaceRecognitionConfig AtFeatureResolution(PlaceRecognitionConfig pr, double fac
 
 /// Computes a keyframe's cached features (AKAZE and ORB) from its tile, at
 /// detectors.feature_resolution_m (`grid` is then the downsampled tile's grid).
-KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe, const Config& config);
+KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe,
+                                         const PlaceRecognizerConfig& config);
 
 struct LoopAttempt {
   int candidate_id = 0;  ///< i (the older keyframe); the new one is j
@@ -64,7 +86,7 @@ struct PlaceRecognitionResult {
 
 class PlaceRecognizer {
  public:
-  explicit PlaceRecognizer(const Config& config);
+  explicit PlaceRecognizer(const PlaceRecognizerConfig& config);
 
   /// Processes a new keyframe: features, candidates, matching, validation; then adds it
   /// to the database. `T_world_anchor_estimate` is the best current estimate of its
@@ -86,7 +108,7 @@ class PlaceRecognizer {
   /// was validated at most guided.neighbours keyframes before it.
   void GuidedPass(const KeyframeFeatures& features, PlaceRecognitionResult* result);
 
-  Config config_;
+  PlaceRecognizerConfig config_;  ///< place_recognition at the feature resolution
   KeyframeIndex index_;
   std::unordered_map<int, std::unique_ptr<KeyframeFeatures>> database_;
   double path_at_last_loop_m_ = 0.0;

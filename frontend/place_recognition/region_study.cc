@@ -15,7 +15,7 @@ DetectorStats StatsFor(const RegionPair& p, DetectorKind kind) {
 }
 
 StudyRegion MakeRegion(int index, const cv::Rect& rect, const ImageGrid& strip_grid,
-                       const cv::Mat& strip, const Config& config,
+                       const cv::Mat& strip, const CoreConfig& config,
                        const std::vector<DetectorKind>& detectors) {
   StudyRegion r;
   r.index = index;
@@ -46,7 +46,7 @@ double ObservedFraction(const cv::Mat& strip, const cv::Rect& rect) {
 
 /// Regions along the departing path's main world axis, from its start, kept where both
 /// passes observed at least a quarter of the region; features computed for each.
-void CutRegions(const std::vector<ImagedScan>& depart, const Config& config,
+void CutRegions(const std::vector<ImagedScan>& depart, const CoreConfig& config,
                 const RegionStudyOptions& options, RegionStudy* study_ptr) {
   RegionStudy& study = *study_ptr;
   const Pose2& a = depart.front().T_world_robot;
@@ -106,7 +106,7 @@ std::size_t TurnaroundIndex(const std::vector<ImagedScan>& scans) {
 
 RegionStudy RunRegionStudy(const std::vector<ImagedScan>& depart,
                            const std::vector<ImagedScan>& ret,
-                           const std::vector<SensorGeometry>& sensors, const Config& config,
+                           const std::vector<SensorGeometry>& sensors, const CoreConfig& config,
                            const RegionStudyOptions& options) {
   if (depart.empty() || ret.empty()) {
     throw std::invalid_argument("region study: a pass has no scans");

@@ -62,7 +62,7 @@ std::size_t TurnaroundIndex(const std::vector<ImagedScan>& scans);
 /// pixels are dropped. Throws std::invalid_argument when a pass is empty.
 RegionStudy RunRegionStudy(const std::vector<ImagedScan>& depart,
                            const std::vector<ImagedScan>& ret,
-                           const std::vector<SensorGeometry>& sensors, const Config& config,
+                           const std::vector<SensorGeometry>& sensors, const CoreConfig& config,
                            const RegionStudyOptions& options);
 
 }  // namespace uwbsar

@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "imaging_scenario.h"
+#include "pipeline/app_config.h"
 
 namespace uwbsar {
 namespace {

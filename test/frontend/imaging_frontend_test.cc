@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "drivers/synthetic_run.h"
+#include "pipeline/app_config.h"
 
 namespace uwbsar {
 namespace {

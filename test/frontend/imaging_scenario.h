@@ -9,6 +9,7 @@
 #include "frontend/psf_metrics.h"
 #include "frontend/strip_renderer.h"
 #include "imaging/enhance.h"
+#include "pipeline/app_config.h"
 #include "pipeline/imaging_job.h"
 
 namespace uwbsar::testing {

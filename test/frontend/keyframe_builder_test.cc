@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "pipeline/app_config.h"
+
 namespace uwbsar {
 namespace {
 

@@ -7,6 +7,7 @@
 
 #include "drivers/echo_simulator.h"
 #include "imaging/pulse.h"
+#include "pipeline/app_config.h"
 
 namespace uwbsar {
 namespace {

@@ -16,6 +16,7 @@
 
 #include "drivers/rosbag/bag_reader.h"
 #include "live_test_util.h"
+#include "pipeline/app_config.h"
 #include "test/shared_data.h"
 
 namespace uwbsar::live {

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "live_test_util.h"
+#include "pipeline/app_config.h"
 #include "test/shared_data.h"
 
 namespace uwbsar::live {

@@ -13,6 +13,7 @@
 
 #include "drivers/live/host_clock.h"
 #include "drivers/live/sim_device_player.h"
+#include "pipeline/app_config.h"
 #include "pipeline/live_runner.h"
 #include "test/shared_data.h"
 
@@ -52,7 +53,7 @@ inline EmulatedRun RunEmulated(Config config, const std::string& name, double sp
   fs::create_directories(out.out_dir + "/dev");
   config.live.radar_devices = {out.out_dir + "/dev/radar0", out.out_dir + "/dev/radar1"};
   config.live.kobuki_device = out.out_dir + "/dev/kobuki";
-  ConfigureLiveForEmulation(&config, speed);
+  ConfigureLiveForEmulation(config.simulator, speed, &config.live);
   config.live.lt102.sample_format = 3;  // F32: the simulated samples unquantised
   const sim::SimScenario scenario = sim::MakeScenario(config, SeedLabMapPath(), "depart-return", 1);
   HostClock truth_clock(speed);

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "drivers/synthetic_run.h"
+#include "pipeline/app_config.h"
 #include "pipeline/map_outputs.h"
 
 namespace uwbsar::tools {

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <map>
 
+#include "pipeline/app_config.h"
 #include "pipeline/map_job.h"
 #include "pipeline/slam_system.h"
 

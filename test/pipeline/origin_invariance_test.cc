@@ -9,7 +9,9 @@
 #include <utility>
 #include <vector>
 
+#include "drivers/sim/sim_source.h"
 #include "drivers/sim/sim_stream.h"
+#include "pipeline/app_config.h"
 #include "pipeline/map_job.h"
 #include "pipeline/slam_system.h"
 #include "test/shared_data.h"
@@ -33,22 +35,13 @@ Outcome MapShifted(const Config& config, const std::vector<sim::SimMessage>& mes
                    double dy_m) {
   std::size_t next = 0;
   const pipeline::MapRun run = pipeline::MapStream(config, "shifted", [&](pipeline::MapRun* r) {
+    Message m;
+    while (next < messages.size() && !sim::ToMessage(messages[next], &m)) ++next;  // laser
     if (next == messages.size()) return false;
-    const sim::SimMessage& m = messages[next++];
-    if (r->messages++ == 0) r->first_stamp_ns = m.stamp_ns;
-    r->last_stamp_ns = m.stamp_ns;
-    OdometrySample pose = m.pose;
-    pose.T_world_robot.x_m += dx_m;
-    pose.T_world_robot.y_m += dy_m;
-    if (m.kind == sim::SimMessage::Kind::kGroundTruth) r->ground_truth.push_back(pose);
-    if (m.kind == sim::SimMessage::Kind::kOdometry) {
-      ++r->odometry_messages;
-      r->slam->AddOdometry(pose);
-    }
-    if (m.kind == sim::SimMessage::Kind::kRadarScan) {
-      ++r->radar_messages;
-      r->slam->AddScan(m.scan);
-    }
+    ++next;
+    m.odometry.T_world_robot.x_m += dx_m;  // odometry and ground truth; unused for scans
+    m.odometry.T_world_robot.y_m += dy_m;
+    pipeline::Feed(r, m);
     return true;
   });
   Outcome out;

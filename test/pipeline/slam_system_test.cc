@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <map>
 
+#include "pipeline/app_config.h"
 #include "pipeline/map_job.h"
 #include "test/shared_data.h"
 

@@ -10,6 +10,7 @@
 
 #include <cstdio>
 
+#include "pipeline/app_config.h"
 #include "pipeline/tour_eval.h"
 
 namespace uwbsar {

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "pipeline/app_config.h"
 #include "pipeline/localize_job.h"
 #include "pipeline/map_job.h"
 #include "pipeline/scene_simulation.h"

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "pipeline/app_config.h"
 #include "pipeline/map_job.h"
 #include "pipeline/session_capture.h"
 #include "session/blob_codec.h"

@@ -25,7 +25,7 @@ SessionKeyframe Tile(int id, int trajectory, double x0_m, float level) {
 }
 
 /// Occupied cells of the occupancy rule (slam.* defaults) left of x = 2 m (run A's area).
-int OccupiedInRunA(const SessionData& session, const std::string& mosaic) {
+int OccupiedInRunA(const SessionData& session, JoinedMosaic mosaic) {
   Config config;
   config.session.joined_mosaic = mosaic;
   ImageGrid grid;
@@ -50,10 +50,11 @@ TEST(SessionMosaicTest, ABrighterRunDoesNotHideTheOtherRunsWalls) {
   session.keyframes = {Tile(0, 0, 0.0, 1.0f), Tile(1, 1, 2.0, 10.0f)};  // B 10x brighter
   SessionData a_alone;
   a_alone.keyframes = {session.keyframes[0]};
-  const int alone = OccupiedInRunA(a_alone, "mean");
-  ASSERT_GT(alone, 20);                           // A's wall is occupied in A's own map
-  EXPECT_EQ(OccupiedInRunA(session, "mean"), 0);  // the joined mean: B's level sets the rule
-  EXPECT_EQ(OccupiedInRunA(session, "normalized_max"), alone);
+  const int alone = OccupiedInRunA(a_alone, JoinedMosaic::kMean);
+  ASSERT_GT(alone, 20);  // A's wall is occupied in A's own map
+  EXPECT_EQ(OccupiedInRunA(session, JoinedMosaic::kMean),
+            0);  // the joined mean: B's level sets the rule
+  EXPECT_EQ(OccupiedInRunA(session, JoinedMosaic::kNormalizedMax), alone);
 }
 
 }  // namespace

@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <vector>
 
-#include "slam/config.h"
+#include "pipeline/app_config.h"
 #include "slam/types.h"
 
 namespace uwbsar::testing {

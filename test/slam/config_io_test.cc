@@ -1,6 +1,6 @@
-#include "slam/config_io.h"
-
 #include <gtest/gtest.h>
+
+#include "pipeline/app_config_io.h"
 
 namespace uwbsar {
 namespace {

@@ -7,8 +7,8 @@
 #include <fstream>
 #include <string>
 
+#include "pipeline/app_config_io.h"
 #include "slam/bounded_file.h"
-#include "slam/config_io.h"
 #include "slam/yaml_file.h"
 
 namespace uwbsar {

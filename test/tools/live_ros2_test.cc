@@ -16,6 +16,7 @@
 
 #include "drivers/rosbag/bag_reader.h"
 #include "drivers/tum_reader.h"
+#include "pipeline/app_config.h"
 #include "pipeline/live_runner.h"
 #include "pipeline/map_job.h"
 #include "slam/occupancy_grid.h"

@@ -8,6 +8,7 @@
 #include "drivers/rosbag/bag_writer.h"
 #include "drivers/rosbag/ros_codecs.h"
 #include "drivers/synthetic_run.h"
+#include "pipeline/app_config.h"
 
 namespace uwbsar {
 namespace map_test {

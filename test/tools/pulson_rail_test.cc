@@ -14,8 +14,8 @@
 
 #include "drivers/text_log.h"
 #include "imaging/enhance.h"
+#include "pipeline/app_config_io.h"
 #include "pipeline/imaging_job.h"
-#include "slam/config_io.h"
 #include "test/shared_data.h"
 
 namespace uwbsar {

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "pipeline/app_config.h"
 #include "pipeline/image_loop_study.h"
 #include "test/cli_runner.h"
 #include "test/shared_data.h"

@@ -16,10 +16,10 @@
 #include <thread>
 #include <vector>
 
+#include "drivers/dds/dds_config.h"
 #include "drivers/dds/dds_events.h"
 #include "drivers/dds/participant.h"
 #include "drivers/dds/ros2_subscriber.h"
-#include "slam/dds_config.h"
 
 namespace uwbsar::dds::testing {
 

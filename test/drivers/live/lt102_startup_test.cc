@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "lt102_test_util.h"
+#include "pipeline/app_config.h"
 
 namespace uwbsar::live {
 namespace {

@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <opencv2/imgproc.hpp>
 
+#include "pipeline/app_config.h"
+
 namespace uwbsar {
 namespace {
 

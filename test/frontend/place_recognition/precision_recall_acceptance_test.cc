@@ -10,6 +10,7 @@
 #include <map>
 
 #include "frontend/place_recognition/place_recognizer.h"
+#include "pipeline/app_config.h"
 #include "test/frontend/place_recognition/sim_run.h"
 #include "test/shared_data.h"
 

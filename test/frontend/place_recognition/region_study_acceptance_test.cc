@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "frontend/place_recognition/region_study.h"
+#include "pipeline/app_config.h"
 #include "test/frontend/place_recognition/sim_run.h"
 #include "test/shared_data.h"
 

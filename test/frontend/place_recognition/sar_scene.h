@@ -11,6 +11,7 @@
 #include "drivers/synthetic_run.h"
 #include "frontend/imaging_frontend.h"
 #include "frontend/keyframe.h"
+#include "pipeline/app_config.h"
 
 namespace uwbsar::testing {
 

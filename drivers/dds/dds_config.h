@@ -52,4 +52,8 @@ struct DdsConfig {
   }
 };
 
+/// Semantic checks of dds.* (ranges, names, consistency); throws ConfigError naming the
+/// dotted key and `source_name`.
+void Validate(const DdsConfig& config, const std::string& source_name);
+
 }  // namespace uwbsar

@@ -1,5 +1,5 @@
 // Configuration of the environment and robot simulator (`uwbsar simulate`).
-// Part of the configuration (slam/config.h includes it); fields are read and
+// Part of the configuration (pipeline/app_config.h aggregates it); fields are read and
 // written by the generic loader in slam/config_io.h.
 #pragma once
 
@@ -163,5 +163,9 @@ struct SimulatorConfig {
     v("start_time_s", start_time_s);
   }
 };
+
+/// Semantic checks of simulator.* (ranges, names, consistency); throws ConfigError naming the
+/// dotted key and `source_name`.
+void Validate(const SimulatorConfig& config, const std::string& source_name);
 
 }  // namespace uwbsar

@@ -1,5 +1,5 @@
 // Configuration of live mode on the robot (`uwbsar run`).
-// Part of the configuration (slam/config.h includes it); fields are read and
+// Part of the configuration (pipeline/app_config.h aggregates it); fields are read and
 // written by the generic loader in slam/config_io.h.
 #pragma once
 
@@ -118,5 +118,9 @@ struct LiveConfig {
     v("lt102", lt102);
   }
 };
+
+/// Semantic checks of live.* (ranges, names, consistency); throws ConfigError naming the
+/// dotted key and `source_name`.
+void Validate(const LiveConfig& config, const std::string& source_name);
 
 }  // namespace uwbsar

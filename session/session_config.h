@@ -1,11 +1,21 @@
 // Configuration of saved sessions: joining a new run to a saved map
 // (`uwbsar map --resume`, `uwbsar merge`) and localising in one (`uwbsar localize`).
-// Part of the configuration (slam/config.h includes it).
+// Part of the configuration (pipeline/app_config.h aggregates it).
 #pragma once
 
 #include <string>
 
+#include "slam/named_enum.h"
+
 namespace uwbsar {
+
+/// session.joined_mosaic: how the map of several runs is combined (see SessionConfig).
+enum class JoinedMosaic { kNormalizedMax, kMean };
+template <>
+struct EnumNames<JoinedMosaic> {
+  static constexpr std::pair<JoinedMosaic, const char*> kNames[] = {
+      {JoinedMosaic::kNormalizedMax, "normalized_max"}, {JoinedMosaic::kMean, "mean"}};
+};
 
 struct SessionConfig {
   int connect_min_loops = 1;           ///< validated loops into the saved map that agree on where
@@ -22,7 +32,7 @@ struct SessionConfig {
   /// mosaic divided by its own slam.occupancy_reference_percentile level, the runs combined
   /// by the per-pixel max (a run that saw a wall weakly neither dilutes nor out-shines the
   /// run that saw it well); "mean" = every tile averaged, as within one run.
-  std::string joined_mosaic = "normalized_max";
+  JoinedMosaic joined_mosaic = JoinedMosaic::kNormalizedMax;
 
   template <class V>
   void Visit(V& v) {
@@ -35,5 +45,9 @@ struct SessionConfig {
     v("joined_mosaic", joined_mosaic);
   }
 };
+
+/// Semantic checks of session.* (ranges, names, consistency); throws ConfigError naming the
+/// dotted key and `source_name`.
+void Validate(const SessionConfig& config, const std::string& source_name);
 
 }  // namespace uwbsar

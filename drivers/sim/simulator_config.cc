@@ -1,0 +1,70 @@
+#include "drivers/sim/simulator_config.h"
+
+#include <cmath>
+#include <string>
+
+#include "slam/config_require.h"
+
+namespace uwbsar {
+
+using config_validation::Require;
+
+void Validate(const SimulatorConfig& s, const std::string& src) {
+  const std::string k = "simulator.";
+  const SimRouteConfig& r = s.route;
+  Require(r.speed_mps > 0 && r.speed_mps <= 5, src, k + "route.speed_mps", "must be in (0, 5]");
+  Require(r.accel_mps2 > 0, src, k + "route.accel_mps2", "must be > 0");
+  Require(r.turn_rate_radps > 0, src, k + "route.turn_rate_radps", "must be > 0");
+  Require(r.turn_accel_radps2 > 0, src, k + "route.turn_accel_radps2", "must be > 0");
+  Require(r.corner_radius_m >= 0, src, k + "route.corner_radius_m", "must be >= 0");
+  Require(r.pause_s >= 0, src, k + "route.pause_s", "must be >= 0");
+  Require(r.depart_distance_m > 0, src, k + "route.depart_distance_m", "must be > 0");
+  Require(r.loop_length_m > 0, src, k + "route.loop_length_m", "must be > 0");
+  Require(r.loop_width_m > 0, src, k + "route.loop_width_m", "must be > 0");
+  Require(r.clearance_m >= 0, src, k + "route.clearance_m", "must be >= 0");
+  const SimRadarConfig& a = s.radar;
+  Require(a.rate_hz > 0 && a.rate_hz <= 10000, src, k + "radar.rate_hz", "must be in (0, 10000]");
+  Require(a.cell_rcs_m2 >= 0, src, k + "radar.cell_rcs_m2", "must be >= 0");
+  Require(a.scatterers_per_cell >= 1 && a.scatterers_per_cell <= 64, src,
+          k + "radar.scatterers_per_cell", "must be in [1, 64]");
+  Require(a.penetration_depth_m >= 0, src, k + "radar.penetration_depth_m", "must be >= 0");
+  Require(a.max_angle_deg > 0 && a.max_angle_deg <= 180, src, k + "radar.max_angle_deg",
+          "must be in (0, 180]");
+  Require(a.beam_3db_half_angle_deg > 0, src, k + "radar.beam_3db_half_angle_deg", "must be > 0");
+  Require(a.noise_std >= 0, src, k + "radar.noise_std", "must be >= 0");
+  for (std::size_t i = 0; i < a.point_targets.size(); ++i) {
+    Require(a.point_targets[i].rcs_m2 >= 0, src,
+            k + "radar.point_targets[" + std::to_string(i) + "].rcs_m2", "must be >= 0");
+  }
+  const SimOdometryConfig& o = s.odometry;
+  Require(!o.topic.empty(), src, k + "odometry.topic", "must not be empty");
+  Require(!o.ground_truth_topic.empty() && o.ground_truth_topic != o.topic, src,
+          k + "odometry.ground_truth_topic", "must be set and differ from odometry.topic");
+  Require(o.rate_hz > 0 && o.rate_hz <= 10000, src, k + "odometry.rate_hz",
+          "must be in (0, 10000]");
+  Require(o.ground_truth_rate_hz > 0 && o.ground_truth_rate_hz <= 10000, src,
+          k + "odometry.ground_truth_rate_hz", "must be in (0, 10000]");
+  Require(o.wheel_radius_m > 0, src, k + "odometry.wheel_radius_m", "must be > 0");
+  Require(o.wheelbase_m > 0, src, k + "odometry.wheelbase_m", "must be > 0");
+  Require(o.ticks_per_revolution > 0, src, k + "odometry.ticks_per_revolution", "must be > 0");
+  Require(std::abs(o.wheel_scale_error) < 0.5, src, k + "odometry.wheel_scale_error",
+          "must be in (-0.5, 0.5)");
+  Require(std::abs(o.wheel_scale_asymmetry) < 0.5, src, k + "odometry.wheel_scale_asymmetry",
+          "must be in (-0.5, 0.5)");
+  Require(std::abs(o.wheelbase_error) < 0.5, src, k + "odometry.wheelbase_error",
+          "must be in (-0.5, 0.5)");
+  Require(o.wheel_slip_std >= 0 && o.wheel_slip_std < 1, src, k + "odometry.wheel_slip_std",
+          "must be in [0, 1)");
+  const SimLaserConfig& l = s.laser;
+  Require(!l.topic.empty(), src, k + "laser.topic", "must not be empty");
+  Require(l.rate_hz > 0 && l.rate_hz <= 1000, src, k + "laser.rate_hz", "must be in (0, 1000]");
+  Require(l.num_beams >= 1 && l.num_beams <= 100000, src, k + "laser.num_beams",
+          "must be in [1, 100000]");
+  Require(l.min_range_m >= 0, src, k + "laser.min_range_m", "must be >= 0");
+  Require(l.max_range_m > l.min_range_m, src, k + "laser.max_range_m", "must exceed min_range_m");
+  Require(l.noise_std_m >= 0, src, k + "laser.noise_std_m", "must be >= 0");
+  Require(s.start_time_s >= 0 && s.start_time_s < 9e9, src, k + "start_time_s",
+          "must be in [0, 9e9)");
+}
+
+}  // namespace uwbsar
