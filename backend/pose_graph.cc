@@ -97,7 +97,8 @@ int PoseGraph::AddEdge(const PoseGraphEdge& edge) {
   return index;
 }
 
-int PoseGraph::AddOdometryEdge(int from_id, int to_id, const Pose2& T_from_to, int trajectory) {
+int PoseGraph::AddOdometryEdge(int from_id, int to_id, const Pose2& T_from_to, int trajectory,
+                               double path_m, double turn_rad) {
   const double d =
       std::max(std::hypot(T_from_to.x_m, T_from_to.y_m), config_.odometry_min_distance_m);
   PoseGraphEdge e;
@@ -106,6 +107,8 @@ int PoseGraph::AddOdometryEdge(int from_id, int to_id, const Pose2& T_from_to, i
   e.T_from_to = T_from_to;
   e.kind = EdgeKind::kOdometry;
   e.trajectory = trajectory;
+  e.path_m = path_m;
+  e.turn_rad = turn_rad;
   e.information =
       Eigen::Vector3d(config_.odometry_xy_information / d, config_.odometry_xy_information / d,
                       config_.odometry_yaw_information / d)
@@ -159,6 +162,9 @@ void PoseGraph::InsertPending(std::vector<PendingNode> nodes, const std::vector<
     if (se->edge.kind == EdgeKind::kOdometry && se->edge.trajectory >= 0 &&
         config_.odometry_calibration) {
       se->calibration = CalibrationFor(se->edge.trajectory);
+      se->travel = TravelOf(se->edge.T_from_to);
+      if (se->edge.path_m >= 0) se->travel.path_m = se->edge.path_m;
+      if (std::isfinite(se->edge.turn_rad)) se->travel.turn_rad = se->edge.turn_rad;
       node_trajectory_[se->edge.from_id] = se->edge.trajectory;
       node_trajectory_[se->edge.to_id] = se->edge.trajectory;
     }
@@ -168,7 +174,8 @@ void PoseGraph::InsertPending(std::vector<PendingNode> nodes, const std::vector<
         const Pose2 T_world_from{se->from->x[0], se->from->x[1], se->from->x[2]};
         const Pose2 T_world_to =
             T_world_from * (se->calibration != nullptr
-                                ? CorrectedOdometryStep(se->calibration->x, se->edge.T_from_to)
+                                ? CorrectedOdometryStep(se->calibration->x, se->edge.T_from_to,
+                                                        se->travel)
                                 : se->edge.T_from_to);
         se->to->x = {T_world_to.x_m, T_world_to.y_m, T_world_to.yaw_rad};
         it->second = false;
@@ -178,7 +185,8 @@ void PoseGraph::InsertPending(std::vector<PendingNode> nodes, const std::vector<
     }
     if (se->calibration != nullptr) {
       problem_->AddResidualBlock(
-          CalibratedOdometryCost::Create(se->edge.T_from_to, se->sqrt_information), nullptr,
+          CalibratedOdometryCost::Create(se->edge.T_from_to, se->travel, se->sqrt_information),
+          nullptr,
           se->from->x.data(), se->to->x.data(), se->calibration->x.data());
     } else {
       problem_->AddResidualBlock(new Se2EdgeCost(se->edge.T_from_to, se->sqrt_information),

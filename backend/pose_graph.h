@@ -47,6 +47,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -73,6 +74,9 @@ struct PoseGraphEdge {
   EdgeKind kind = EdgeKind::kLoop;
   int trajectory = -1;  ///< odometry: edges of one trajectory share an odometry calibration
                         ///< (BackendConfig::odometry_calibration); -1: not calibrated
+  double path_m = -1.0;  ///< odometry: the robot's path over the edge (calibration); < 0: |t|
+  double turn_rad = std::numeric_limits<double>::quiet_NaN();  ///< odometry: the robot's own
+                                                                ///< turn; NaN: the yaw of T
 };
 
 /// The state of one edge after the last Optimize().
@@ -127,7 +131,12 @@ class PoseGraph {
   /// An odometry edge whose information is config's per-metre information divided by
   /// the travelled distance |t_from_to| (at least odometry_min_distance_m), calibrated with
   /// the trajectory's odometry calibration (see the file comment).
-  int AddOdometryEdge(int from_id, int to_id, const Pose2& T_from_to, int trajectory = 0);
+  /// `path_m` and `turn_rad`: the robot's own path and turn over the edge when the nodes'
+  /// frames are not the robot's (keyframe anchors keep the world orientation; defaults:
+  /// |t| and the yaw of T_from_to).
+  int AddOdometryEdge(int from_id, int to_id, const Pose2& T_from_to, int trajectory = 0,
+                      double path_m = -1.0,
+                      double turn_rad = std::numeric_limits<double>::quiet_NaN());
 
   /// A loop edge with the configured default information.
   int AddLoopEdge(int from_id, int to_id, const Pose2& T_from_to);

@@ -34,6 +34,7 @@ struct PoseGraph::SolverEdge {
   SolverNode* from = nullptr;
   SolverNode* to = nullptr;
   CalibrationBlock* calibration = nullptr;  // calibrated odometry edges only
+  OdometryTravel travel;                    // the robot's path and turn (calibrated edges)
   // Loops only: the loss is swapped between robust, none and "switched off" without
   // touching the problem's structure (the wrapper is owned here, not by the problem).
   std::unique_ptr<ceres::LossFunctionWrapper> loss;
@@ -48,7 +49,7 @@ struct PoseGraph::SolverEdge {
   double Chi2() const {
     if (calibration != nullptr) {
       return CalibratedOdometryChi2(from->x.data(), to->x.data(), calibration->x, edge.T_from_to,
-                                    sqrt_information);
+                                    travel, sqrt_information);
     }
     return Se2Chi2(from->x.data(), to->x.data(), edge.T_from_to, sqrt_information);
   }
