@@ -173,10 +173,10 @@ void PoseGraph::InsertPending(std::vector<PendingNode> nodes, const std::vector<
       if (it != reseed.end() && it->second) {
         const Pose2 T_world_from{se->from->x[0], se->from->x[1], se->from->x[2]};
         const Pose2 T_world_to =
-            T_world_from * (se->calibration != nullptr
-                                ? CorrectedOdometryStep(se->calibration->x, se->edge.T_from_to,
-                                                        se->travel)
-                                : se->edge.T_from_to);
+            T_world_from *
+            (se->calibration != nullptr
+                 ? CorrectedOdometryStep(se->calibration->x, se->edge.T_from_to, se->travel)
+                 : se->edge.T_from_to);
         se->to->x = {T_world_to.x_m, T_world_to.y_m, T_world_to.yaw_rad};
         it->second = false;
       }
@@ -186,8 +186,7 @@ void PoseGraph::InsertPending(std::vector<PendingNode> nodes, const std::vector<
     if (se->calibration != nullptr) {
       problem_->AddResidualBlock(
           CalibratedOdometryCost::Create(se->edge.T_from_to, se->travel, se->sqrt_information),
-          nullptr,
-          se->from->x.data(), se->to->x.data(), se->calibration->x.data());
+          nullptr, se->from->x.data(), se->to->x.data(), se->calibration->x.data());
     } else {
       problem_->AddResidualBlock(new Se2EdgeCost(se->edge.T_from_to, se->sqrt_information),
                                  se->loss.get(), se->from->x.data(), se->to->x.data());

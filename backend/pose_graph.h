@@ -72,11 +72,11 @@ struct PoseGraphEdge {
   Pose2 T_from_to;  ///< measurement: pose of `to` in the frame of `from`
   Eigen::Matrix3d information = Eigen::Matrix3d::Identity();  ///< over (x, y, yaw), SPD
   EdgeKind kind = EdgeKind::kLoop;
-  int trajectory = -1;  ///< odometry: edges of one trajectory share an odometry calibration
-                        ///< (BackendConfig::odometry_calibration); -1: not calibrated
+  int trajectory = -1;   ///< odometry: edges of one trajectory share an odometry calibration
+                         ///< (BackendConfig::odometry_calibration); -1: not calibrated
   double path_m = -1.0;  ///< odometry: the robot's path over the edge (calibration); < 0: |t|
   double turn_rad = std::numeric_limits<double>::quiet_NaN();  ///< odometry: the robot's own
-                                                                ///< turn; NaN: the yaw of T
+                                                               ///< turn; NaN: the yaw of T
 };
 
 /// The state of one edge after the last Optimize().

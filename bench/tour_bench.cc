@@ -16,7 +16,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <cmath>
 #include <string>
 #include <vector>
 
@@ -63,17 +62,10 @@ void BM_Tour(benchmark::State& state) {
           tools::MapSimulation(config, MapsFile(tour.map), MapsFile(tour.route), seed);
       const tools::TourEvaluation e = tools::EvaluateTour(run);
       std::printf("%s seed %d: %s\n", tour.name, seed, tools::FormatTourEvaluation(e).c_str());
-      {
-        double yaw_sum = 0, d_sum = 0; int n = 0, traj = -2;
-        for (const PoseGraphEdge& pe : run.slam->graph().Edges()) {
-          if (pe.kind != EdgeKind::kOdometry) continue;
-          yaw_sum += pe.T_from_to.yaw_rad; d_sum += std::hypot(pe.T_from_to.x_m, pe.T_from_to.y_m); ++n; traj = pe.trajectory;
-        }
-        std::printf("DEBUG odometry edges %d traj %d yaw sum %.4f dist %.2f\n", n, traj, yaw_sum, d_sum);
-      }
       for (const auto& [trajectory, c] : run.slam->graph().OdometryCalibrations()) {
-        std::printf("  odometry calibration: scale %+.4f, heading drift %+.5f rad/m, rotation %+.4f\n",
-                    c[0], c[1], c[2]);
+        std::printf(
+            "  odometry calibration: scale %+.4f, heading drift %+.5f rad/m, rotation %+.4f\n",
+            c[0], c[1], c[2]);
       }
       if (std::getenv("UWBSAR_TOUR_VERBOSE")) {
         for (const LoopRecord& l : run.slam->loops()) {

@@ -53,7 +53,8 @@ TEST(OdometryCalibrationTest, ZeroCalibrationIsThePlainSe2Residual) {
   const Pose2 T_a_b{0.8, -0.2, 0.3};
   const Eigen::Matrix3d U = *SqrtInformation(Eigen::Vector3d(30, 40, 90).asDiagonal());
   const double a[3] = {1.0, 2.0, 0.4}, b[3] = {1.9, 2.1, 0.9};
-  EXPECT_NEAR(CalibratedOdometryChi2(a, b, {0, 0, 0}, T_a_b, TravelOf(T_a_b), U), Se2Chi2(a, b, T_a_b, U), 1e-12);
+  EXPECT_NEAR(CalibratedOdometryChi2(a, b, {0, 0, 0}, T_a_b, TravelOf(T_a_b), U),
+              Se2Chi2(a, b, T_a_b, U), 1e-12);
 }
 
 TEST(OdometryCalibrationTest, CorrectionUndoesScaleDriftAndRotationErrors) {
