@@ -5,7 +5,10 @@
 //   - with the true transform when the tiles overlap (the control: guided pairs are found),
 //   - with a wrong prediction (0.3-2 m or 8 deg off the truth) when they overlap, and
 //   - as a false pair: tiles 3 m or more apart claimed to lie on each other,
-// and no accepted attempt may be off the truth by more than 5 cm or 2 deg.
+// and no accepted attempt may be off the truth by more than 5 cm or 2 deg. Measured: true
+// 15/23 accepted (19/23 before the distinctiveness check in NearPrediction), wrong
+// predictions 0/115 (1/115 before: 8 deg off predicted, accepted 5 deg off the truth),
+// false pairs 0/63. About 35 s in Release.
 #include <gtest/gtest.h>
 
 #include <cstdio>
