@@ -18,7 +18,8 @@
 //   4. consistency (max_odometry_chi2 > 0): while some odometry edge's chi2 exceeds
 //      max_odometry_chi2, an accepted loop spanning it is rejected for good ("inconsistent")
 //      and the graph re-solved (backend/odometry_consistency.h);
-//   4b. trial (trial_solve): a loop still held back is tried once in a plain solve with it
+//   4b. trial (max_trial_solves per call, lowest chi2 first): a loop still held back is
+//      tried once in a plain solve with it
 //      added and kept when the map stays consistent: its chi2 and every other accepted
 //      loop's within loop_rejection_chi2, every odometry edge within max_odometry_chi2,
 //      and the total chi2 grown by at most trial_loop_chi2; otherwise the map is restored;

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <array>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "backend/pose_graph.h"
@@ -68,9 +70,19 @@ double PoseGraph::TotalChi2() const {
 }
 
 void PoseGraph::TrialSolveHeldBackLoops(OptimizeResult* result) {
-  if (!config_.trial_solve || config_.min_loop_support <= 0) return;
-  for (auto& trial : solver_edges_) {
-    if (!trial->loss || !trial->held_back || trial->trialled) continue;
+  if (config_.max_trial_solves <= 0 || config_.min_loop_support <= 0) return;
+  // Each trial is a solve of the whole graph: the most plausible few per call, so that a
+  // graph full of held-back false loops (M3500 + 100) costs a few solves, not one per loop.
+  std::vector<std::pair<double, SolverEdge*>> candidates;
+  for (auto& se : solver_edges_) {
+    if (se->loss && se->held_back && !se->trialled) candidates.push_back({se->Chi2(), se.get()});
+  }
+  std::sort(candidates.begin(), candidates.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  if (candidates.size() > static_cast<std::size_t>(config_.max_trial_solves)) {
+    candidates.resize(static_cast<std::size_t>(config_.max_trial_solves));
+  }
+  for (auto& [chi2_alone, trial] : candidates) {
     trial->trialled = true;
     // The map as solved without the loop, to restore on refusal.
     std::vector<std::array<double, 3>> nodes;
@@ -81,6 +93,9 @@ void PoseGraph::TrialSolveHeldBackLoops(OptimizeResult* result) {
     std::vector<bool> rejected;
     for (const auto& se : solver_edges_) rejected.push_back(se->rejected);
     const double chi2_before = TotalChi2();
+    // On refusal the map solved before stands, and so does its solve's convergence report.
+    const bool converged_before = result->converged;
+    const std::string termination_before = result->termination;
 
     trial->held_back = false;
     trial->rejected = false;
@@ -100,6 +115,8 @@ void PoseGraph::TrialSolveHeldBackLoops(OptimizeResult* result) {
       continue;
     }
     trial->held_back = true;
+    result->converged = converged_before;
+    result->termination = termination_before;
     std::size_t k = 0;
     for (auto& [id, node] : solver_nodes_) node->x = nodes[k++];
     k = 0;

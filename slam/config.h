@@ -199,12 +199,14 @@ struct BackendConfig {
   double calibration_scale_sigma = 0.02;  ///< prior sigma of the distance scale (fraction)
   double calibration_heading_drift_sigma_rad_per_m = 0.005;  ///< prior sigma of the heading
                                                              ///< drift per metre travelled
-  double calibration_rotation_sigma = 0.05;  ///< prior sigma of the rotation scale (fraction)
-  bool trial_solve = true;            ///< a loop still held back as unsupported is tried in a solve
-                                      ///< of its own and kept when the map stays consistent
-  double trial_loop_chi2 = 16.27;     ///< trial: the most the solution's chi2 (all edges and
-                                      ///< calibration priors) may grow by the loop
-  double loop_xy_information = 44.7;  ///< loop information when none is given (follow-on)
+  double calibration_rotation_sigma = 0.001;  ///< prior sigma of the rotation scale (fraction):
+                                              ///< held near 0, since around a ring the turns'
+                                              ///< error cannot be told from the heading drift
+  int max_trial_solves = 2;  ///< loops still held back as unsupported, tried per Optimize() in a
+                             ///< solve of their own (lowest chi2 first, each once); 0 = off
+  double trial_loop_chi2 = 16.27;      ///< trial: the most the solution's chi2 (all edges and
+                                       ///< calibration priors) may grow by the loop
+  double loop_xy_information = 44.7;   ///< loop information when none is given (follow-on)
   double loop_yaw_information = 44.7;  ///< loop yaw information when none is given (follow-on)
   int max_iterations = 100;            ///< Ceres iterations per solve
   double function_tolerance = 1e-10;   ///< Ceres convergence: relative change of the cost
@@ -229,7 +231,7 @@ struct BackendConfig {
     v("calibration_scale_sigma", calibration_scale_sigma);
     v("calibration_heading_drift_sigma_rad_per_m", calibration_heading_drift_sigma_rad_per_m);
     v("calibration_rotation_sigma", calibration_rotation_sigma);
-    v("trial_solve", trial_solve);
+    v("max_trial_solves", max_trial_solves);
     v("trial_loop_chi2", trial_loop_chi2);
     v("loop_xy_information", loop_xy_information);
     v("loop_yaw_information", loop_yaw_information);

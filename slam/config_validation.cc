@@ -254,6 +254,7 @@ void ValidateBackend(const BackendConfig& b, const std::string& src) {
   Require(b.calibration_rotation_sigma > 0, src, "backend.calibration_rotation_sigma",
           "must be > 0");
   Require(b.trial_loop_chi2 > 0, src, "backend.trial_loop_chi2", "must be > 0");
+  Require(b.max_trial_solves >= 0, src, "backend.max_trial_solves", "must be >= 0 (0 = off)");
   Require(b.loop_xy_information > 0, src, "backend.loop_xy_information", "must be > 0");
   Require(b.loop_yaw_information > 0, src, "backend.loop_yaw_information", "must be > 0");
   Require(b.max_iterations >= 1, src, "backend.max_iterations", "must be >= 1");

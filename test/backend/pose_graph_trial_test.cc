@@ -32,7 +32,7 @@ TEST(PoseGraphTrialTest, LoneRingClosureIsKeptAfterATrialSolve) {
   const OdometryRun lap = MakeLap();
   const int last = static_cast<int>(lap.truth.size()) - 1;
   BackendConfig no_trial;
-  no_trial.trial_solve = false;
+  no_trial.max_trial_solves = 0;
   PoseGraph held(no_trial);
   BuildOdometryChain(lap, &held);
   const int held_loop = held.AddLoopEdge(last, 0, Between(lap.truth[last], lap.truth[0]));
