@@ -13,36 +13,11 @@
 #include "backend/chordal_init.h"
 #include "backend/loop_support.h"
 #include "backend/odometry_consistency.h"
+#include "backend/pose_graph_solver.h"
 #include "backend/se2_edge_cost.h"
 #include "slam/errors.h"
 
 namespace uwbsar {
-
-struct PoseGraph::SolverNode {
-  // The Ceres parameter block [x_m, y_m, yaw_rad] in the solver frame: the world frame
-  // moved to the first node's initial position (see solver_origin_).
-  std::array<double, 3> x{};
-};
-
-struct PoseGraph::SolverEdge {
-  int index = 0;
-  PoseGraphEdge edge;
-  Eigen::Matrix3d sqrt_information;
-  SolverNode* from = nullptr;
-  SolverNode* to = nullptr;
-  // Loops only: the loss is swapped between robust, none and "switched off" without
-  // touching the problem's structure (the wrapper is owned here, not by the problem).
-  std::unique_ptr<ceres::LossFunctionWrapper> loss;
-  bool rejected = false;
-  bool held_back = false;     // unsupported and not (yet) confirmed by the solution
-  bool inconsistent = false;  // blamed for an odometry edge out of its noise: stays rejected
-  int support = -1;
-  double chi2 = 0.0;
-
-  double Chi2() const {
-    return Se2Chi2(from->x.data(), to->x.data(), edge.T_from_to, sqrt_information);
-  }
-};
 
 namespace {
 
@@ -122,7 +97,8 @@ int PoseGraph::AddEdge(const PoseGraphEdge& edge) {
   return index;
 }
 
-int PoseGraph::AddOdometryEdge(int from_id, int to_id, const Pose2& T_from_to) {
+int PoseGraph::AddOdometryEdge(int from_id, int to_id, const Pose2& T_from_to, int trajectory,
+                               double path_m, double turn_rad) {
   const double d =
       std::max(std::hypot(T_from_to.x_m, T_from_to.y_m), config_.odometry_min_distance_m);
   PoseGraphEdge e;
@@ -130,6 +106,9 @@ int PoseGraph::AddOdometryEdge(int from_id, int to_id, const Pose2& T_from_to) {
   e.to_id = to_id;
   e.T_from_to = T_from_to;
   e.kind = EdgeKind::kOdometry;
+  e.trajectory = trajectory;
+  e.path_m = path_m;
+  e.turn_rad = turn_rad;
   e.information =
       Eigen::Vector3d(config_.odometry_xy_information / d, config_.odometry_xy_information / d,
                       config_.odometry_yaw_information / d)
@@ -180,19 +159,38 @@ void PoseGraph::InsertPending(std::vector<PendingNode> nodes, const std::vector<
     se->sqrt_information = *SqrtInformation(se->edge.information);  // checked in AddEdge
     se->from = solver_nodes_.at(se->edge.from_id).get();
     se->to = solver_nodes_.at(se->edge.to_id).get();
+    if (se->edge.kind == EdgeKind::kOdometry && se->edge.trajectory >= 0 &&
+        config_.odometry_calibration) {
+      se->calibration = CalibrationFor(se->edge.trajectory);
+      se->travel = TravelOf(se->edge.T_from_to);
+      if (se->edge.path_m >= 0) se->travel.path_m = se->edge.path_m;
+      if (std::isfinite(se->edge.turn_rad)) se->travel.turn_rad = se->edge.turn_rad;
+      node_trajectory_[se->edge.from_id] = se->edge.trajectory;
+      node_trajectory_[se->edge.to_id] = se->edge.trajectory;
+    }
     if (se->edge.kind == EdgeKind::kOdometry) {
       auto it = reseed.find(se->edge.to_id);
       if (it != reseed.end() && it->second) {
         const Pose2 T_world_from{se->from->x[0], se->from->x[1], se->from->x[2]};
-        const Pose2 T_world_to = T_world_from * se->edge.T_from_to;
+        const Pose2 T_world_to =
+            T_world_from *
+            (se->calibration != nullptr
+                 ? CorrectedOdometryStep(se->calibration->x, se->edge.T_from_to, se->travel)
+                 : se->edge.T_from_to);
         se->to->x = {T_world_to.x_m, T_world_to.y_m, T_world_to.yaw_rad};
         it->second = false;
       }
     } else {
       se->loss = std::make_unique<ceres::LossFunctionWrapper>(nullptr, ceres::TAKE_OWNERSHIP);
     }
-    problem_->AddResidualBlock(new Se2EdgeCost(se->edge.T_from_to, se->sqrt_information),
-                               se->loss.get(), se->from->x.data(), se->to->x.data());
+    if (se->calibration != nullptr) {
+      problem_->AddResidualBlock(
+          CalibratedOdometryCost::Create(se->edge.T_from_to, se->travel, se->sqrt_information),
+          nullptr, se->from->x.data(), se->to->x.data(), se->calibration->x.data());
+    } else {
+      problem_->AddResidualBlock(new Se2EdgeCost(se->edge.T_from_to, se->sqrt_information),
+                                 se->loss.get(), se->from->x.data(), se->to->x.data());
+    }
     solver_edges_.push_back(std::move(se));
   }
 }
@@ -211,6 +209,7 @@ void PoseGraph::SetLoopLosses(bool robust) {
 }
 
 void PoseGraph::RunSolve(OptimizeResult* result) {
+  UpdateCalibrationFreedom();
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   options.max_num_iterations = config_.max_iterations;
@@ -294,7 +293,7 @@ void PoseGraph::ComputeSupport() {
   for (std::size_t i = 0; i < solver_edges_.size(); ++i) {
     SolverEdge& se = *solver_edges_[i];
     se.support = support[i];
-    if (!se.loss) continue;
+    if (!se.loss || se.trial_accepted) continue;
     se.held_back = support[i] < config_.min_loop_support;
     if (se.held_back) se.rejected = true;
   }
@@ -377,6 +376,7 @@ OptimizeResult PoseGraph::Optimize() {
         RejectionRounds(false, &result);
       }
     }
+    TrialSolveHeldBackLoops(&result);
     ConsistencyRounds(&result);
   }
   for (auto& se : solver_edges_) se->chi2 = se->Chi2();
@@ -388,6 +388,7 @@ OptimizeResult PoseGraph::Optimize() {
     estimates_[id] =
         Pose2{node->x[0] + solver_origin_.x_m, node->x[1] + solver_origin_.y_m, node->x[2]};
   }
+  for (const auto& [trajectory, block] : calibrations_) calibrations_out_[trajectory] = block->x;
   for (const auto& se : solver_edges_) {
     EdgeReport& r = reports_[static_cast<std::size_t>(se->index)];
     r.chi2 = se->chi2;
@@ -435,6 +436,11 @@ std::vector<EdgeReport> PoseGraph::EdgeReports() const {
 std::vector<int> PoseGraph::FixedNodes() const {
   std::lock_guard<std::mutex> lock(data_mutex_);
   return fixed_ids_;
+}
+
+std::map<int, std::array<double, 3>> PoseGraph::OdometryCalibrations() const {
+  std::lock_guard<std::mutex> lock(data_mutex_);
+  return calibrations_out_;
 }
 
 int PoseGraph::NumNodes() const {

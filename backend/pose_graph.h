@@ -18,13 +18,21 @@
 //   4. consistency (max_odometry_chi2 > 0): while some odometry edge's chi2 exceeds
 //      max_odometry_chi2, an accepted loop spanning it is rejected for good ("inconsistent")
 //      and the graph re-solved (backend/odometry_consistency.h);
+//   4b. trial (max_trial_solves per call, lowest chi2 first): a loop still held back is
+//      tried once in a plain solve with it
+//      added and kept when the map stays consistent: its chi2 and every other accepted
+//      loop's within loop_rejection_chi2, every odometry edge within max_odometry_chi2,
+//      and the total chi2 grown by at most trial_loop_chi2; otherwise the map is restored;
 //   5. with final_least_squares, a last solve without loss on the accepted loops
 //      gives the plain least-squares (maximum-likelihood) estimate of the inliers.
 // Later calls (incremental updates) start from the previous solution, which is already
 // the map without the held-back loops: those are tested first (step 3), then one plain
 // least-squares solve runs, and steps 2-4 follow only if some loop changes status.
-// Odometry edges are never rejected. The gauge is held by the nodes marked fixed,
-// or by the first node added when none is.
+// Odometry edges are never rejected. With odometry_calibration, the odometry edges of each
+// trajectory (AddOdometryEdge's `trajectory`) share a calibration block
+// (backend/odometry_calibration.h) with a weak prior at zero; it is free only while an
+// accepted loop touches the trajectory, and constant at zero otherwise. The gauge is held by the
+// nodes marked fixed, or by the first node added when none is.
 //
 // Incremental use: the Ceres problem lives as long as the graph; AddNode/AddEdge
 // queue new elements, Optimize() inserts them and re-solves from the current
@@ -39,6 +47,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -63,6 +73,11 @@ struct PoseGraphEdge {
   Pose2 T_from_to;  ///< measurement: pose of `to` in the frame of `from`
   Eigen::Matrix3d information = Eigen::Matrix3d::Identity();  ///< over (x, y, yaw), SPD
   EdgeKind kind = EdgeKind::kLoop;
+  int trajectory = -1;   ///< odometry: edges of one trajectory share an odometry calibration
+                         ///< (BackendConfig::odometry_calibration); -1: not calibrated
+  double path_m = -1.0;  ///< odometry: the robot's path over the edge (calibration); < 0: |t|
+  double turn_rad = std::numeric_limits<double>::quiet_NaN();  ///< odometry: the robot's own
+                                                               ///< turn; NaN: the yaw of T
 };
 
 /// The state of one edge after the last Optimize().
@@ -115,8 +130,14 @@ class PoseGraph {
   int AddEdge(const PoseGraphEdge& edge);
 
   /// An odometry edge whose information is config's per-metre information divided by
-  /// the travelled distance |t_from_to| (at least odometry_min_distance_m).
-  int AddOdometryEdge(int from_id, int to_id, const Pose2& T_from_to);
+  /// the travelled distance |t_from_to| (at least odometry_min_distance_m), calibrated with
+  /// the trajectory's odometry calibration (see the file comment).
+  /// `path_m` and `turn_rad`: the robot's own path and turn over the edge when the nodes'
+  /// frames are not the robot's (keyframe anchors keep the world orientation; defaults:
+  /// |t| and the yaw of T_from_to).
+  int AddOdometryEdge(int from_id, int to_id, const Pose2& T_from_to, int trajectory = 0,
+                      double path_m = -1.0,
+                      double turn_rad = std::numeric_limits<double>::quiet_NaN());
 
   /// A loop edge with the configured default information.
   int AddLoopEdge(int from_id, int to_id, const Pose2& T_from_to);
@@ -131,6 +152,9 @@ class PoseGraph {
   std::vector<PoseGraphEdge> Edges() const;
   std::vector<EdgeReport> EdgeReports() const;
   std::vector<int> FixedNodes() const;
+  /// Each calibrated trajectory's odometry calibration after the last Optimize()
+  /// ([scale, heading_drift_rad_per_m, rotation_scale]; zero while no loop constrains it).
+  std::map<int, std::array<double, 3>> OdometryCalibrations() const;
   int NumNodes() const;
   int NumEdges() const;
   const BackendConfig& config() const { return config_; }
@@ -138,6 +162,7 @@ class PoseGraph {
  private:
   struct SolverNode;
   struct SolverEdge;
+  struct CalibrationBlock;
   struct PendingNode {
     int id = 0;
     Pose2 guess;
@@ -155,6 +180,11 @@ class PoseGraph {
   void ConsistencyRounds(OptimizeResult* result);  ///< backend/odometry_consistency.h
   bool AdmitConfirmedLoops();  ///< admits held-back loops that the estimate confirms
   void ChordalStart();
+  // backend/pose_graph_calibration.cc
+  CalibrationBlock* CalibrationFor(int trajectory);
+  void UpdateCalibrationFreedom();  ///< free a block while an accepted loop touches its nodes
+  double TotalChi2() const;         ///< accepted edges and the free blocks' priors
+  void TrialSolveHeldBackLoops(OptimizeResult* result);
   double HalfChi2Sum(bool accepted_only) const;
 
   const BackendConfig config_;
@@ -168,6 +198,7 @@ class PoseGraph {
   std::vector<PoseGraphEdge> edges_;
   std::vector<EdgeReport> reports_;
   std::vector<int> fixed_ids_;
+  std::map<int, std::array<double, 3>> calibrations_out_;
   std::vector<PendingNode> pending_nodes_;
   std::vector<int> pending_edges_;
   std::vector<int> pending_fixed_;
@@ -176,6 +207,8 @@ class PoseGraph {
   std::unique_ptr<ceres::Problem> problem_;
   std::unordered_map<int, std::unique_ptr<SolverNode>> solver_nodes_;
   std::vector<std::unique_ptr<SolverEdge>> solver_edges_;
+  std::map<int, std::unique_ptr<CalibrationBlock>> calibrations_;  // by trajectory
+  std::unordered_map<int, int> node_trajectory_;  // node -> trajectory of its odometry
   int first_node_id_ = -1;
   // The solver works in the world frame translated to the first node's initial position,
   // so that poses far from the world origin (UTM, building coordinates) keep their

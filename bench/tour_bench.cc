@@ -62,6 +62,11 @@ void BM_Tour(benchmark::State& state) {
           pipeline::MapSimulation(config, MapsFile(tour.map), MapsFile(tour.route), seed);
       const pipeline::TourEvaluation e = pipeline::EvaluateTour(run);
       std::printf("%s seed %d: %s\n", tour.name, seed, pipeline::FormatTourEvaluation(e).c_str());
+      for (const auto& [trajectory, c] : run.slam->graph().OdometryCalibrations()) {
+        std::printf(
+            "  odometry calibration: scale %+.4f, heading drift %+.5f rad/m, rotation %+.4f\n",
+            c[0], c[1], c[2]);
+      }
       if (std::getenv("UWBSAR_TOUR_VERBOSE")) {
         for (const pipeline::LoopRecord& l : run.slam->loops()) {
           if (!l.validation.accepted) continue;

@@ -202,7 +202,14 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
       const Pose2 T_prev_this = Between(prev.T_world_anchor, keyframe.T_world_anchor);
       estimate = graph_->GetPose(prev.id) * T_prev_this;
       graph_->AddNode(keyframe.id, estimate, /*reseed_from_odometry=*/false);
-      graph_->AddOdometryEdge(prev.id, keyframe.id, T_prev_this);
+      // Anchors keep the world orientation (the step's yaw is 0): the odometry calibration
+      // needs the robot's own path and turn between the two tiles' middles.
+      const double path_m = 0.5 * (keyframe.path_begin_m + keyframe.path_end_m) -
+                            0.5 * (prev.path_begin_m + prev.path_end_m);
+      const double turn_rad =
+          NormalizeAngle(keyframe.T_world_robot.yaw_rad - prev.T_world_robot.yaw_rad);
+      graph_->AddOdometryEdge(prev.id, keyframe.id, T_prev_this, /*trajectory=*/0,
+                              std::max(0.0, path_m), turn_rad);
     } else {
       graph_->AddNode(keyframe.id, estimate, false);
       graph_->FixNode(keyframe.id);

@@ -203,7 +203,20 @@ struct BackendConfig {
   double odometry_yaw_information = 10000.0;  ///< yaw information of 1 m of odometry (1/rad^2):
                                               ///< sigma 0.6 deg per metre
   double odometry_min_distance_m = 0.1;       ///< shorter odometry edges weigh as this distance
-  double loop_xy_information = 44.7;          ///< loop information when none is given (follow-on)
+  bool odometry_calibration = true;  ///< estimate each trajectory's odometry intrinsics (distance
+                                     ///< scale, heading drift per metre, rotation scale) while
+                                     ///< loops constrain them (backend/odometry_calibration.h)
+  double calibration_scale_sigma = 0.02;  ///< prior sigma of the distance scale (fraction)
+  double calibration_heading_drift_sigma_rad_per_m = 0.005;  ///< prior sigma of the heading
+                                                             ///< drift per metre travelled
+  double calibration_rotation_sigma = 0.001;  ///< prior sigma of the rotation scale (fraction):
+                                              ///< held near 0, since around a ring the turns'
+                                              ///< error cannot be told from the heading drift
+  int max_trial_solves = 2;  ///< loops still held back as unsupported, tried per Optimize() in a
+                             ///< solve of their own (lowest chi2 first, each once); 0 = off
+  double trial_loop_chi2 = 16.27;      ///< trial: the most the solution's chi2 (all edges and
+                                       ///< calibration priors) may grow by the loop
+  double loop_xy_information = 44.7;   ///< loop information when none is given (follow-on)
   double loop_yaw_information = 44.7;  ///< loop yaw information when none is given (follow-on)
   int max_iterations = 100;            ///< Ceres iterations per solve
   double function_tolerance = 1e-10;   ///< Ceres convergence: relative change of the cost
@@ -224,6 +237,12 @@ struct BackendConfig {
     v("odometry_xy_information", odometry_xy_information);
     v("odometry_yaw_information", odometry_yaw_information);
     v("odometry_min_distance_m", odometry_min_distance_m);
+    v("odometry_calibration", odometry_calibration);
+    v("calibration_scale_sigma", calibration_scale_sigma);
+    v("calibration_heading_drift_sigma_rad_per_m", calibration_heading_drift_sigma_rad_per_m);
+    v("calibration_rotation_sigma", calibration_rotation_sigma);
+    v("max_trial_solves", max_trial_solves);
+    v("trial_loop_chi2", trial_loop_chi2);
     v("loop_xy_information", loop_xy_information);
     v("loop_yaw_information", loop_yaw_information);
     v("max_iterations", max_iterations);

@@ -81,6 +81,13 @@ void Validate(const BackendConfig& b, const std::string& src) {
   Require(b.odometry_xy_information > 0, src, "backend.odometry_xy_information", "must be > 0");
   Require(b.odometry_yaw_information > 0, src, "backend.odometry_yaw_information", "must be > 0");
   Require(b.odometry_min_distance_m > 0, src, "backend.odometry_min_distance_m", "must be > 0");
+  Require(b.calibration_scale_sigma > 0, src, "backend.calibration_scale_sigma", "must be > 0");
+  Require(b.calibration_heading_drift_sigma_rad_per_m > 0, src,
+          "backend.calibration_heading_drift_sigma_rad_per_m", "must be > 0");
+  Require(b.calibration_rotation_sigma > 0, src, "backend.calibration_rotation_sigma",
+          "must be > 0");
+  Require(b.trial_loop_chi2 > 0, src, "backend.trial_loop_chi2", "must be > 0");
+  Require(b.max_trial_solves >= 0, src, "backend.max_trial_solves", "must be >= 0 (0 = off)");
   Require(b.loop_xy_information > 0, src, "backend.loop_xy_information", "must be > 0");
   Require(b.loop_yaw_information > 0, src, "backend.loop_yaw_information", "must be > 0");
   Require(b.max_iterations >= 1, src, "backend.max_iterations", "must be >= 1");

@@ -1,0 +1,130 @@
+// PoseGraph's odometry calibration blocks and the trial solve of held-back loops
+// (see backend/pose_graph.h, steps 4b and the calibration paragraph).
+#include <ceres/problem.h>
+
+#include <algorithm>
+#include <array>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "backend/pose_graph.h"
+#include "backend/pose_graph_solver.h"
+
+namespace uwbsar {
+
+PoseGraph::CalibrationBlock* PoseGraph::CalibrationFor(int trajectory) {
+  auto it = calibrations_.find(trajectory);
+  if (it != calibrations_.end()) return it->second.get();
+  auto block = std::make_unique<CalibrationBlock>();
+  double* x = block->x.data();
+  problem_->AddParameterBlock(x, 3);
+  const Eigen::Vector3d sigma(config_.calibration_scale_sigma,
+                              config_.calibration_heading_drift_sigma_rad_per_m,
+                              config_.calibration_rotation_sigma);
+  auto* prior = new OdometryCalibrationPrior(sigma);
+  block->prior = prior;
+  problem_->AddResidualBlock(prior, nullptr, x);
+  // Five sigmas bound the search: the prior is weak, and a calibration beyond that would
+  // explain a loop by odometry no base has.
+  for (int i = 0; i < 3; ++i) {
+    problem_->SetParameterLowerBound(x, i, -5.0 * sigma[i]);
+    problem_->SetParameterUpperBound(x, i, 5.0 * sigma[i]);
+  }
+  problem_->SetParameterBlockConstant(x);
+  CalibrationBlock* out = block.get();
+  calibrations_[trajectory] = std::move(block);
+  return out;
+}
+
+void PoseGraph::UpdateCalibrationFreedom() {
+  if (calibrations_.empty()) return;
+  std::map<int, bool> constrained;
+  for (const auto& se : solver_edges_) {
+    if (!se->loss || se->rejected) continue;
+    for (const int id : {se->edge.from_id, se->edge.to_id}) {
+      auto it = node_trajectory_.find(id);
+      if (it != node_trajectory_.end()) constrained[it->second] = true;
+    }
+  }
+  for (auto& [trajectory, block] : calibrations_) {
+    const bool free = constrained.count(trajectory) > 0;
+    if (free == block->free) continue;
+    block->free = free;
+    if (free) {
+      problem_->SetParameterBlockVariable(block->x.data());
+    } else {
+      block->x = {0.0, 0.0, 0.0};  // nothing observes it: back to the prior
+      problem_->SetParameterBlockConstant(block->x.data());
+    }
+  }
+}
+
+double PoseGraph::TotalChi2() const {
+  double sum = 0.0;
+  for (const auto& se : solver_edges_) {
+    if (!se->rejected) sum += se->Chi2();
+  }
+  for (const auto& [trajectory, block] : calibrations_) sum += block->prior->Chi2(block->x);
+  return sum;
+}
+
+void PoseGraph::TrialSolveHeldBackLoops(OptimizeResult* result) {
+  if (config_.max_trial_solves <= 0 || config_.min_loop_support <= 0) return;
+  // Each trial is a solve of the whole graph: the most plausible few per call, so that a
+  // graph full of held-back false loops (M3500 + 100) costs a few solves, not one per loop.
+  std::vector<std::pair<double, SolverEdge*>> candidates;
+  for (auto& se : solver_edges_) {
+    if (se->loss && se->held_back && !se->trialled) candidates.push_back({se->Chi2(), se.get()});
+  }
+  std::sort(candidates.begin(), candidates.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  if (candidates.size() > static_cast<std::size_t>(config_.max_trial_solves)) {
+    candidates.resize(static_cast<std::size_t>(config_.max_trial_solves));
+  }
+  for (auto& [chi2_alone, trial] : candidates) {
+    trial->trialled = true;
+    // The map as solved without the loop, to restore on refusal.
+    std::vector<std::array<double, 3>> nodes;
+    nodes.reserve(solver_nodes_.size());
+    for (const auto& [id, node] : solver_nodes_) nodes.push_back(node->x);
+    std::vector<OdometryCalibration> calibrations;
+    for (const auto& [trajectory, block] : calibrations_) calibrations.push_back(block->x);
+    std::vector<bool> rejected;
+    for (const auto& se : solver_edges_) rejected.push_back(se->rejected);
+    const double chi2_before = TotalChi2();
+    // On refusal the map solved before stands, and so does its solve's convergence report.
+    const bool converged_before = result->converged;
+    const std::string termination_before = result->termination;
+
+    trial->held_back = false;
+    trial->rejected = false;
+    SetLoopLosses(false);
+    RunSolve(result);
+    bool consistent = trial->Chi2() <= config_.loop_rejection_chi2 &&
+                      TotalChi2() - chi2_before <= config_.trial_loop_chi2;
+    for (const auto& se : solver_edges_) {
+      if (!consistent) break;
+      const double chi2 = se->Chi2();
+      if (se->loss && !se->rejected) consistent = chi2 <= config_.loop_rejection_chi2;
+      if (!se->loss && config_.max_odometry_chi2 > 0)
+        consistent = chi2 <= config_.max_odometry_chi2;
+    }
+    if (consistent) {
+      trial->trial_accepted = true;
+      continue;
+    }
+    trial->held_back = true;
+    result->converged = converged_before;
+    result->termination = termination_before;
+    std::size_t k = 0;
+    for (auto& [id, node] : solver_nodes_) node->x = nodes[k++];
+    k = 0;
+    for (auto& [trajectory, block] : calibrations_) block->x = calibrations[k++];
+    for (std::size_t i = 0; i < solver_edges_.size(); ++i) solver_edges_[i]->rejected = rejected[i];
+    UpdateCalibrationFreedom();
+    SetLoopLosses(false);
+  }
+}
+
+}  // namespace uwbsar

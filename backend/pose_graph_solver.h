@@ -1,0 +1,58 @@
+// Private to the pose graph (backend/pose_graph*.cc): the solver-side records behind
+// PoseGraph, shared by its translation units. Not part of the backend's interface.
+#pragma once
+
+#include <ceres/loss_function.h>
+
+#include <array>
+#include <memory>
+
+#include "backend/odometry_calibration.h"
+#include "backend/pose_graph.h"
+#include "backend/se2_edge_cost.h"
+
+namespace uwbsar {
+
+struct PoseGraph::SolverNode {
+  // The Ceres parameter block [x_m, y_m, yaw_rad] in the solver frame: the world frame
+  // moved to the first node's initial position (see solver_origin_).
+  std::array<double, 3> x{};
+};
+
+/// One trajectory's odometry intrinsics (backend/odometry_calibration.h): a parameter block
+/// shared by the trajectory's odometry edges, constant at zero while no loop constrains it.
+struct PoseGraph::CalibrationBlock {
+  OdometryCalibration x{};
+  const OdometryCalibrationPrior* prior = nullptr;  // owned by the problem
+  bool free = false;
+};
+
+struct PoseGraph::SolverEdge {
+  int index = 0;
+  PoseGraphEdge edge;
+  Eigen::Matrix3d sqrt_information;
+  SolverNode* from = nullptr;
+  SolverNode* to = nullptr;
+  CalibrationBlock* calibration = nullptr;  // calibrated odometry edges only
+  OdometryTravel travel;                    // the robot's path and turn (calibrated edges)
+  // Loops only: the loss is swapped between robust, none and "switched off" without
+  // touching the problem's structure (the wrapper is owned here, not by the problem).
+  std::unique_ptr<ceres::LossFunctionWrapper> loss;
+  bool rejected = false;
+  bool held_back = false;       // unsupported and not (yet) confirmed by the solution
+  bool inconsistent = false;    // blamed for an odometry edge out of its noise: stays rejected
+  bool trialled = false;        // held back and tried once in a solve of its own
+  bool trial_accepted = false;  // that trial kept the map consistent: no longer held back
+  int support = -1;
+  double chi2 = 0.0;
+
+  double Chi2() const {
+    if (calibration != nullptr) {
+      return CalibratedOdometryChi2(from->x.data(), to->x.data(), calibration->x, edge.T_from_to,
+                                    travel, sqrt_information);
+    }
+    return Se2Chi2(from->x.data(), to->x.data(), edge.T_from_to, sqrt_information);
+  }
+};
+
+}  // namespace uwbsar
