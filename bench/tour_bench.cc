@@ -65,9 +65,10 @@ void BM_Tour(benchmark::State& state) {
       if (std::getenv("UWBSAR_TOUR_VERBOSE")) {
         for (const LoopRecord& l : run.slam->loops()) {
           if (!l.validation.accepted) continue;
-          std::printf("  loop %d -> %d%s: akaze %d orb %d, backend %s chi2 %.2f\n", l.match_id,
-                      l.query_id, l.guided ? " guided" : "", l.akaze.good_matches,
-                      l.orb.good_matches, l.rejected_by_backend ? "rejected" : "accepted", l.chi2);
+          std::printf("  loop %d -> %d%s%s: akaze %d orb %d, backend %s chi2 %.2f\n", l.match_id,
+                      l.query_id, l.guided ? " guided" : "", l.by_radar ? " by radar" : "",
+                      l.akaze.good_matches, l.orb.good_matches,
+                      l.rejected_by_backend ? "rejected" : "accepted", l.chi2);
         }
       }
       std::fflush(stdout);

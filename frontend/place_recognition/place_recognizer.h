@@ -29,6 +29,11 @@ struct KeyframeFeatures {
   Point2 centre_anchor;  ///< mean robot position of the tile's scans, in the anchor frame
   double path_begin_m = 0.0;
   Pose2 T_world_anchor;  ///< latest estimate (odometry, or optimised via UpdatePose)
+  /// Per-radar features (radar_match.h; empty without sensor tiles): every radar's keypoints
+  /// in pixels of `grid`, class_id = sensor id.
+  FeatureSet akaze_radar;
+  FeatureSet orb_radar;
+  std::vector<double> look_anchor_rad;  ///< per sensor id: boresight at mid-tile, anchor frame
 };
 
 /// Tile pixels per feature pixel (detectors.feature_resolution_m / imaging.pixel_size_m, >= 1).
@@ -47,6 +52,11 @@ struct LoopAttempt {
   int candidate_id = 0;  ///< i (the older keyframe); the new one is j
   int query_id = -1;     ///< j when not the new keyframe (a guided pair before it), else -1
   bool guided = false;   ///< from the guided pass around a validated loop (guided_match.h)
+
+  /// Matched radar by radar (radar_match.h) after the combined tiles failed; cross_side
+  /// when a radar was paired with another one.
+  bool by_radar = false;
+  bool cross_side = false;
   MatchResult akaze;
   MatchResult orb;
   LoopValidation validation;
