@@ -61,7 +61,12 @@ void BM_Tour(benchmark::State& state) {
       const tools::MapRun run =
           tools::MapSimulation(config, MapsFile(tour.map), MapsFile(tour.route), seed);
       const tools::TourEvaluation e = tools::EvaluateTour(run);
-      std::printf("%s seed %d: %s\n", tour.name, seed, tools::FormatTourEvaluation(e).c_str());
+      const StageTimes times = run.slam->times();
+      int by_radar = 0;
+      for (const LoopRecord& l : run.slam->loops()) by_radar += l.accepted() && l.by_radar;
+      std::printf("%s seed %d: %s; %d loops by radar; features %.1f s, matching %.1f s\n",
+                  tour.name, seed, tools::FormatTourEvaluation(e).c_str(), by_radar,
+                  times.features_s, times.matching_s);
       if (std::getenv("UWBSAR_TOUR_VERBOSE")) {
         for (const LoopRecord& l : run.slam->loops()) {
           if (!l.validation.accepted) continue;
