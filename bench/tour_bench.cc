@@ -2,8 +2,9 @@
 // office and floor50, each mapped with the default configuration over several seeds.
 // Reported per run: ring closed (SLAM ATE >= 3x better than odometry), ATE, odometry ATE,
 // loops accepted / validated / candidates, false loops, recall per candidate with true
-// overlap and per revisit (tools/tour_eval.h). Targets: every ring closes, 0 false loops,
-// ATE <= 5 cm.
+// overlap and per revisit (tools/tour_eval.h), loops found by the per-radar pass
+// (radar_match.h) and the keyframe thread's feature and matching time. Targets: every ring
+// closes, 0 false loops, ATE <= 5 cm.
 //
 // Run by hand (about 1-2 minutes per run on 2 cores; not part of CI; the last entry is
 // the route of TourRunTest):
@@ -61,7 +62,13 @@ void BM_Tour(benchmark::State& state) {
       const pipeline::MapRun run =
           pipeline::MapSimulation(config, MapsFile(tour.map), MapsFile(tour.route), seed);
       const pipeline::TourEvaluation e = pipeline::EvaluateTour(run);
-      std::printf("%s seed %d: %s\n", tour.name, seed, pipeline::FormatTourEvaluation(e).c_str());
+      const pipeline::StageTimes times = run.slam->times();
+      int by_radar = 0;
+      for (const pipeline::LoopRecord& l : run.slam->loops())
+        by_radar += l.accepted() && l.by_radar;
+      std::printf("%s seed %d: %s; %d loops by radar; features %.1f s, matching %.1f s\n",
+                  tour.name, seed, pipeline::FormatTourEvaluation(e).c_str(), by_radar,
+                  times.features_s, times.matching_s);
       for (const auto& [trajectory, c] : run.slam->graph().OdometryCalibrations()) {
         std::printf(
             "  odometry calibration: scale %+.4f, heading drift %+.5f rad/m, rotation %+.4f\n",
@@ -70,9 +77,10 @@ void BM_Tour(benchmark::State& state) {
       if (std::getenv("UWBSAR_TOUR_VERBOSE")) {
         for (const pipeline::LoopRecord& l : run.slam->loops()) {
           if (!l.validation.accepted) continue;
-          std::printf("  loop %d -> %d%s: akaze %d orb %d, backend %s chi2 %.2f\n", l.match_id,
-                      l.query_id, l.guided ? " guided" : "", l.akaze.good_matches,
-                      l.orb.good_matches, l.rejected_by_backend ? "rejected" : "accepted", l.chi2);
+          std::printf("  loop %d -> %d%s%s: akaze %d orb %d, backend %s chi2 %.2f\n", l.match_id,
+                      l.query_id, l.guided ? " guided" : "", l.by_radar ? " by radar" : "",
+                      l.akaze.good_matches, l.orb.good_matches,
+                      l.rejected_by_backend ? "rejected" : "accepted", l.chi2);
         }
       }
       std::fflush(stdout);

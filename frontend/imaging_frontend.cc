@@ -15,7 +15,10 @@ ImagingFrontend::ImagingFrontend(const ImagingFrontendConfig& config)
   }
   have_last_.assign(sensors_.size(), false);
   last_imaged_pose_.resize(sensors_.size());
-  builder_ = std::make_unique<KeyframeBuilder>(config.keyframe, config.imaging, sensors_);
+  // Per-radar tiles only where there are radars to tell apart (place_recognition.per_radar).
+  const bool per_radar = config.per_radar_tiles && sensors_.size() >= 2;
+  builder_ =
+      std::make_unique<KeyframeBuilder>(config.keyframe, config.imaging, sensors_, per_radar);
 }
 
 ImagingFrontend::~ImagingFrontend() = default;

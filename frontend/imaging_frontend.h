@@ -51,6 +51,8 @@ struct ImagingFrontendConfig {
   ImagingConfig imaging;
   GatingConfig gating;
   KeyframeConfig keyframe;
+  /// Keep each radar's part of the tile (place_recognition.per_radar.enabled).
+  bool per_radar_tiles = false;
 
   ImagingFrontendConfig() = default;
   /// Its sections of a configuration (implicit: callers hand the configuration they hold).
@@ -59,7 +61,8 @@ struct ImagingFrontendConfig {
         radars(config.radars),
         imaging(config.imaging),
         gating(config.gating),
-        keyframe(config.keyframe) {}
+        keyframe(config.keyframe),
+        per_radar_tiles(config.place_recognition.per_radar.enabled) {}
 };
 
 class ImagingFrontend {

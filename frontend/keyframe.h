@@ -22,6 +22,13 @@ struct ImagedScan {
   std::shared_ptr<const RangeProfile> profile;  ///< shared by the tiles that hold the scan
 };
 
+/// One radar's part of a tile: the pixels its scans imaged, on the tile's lattice.
+struct SensorTile {
+  int sensor_id = 0;
+  ImageGrid grid;  ///< in the tile's anchor frame: a sub-rectangle of Keyframe::grid
+  cv::Mat image;   ///< same type as Keyframe::image; the tile is the sum of its sensor tiles
+};
+
 /// Tiles are imaged on one world-aligned pixel lattice (see KeyframeBuilder), so
 /// the anchor frame has the world frame's orientation: T_world_anchor has yaw 0 in
 /// odometry and sits on a lattice point next to the robot's position at the middle
@@ -39,6 +46,9 @@ struct Keyframe {
   double path_end_m = 0.0;
   bool complete = false;  ///< false for the last tiles of a run, cut short
   std::vector<ImagedScan> scans;
+  /// Per radar (place_recognition.per_radar): kept only when the builder was asked to;
+  /// dropped with `image` once the keyframe's features are computed.
+  std::vector<SensorTile> sensor_tiles;
 
   bool coherent() const { return image.type() == CV_32FC2; }
 };

@@ -7,10 +7,11 @@
 namespace uwbsar {
 
 KeyframeBuilder::KeyframeBuilder(const KeyframeConfig& keyframe, const ImagingConfig& imaging,
-                                 std::vector<SensorGeometry> sensors)
+                                 std::vector<SensorGeometry> sensors, bool keep_sensor_images)
     : config_(keyframe),
       resolution_m_(imaging.pixel_size_m),
       coherent_(imaging.coherent()),
+      keep_sensor_images_(keep_sensor_images),
       segments_per_tile_(std::max(
           1, static_cast<int>(std::lround(keyframe.tile_length_m / keyframe.tile_spacing_m)))),
       sensors_(std::move(sensors)),
@@ -41,7 +42,7 @@ void KeyframeBuilder::OpenSegment(const ImagedScan& scan) {
   seg.grid.rows = static_cast<int>(2 * half + 1);
   seg.grid.x0_m = static_cast<double>(seg.lattice_col0) * resolution_m_;
   seg.grid.y0_m = -static_cast<double>(seg.lattice_row0) * resolution_m_;
-  seg.image = MakeSarImage(seg.grid, coherent_);
+  seg.layers.resize(keep_sensor_images_ ? sensors_.size() : 1);
   seg.path_begin_m = seg.path_end_m = scan.path_m;
   segments_.push_back(std::move(seg));
   ++segments_opened_;
@@ -94,14 +95,52 @@ Keyframe KeyframeBuilder::MakeTile(std::size_t first, std::size_t count, bool co
   for (std::size_t i = first; i < first + count; ++i) {
     const Segment& s = segments_[i];
     tile.scans.insert(tile.scans.end(), s.scans.begin(), s.scans.end());
-    if (s.touched.empty()) continue;
-    const cv::Rect dst(static_cast<int>(s.lattice_col0 + s.touched.x - c_lo),
-                       static_cast<int>(s.lattice_row0 + s.touched.y - r_lo), s.touched.width,
-                       s.touched.height);
-    cv::Mat roi = tile.image(dst);
-    roi += s.image(s.touched);
+    for (const Layer& layer : s.layers) {
+      if (layer.touched.empty()) continue;
+      cv::Mat roi = tile.image(LayerRectInTile(s, layer, c_lo, r_lo));
+      roi += layer.image(layer.touched);
+    }
   }
+  if (keep_sensor_images_) AddSensorTiles(first, count, c_lo, r_lo, &tile);
   return tile;
+}
+
+cv::Rect KeyframeBuilder::LayerRectInTile(const Segment& s, const Layer& layer, long long c_lo,
+                                          long long r_lo) {
+  return cv::Rect(static_cast<int>(s.lattice_col0 + layer.touched.x - c_lo),
+                  static_cast<int>(s.lattice_row0 + layer.touched.y - r_lo), layer.touched.width,
+                  layer.touched.height);
+}
+
+void KeyframeBuilder::AddSensorTiles(std::size_t first, std::size_t count, long long c_lo,
+                                     long long r_lo, Keyframe* tile) const {
+  const cv::Rect whole(0, 0, tile->grid.cols, tile->grid.rows);
+  for (std::size_t sensor = 0; sensor < sensors_.size(); ++sensor) {
+    cv::Rect box;  // the sensor's pixels, in tile pixels
+    for (std::size_t i = first; i < first + count; ++i) {
+      const Segment& s = segments_[i];
+      if (sensor >= s.layers.size() || s.layers[sensor].touched.empty()) continue;
+      const cv::Rect r = LayerRectInTile(s, s.layers[sensor], c_lo, r_lo) & whole;
+      box = box.empty() ? r : (r.empty() ? box : box | r);
+    }
+    if (box.empty()) continue;
+    SensorTile st;
+    st.sensor_id = static_cast<int>(sensor);
+    st.grid = tile->grid;
+    st.grid.cols = box.width;
+    st.grid.rows = box.height;
+    st.grid.x0_m = tile->grid.ColToX(box.x);
+    st.grid.y0_m = tile->grid.RowToY(box.y);
+    st.image = MakeSarImage(st.grid, coherent_);
+    for (std::size_t i = first; i < first + count; ++i) {
+      const Segment& s = segments_[i];
+      if (sensor >= s.layers.size() || s.layers[sensor].touched.empty()) continue;
+      const cv::Rect r = LayerRectInTile(s, s.layers[sensor], c_lo, r_lo);
+      cv::Mat roi = st.image(r - box.tl());
+      roi += s.layers[sensor].image(s.layers[sensor].touched);
+    }
+    tile->sensor_tiles.push_back(std::move(st));
+  }
 }
 
 long long KeyframeBuilder::Add(const ImagedScan& scan) {
@@ -116,12 +155,17 @@ long long KeyframeBuilder::Add(const ImagedScan& scan) {
   }
   Segment& seg = segments_.back();
   const SensorGeometry& sensor = sensors_.at(scan.sensor_id);
+  Layer& layer = seg.layers.at(keep_sensor_images_ ? static_cast<std::size_t>(scan.sensor_id) : 0);
+  if (layer.image.empty()) layer.image = MakeSarImage(seg.grid, coherent_);
   cv::Rect touched;
   const long long pixels =
       projector_.Accumulate(*scan.profile, scan.T_world_robot * sensor.T_robot_sensor, sensor,
-                            seg.grid, &seg.image, &touched);
-  seg.touched =
-      seg.touched.empty() ? touched : (touched.empty() ? seg.touched : seg.touched | touched);
+                            seg.grid, &layer.image, &touched);
+  auto unite = [](cv::Rect* acc, const cv::Rect& r) {
+    *acc = acc->empty() ? r : (r.empty() ? *acc : *acc | r);
+  };
+  unite(&layer.touched, touched);
+  unite(&seg.touched, touched);
   seg.scans.push_back(scan);
   seg.path_end_m = scan.path_m;
   return pixels;

@@ -5,7 +5,9 @@
 // axes). A tile is the exact sum of tile_length_m / tile_spacing_m consecutive
 // segments, cropped to the pixels they observed: with the defaults (2 m every
 // 1 m) consecutive tiles overlap by half, like the paper's regions, at half the
-// back-projection cost of imaging every scan into two tiles.
+// back-projection cost of imaging every scan into two tiles. With keep_sensor_images,
+// each radar's scans go into a canvas of their own (per-radar matching); the tile is then
+// the sum of those canvases and also carries them, cropped, as Keyframe::sensor_tiles.
 #pragma once
 
 #include <deque>
@@ -22,7 +24,7 @@ class KeyframeBuilder {
  public:
   /// tile_length_m must be a whole multiple of tile_spacing_m (ValidateConfig checks).
   KeyframeBuilder(const KeyframeConfig& keyframe, const ImagingConfig& imaging,
-                  std::vector<SensorGeometry> sensors);
+                  std::vector<SensorGeometry> sensors, bool keep_sensor_images = false);
 
   /// Images `scan` into the current segment; scans must come in non-decreasing path_m.
   /// Returns the pixels updated.
@@ -36,12 +38,17 @@ class KeyframeBuilder {
   int segments_per_tile() const { return segments_per_tile_; }
 
  private:
+  /// A canvas: all sensors, or one sensor with keep_sensor_images.
+  struct Layer {
+    cv::Mat image;     ///< allocated on the first scan imaged into it
+    cv::Rect touched;  ///< canvas pixels that received any scan
+  };
   struct Segment {
     long long lattice_col0 = 0;  ///< global lattice column of the canvas's column 0
     long long lattice_row0 = 0;  ///< global lattice row of the canvas's row 0 (row = -y)
     ImageGrid grid;              ///< canvas geometry in the world frame
-    cv::Mat image;
-    cv::Rect touched;  ///< canvas pixels that received any scan
+    std::vector<Layer> layers;   ///< index: sensor id with keep_sensor_images, else 0
+    cv::Rect touched;            ///< canvas pixels that received any scan (all layers)
     std::vector<ImagedScan> scans;
     double path_begin_m = 0.0;
     double path_end_m = 0.0;
@@ -50,10 +57,17 @@ class KeyframeBuilder {
   void OpenSegment(const ImagedScan& scan);
   /// Tile of the segments [first, first + count) of segments_.
   Keyframe MakeTile(std::size_t first, std::size_t count, bool complete);
+  /// Where a layer's touched pixels land in a tile whose top-left lattice pixel is (c_lo, r_lo).
+  static cv::Rect LayerRectInTile(const Segment& s, const Layer& layer, long long c_lo,
+                                  long long r_lo);
+  /// Keyframe::sensor_tiles of the tile of segments [first, first + count).
+  void AddSensorTiles(std::size_t first, std::size_t count, long long c_lo, long long r_lo,
+                      Keyframe* tile) const;
 
   KeyframeConfig config_;
   double resolution_m_;
   bool coherent_;
+  bool keep_sensor_images_;
   int segments_per_tile_;
   std::vector<SensorGeometry> sensors_;
   double canvas_half_size_m_;  ///< reach of one segment's sensors around its start

@@ -26,6 +26,9 @@ struct LoopRecord {
   int query_id = 0;     ///< the new keyframe (j)
   int match_id = 0;     ///< the earlier keyframe (i)
   bool guided = false;  ///< a pair of the guided pass around a validated loop
+
+  /// Matched radar by radar (frontend/place_recognition/radar_match.h).
+  bool by_radar = false;
   MatchResult akaze;
   MatchResult orb;
   LoopValidation validation;

@@ -222,6 +222,7 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
   KeyframeRecord record;
   MakeDetected(keyframe, config_, &record.detected, &record.detected_grid);
   if (!config_.slam.keep_tile_images) keyframe.image.release();
+  keyframe.sensor_tiles.clear();           // per-radar images: only their features are kept
   if (!config_.slam.keep_scan_profiles) {  // the poses stay: they place the scans in time
     for (ImagedScan& s : keyframe.scans) s.profile.reset();
   }
@@ -238,6 +239,7 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
     loop.query_id = attempt.query_id >= 0 ? attempt.query_id : keyframe.id;
     loop.match_id = attempt.candidate_id;
     loop.guided = attempt.guided;
+    loop.by_radar = attempt.by_radar;
     loop.akaze = attempt.akaze;
     loop.orb = attempt.orb;
     loop.validation = attempt.validation;

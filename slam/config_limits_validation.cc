@@ -94,7 +94,11 @@ void ValidateLimits(const CoreConfig& c, const std::string& src) {
   }
   const double segments = std::round(k.tile_length_m / k.tile_spacing_m);
   const double canvas_mb = canvas * (coherent ? 8.0 : 4.0) / (1024.0 * 1024.0);
-  RequireWithin((segments + 1.0) * canvas_mb, l.max_imaging_memory_mb, src,
+  // Per-radar matching images each radar into a canvas of its own (keyframe_builder.h).
+  const double layers = c.place_recognition.per_radar.enabled && c.radars.size() >= 2
+                            ? static_cast<double>(c.radars.size())
+                            : 1.0;
+  RequireWithin((segments + 1.0) * layers * canvas_mb, l.max_imaging_memory_mb, src,
                 "keyframe.tile_length_m", k.tile_length_m,
                 "the segment canvases alive at once (MB)", "max_imaging_memory_mb");
   // A tile spans its segments' canvases; the map warps it at slam.map_resolution_m (the

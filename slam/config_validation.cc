@@ -157,6 +157,11 @@ void Validate(const PlaceRecognitionConfig& p, const std::string& src) {
   Require(g.max_yaw_deg > 0 && g.max_yaw_deg <= 180, src, k + "guided.max_yaw_deg",
           "must be in (0, 180]");
   Require(g.max_centre_distance_m > 0, src, k + "guided.max_centre_distance_m", "must be > 0");
+  const RadarMatchConfig& r = p.per_radar;
+  Require(r.max_keypoints >= 2 && r.max_keypoints <= 100000, src, k + "per_radar.max_keypoints",
+          "must be in [2, 100000]");
+  Require(r.max_look_difference_deg >= 0 && r.max_look_difference_deg <= 180, src,
+          k + "per_radar.max_look_difference_deg", "must be in [0, 180]");
 }
 
 void Validate(const SlamConfig& s, const std::string& src) {

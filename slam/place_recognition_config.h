@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "slam/radar_match_config.h"
+
 namespace uwbsar {
 
 /// Feature detectors on the 8-bit enhanced tile (paper Table II),
@@ -162,6 +164,7 @@ struct PlaceRecognitionConfig {
   LoopValidationConfig validation;
   CandidateSearchConfig candidates;
   GuidedMatchConfig guided;
+  RadarMatchConfig per_radar;
 
   template <class V>
   void Visit(V& v) {
@@ -170,6 +173,7 @@ struct PlaceRecognitionConfig {
     v("validation", validation);
     v("candidates", candidates);
     v("guided", guided);
+    v("per_radar", per_radar);
   }
 };
 

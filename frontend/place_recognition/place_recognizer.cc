@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "frontend/place_recognition/guided_match.h"
+#include "frontend/place_recognition/radar_match.h"
 
 namespace uwbsar {
 namespace {
@@ -29,6 +30,7 @@ KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe,
                              config.feature_downsampling, d.white_percentile, &k.grid);
   k.akaze = ComputeFeatures(image, DetectorKind::kAkaze, d);
   k.orb = ComputeFeatures(image, DetectorKind::kOrb, d);
+  if (config.place_recognition.per_radar.enabled) ExtractRadarFeatures(keyframe, config, &k);
   // Where the robot drove while imaging the tile: a better "position" of the tile than
   // the anchor, which sits at its first scan.
   double sx = 0.0, sy = 0.0;
@@ -123,6 +125,11 @@ PlaceRecognitionResult PlaceRecognizer::Process(KeyframeFeatures features, doubl
     attempt.orb = MatchFeatures(old.orb, features.orb, pr.matching);
     attempt.validation = ValidateLoop(old.id, old.grid, features.id, features.grid, attempt.akaze,
                                       attempt.orb, pr.validation);
+    if (!attempt.validation.accepted && pr.per_radar.enabled && HasRadarFeatures(old) &&
+        HasRadarFeatures(features)) {
+      LoopAttempt by_radar = MatchByRadar(old, features, pr);
+      if (by_radar.validation.accepted) attempt = std::move(by_radar);
+    }
     if (attempt.validation.accepted) result.loops.push_back(attempt.validation.constraint);
     result.attempts.push_back(std::move(attempt));
   }

@@ -29,6 +29,11 @@ struct KeyframeFeatures {
   Point2 centre_anchor;  ///< mean robot position of the tile's scans, in the anchor frame
   double path_begin_m = 0.0;
   Pose2 T_world_anchor;  ///< latest estimate (odometry, or optimised via UpdatePose)
+  /// Per-radar features (radar_match.h; empty without sensor tiles): every radar's keypoints
+  /// in pixels of `grid`, class_id = sensor id.
+  FeatureSet akaze_radar;
+  FeatureSet orb_radar;
+  std::vector<double> look_anchor_rad;  ///< per sensor id: boresight at mid-tile, anchor frame
 };
 
 /// Tile pixels per feature pixel (detectors.feature_resolution_m / `tile_pixel_m`, >= 1): the
@@ -38,13 +43,15 @@ double FeatureDownsampling(const DetectorConfig& detectors, double tile_pixel_m)
 /// The same, from a configuration's place_recognition.detectors and imaging.pixel_size_m.
 double FeatureDownsampling(const CoreConfig& config);
 
-/// What place recognition reads: its own section, the enhancement of the feature image, and
-/// the feature downsampling derived from the tile pixel size. Nothing else of the
-/// configuration reaches it.
+/// What place recognition reads: its own section, the enhancement of the feature image, the
+/// feature downsampling derived from the tile pixel size, and where each radar looks (the
+/// per-radar pass pairs radars by their look direction). Nothing else of the configuration
+/// reaches it.
 struct PlaceRecognizerConfig {
   PlaceRecognitionConfig place_recognition;
   EnhanceConfig enhance;
   double feature_downsampling = 1.0;  ///< tile pixels per feature pixel (FeatureDownsampling)
+  std::vector<double> radar_boresight_yaw_deg;  ///< radars[*].boresight_yaw_deg, by sensor id
 
   PlaceRecognizerConfig() = default;
   /// Its sections of a configuration, with feature_downsampling derived from
@@ -52,7 +59,10 @@ struct PlaceRecognizerConfig {
   PlaceRecognizerConfig(const CoreConfig& config)  // NOLINT(google-explicit-constructor)
       : place_recognition(config.place_recognition),
         enhance(config.enhance),
-        feature_downsampling(FeatureDownsampling(config)) {}
+        feature_downsampling(FeatureDownsampling(config)) {
+    for (const RadarConfig& r : config.radars)
+      radar_boresight_yaw_deg.push_back(r.boresight_yaw_deg);
+  }
 };
 
 /// `pr` with its pixel thresholds (RANSAC, AKAZE/ORB agreement, inlier spread, residual
@@ -69,6 +79,11 @@ struct LoopAttempt {
   int candidate_id = 0;  ///< i (the older keyframe); the new one is j
   int query_id = -1;     ///< j when not the new keyframe (a guided pair before it), else -1
   bool guided = false;   ///< from the guided pass around a validated loop (guided_match.h)
+
+  /// Matched radar by radar (radar_match.h) after the combined tiles failed; cross_side
+  /// when a radar was paired with another one.
+  bool by_radar = false;
+  bool cross_side = false;
   MatchResult akaze;
   MatchResult orb;
   LoopValidation validation;

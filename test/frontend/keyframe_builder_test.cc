@@ -66,11 +66,12 @@ std::vector<ImagedScan> Scans(bool coherent) {
   return scans;
 }
 
-std::vector<Keyframe> Build(double tile_length_m, const std::string& mode) {
+std::vector<Keyframe> Build(double tile_length_m, const std::string& mode,
+                            bool keep_sensor_images = false) {
   KeyframeConfig keyframe;
   keyframe.tile_length_m = tile_length_m;
   keyframe.tile_spacing_m = 1.0;
-  KeyframeBuilder builder(keyframe, Imaging(mode), Sensors());
+  KeyframeBuilder builder(keyframe, Imaging(mode), Sensors(), keep_sensor_images);
   for (const ImagedScan& s : Scans(mode == "coherent")) builder.Add(s);
   builder.Finish();
   return builder.TakeClosed();
@@ -152,6 +153,42 @@ TEST_P(KeyframeBuilderTest, TheAnchorIsTheLatticePointNearestTheMidPathRobot) {
     }
     ASSERT_NE(mid, nullptr);
     EXPECT_EQ(k.stamp_ns, mid->stamp_ns);
+  }
+}
+
+TEST_P(KeyframeBuilderTest, SensorTilesSplitTheTileByRadar) {
+  const std::vector<Keyframe> plain = Build(2.0, GetParam());
+  const std::vector<Keyframe> tiles = Build(2.0, GetParam(), /*keep_sensor_images=*/true);
+  ASSERT_EQ(tiles.size(), plain.size());
+  for (std::size_t t = 0; t < tiles.size(); ++t) {
+    const Keyframe& k = tiles[t];
+    EXPECT_TRUE(plain[t].sensor_tiles.empty());
+    ASSERT_EQ(k.sensor_tiles.size(), 2u);
+    const double peak = cv::norm(k.image, cv::NORM_INF);
+    ASSERT_GT(peak, 0.0);
+    // The same tile as without sensor tiles (up to the order of the float sums) ...
+    ASSERT_EQ(k.image.size(), plain[t].image.size());
+    EXPECT_LE(cv::norm(k.image, plain[t].image, cv::NORM_INF), 1e-5 * peak);
+    // ... and exactly the sum of its sensor tiles, each a part of the tile's lattice.
+    cv::Mat sum = cv::Mat::zeros(k.image.size(), k.image.type());
+    for (std::size_t s = 0; s < k.sensor_tiles.size(); ++s) {
+      const SensorTile& st = k.sensor_tiles[s];
+      EXPECT_EQ(st.sensor_id, static_cast<int>(s));
+      EXPECT_DOUBLE_EQ(st.grid.resolution_m, k.grid.resolution_m);
+      const double col = k.grid.XToCol(st.grid.x0_m), row = k.grid.YToRow(st.grid.y0_m);
+      ASSERT_NEAR(col, std::round(col), 1e-6);
+      ASSERT_NEAR(row, std::round(row), 1e-6);
+      const cv::Rect in_tile(static_cast<int>(std::lround(col)), static_cast<int>(std::lround(row)),
+                             st.grid.cols, st.grid.rows);
+      ASSERT_EQ(in_tile & cv::Rect(0, 0, k.grid.cols, k.grid.rows), in_tile);
+      ASSERT_EQ(st.image.size(), in_tile.size());
+      cv::Mat roi = sum(in_tile);
+      roi += st.image;
+      // Each radar imaged something, and only its own side: a part of the tile.
+      EXPECT_GT(cv::norm(st.image, cv::NORM_INF), 0.1 * peak);
+      EXPECT_LT(in_tile.area(), k.grid.cols * k.grid.rows);
+    }
+    EXPECT_LE(cv::norm(k.image, sum, cv::NORM_INF), 1e-6 * peak) << "tile " << t;
   }
 }
 

@@ -1,15 +1,18 @@
 // Over all candidate keyframe pairs of simulated runs (no pose
 // prior: every pair that does not share scans), precision and recall of accepted loops
 // for each detector alone (more than N good matches and a plausible scale) and for the
-// paper's AKAZE+ORB rule. An accepted loop is correct when its metric transform is
-// within 5 cm and 2 deg of the ground truth; a pair is a true loop when the tiles'
-// true centres are within 1 m (their paths overlap by at least half).
+// paper's AKAZE+ORB rule; and for the recognizer's matching (AKAZE+ORB at the feature
+// resolution, "PR") without and with the per-radar pass (radar_match.h, "PR+radar"), which
+// matches radar by radar the pairs whose combined tiles fail. An accepted loop is correct when its
+// metric transform is within 5 cm and 2 deg of the ground truth; a pair is a true loop when the
+// tiles' true centres are within 1 m (their paths overlap by at least half).
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <map>
 
 #include "frontend/place_recognition/place_recognizer.h"
+#include "frontend/place_recognition/radar_match.h"
 #include "pipeline/app_config.h"
 #include "test/frontend/place_recognition/sim_run.h"
 #include "test/shared_data.h"
@@ -36,14 +39,16 @@ Scores Evaluate(const Config& config, const std::vector<Keyframe>& keyframes,
   const auto& pr = config.place_recognition;
   std::vector<std::map<DetectorKind, FeatureSet>> features(keyframes.size());
   std::vector<Point2> centre(keyframes.size());
+  std::vector<KeyframeFeatures> cached(keyframes.size());  // as the recognizer keeps them
+  const PlaceRecognitionConfig at_features = AtFeatureResolution(pr, FeatureDownsampling(config));
   for (std::size_t k = 0; k < keyframes.size(); ++k) {
     const FeatureImage image =
         MakeFeatureImage(keyframes[k].image, config.enhance, pr.detectors.mask_erode_px);
     for (DetectorKind kind : AvailableDetectors()) {
       features[k][kind] = ComputeFeatures(image, kind, pr.detectors);
     }
-    centre[k] =
-        T_world_anchor_true[k] * ExtractKeyframeFeatures(keyframes[k], config).centre_anchor;
+    cached[k] = ExtractKeyframeFeatures(keyframes[k], config);
+    centre[k] = T_world_anchor_true[k] * cached[k].centre_anchor;
   }
   Scores scores;
   for (std::size_t i = 0; i < keyframes.size(); ++i) {
@@ -77,6 +82,16 @@ Scores Evaluate(const Config& config, const std::vector<Keyframe>& keyframes,
       }
       score("AKAZE+ORB", ValidateLoop(a.id, a.grid, b.id, b.grid, m[DetectorKind::kAkaze],
                                       m[DetectorKind::kOrb], pr.validation));
+      const KeyframeFeatures& fa = cached[i];
+      const KeyframeFeatures& fb = cached[j];
+      LoopValidation v = ValidateLoop(
+          fa.id, fa.grid, fb.id, fb.grid, MatchFeatures(fa.akaze, fb.akaze, at_features.matching),
+          MatchFeatures(fa.orb, fb.orb, at_features.matching), at_features.validation);
+      score("PR", v);
+      if (!v.accepted && HasRadarFeatures(fa) && HasRadarFeatures(fb)) {
+        v = MatchByRadar(fa, fb, at_features).validation;
+      }
+      score("PR+radar", v);
     }
   }
   return scores;
@@ -142,6 +157,8 @@ TEST(PrecisionRecallAcceptanceTest, AkazeOrbRuleHasPrecisionOneOnSimulatedRuns) 
   Print("all runs", total);
   EXPECT_EQ(total["AKAZE+ORB"].accepted, total["AKAZE+ORB"].correct);
   EXPECT_GT(total["AKAZE+ORB"].Recall(), 0.5);
+  EXPECT_EQ(total["PR+radar"].accepted, total["PR+radar"].correct);
+  EXPECT_GE(total["PR+radar"].found, total["PR"].found);
 }
 
 }  // namespace
