@@ -26,8 +26,8 @@
 
 #include "drivers/live/gpio.h"
 #include "drivers/live/lt102_driver.h"
-#include "pipeline/localize_job.h"
 #include "pipeline/app_config.h"
+#include "pipeline/localize_job.h"
 #include "pipeline/map_job.h"
 #include "pipeline/map_outputs.h"
 

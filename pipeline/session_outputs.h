@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "backend/trajectory_metrics.h"
-#include "pipeline/map_outputs.h"
 #include "pipeline/app_config.h"
+#include "pipeline/map_outputs.h"
 #include "session/session_data.h"
 #include "session/session_merge.h"
 #include "slam/types.h"
