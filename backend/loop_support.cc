@@ -57,65 +57,84 @@ UncertainPose2 Inverse(const UncertainPose2& a_b) {
   return {a_b.T.Inverse(), ad * a_b.covariance * ad.transpose()};
 }
 
-std::vector<int> CountLoopSupport(const std::vector<PoseGraphEdge>& edges,
-                                  const LoopSupportOptions& options) {
-  std::unordered_map<int, std::vector<Link>> chain;            // odometry links, both directions
-  std::unordered_map<int, std::vector<std::size_t>> loops_at;  // node -> loop edge indices
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    const PoseGraphEdge& e = edges[i];
-    if (e.kind == EdgeKind::kOdometry) {
-      const UncertainPose2 forward = EdgeAsUncertainPose(e);
-      chain[e.from_id].push_back({e.to_id, forward});
-      chain[e.to_id].push_back({e.from_id, Inverse(forward)});
-    } else {
-      loops_at[e.from_id].push_back(i);
-      loops_at[e.to_id].push_back(i);
+namespace {
+
+/// The odometry chain and the loops of a graph, with the odometry neighbourhoods of nodes
+/// (computed once per node and cached) that CountLoopSupport pairs loops through.
+class SupportCounter {
+ public:
+  SupportCounter(const std::vector<PoseGraphEdge>& edges, const LoopSupportOptions& options)
+      : edges_(edges), options_(options) {
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      const PoseGraphEdge& e = edges[i];
+      if (e.kind == EdgeKind::kOdometry) {
+        const UncertainPose2 forward = EdgeAsUncertainPose(e);
+        chain_[e.from_id].push_back({e.to_id, forward});
+        chain_[e.to_id].push_back({e.from_id, Inverse(forward)});
+      } else {
+        loops_at_[e.from_id].push_back(i);
+        loops_at_[e.to_id].push_back(i);
+      }
     }
   }
-  // Nodes within window_nodes odometry steps of `origin`, with T_origin_node (breadth first).
-  std::unordered_map<int, Neighbourhood> cache;
-  auto neighbourhood = [&](int origin) -> const Neighbourhood& {
-    auto it = cache.find(origin);
-    if (it != cache.end()) return it->second;
+
+  /// Loops (other than loop i) that close a consistent cycle with it.
+  int Support(std::size_t i) {
+    int support = 0;
+    for (const auto& [k, pairing] : Pairings(i)) {
+      const UncertainPose2& cycle = pairing.cycle;
+      const Eigen::Vector3d xi(cycle.T.x_m, cycle.T.y_m, cycle.T.yaw_rad);
+      const Eigen::LDLT<Eigen::Matrix3d> ldlt(cycle.covariance);
+      if (ldlt.info() != Eigen::Success) continue;
+      if (xi.dot(ldlt.solve(xi)) <= options_.max_cycle_chi2) ++support;
+    }
+    return support;
+  }
+
+ private:
+  struct Pairing {
+    int steps = 0;
+    UncertainPose2 cycle;  ///< a -> b -> d -> c -> a; identity when both loops are right
+  };
+
+  /// Nodes within window_nodes odometry steps of `origin`, with T_origin_node (breadth
+  /// first).
+  const Neighbourhood& Near(int origin) {
+    auto it = cache_.find(origin);
+    if (it != cache_.end()) return it->second;
     Neighbourhood n;
     n[origin] = Reached{};
     std::deque<std::pair<int, int>> queue{{origin, 0}};
     while (!queue.empty()) {
       const auto [node, depth] = queue.front();
       queue.pop_front();
-      if (depth >= options.window_nodes) continue;
-      auto links = chain.find(node);
-      if (links == chain.end()) continue;
+      if (depth >= options_.window_nodes) continue;
+      auto links = chain_.find(node);
+      if (links == chain_.end()) continue;
       for (const Link& link : links->second) {
         if (n.count(link.to)) continue;
         n[link.to] = Reached{Compose(n[node].T, link.T), depth + 1};
         queue.push_back({link.to, depth + 1});
       }
     }
-    return cache.emplace(origin, std::move(n)).first->second;
-  };
+    return cache_.emplace(origin, std::move(n)).first->second;
+  }
 
-  std::vector<int> support(edges.size(), -1);
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    const PoseGraphEdge& l = edges[i];
-    if (l.kind != EdgeKind::kLoop) continue;
-    support[i] = 0;
-    const Neighbourhood& near_a = neighbourhood(l.from_id);
-    const Neighbourhood& near_b = neighbourhood(l.to_id);
+  /// Loop i (a -> b) paired with each other loop c -> d whose ends lie near a and b. Each
+  /// other loop is paired once, in the orientation with the shortest odometry links (a
+  /// loop whose ends are both near `a` would otherwise also pair the long way).
+  std::unordered_map<std::size_t, Pairing> Pairings(std::size_t i) {
+    const PoseGraphEdge& l = edges_[i];
+    const Neighbourhood& near_a = Near(l.from_id);
+    const Neighbourhood& near_b = Near(l.to_id);
     const UncertainPose2 T_ab = EdgeAsUncertainPose(l);
-    // Each other loop is paired once, in the orientation with the shortest odometry
-    // links (a loop whose ends are both near `a` would otherwise also pair the long way).
-    struct Pairing {
-      int steps = 0;
-      UncertainPose2 cycle;
-    };
     std::unordered_map<std::size_t, Pairing> best;
     for (const auto& [c, a_c] : near_a) {
-      auto at_c = loops_at.find(c);
-      if (at_c == loops_at.end()) continue;
+      auto at_c = loops_at_.find(c);
+      if (at_c == loops_at_.end()) continue;
       for (const std::size_t k : at_c->second) {
         if (k == i) continue;
-        const PoseGraphEdge& m = edges[k];
+        const PoseGraphEdge& m = edges_[k];
         // Orient the other loop as c -> d with c near a.
         UncertainPose2 T_cd = EdgeAsUncertainPose(m);
         int d = m.to_id;
@@ -128,18 +147,28 @@ std::vector<int> CountLoopSupport(const std::vector<PoseGraphEdge>& edges,
         const int steps = a_c.steps + b_d->second.steps;
         auto it = best.find(k);
         if (it != best.end() && it->second.steps <= steps) continue;
-        // Cycle a -> b -> d -> c -> a; identity when both loops are right.
         best[k] = {steps,
                    Compose(Compose(Compose(T_ab, b_d->second.T), Inverse(T_cd)), Inverse(a_c.T))};
       }
     }
-    for (const auto& [k, pairing] : best) {
-      const UncertainPose2& cycle = pairing.cycle;
-      const Eigen::Vector3d xi(cycle.T.x_m, cycle.T.y_m, cycle.T.yaw_rad);
-      const Eigen::LDLT<Eigen::Matrix3d> ldlt(cycle.covariance);
-      if (ldlt.info() != Eigen::Success) continue;
-      if (xi.dot(ldlt.solve(xi)) <= options.max_cycle_chi2) ++support[i];
-    }
+    return best;
+  }
+
+  const std::vector<PoseGraphEdge>& edges_;
+  const LoopSupportOptions& options_;
+  std::unordered_map<int, std::vector<Link>> chain_;            // odometry links, both ways
+  std::unordered_map<int, std::vector<std::size_t>> loops_at_;  // node -> loop edge indices
+  std::unordered_map<int, Neighbourhood> cache_;
+};
+
+}  // namespace
+
+std::vector<int> CountLoopSupport(const std::vector<PoseGraphEdge>& edges,
+                                  const LoopSupportOptions& options) {
+  SupportCounter counter(edges, options);
+  std::vector<int> support(edges.size(), -1);
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    if (edges[i].kind == EdgeKind::kLoop) support[i] = counter.Support(i);
   }
   return support;
 }

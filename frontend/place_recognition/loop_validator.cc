@@ -10,6 +10,84 @@ namespace {
 
 Point2 ToMetric(const ImageGrid& g, const cv::Point2d& p) { return g.PixelToMetric(p.x, p.y); }
 
+/// The smaller principal standard deviation of both detectors' inliers in image b, in pixels:
+/// small when the inliers lie nearly on a line, which leaves the pose unfixed along it.
+double InlierSpreadPx(const MatchResult& akaze, const MatchResult& orb) {
+  Eigen::Vector2d mean_px = Eigen::Vector2d::Zero();
+  double n = 0.0;
+  for (const MatchResult* m : {&akaze, &orb}) {
+    for (const cv::Point2d& p : m->inliers_b) mean_px += Eigen::Vector2d(p.x, p.y);
+    n += static_cast<double>(m->inliers_b.size());
+  }
+  mean_px /= n;
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  for (const MatchResult* m : {&akaze, &orb}) {
+    for (const cv::Point2d& p : m->inliers_b) {
+      const Eigen::Vector2d d = Eigen::Vector2d(p.x, p.y) - mean_px;
+      scatter += d * d.transpose();
+    }
+  }
+  // Smaller eigenvalue of the 2x2 covariance, in closed form.
+  const Eigen::Matrix2d cov_px = scatter / n;
+  const double half_trace = 0.5 * (cov_px(0, 0) + cov_px(1, 1));
+  const double half_diff = 0.5 * (cov_px(0, 0) - cov_px(1, 1));
+  const double min_eig = half_trace - std::hypot(half_diff, cov_px(0, 1));
+  return std::sqrt(std::max(0.0, min_eig));
+}
+
+/// Least-squares translation of q_i = R(yaw) q_j + t for a given rotation, with the sum of
+/// squared residuals and J^T J of (tx, ty, yaw) at the solution.
+struct RigidFit {
+  Eigen::Vector2d t = Eigen::Vector2d::Zero();
+  double sum_sq = 0.0;
+  Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
+};
+
+RigidFit FitForRotation(const std::vector<Point2>& qi, const std::vector<Point2>& qj, double yaw) {
+  const double n = static_cast<double>(qi.size());
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  Eigen::Vector2d ci = Eigen::Vector2d::Zero(), rj = Eigen::Vector2d::Zero();
+  std::vector<Eigen::Vector2d> rotated(qi.size());
+  for (std::size_t k = 0; k < qi.size(); ++k) {
+    rotated[k] = Eigen::Vector2d(c * qj[k].x_m - s * qj[k].y_m, s * qj[k].x_m + c * qj[k].y_m);
+    ci += Eigen::Vector2d(qi[k].x_m, qi[k].y_m);
+    rj += rotated[k];
+  }
+  RigidFit fit;
+  fit.t = (ci - rj) / n;
+  for (std::size_t k = 0; k < qi.size(); ++k) {
+    fit.sum_sq += (Eigen::Vector2d(qi[k].x_m, qi[k].y_m) - rotated[k] - fit.t).squaredNorm();
+    // d(R q + t) / d(tx, ty, yaw) = [I, perp(R q)].
+    Eigen::Matrix<double, 2, 3> jac;
+    jac << 1, 0, -rotated[k].y(), 0, 1, rotated[k].x();
+    fit.jtj += jac.transpose() * jac;
+  }
+  return fit;
+}
+
+/// The loop's information: the fit's residual scatter (floored at min_residual_px) through
+/// J^T J, plus the configured floors of the standard deviations. False when the inlier
+/// geometry does not fix the pose (J^T J singular relative to its scale).
+bool LoopInformation(const RigidFit& fit, double n, double resolution_m,
+                     const LoopValidationConfig& config, Eigen::Matrix3d* information) {
+  const double dof = std::max(1.0, 2.0 * n - 3.0);
+  const double floor_m = config.min_residual_px * resolution_m;
+  const double sigma2 = std::max(fit.sum_sq / dof, floor_m * floor_m);
+  Eigen::Matrix3d floors = Eigen::Matrix3d::Zero();
+  const double yaw_floor = config.min_yaw_sigma_deg * M_PI / 180.0;
+  floors.diagonal() << config.min_xy_sigma_m * config.min_xy_sigma_m,
+      config.min_xy_sigma_m * config.min_xy_sigma_m, yaw_floor * yaw_floor;
+  // J^T J is 3x3 and well scaled in metres: the closed-form inverse is enough, and
+  // its determinant (relative to the scale of the entries) tells a singular geometry.
+  const Eigen::Matrix3d fisher = fit.jtj / sigma2;
+  const double det = fisher.determinant();
+  const double scale3 = std::pow(fisher.diagonal().cwiseAbs().maxCoeff(), 3.0);
+  if (!(std::abs(det) > 1e-12 * scale3)) return false;
+  const Eigen::Matrix3d covariance = fisher.inverse() + floors;
+  *information = covariance.inverse();
+  return true;
+}
+
 }  // namespace
 
 Pose2 PixelToMetricTransform(const ImageGrid& grid_a, const ImageGrid& grid_b, double tx_px,
@@ -35,31 +113,7 @@ LoopValidation ValidateLoop(int id_i, const ImageGrid& grid_i, int id_j, const I
     v.reason = v.decision.reason;
     return v;
   }
-  // All inliers of both detectors, in metres in the two anchor frames.
-  std::vector<Point2> qi, qj;
-  Eigen::Vector2d mean_px = Eigen::Vector2d::Zero();
-  for (const MatchResult* m : {&akaze, &orb}) {
-    for (std::size_t k = 0; k < m->inliers_a.size(); ++k) {
-      qi.push_back(ToMetric(grid_i, m->inliers_a[k]));
-      qj.push_back(ToMetric(grid_j, m->inliers_b[k]));
-      mean_px += Eigen::Vector2d(m->inliers_b[k].x, m->inliers_b[k].y);
-    }
-  }
-  const double n = static_cast<double>(qi.size());
-  mean_px /= n;
-  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-  for (const MatchResult* m : {&akaze, &orb}) {
-    for (const cv::Point2d& p : m->inliers_b) {
-      const Eigen::Vector2d d = Eigen::Vector2d(p.x, p.y) - mean_px;
-      scatter += d * d.transpose();
-    }
-  }
-  // Smaller eigenvalue of the 2x2 covariance, in closed form.
-  const Eigen::Matrix2d cov_px = scatter / n;
-  const double half_trace = 0.5 * (cov_px(0, 0) + cov_px(1, 1));
-  const double half_diff = 0.5 * (cov_px(0, 0) - cov_px(1, 1));
-  const double min_eig = half_trace - std::hypot(half_diff, cov_px(0, 1));
-  v.inlier_spread_px = std::sqrt(std::max(0.0, min_eig));
+  v.inlier_spread_px = InlierSpreadPx(akaze, orb);
   if (!(v.inlier_spread_px >= config.min_inlier_spread_px)) {
     char buf[128];
     std::snprintf(buf, sizeof(buf), "degenerate: inliers nearly collinear (spread %.1f px < %.1f)",
@@ -67,54 +121,33 @@ LoopValidation ValidateLoop(int id_i, const ImageGrid& grid_i, int id_j, const I
     v.reason = buf;
     return v;
   }
+  // All inliers of both detectors, in metres in the two anchor frames.
+  std::vector<Point2> qi, qj;
+  for (const MatchResult* m : {&akaze, &orb}) {
+    for (std::size_t k = 0; k < m->inliers_a.size(); ++k) {
+      qi.push_back(ToMetric(grid_i, m->inliers_a[k]));
+      qj.push_back(ToMetric(grid_j, m->inliers_b[k]));
+    }
+  }
   // Fused rotation (paper), metric; translation = least squares for that rotation over
   // all inliers (equals the paper's weighted mean when scale is 1, and unlike the pixel
   // translation it does not pick up a lever-arm error from a scale slightly off 1).
   const double yaw = NormalizeAngle(-v.decision.rotation_deg * M_PI / 180.0);
-  const double c = std::cos(yaw), s = std::sin(yaw);
-  Eigen::Vector2d ci = Eigen::Vector2d::Zero(), rj = Eigen::Vector2d::Zero();
-  std::vector<Eigen::Vector2d> rotated(qi.size());
-  for (std::size_t k = 0; k < qi.size(); ++k) {
-    rotated[k] = Eigen::Vector2d(c * qj[k].x_m - s * qj[k].y_m, s * qj[k].x_m + c * qj[k].y_m);
-    ci += Eigen::Vector2d(qi[k].x_m, qi[k].y_m);
-    rj += rotated[k];
-  }
-  const Eigen::Vector2d t = (ci - rj) / n;
-  double sum_sq = 0.0;
-  Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
-  for (std::size_t k = 0; k < qi.size(); ++k) {
-    sum_sq += (Eigen::Vector2d(qi[k].x_m, qi[k].y_m) - rotated[k] - t).squaredNorm();
-    // d(R q + t) / d(tx, ty, yaw) = [I, perp(R q)].
-    Eigen::Matrix<double, 2, 3> jac;
-    jac << 1, 0, -rotated[k].y(), 0, 1, rotated[k].x();
-    jtj += jac.transpose() * jac;
-  }
-  const double dof = std::max(1.0, 2.0 * n - 3.0);
-  const double floor_m = config.min_residual_px * grid_i.resolution_m;
-  const double sigma2 = std::max(sum_sq / dof, floor_m * floor_m);
-  Eigen::Matrix3d floors = Eigen::Matrix3d::Zero();
-  const double yaw_floor = config.min_yaw_sigma_deg * M_PI / 180.0;
-  floors.diagonal() << config.min_xy_sigma_m * config.min_xy_sigma_m,
-      config.min_xy_sigma_m * config.min_xy_sigma_m, yaw_floor * yaw_floor;
-  // J^T J is 3x3 and well scaled in metres: the closed-form inverse is enough, and
-  // its determinant (relative to the scale of the entries) tells a singular geometry.
-  const Eigen::Matrix3d fisher = jtj / sigma2;
-  const double det = fisher.determinant();
-  const double scale3 = std::pow(fisher.diagonal().cwiseAbs().maxCoeff(), 3.0);
-  if (!(std::abs(det) > 1e-12 * scale3)) {
+  const RigidFit fit = FitForRotation(qi, qj, yaw);
+  const double n = static_cast<double>(qi.size());
+  Eigen::Matrix3d information;
+  if (!LoopInformation(fit, n, grid_i.resolution_m, config, &information)) {
     v.reason = "degenerate: inlier geometry does not fix the pose";
     return v;
   }
-  const Eigen::Matrix3d covariance = fisher.inverse() + floors;
-  const Eigen::Matrix3d information = covariance.inverse();
   LoopConstraint& lc = v.constraint;
   lc.i = id_i;
   lc.j = id_j;
-  lc.T_ij = {t.x(), t.y(), yaw};
+  lc.T_ij = {fit.t.x(), fit.t.y(), yaw};
   lc.information = 0.5 * (information + information.transpose());
   lc.good_matches_akaze = akaze.good_matches;
   lc.good_matches_orb = orb.good_matches;
-  lc.residual_rms_m = std::sqrt(sum_sq / n);
+  lc.residual_rms_m = std::sqrt(fit.sum_sq / n);
   if (!lc.information.allFinite() || !std::isfinite(lc.T_ij.x_m) || !std::isfinite(lc.T_ij.y_m) ||
       !std::isfinite(lc.T_ij.yaw_rad)) {
     v.reason = "degenerate: non-finite constraint";
