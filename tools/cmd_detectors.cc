@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
+#include "drivers/log_source.h"
 #include "drivers/rosbag/robot_bag.h"
 #include "frontend/imaging_frontend.h"
 #include "frontend/place_recognition/region_study.h"
@@ -17,6 +18,7 @@
 #include "pipeline/app_config.h"
 #include "pipeline/image_match_report.h"
 #include "slam/errors.h"
+#include "slam/message.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -198,14 +200,12 @@ std::vector<ImagedScan> ImageBag(const std::string& bag, const Config& config,
   const rosbag::RobotLog log = rosbag::LoadRobotBag(bag, rosbag::RobotBagOptionsFromConfig(config));
   std::vector<ImagedScan> scans;
   frontend->SetScanObserver([&](const ImagedScan& s) { scans.push_back(s); });
-  std::size_t o = 0;
-  for (const RadarScan& scan : log.scans) {
-    while (o < log.odometry.size() && log.odometry[o].stamp_ns <= scan.stamp_ns) {
-      frontend->AddOdometry(log.odometry[o++]);
-    }
-    frontend->AddScan(scan);
-  }
-  while (o < log.odometry.size()) frontend->AddOdometry(log.odometry[o++]);
+  // The one merge of a log's streams (odometry first on equal stamps); imaging only, so the
+  // messages go to the frontend rather than through pipeline::Feed into a SlamSystem.
+  LogSource(log.odometry, log.scans).Run([&](const Message& m) {
+    if (m.kind == Message::Kind::kOdometry) frontend->AddOdometry(m.odometry);
+    if (m.kind == Message::Kind::kRadarScan) frontend->AddScan(m.scan);
+  });
   frontend->Finish();
   if (scans.size() < 10) throw InputError(bag + ": fewer than 10 radar scans could be imaged");
   return scans;
