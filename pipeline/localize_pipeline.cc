@@ -5,46 +5,35 @@
 namespace uwbsar::pipeline {
 
 LocalizePipeline::LocalizePipeline(const SessionData& map, const Config& config, std::string input)
-    : config_(config), frontend_(config), localizer_(map, config) {
+    : config_(config),
+      frontend_(config),
+      localizer_(map, config),
+      worker_(config.slam.keyframe_thread, config.slam.keyframe_queue_size,
+              [this](Keyframe&& k) { Localize(k); }) {
   run_.input = std::move(input);
   frontend_.SetOdometryObserver([this](const OdometryEntry& e) {
     std::lock_guard<std::mutex> lock(result_mutex_);
     run_.odometry.push_back(e);
   });
-  if (config_.slam.keyframe_thread) worker_ = std::thread([this] { WorkerLoop(); });
-}
-
-LocalizePipeline::~LocalizePipeline() {
-  if (!worker_.joinable()) return;
-  {
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    stopping_ = true;
-  }
-  queue_changed_.notify_all();
-  worker_.join();
 }
 
 void LocalizePipeline::AddOdometry(const OdometrySample& sample) {
-  RethrowWorkerError();
+  worker_.RethrowError();
   frontend_.AddOdometry(sample);
   HandOver();
 }
 
 void LocalizePipeline::AddScan(const RadarScan& scan) {
-  RethrowWorkerError();
+  worker_.RethrowError();
   frontend_.AddScan(scan);
   HandOver();
 }
 
 void LocalizePipeline::Finish() {
-  RethrowWorkerError();
+  worker_.RethrowError();
   frontend_.Finish();
   HandOver();
-  if (worker_.joinable()) {
-    std::unique_lock<std::mutex> lock(queue_mutex_);
-    queue_changed_.wait(lock, [this] { return (queue_.empty() && !busy_) || worker_error_; });
-  }
-  RethrowWorkerError();
+  worker_.Drain();
 }
 
 FrontendStats LocalizePipeline::frontend_stats() const {
@@ -67,50 +56,7 @@ void LocalizePipeline::HandOver() {
     std::lock_guard<std::mutex> lock(result_mutex_);
     frontend_stats_ = frontend_.stats();
   }
-  std::vector<Keyframe> keyframes = frontend_.TakeKeyframes();
-  if (keyframes.empty()) return;
-  if (!worker_.joinable()) {
-    for (const Keyframe& k : keyframes) Localize(k);
-    return;
-  }
-  for (Keyframe& k : keyframes) {
-    std::unique_lock<std::mutex> lock(queue_mutex_);
-    // Back-pressure: a full queue makes the feeder wait (bounded memory offline).
-    queue_changed_.wait(lock, [this] {
-      return static_cast<int>(queue_.size()) < config_.slam.keyframe_queue_size || worker_error_;
-    });
-    if (worker_error_) break;
-    queue_.push_back(std::move(k));
-    lock.unlock();
-    queue_changed_.notify_all();
-  }
-  RethrowWorkerError();
-}
-
-void LocalizePipeline::WorkerLoop() {
-  while (true) {
-    Keyframe keyframe;
-    {
-      std::unique_lock<std::mutex> lock(queue_mutex_);
-      queue_changed_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
-      if (queue_.empty()) return;  // stopping with nothing left
-      keyframe = std::move(queue_.front());
-      queue_.pop_front();
-      busy_ = true;
-    }
-    queue_changed_.notify_all();
-    try {
-      Localize(keyframe);
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(queue_mutex_);
-      worker_error_ = std::current_exception();
-    }
-    {
-      std::lock_guard<std::mutex> lock(queue_mutex_);
-      busy_ = false;
-    }
-    queue_changed_.notify_all();
-  }
+  for (Keyframe& k : frontend_.TakeKeyframes()) worker_.Push(std::move(k), 1);
 }
 
 // The features and the matching (the long part) without the result lock.
@@ -128,15 +74,6 @@ void LocalizePipeline::Localize(const Keyframe& k) {
     run_.first_fix_time_s =
         run_.odometry.empty() ? 0 : NsToSeconds(t - run_.odometry.front().stamp_ns);
   }
-}
-
-void LocalizePipeline::RethrowWorkerError() {
-  std::exception_ptr error;
-  {
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    error = worker_error_;
-  }
-  if (error) std::rethrow_exception(error);
 }
 
 }  // namespace uwbsar::pipeline

@@ -7,17 +7,14 @@
 // frontend never reads the localiser, so the result does not depend on the threading.
 #pragma once
 
-#include <condition_variable>
-#include <deque>
-#include <exception>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
-#include <thread>
 
 #include "frontend/imaging_frontend.h"
 #include "pipeline/localize_job.h"
+#include "pipeline/ordered_worker.h"
 
 namespace uwbsar::pipeline {
 
@@ -25,7 +22,6 @@ class LocalizePipeline {
  public:
   /// `map` must outlive the pipeline.
   LocalizePipeline(const SessionData& map, const Config& config, std::string input);
-  ~LocalizePipeline();
   LocalizePipeline(const LocalizePipeline&) = delete;
   LocalizePipeline& operator=(const LocalizePipeline&) = delete;
 
@@ -45,9 +41,7 @@ class LocalizePipeline {
 
  private:
   void HandOver();
-  void WorkerLoop();
   void Localize(const Keyframe& keyframe);
-  void RethrowWorkerError();
 
   Config config_;
   // Feeding thread only.
@@ -59,14 +53,8 @@ class LocalizePipeline {
   LocalizeRun run_;
   FrontendStats frontend_stats_;
   std::optional<Pose2> T_map_odom_;
-  // Guarded by queue_mutex_ (waited on with queue_changed_).
-  std::mutex queue_mutex_;
-  std::condition_variable queue_changed_;
-  std::deque<Keyframe> queue_;
-  bool busy_ = false;
-  bool stopping_ = false;
-  std::exception_ptr worker_error_;
-  std::thread worker_;
+  // The keyframe thread (or inline without one), last: joined before the members above.
+  OrderedWorker<Keyframe> worker_;
 };
 
 }  // namespace uwbsar::pipeline

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 #include <vector>
 
@@ -27,31 +28,17 @@ float ReferenceLevel(const cv::Mat& map, const cv::Mat& observed, double percent
   return v[k] > 0.0f ? v[k] : 1.0f;
 }
 
-}  // namespace
+/// One run's mean mosaic on the world lattice (a block-aligned part of the union's) and
+/// its occupancy reference level.
+struct RunMap {
+  int id = 0;
+  ImageGrid grid;
+  cv::Mat map, observed;
+  float reference = 1.0f;
+};
 
-cv::Mat RenderSessionMosaic(const SessionData& session, const Config& config, ImageGrid* grid,
-                            cv::Mat* observed) {
-  const JoinedMosaic mode = config.session.joined_mosaic;
-  return RenderSessionMosaic(session, config.slam.map_resolution_m, mode, grid, observed,
-                             config.slam.occupancy_reference_percentile);
-}
-
-cv::Mat RenderSessionMosaic(const SessionData& session, double resolution_m, JoinedMosaic mode,
-                            ImageGrid* grid, cv::Mat* observed, double reference_percentile) {
-  if (mode == JoinedMosaic::kMean) {
-    GlobalMap global(resolution_m);
-    for (const SessionKeyframe& k : session.keyframes) {
-      global.AddTile(k.detected, k.detected_grid, k.T_map_anchor);
-    }
-    return global.Render(grid, observed);
-  }
-  // Each run's mean mosaic, in units of its own reference level (the occupancy rule's), so
-  // that a brighter run does not raise the threshold over another's walls; all on the world
-  // lattice, so each is a block-aligned part of the union.
-  struct RunMap {
-    ImageGrid grid;
-    cv::Mat map, observed;
-  };
+std::vector<RunMap> RunMosaics(const SessionData& session, double resolution_m,
+                               double reference_percentile) {
   std::set<int> ids;
   for (const SessionKeyframe& k : session.keyframes) ids.insert(k.trajectory);
   std::vector<RunMap> runs;
@@ -61,11 +48,18 @@ cv::Mat RenderSessionMosaic(const SessionData& session, double resolution_m, Joi
       if (k.trajectory == id) global.AddTile(k.detected, k.detected_grid, k.T_map_anchor);
     }
     RunMap r;
+    r.id = id;
     r.map = global.Render(&r.grid, &r.observed);
     if (r.map.empty()) continue;
-    r.map *= 1.0 / ReferenceLevel(r.map, r.observed, reference_percentile);
+    r.reference = ReferenceLevel(r.map, r.observed, reference_percentile);
     runs.push_back(std::move(r));
   }
+  return runs;
+}
+
+/// The per-pixel max of the runs' mosaics over the union of their grids.
+cv::Mat MaxOfRuns(const std::vector<RunMap>& runs, double resolution_m, ImageGrid* grid,
+                  cv::Mat* observed) {
   *grid = ImageGrid{};
   grid->resolution_m = resolution_m;
   if (runs.empty()) {
@@ -96,6 +90,52 @@ cv::Mat RenderSessionMosaic(const SessionData& session, double resolution_m, Joi
     cv::bitwise_or(o, r.observed, o);
   }
   return out;
+}
+
+}  // namespace
+
+cv::Mat RenderSessionMosaic(const SessionData& session, const Config& config, ImageGrid* grid,
+                            cv::Mat* observed) {
+  const JoinedMosaic mode = config.session.joined_mosaic;
+  return RenderSessionMosaic(session, config.slam.map_resolution_m, mode, grid, observed,
+                             config.slam.occupancy_reference_percentile);
+}
+
+cv::Mat RenderSessionMosaic(const SessionData& session, double resolution_m, JoinedMosaic mode,
+                            ImageGrid* grid, cv::Mat* observed, double reference_percentile) {
+  const auto mosaic = [&](const auto& scale_of) {
+    GlobalMap global(resolution_m);
+    for (const SessionKeyframe& k : session.keyframes) {
+      const double scale = scale_of(k.trajectory);
+      if (scale == 1.0) {
+        global.AddTile(k.detected, k.detected_grid, k.T_map_anchor);
+      } else {
+        global.AddTile(k.detected * scale, k.detected_grid, k.T_map_anchor);
+      }
+    }
+    return global.Render(grid, observed);
+  };
+  if (mode == JoinedMosaic::kMean) return mosaic([](int) { return 1.0; });
+  std::vector<RunMap> runs = RunMosaics(session, resolution_m, reference_percentile);
+  if (mode == JoinedMosaic::kNormalizedMean) {
+    // Every tile in units of its run's reference level, averaged as within one run: where
+    // both runs observed, each pixel is a vote weighted by the runs' tiles, which is the
+    // occupancy rule applied to the runs' evidence together (see session_config.h).
+    std::map<int, double> scale;
+    for (const RunMap& r : runs) scale[r.id] = 1.0 / r.reference;
+    return mosaic(
+        [&](int trajectory) { return scale.count(trajectory) ? scale[trajectory] : 1.0; });
+  }
+  // kNormalizedMax: each run's mosaic in units of its reference level, saturated at that
+  // level: the max of the runs then has at least the percentile's share of its observed
+  // pixels at 1, so the occupancy rule's reference on the joined map is 1 and each run's walls
+  // are thresholded as in its own map (the joined occupied cells are the union of the runs').
+  // Unsaturated, the runs' brightest 1 % add up and raise the reference over all of them.
+  for (RunMap& r : runs) {
+    r.map *= 1.0 / r.reference;
+    cv::min(r.map, 1.0, r.map);
+  }
+  return MaxOfRuns(runs, resolution_m, grid, observed);
 }
 
 }  // namespace uwbsar::pipeline

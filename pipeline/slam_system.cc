@@ -41,24 +41,17 @@ SlamSystem::SlamSystem(const Config& config)
     : config_(config),
       frontend_(std::make_unique<ImagingFrontend>(ImagingFrontendConfig(config))),
       graph_(std::make_unique<PoseGraph>(config.backend)),
-      recognizer_(std::make_unique<PlaceRecognizer>(PlaceRecognizerConfig(config))) {
+      recognizer_(std::make_unique<PlaceRecognizer>(PlaceRecognizerConfig(config))),
+      worker_(config.slam.keyframe_thread, config.slam.keyframe_queue_size,
+              [this](Work&& work) { Process(std::move(work)); }) {
   frontend_->SetOdometryObserver(
       [this](const OdometryEntry& e) { pending_odometry_.push_back(e); });
-  if (config_.slam.keyframe_thread) worker_ = std::thread([this] { WorkerLoop(); });
 }
 
-SlamSystem::~SlamSystem() {
-  if (!worker_.joinable()) return;
-  {
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    stopping_ = true;
-  }
-  queue_changed_.notify_all();
-  worker_.join();
-}
+SlamSystem::~SlamSystem() = default;
 
 void SlamSystem::AddOdometry(const OdometrySample& sample) {
-  RethrowWorkerError();
+  worker_.RethrowError();
   const auto start = Clock::now();
   frontend_->AddOdometry(sample);
   PublishFeedingState(SecondsSince(start));
@@ -66,7 +59,7 @@ void SlamSystem::AddOdometry(const OdometrySample& sample) {
 }
 
 void SlamSystem::AddScan(const RadarScan& scan) {
-  RethrowWorkerError();
+  worker_.RethrowError();
   const auto start = Clock::now();
   frontend_->AddScan(scan);
   PublishFeedingState(SecondsSince(start));
@@ -74,7 +67,7 @@ void SlamSystem::AddScan(const RadarScan& scan) {
 }
 
 void SlamSystem::Finish() {
-  RethrowWorkerError();
+  worker_.RethrowError();
   const auto start = Clock::now();
   frontend_->Finish();
   PublishFeedingState(SecondsSince(start));
@@ -91,13 +84,7 @@ void SlamSystem::Finish() {
   }
 }
 
-void SlamSystem::WaitIdle() {
-  if (worker_.joinable()) {
-    std::unique_lock<std::mutex> lock(queue_mutex_);
-    queue_changed_.wait(lock, [this] { return (queue_.empty() && !busy_) || worker_error_; });
-  }
-  RethrowWorkerError();
-}
+void SlamSystem::WaitIdle() { worker_.Drain(); }
 
 FrontendStats SlamSystem::frontend_stats() const {
   std::lock_guard<std::mutex> lock(stats_mutex_);
@@ -128,59 +115,8 @@ void SlamSystem::HandOver(bool force) {
     return;
   }
   work.odometry.swap(pending_odometry_);
-  if (!worker_.joinable()) {
-    Process(std::move(work));
-    return;
-  }
-  const int n = static_cast<int>(work.keyframes.size());
-  {
-    std::unique_lock<std::mutex> lock(queue_mutex_);
-    // Back-pressure: a full queue makes the feeder wait (bounded memory offline).
-    queue_changed_.wait(lock, [this] {
-      return queued_keyframes_ < config_.slam.keyframe_queue_size || worker_error_;
-    });
-    queue_.push_back(std::move(work));
-    queued_keyframes_ += n;
-  }
-  queue_changed_.notify_all();
-}
-
-void SlamSystem::WorkerLoop() {
-  while (true) {
-    Work work;
-    {
-      std::unique_lock<std::mutex> lock(queue_mutex_);
-      queue_changed_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
-      if (queue_.empty()) return;  // stopping with nothing left
-      work = std::move(queue_.front());
-      queue_.pop_front();
-      queued_keyframes_ -= static_cast<int>(work.keyframes.size());
-      busy_ = true;
-    }
-    queue_changed_.notify_all();
-    try {
-      Process(std::move(work));
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(queue_mutex_);
-      worker_error_ = std::current_exception();
-    }
-    {
-      std::lock_guard<std::mutex> lock(queue_mutex_);
-      busy_ = false;
-    }
-    queue_changed_.notify_all();
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    if (worker_error_) return;
-  }
-}
-
-void SlamSystem::RethrowWorkerError() {
-  std::exception_ptr error;
-  {
-    std::lock_guard<std::mutex> lock(queue_mutex_);
-    error = worker_error_;
-  }
-  if (error) std::rethrow_exception(error);
+  const int num_keyframes = static_cast<int>(work.keyframes.size());
+  worker_.Push(std::move(work), num_keyframes);
 }
 
 void SlamSystem::Process(Work&& work) {

@@ -20,19 +20,16 @@
 // times() return copies and may be called from any thread at any time.
 #pragma once
 
-#include <condition_variable>
-#include <deque>
-#include <exception>
 #include <map>
 #include <memory>
 #include <mutex>
-#include <thread>
 #include <vector>
 
 #include "backend/pose_graph.h"
 #include "frontend/imaging_frontend.h"
 #include "frontend/place_recognition/place_recognizer.h"
 #include "pipeline/app_config.h"
+#include "pipeline/ordered_worker.h"
 #include "pipeline/slam_snapshot.h"
 
 namespace uwbsar::pipeline {
@@ -106,16 +103,14 @@ class SlamSystem {
 
   void HandOver(bool force);
   void PublishFeedingState(double imaging_s);
-  void WorkerLoop();
   void Process(Work&& work);
   void AddKeyframe(Keyframe&& keyframe);
   void Optimize();  ///< caller holds state_mutex_
   /// state_mutex_ for the keyframe thread, recording how long it waited.
   std::unique_lock<std::mutex> LockForKeyframeWork();
-  void RethrowWorkerError();
 
   // Locking contract (docs/architecture.md "Which mutex guards what"). Three mutexes;
-  // lock order state_mutex_, then stats_mutex_; queue_mutex_ is never held with another.
+  // lock order state_mutex_, then stats_mutex_; worker_'s is never held with another.
   Config config_;  // not changed after construction: any thread reads it
   // Feeding thread only: no lock.
   std::unique_ptr<ImagingFrontend> frontend_;
@@ -138,16 +133,10 @@ class SlamSystem {
   double imaging_s_ = 0.0;        // GUARDED_BY(stats_mutex_)
   StageTimes keyframe_times_;     // GUARDED_BY(stats_mutex_): features, matching, optimisation
   double keyframe_lock_wait_max_s_ = 0.0;  // GUARDED_BY(stats_mutex_)
-  // Guarded by queue_mutex_ (waited on with queue_changed_): the hand-over FIFO, the worker's
-  // busy and stop flags and the error it met. worker_ is started and joined by the owner.
-  std::mutex queue_mutex_;
-  std::condition_variable queue_changed_;
-  std::deque<Work> queue_;
-  int queued_keyframes_ = 0;
-  bool busy_ = false;
-  bool stopping_ = false;
-  std::exception_ptr worker_error_;
-  std::thread worker_;
+  // The keyframe thread (or inline without one): the hand-over FIFO of Work, in order,
+  // bounded by keyframes queued; its own mutex is never held with another. Last member:
+  // started after, and joined before, everything it processes with.
+  OrderedWorker<Work> worker_;
 };
 
 }  // namespace uwbsar::pipeline

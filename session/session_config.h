@@ -10,11 +10,13 @@
 namespace uwbsar {
 
 /// session.joined_mosaic: how the map of several runs is combined (see SessionConfig).
-enum class JoinedMosaic { kNormalizedMax, kMean };
+enum class JoinedMosaic { kNormalizedMax, kNormalizedMean, kMean };
 template <>
 struct EnumNames<JoinedMosaic> {
   static constexpr std::pair<JoinedMosaic, const char*> kNames[] = {
-      {JoinedMosaic::kNormalizedMax, "normalized_max"}, {JoinedMosaic::kMean, "mean"}};
+      {JoinedMosaic::kNormalizedMax, "normalized_max"},
+      {JoinedMosaic::kNormalizedMean, "normalized_mean"},
+      {JoinedMosaic::kMean, "mean"}};
 };
 
 struct SessionConfig {
@@ -28,11 +30,14 @@ struct SessionConfig {
                                        ///< keyframe's estimate are its candidates
   double localize_lost_after_m = 3.0;  ///< localize: no fix for this much path = "lost"
   int localize_window_keyframes = 10;  ///< localize: keyframes in the sliding window
-  /// The map of several runs (map --resume, merge): "normalized_max" = each run's mean
-  /// mosaic divided by its own slam.occupancy_reference_percentile level, the runs combined
-  /// by the per-pixel max (a run that saw a wall weakly neither dilutes nor out-shines the
-  /// run that saw it well); "mean" = every tile averaged, as within one run.
-  JoinedMosaic joined_mosaic = JoinedMosaic::kNormalizedMax;
+  /// The map of several runs (map --resume, merge), each run's tiles in units of its own
+  /// slam.occupancy_reference_percentile level (a brighter run neither out-shines nor raises
+  /// the threshold over another's walls): "normalized_mean" = all tiles averaged, a vote of
+  /// the runs where both observed (best by the cell-wise difference against a grid);
+  /// "normalized_max" = the per-pixel max, saturated at 1: the occupied cells are the union
+  /// of the runs' (best recall and F1, more false walls); "mean" = every tile averaged
+  /// unscaled, as within one run.
+  JoinedMosaic joined_mosaic = JoinedMosaic::kNormalizedMean;
 
   template <class V>
   void Visit(V& v) {

@@ -55,6 +55,55 @@ TEST(SessionMosaicTest, ABrighterRunDoesNotHideTheOtherRunsWalls) {
   EXPECT_EQ(OccupiedInRunA(session, JoinedMosaic::kMean),
             0);  // the joined mean: B's level sets the rule
   EXPECT_EQ(OccupiedInRunA(session, JoinedMosaic::kNormalizedMax), alone);
+  EXPECT_EQ(OccupiedInRunA(session, JoinedMosaic::kNormalizedMean), alone);
+}
+
+/// A 2 m x 1 m tile at the origin of run `trajectory` whose pixels are `draw`n from `rng`.
+template <typename Draw>
+SessionKeyframe RandomTile(int id, int trajectory, cv::RNG* rng, Draw draw) {
+  SessionKeyframe k = Tile(id, trajectory, 0.0, 1.0f);
+  for (int r = 0; r < k.detected.rows; ++r) {
+    for (int c = 0; c < k.detected.cols; ++c) k.detected.at<float>(r, c) = draw(rng);
+  }
+  return k;
+}
+
+/// The occupancy of `session`'s `mosaic` under the slam.* occupancy rule.
+OccupancyGrid Occupancy(const SessionData& session, JoinedMosaic mosaic) {
+  Config config;
+  config.session.joined_mosaic = mosaic;
+  ImageGrid grid;
+  cv::Mat observed;
+  const cv::Mat map = pipeline::RenderSessionMosaic(session, config, &grid, &observed);
+  return MapToOccupancy(map, observed, grid, config.slam.occupancy_resolution_m,
+                        config.slam.occupied_fraction, config.slam.occupancy_reference_percentile);
+}
+
+TEST(SessionMosaicTest, NormalizedMaxKeepsEveryCellOccupiedInOneRunsOwnMap) {
+  // Two runs over the same area: A's levels are even (uniform), B's have a long tail (a few
+  // very bright pixels, as a corner reflector gives), so the runs' brightest 1 % differ.
+  cv::RNG rng(7);
+  SessionData session;
+  session.keyframes = {
+      RandomTile(0, 0, &rng, [](cv::RNG* g) { return static_cast<float>(g->uniform(0.0, 1.0)); }),
+      RandomTile(1, 1, &rng, [](cv::RNG* g) {
+        return static_cast<float>(1.0 / (1.001 - g->uniform(0.0, 1.0)));
+      })};
+  const OccupancyGrid joined = Occupancy(session, JoinedMosaic::kNormalizedMax);
+  int checked = 0;
+  for (int run = 0; run < 2; ++run) {
+    SessionData alone;
+    alone.keyframes = {session.keyframes[static_cast<std::size_t>(run)]};
+    const OccupancyGrid own = Occupancy(alone, JoinedMosaic::kNormalizedMax);
+    ASSERT_EQ(own.rows, joined.rows);  // the same area, on the same lattice
+    ASSERT_EQ(own.cols, joined.cols);
+    for (std::size_t i = 0; i < own.cells.size(); ++i) {
+      if (own.cells[i] != OccupancyGrid::kOccupied) continue;
+      ++checked;
+      EXPECT_EQ(joined.cells[i], OccupancyGrid::kOccupied) << "run " << run << " cell " << i;
+    }
+  }
+  EXPECT_GT(checked, 50);
 }
 
 }  // namespace
