@@ -135,6 +135,63 @@ std::vector<Point2> OccupiedCellCenters(const OccupancyGrid& grid) {
   return points;
 }
 
+namespace {
+
+/// The ICP stages of `config.icp_max_correspondence_m`, coarse to fine, from `*T`; false
+/// (with `result->reason`) when a stage did not converge.
+bool RunStages(const Cloud::Ptr& source, const Cloud::Ptr& target, const CompareConfig& config,
+               Pose2* T, AlignmentResult* result, std::string* why) {
+  const bool to_plane = config.icp_method == "point_to_plane";
+  if (to_plane) Fit2dNormals(*target, config.icp_normal_neighbours);
+  for (double distance_m : config.icp_max_correspondence_m) {
+    bool ok = false;
+    if (to_plane) {
+      CountingIcp<pcl::IterativeClosestPointWithNormals<PointT, PointT>> icp;
+      auto estimator = std::make_shared<
+          pcl::registration::TransformationEstimationPointToPlane<PointT, PointT, float>>();
+      estimator->setWarpFunction(
+          std::make_shared<pcl::registration::WarpPointRigid3D<PointT, PointT, float>>());
+      icp.setTransformationEstimation(estimator);
+      ok = RunStage(icp, source, target, distance_m, config, T, &result->iterations, why);
+    } else {
+      CountingIcp<pcl::IterativeClosestPoint<PointT, PointT>> icp;
+      icp.setTransformationEstimation(
+          std::make_shared<pcl::registration::TransformationEstimation2D<PointT, PointT>>());
+      ok = RunStage(icp, source, target, distance_m, config, T, &result->iterations, why);
+    }
+    ++result->stages;
+    if (!ok) {
+      std::ostringstream msg;
+      msg << "ICP failed at the " << distance_m << " m stage: " << *why;
+      result->reason = msg.str();
+      return false;
+    }
+  }
+  return true;
+}
+
+/// Inlier fraction and fitness of `source` moved by `T` against `target`, over the last
+/// stage's distance (PCL's getFitnessScore rule).
+void ScoreAlignment(const std::vector<Point2>& source, const std::vector<Point2>& target,
+                    const Pose2& T, double distance_m, AlignmentResult* result) {
+  std::vector<Point2> moved;
+  moved.reserve(source.size());
+  for (const Point2& p : source) moved.push_back(T * p);
+  long long inliers = 0;
+  double sum_sq = 0.0;
+  for (double v : NearestDistances(moved, target)) {
+    if (v <= distance_m) {
+      ++inliers;
+      sum_sq += v * v;
+    }
+  }
+  result->inlier_fraction = static_cast<double>(inliers) / static_cast<double>(source.size());
+  result->fitness_m2 = inliers > 0 ? sum_sq / static_cast<double>(inliers) : 0.0;
+  result->inlier_rmse_m = std::sqrt(result->fitness_m2);
+}
+
+}  // namespace
+
 AlignmentResult AlignPointSets(const std::vector<Point2>& source, const std::vector<Point2>& target,
                                const Pose2& T_initial, const CompareConfig& config) {
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // our result struct reports
@@ -148,57 +205,11 @@ AlignmentResult AlignPointSets(const std::vector<Point2>& source, const std::vec
                     ", target " + std::to_string(target.size()) + ")";
     return result;
   }
-  const Cloud::Ptr source_cloud = ToCloud(source);
-  const Cloud::Ptr target_cloud = ToCloud(target);
-  const bool to_plane = config.icp_method == "point_to_plane";
-  if (to_plane) Fit2dNormals(*target_cloud, config.icp_normal_neighbours);
-
   Pose2 T = T_initial;
   std::string why;
-  for (double distance_m : config.icp_max_correspondence_m) {
-    bool ok = false;
-    if (to_plane) {
-      CountingIcp<pcl::IterativeClosestPointWithNormals<PointT, PointT>> icp;
-      auto estimator = std::make_shared<
-          pcl::registration::TransformationEstimationPointToPlane<PointT, PointT, float>>();
-      estimator->setWarpFunction(
-          std::make_shared<pcl::registration::WarpPointRigid3D<PointT, PointT, float>>());
-      icp.setTransformationEstimation(estimator);
-      ok = RunStage(icp, source_cloud, target_cloud, distance_m, config, &T, &result.iterations,
-                    &why);
-    } else {
-      CountingIcp<pcl::IterativeClosestPoint<PointT, PointT>> icp;
-      icp.setTransformationEstimation(
-          std::make_shared<pcl::registration::TransformationEstimation2D<PointT, PointT>>());
-      ok = RunStage(icp, source_cloud, target_cloud, distance_m, config, &T, &result.iterations,
-                    &why);
-    }
-    ++result.stages;
-    if (!ok) {
-      std::ostringstream msg;
-      msg << "ICP failed at the " << distance_m << " m stage: " << why;
-      result.reason = msg.str();
-      return result;
-    }
-  }
-
-  // Quality at the result, over the last stage's distance (PCL's getFitnessScore rule).
+  if (!RunStages(ToCloud(source), ToCloud(target), config, &T, &result, &why)) return result;
   const double last_m = config.icp_max_correspondence_m.back();
-  std::vector<Point2> moved;
-  moved.reserve(source.size());
-  for (const Point2& p : source) moved.push_back(T * p);
-  const std::vector<double> d = NearestDistances(moved, target);
-  long long inliers = 0;
-  double sum_sq = 0.0;
-  for (double v : d) {
-    if (v <= last_m) {
-      ++inliers;
-      sum_sq += v * v;
-    }
-  }
-  result.inlier_fraction = static_cast<double>(inliers) / static_cast<double>(source.size());
-  result.fitness_m2 = inliers > 0 ? sum_sq / static_cast<double>(inliers) : 0.0;
-  result.inlier_rmse_m = std::sqrt(result.fitness_m2);
+  ScoreAlignment(source, target, T, last_m, &result);
   std::ostringstream msg;
   msg.precision(3);
   if (result.inlier_fraction < config.icp_min_inlier_fraction) {
