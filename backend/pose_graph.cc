@@ -236,21 +236,7 @@ double PoseGraph::HalfChi2Sum(bool accepted_only) const {
 OptimizeResult PoseGraph::Optimize() {
   std::lock_guard<std::mutex> solve_lock(solve_mutex_);
   const auto t0 = std::chrono::steady_clock::now();
-  {
-    std::vector<PendingNode> nodes;
-    std::vector<int> edge_indices;
-    std::vector<PoseGraphEdge> edges;
-    std::vector<int> fixed;
-    {
-      std::lock_guard<std::mutex> lock(data_mutex_);
-      nodes.swap(pending_nodes_);
-      edge_indices.swap(pending_edges_);
-      fixed.swap(pending_fixed_);
-      for (const int i : edge_indices) edges.push_back(edges_[static_cast<std::size_t>(i)]);
-    }
-    InsertPending(std::move(nodes), edge_indices, edges, fixed);
-  }
-
+  TakePending();
   OptimizeResult result;
   result.converged = true;  // nothing to solve is a solved problem
   result.termination = "no edges";
@@ -259,35 +245,60 @@ OptimizeResult PoseGraph::Optimize() {
   const bool first = !solved_once_;
   if (first && config_.initialization == GraphInitialization::kChordal) ChordalStart();
   solved_once_ = true;
-  const bool robust = config_.robust_loss != RobustLoss::kNone;
-  if (!solver_edges_.empty()) {
-    bool settled = false;
-    if (!first) {
-      // Warm update: the current estimate is the map solved without the held-back loops,
-      // so they are tested right away; then plain least squares, and the robust rounds
-      // only when some loop changes status.
-      AdmitConfirmedLoops();
-      SetLoopLosses(false);
-      RunSolve(&result);
-      settled = !UpdateLoopStatus();
-    }
-    if (!settled) {
-      RejectionRounds(robust, &result);
-      if (AdmitConfirmedLoops()) RejectionRounds(robust, &result);
-      if (robust && config_.final_least_squares &&
-          std::any_of(solver_edges_.begin(), solver_edges_.end(),
-                      [](const auto& se) { return se->loss && !se->rejected; })) {
-        // Plain least squares on the inliers; a loop that only fit under the robust loss
-        // is rejected and the inliers re-solved.
-        RejectionRounds(false, &result);
-      }
-    }
-    TrialSolveHeldBackLoops(&result);
-    ConsistencyRounds(&result);
-  }
+  if (!solver_edges_.empty()) SolveWithLoopHandling(first, &result);
   for (auto& se : solver_edges_) se->chi2 = se->Chi2();
   result.final_cost = HalfChi2Sum(true);
+  PublishSolution(&result);
+  result.num_nodes = static_cast<int>(solver_nodes_.size());
+  result.num_edges = static_cast<int>(solver_edges_.size());
+  result.solve_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return result;
+}
 
+void PoseGraph::TakePending() {
+  std::vector<PendingNode> nodes;
+  std::vector<int> edge_indices;
+  std::vector<PoseGraphEdge> edges;
+  std::vector<int> fixed;
+  {
+    std::lock_guard<std::mutex> lock(data_mutex_);
+    nodes.swap(pending_nodes_);
+    edge_indices.swap(pending_edges_);
+    fixed.swap(pending_fixed_);
+    for (const int i : edge_indices) edges.push_back(edges_[static_cast<std::size_t>(i)]);
+  }
+  InsertPending(std::move(nodes), edge_indices, edges, fixed);
+}
+
+void PoseGraph::SolveWithLoopHandling(bool first, OptimizeResult* result) {
+  const bool robust = config_.robust_loss != RobustLoss::kNone;
+  bool settled = false;
+  if (!first) {
+    // Warm update: the current estimate is the map solved without the held-back loops,
+    // so they are tested right away; then plain least squares, and the robust rounds
+    // only when some loop changes status.
+    AdmitConfirmedLoops();
+    SetLoopLosses(false);
+    RunSolve(result);
+    settled = !UpdateLoopStatus();
+  }
+  if (!settled) {
+    RejectionRounds(robust, result);
+    if (AdmitConfirmedLoops()) RejectionRounds(robust, result);
+    if (robust && config_.final_least_squares &&
+        std::any_of(solver_edges_.begin(), solver_edges_.end(),
+                    [](const auto& se) { return se->loss && !se->rejected; })) {
+      // Plain least squares on the inliers; a loop that only fit under the robust loss
+      // is rejected and the inliers re-solved.
+      RejectionRounds(false, result);
+    }
+  }
+  TrialSolveHeldBackLoops(result);
+  ConsistencyRounds(result);
+}
+
+void PoseGraph::PublishSolution(OptimizeResult* result) {
   std::lock_guard<std::mutex> lock(data_mutex_);
   for (auto& [id, node] : solver_nodes_) {
     node->x[2] = NormalizeAngle(node->x[2]);
@@ -304,14 +315,9 @@ OptimizeResult PoseGraph::Optimize() {
                : se->held_back    ? "unsupported"
                : se->inconsistent ? "inconsistent"
                                   : "chi2";
-    if (r.rejected) result.rejected.push_back(r);
-    if (r.kind == EdgeKind::kLoop) ++result.num_loops;
+    if (r.rejected) result->rejected.push_back(r);
+    if (r.kind == EdgeKind::kLoop) ++result->num_loops;
   }
-  result.num_nodes = static_cast<int>(solver_nodes_.size());
-  result.num_edges = static_cast<int>(solver_edges_.size());
-  result.solve_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return result;
 }
 
 bool PoseGraph::HasNode(int id) const {

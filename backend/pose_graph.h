@@ -170,6 +170,13 @@ class PoseGraph {
   };
 
   // Solver side, guarded by solve_mutex_.
+  /// Moves the nodes, edges and fixes added since the last solve into the solver.
+  void TakePending();
+  /// Solve / reject / re-admit with the loop rules (warm when not `first`), trial solves and
+  /// the odometry consistency rounds.
+  void SolveWithLoopHandling(bool first, OptimizeResult* result);
+  /// Copies the solution and edge states to the caller's side (takes data_mutex_).
+  void PublishSolution(OptimizeResult* result);
   void InsertPending(std::vector<PendingNode> nodes, const std::vector<int>& edge_indices,
                      const std::vector<PoseGraphEdge>& edges, const std::vector<int>& fixed);
   void SetLoopLosses(bool robust);

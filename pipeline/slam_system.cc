@@ -128,30 +128,7 @@ void SlamSystem::Process(Work&& work) {
 }
 
 void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
-  // The node starts on the corrected trajectory: the previous keyframe's estimate
-  // composed with the odometry between the two.
-  Pose2 estimate = keyframe.T_world_anchor;
-  {
-    const auto lock = LockForKeyframeWork();
-    if (!keyframes_.empty()) {
-      const Keyframe& prev = keyframes_.back().keyframe;
-      const Pose2 T_prev_this = Between(prev.T_world_anchor, keyframe.T_world_anchor);
-      estimate = graph_->GetPose(prev.id) * T_prev_this;
-      graph_->AddNode(keyframe.id, estimate, /*reseed_from_odometry=*/false);
-      // Anchors keep the world orientation (the step's yaw is 0): the odometry calibration
-      // needs the robot's own path and turn between the two tiles' middles.
-      const double path_m = 0.5 * (keyframe.path_begin_m + keyframe.path_end_m) -
-                            0.5 * (prev.path_begin_m + prev.path_end_m);
-      const double turn_rad =
-          NormalizeAngle(keyframe.T_world_robot.yaw_rad - prev.T_world_robot.yaw_rad);
-      graph_->AddOdometryEdge(prev.id, keyframe.id, T_prev_this, /*trajectory=*/0,
-                              std::max(0.0, path_m), turn_rad);
-    } else {
-      graph_->AddNode(keyframe.id, estimate, false);
-      graph_->FixNode(keyframe.id);
-    }
-  }
-
+  const Pose2 estimate = AddGraphNode(keyframe);
   // The long part, without the lock: only this thread uses the recognizer.
   const PlaceRecognitionResult found = recognizer_->Process(keyframe, estimate);
   const auto start = Clock::now();
@@ -163,50 +140,75 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
     for (ImagedScan& s : keyframe.scans) s.profile.reset();
   }
   const double detected_s = SecondsSince(start);
-
   {
     std::lock_guard<std::mutex> lock(stats_mutex_);
     keyframe_times_.features_s += found.features_ms * 1e-3 + detected_s;
     keyframe_times_.matching_s += found.matching_ms * 1e-3;
   }
   const auto lock = LockForKeyframeWork();
-  for (const LoopAttempt& attempt : found.attempts) {
-    LoopRecord loop;
-    loop.query_id = attempt.query_id >= 0 ? attempt.query_id : keyframe.id;
-    loop.match_id = attempt.candidate_id;
-    loop.guided = attempt.guided;
-    loop.by_radar = attempt.by_radar;
-    loop.akaze = attempt.akaze;
-    loop.orb = attempt.orb;
-    loop.validation = attempt.validation;
-    for (MatchResult* m : {&loop.akaze, &loop.orb}) {  // only the decision is kept
-      m->matches.clear();
-      m->inlier.clear();
-      m->inliers_a.clear();
-      m->inliers_b.clear();
-    }
-    if (loop.validation.accepted) {
-      PoseGraphEdge edge;
-      edge.from_id = attempt.candidate_id;
-      edge.to_id = loop.query_id;
-      edge.T_from_to = loop.validation.constraint.T_ij;
-      edge.information = loop.validation.constraint.information;
-      edge.kind = EdgeKind::kLoop;
-      try {
-        loop.edge_index = graph_->AddEdge(edge);
-        graph_dirty_ = true;
-      } catch (const InputError& e) {
-        loop.validation.accepted = false;
-        loop.validation.reason = std::string("backend refused the edge: ") + e.what();
-      }
-    }
-    loops_.push_back(std::move(loop));
-  }
+  for (const LoopAttempt& attempt : found.attempts) AddLoop(attempt, keyframe.id);
   record.keyframe = std::move(keyframe);
   keyframes_.push_back(std::move(record));
   ++keyframes_since_solve_;
   const int every = config_.slam.optimize_every_keyframes;
   if (graph_dirty_ && every > 0 && keyframes_since_solve_ >= every) Optimize();
+}
+
+Pose2 SlamSystem::AddGraphNode(const Keyframe& keyframe) {
+  const auto lock = LockForKeyframeWork();
+  if (keyframes_.empty()) {
+    graph_->AddNode(keyframe.id, keyframe.T_world_anchor, false);
+    graph_->FixNode(keyframe.id);
+    return keyframe.T_world_anchor;
+  }
+  // The node starts on the corrected trajectory: the previous keyframe's estimate
+  // composed with the odometry between the two.
+  const Keyframe& prev = keyframes_.back().keyframe;
+  const Pose2 T_prev_this = Between(prev.T_world_anchor, keyframe.T_world_anchor);
+  const Pose2 estimate = graph_->GetPose(prev.id) * T_prev_this;
+  graph_->AddNode(keyframe.id, estimate, /*reseed_from_odometry=*/false);
+  // Anchors keep the world orientation (the step's yaw is 0): the odometry calibration
+  // needs the robot's own path and turn between the two tiles' middles.
+  const double path_m = 0.5 * (keyframe.path_begin_m + keyframe.path_end_m) -
+                        0.5 * (prev.path_begin_m + prev.path_end_m);
+  const double turn_rad =
+      NormalizeAngle(keyframe.T_world_robot.yaw_rad - prev.T_world_robot.yaw_rad);
+  graph_->AddOdometryEdge(prev.id, keyframe.id, T_prev_this, /*trajectory=*/0,
+                          std::max(0.0, path_m), turn_rad);
+  return estimate;
+}
+
+void SlamSystem::AddLoop(const LoopAttempt& attempt, int keyframe_id) {
+  LoopRecord loop;
+  loop.query_id = attempt.query_id >= 0 ? attempt.query_id : keyframe_id;
+  loop.match_id = attempt.candidate_id;
+  loop.guided = attempt.guided;
+  loop.by_radar = attempt.by_radar;
+  loop.akaze = attempt.akaze;
+  loop.orb = attempt.orb;
+  loop.validation = attempt.validation;
+  for (MatchResult* m : {&loop.akaze, &loop.orb}) {  // only the decision is kept
+    m->matches.clear();
+    m->inlier.clear();
+    m->inliers_a.clear();
+    m->inliers_b.clear();
+  }
+  if (loop.validation.accepted) {
+    PoseGraphEdge edge;
+    edge.from_id = attempt.candidate_id;
+    edge.to_id = loop.query_id;
+    edge.T_from_to = loop.validation.constraint.T_ij;
+    edge.information = loop.validation.constraint.information;
+    edge.kind = EdgeKind::kLoop;
+    try {
+      loop.edge_index = graph_->AddEdge(edge);
+      graph_dirty_ = true;
+    } catch (const InputError& e) {
+      loop.validation.accepted = false;
+      loop.validation.reason = std::string("backend refused the edge: ") + e.what();
+    }
+  }
+  loops_.push_back(std::move(loop));
 }
 
 void SlamSystem::Optimize() {

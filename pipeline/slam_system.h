@@ -105,6 +105,10 @@ class SlamSystem {
   void PublishFeedingState(double imaging_s);
   void Process(Work&& work);
   void AddKeyframe(Keyframe&& keyframe);
+  /// The keyframe's node (the first is fixed: the gauge) and odometry edge; its estimate.
+  Pose2 AddGraphNode(const Keyframe& keyframe);
+  /// Records a match attempt and adds its loop edge if validated; caller holds state_mutex_.
+  void AddLoop(const LoopAttempt& attempt, int keyframe_id);
   void Optimize();  ///< caller holds state_mutex_
   /// state_mutex_ for the keyframe thread, recording how long it waited.
   std::unique_lock<std::mutex> LockForKeyframeWork();
