@@ -24,16 +24,20 @@ SessionKeyframe Tile(int id, int trajectory, double x0_m, float level) {
   return k;
 }
 
-/// Occupied cells of the occupancy rule (slam.* defaults) left of x = 2 m (run A's area).
-int OccupiedInRunA(const SessionData& session, JoinedMosaic mosaic) {
+/// The occupancy of `session`'s `mosaic` under the slam.* occupancy rule.
+OccupancyGrid Occupancy(const SessionData& session, JoinedMosaic mosaic) {
   Config config;
   config.session.joined_mosaic = mosaic;
   ImageGrid grid;
   cv::Mat observed;
   const cv::Mat map = pipeline::RenderSessionMosaic(session, config, &grid, &observed);
-  const OccupancyGrid occ =
-      MapToOccupancy(map, observed, grid, config.slam.occupancy_resolution_m,
-                     config.slam.occupied_fraction, config.slam.occupancy_reference_percentile);
+  return MapToOccupancy(map, observed, grid, config.slam.occupancy_resolution_m,
+                        config.slam.occupied_fraction, config.slam.occupancy_reference_percentile);
+}
+
+/// Occupied cells of the occupancy rule (slam.* defaults) left of x = 2 m (run A's area).
+int OccupiedInRunA(const SessionData& session, JoinedMosaic mosaic) {
+  const OccupancyGrid occ = Occupancy(session, mosaic);
   int n = 0;
   for (int r = 0; r < occ.rows; ++r) {
     for (int c = 0; c < occ.cols; ++c) {
@@ -66,17 +70,6 @@ SessionKeyframe RandomTile(int id, int trajectory, cv::RNG* rng, Draw draw) {
     for (int c = 0; c < k.detected.cols; ++c) k.detected.at<float>(r, c) = draw(rng);
   }
   return k;
-}
-
-/// The occupancy of `session`'s `mosaic` under the slam.* occupancy rule.
-OccupancyGrid Occupancy(const SessionData& session, JoinedMosaic mosaic) {
-  Config config;
-  config.session.joined_mosaic = mosaic;
-  ImageGrid grid;
-  cv::Mat observed;
-  const cv::Mat map = pipeline::RenderSessionMosaic(session, config, &grid, &observed);
-  return MapToOccupancy(map, observed, grid, config.slam.occupancy_resolution_m,
-                        config.slam.occupied_fraction, config.slam.occupancy_reference_percentile);
 }
 
 TEST(SessionMosaicTest, NormalizedMaxKeepsEveryCellOccupiedInOneRunsOwnMap) {
