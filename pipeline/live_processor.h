@@ -36,6 +36,9 @@ class Processor {
     std::function<void(const MapState& state, const MapOutputs& outputs)> after_snapshot;
     std::function<void()> tick;
     std::function<void(const LocalizeRun& run)> after_localize;
+    /// Once, after Finish() and the final snapshot: the run's last pose with its final
+    /// correction (the ticks may have published the last odometry with an older one).
+    std::function<void()> final_pose;
   };
 
   /// With `localize_map` (outliving the processor): localisation in that map, no mapping.
@@ -49,6 +52,10 @@ class Processor {
   void SnapshotLoop(const std::atomic<bool>& stop);
   /// Writes the outputs of the state so far (not on the feeding thread).
   void Snapshot();
+  /// After Finish() and the final Snapshot(): the final_pose hook.
+  void PublishFinalPose() {
+    if (hooks_.final_pose) hooks_.final_pose();
+  }
   /// After both threads stopped: the run with its last counters and ground truth.
   MapRun FinalRun();
 

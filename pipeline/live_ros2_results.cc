@@ -30,8 +30,9 @@ LiveResultPublisher::LiveResultPublisher(dds::Participant& participant, const Dd
   processor->set_hooks({[this](const MapState& state, const MapOutputs& outputs) {
                           PublishSnapshot(state, outputs);
                         },
-                        [this] { PublishPose(); },
-                        [this](const LocalizeRun& run) { PublishLocalized(run); }});
+                        [this] { PublishPose(false); },
+                        [this](const LocalizeRun& run) { PublishLocalized(run); },
+                        [this] { PublishPose(true); }});
 }
 
 // Snapshot thread: what was just written to disk (from `state`), to RViz2.
@@ -61,15 +62,16 @@ void LiveResultPublisher::PublishLocalized(const LocalizeRun& run) {
 }
 
 // Snapshot thread: the corrected robot pose, at most every dds.publish_pose_period_s
-// (localising: from the first fix on, with the latest fix's correction).
-void LiveResultPublisher::PublishPose() {
+// (localising: from the first fix on, with the latest fix's correction). `final`: once at
+// the end of the run, with the final correction, whatever was published before.
+void LiveResultPublisher::PublishPose(bool final) {
   const std::optional<OdometrySample> odom = processor_->LatestOdometry();
-  if (!odom || odom->stamp_ns == last_pose_stamp_ns_) return;
+  if (!odom || (!final && odom->stamp_ns == last_pose_stamp_ns_)) return;
   const std::optional<Pose2> correction = processor_->CorrectionAt(odom->stamp_ns);
   if (!correction) return;
   last_pose_stamp_ns_ = odom->stamp_ns;
   try {
-    if (publisher_.PublishPose(odom->stamp_ns, *correction * odom->T_world_robot)) {
+    if (publisher_.PublishPose(odom->stamp_ns, *correction * odom->T_world_robot, final)) {
       publisher_.PublishMapToOdom(odom->stamp_ns, *correction);
     }
   } catch (const std::exception& e) {

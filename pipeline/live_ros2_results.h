@@ -25,7 +25,7 @@ class LiveResultPublisher {
 
  private:
   void PublishSnapshot(const MapState& state, const MapOutputs& outputs);
-  void PublishPose();
+  void PublishPose(bool final);
   void PublishLocalized(const LocalizeRun& run);
 
   live::FaultLog* faults_;

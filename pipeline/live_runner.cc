@@ -134,6 +134,7 @@ LiveRunResult FinishRun(const LiveRunOptions& options, const live::FaultLog& fau
   result.recording_path = recorder.path();
 
   processor.Snapshot();  // the final outputs (after Finish); published too with ros2
+  processor.PublishFinalPose();
   result.snapshots = processor.snapshots();
   result.snapshot_max_s = processor.snapshot_max_s();
   result.snapshot_p50_s = Percentile(processor.snapshot_s(), 50);

@@ -120,9 +120,9 @@ void Ros2Publisher::PublishMap(const OccupancyGrid& grid, TimestampNs stamp) {
   Write(map_.writer, &msg, map_.ros_topic);
 }
 
-bool Ros2Publisher::PublishPose(TimestampNs stamp, const Pose2& T_map_robot) {
+bool Ros2Publisher::PublishPose(TimestampNs stamp, const Pose2& T_map_robot, bool final) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (has_last_pose_ && pose_period_s_ > 0.0 && stamp >= last_pose_ns_ &&
+  if (!final && has_last_pose_ && pose_period_s_ > 0.0 && stamp >= last_pose_ns_ &&
       NsToSeconds(stamp - last_pose_ns_) < pose_period_s_) {
     return false;
   }

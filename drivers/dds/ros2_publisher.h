@@ -37,8 +37,9 @@ class Ros2Publisher {
   /// The grid with rows flipped to ROS order (bottom row first); origin = grid.origin.
   void PublishMap(const OccupancyGrid& grid, TimestampNs stamp);
   /// The robot pose in the map frame. At most one per dds.publish_pose_period_s of
-  /// `stamp` time: returns false (nothing sent) for a pose that comes sooner.
-  bool PublishPose(TimestampNs stamp, const Pose2& T_map_robot);
+  /// `stamp` time: returns false (nothing sent) for a pose that comes sooner, unless
+  /// `final` (the run's last pose, after its last correction: always sent).
+  bool PublishPose(TimestampNs stamp, const Pose2& T_map_robot, bool final = false);
   /// The trajectory: one PoseStamped per (stamp, pose), header stamp `stamp`.
   void PublishPath(TimestampNs stamp, const std::vector<std::pair<TimestampNs, Pose2>>& poses);
   /// DELETEALL, then one LINE_LIST marker (ns "loops", id 0) with two points per loop.

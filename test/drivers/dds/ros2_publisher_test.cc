@@ -103,12 +103,13 @@ TEST_F(Ros2PublisherTest, PoseIsThrottledToThePublishPeriodOfSensorTime) {
   EXPECT_TRUE(publisher.PublishPose(1000000000LL, {1.0, 2.0, 0.5}));
   EXPECT_FALSE(publisher.PublishPose(1050000000LL, {1.1, 2.0, 0.5}));
   EXPECT_TRUE(publisher.PublishPose(1100000000LL, {3.0, -4.0, -1.0}));
+  EXPECT_TRUE(publisher.PublishPose(1100000000LL, {3.0, -4.0, -1.0}, /*final=*/true));
   std::vector<std::vector<std::uint8_t>> got;
   ASSERT_TRUE(WaitFor([&] {
     for (auto& s : reader.Take()) got.push_back(std::move(s));
-    return got.size() >= 2;
+    return got.size() >= 3;
   }));
-  ASSERT_EQ(got.size(), 2u);
+  ASSERT_EQ(got.size(), 3u);
   CdrReader r(got[1].data(), got[1].size());
   const Header h = ReadHeader(r);
   EXPECT_EQ(h.stamp.sec, 1);
