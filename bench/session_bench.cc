@@ -21,16 +21,17 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iomanip>
 #include <map>
 #include <string>
 
 #include "backend/compare/map_comparison.h"
+#include "backend/compare/sar_image_occupancy.h"
 #include "backend/global_map.h"
 #include "backend/trajectory_metrics.h"
 #include "imaging/image_io.h"
 #include "pipeline/localize_job.h"
 #include "pipeline/map_job.h"
+#include "pipeline/map_outputs.h"
 #include "pipeline/scene_simulation.h"
 #include "pipeline/session_capture.h"
 #include "pipeline/session_mosaic.h"
@@ -93,24 +94,32 @@ bool IsFalse(const Pose2& estimate, const Pose2& truth) {
   return err_m > kFalseM || err_deg > kFalseDeg;
 }
 
-/// The session's map (as `map` / `map --resume` write it) scored against the grid
-/// (`compare`, ICP from `T_lidar_sar`).
-MapMetrics Score(const SessionData& session, const Config& config, const std::string& grid_yaml,
-                 const std::string& name, const Pose2& T_lidar_sar = {}) {
+/// `map` (on `grid`) scored against the LiDAR grid as `uwbsar compare` scores a map_float.tif
+/// (ICP from `T_lidar_sar`; the occupancy rule of `map`).
+MapMetrics ScoreMosaic(const cv::Mat& map, const ImageGrid& grid, const Config& config,
+                       const std::string& grid_yaml, const std::string& name,
+                       const Pose2& T_lidar_sar) {
   const std::string dir =
       (std::filesystem::temp_directory_path() / ("uwbsar_session_bench_" + name)).string();
   std::filesystem::remove_all(dir);
-  pipeline::WriteSessionOutputs(session, config, dir, {}, {}, name);
+  std::filesystem::create_directories(dir);
+  WriteFloatTiff(dir + "/map_float.tif", map);
+  std::ofstream(dir + "/map_grid.yaml") << pipeline::GridYaml(grid, name, "map_float.tif");
   AlignRequest request;
   request.T_lidar_sar = T_lidar_sar;
-  SarOccupancyRule rule;
-  rule.cell_m = config.slam.occupancy_resolution_m;
-  rule.occupied_fraction = config.slam.occupied_fraction;
-  rule.reference_percentile = config.slam.occupancy_reference_percentile;
-  const ComparisonReport report =
-      CompareMapFiles(dir + "/map_grid.yaml", grid_yaml, request, config.compare, rule);
+  const ComparisonReport report = CompareMapFiles(dir + "/map_grid.yaml", grid_yaml, request,
+                                                  config.compare, SarOccupancyRuleOf(config.slam));
   std::filesystem::remove_all(dir);
   return report.comparison.metrics;
+}
+
+/// The session's map (the mosaic `map` / `map --resume` write) scored against the grid.
+MapMetrics Score(const SessionData& session, const Config& config, const std::string& grid_yaml,
+                 const std::string& name, const Pose2& T_lidar_sar = {}) {
+  ImageGrid grid;
+  cv::Mat observed;
+  const cv::Mat map = pipeline::RenderSessionMosaic(session, config, &grid, &observed);
+  return ScoreMosaic(map, grid, config, grid_yaml, name, T_lidar_sar);
 }
 
 /// The mosaic of `session` (every run), kept only where the tiles of run `trajectory` (at
@@ -132,23 +141,7 @@ MapMetrics ScoreOnRunArea(const SessionData& session, int trajectory, const Conf
   cv::Mat mask = cv::Mat::zeros(map.size(), CV_8UC1);
   run_observed.copyTo(mask(cv::Rect(c0, r0, run_grid.cols, run_grid.rows)));
   map.setTo(0.0f, ~mask);
-  const std::string dir =
-      (std::filesystem::temp_directory_path() / ("uwbsar_session_bench_" + name)).string();
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  WriteFloatTiff(dir + "/map_float.tif", map);
-  std::ofstream(dir + "/map_grid.yaml")
-      << std::setprecision(12) << "image: map_float.tif\nx0_m: " << grid.x0_m
-      << "\ny0_m: " << grid.y0_m << "\nresolution_m: " << res << "\nrows: " << grid.rows
-      << "\ncols: " << grid.cols << "\n";
-  SarOccupancyRule rule;
-  rule.cell_m = config.slam.occupancy_resolution_m;
-  rule.occupied_fraction = config.slam.occupied_fraction;
-  rule.reference_percentile = config.slam.occupancy_reference_percentile;
-  const ComparisonReport report =
-      CompareMapFiles(dir + "/map_grid.yaml", grid_yaml, AlignRequest{}, config.compare, rule);
-  std::filesystem::remove_all(dir);
-  return report.comparison.metrics;
+  return ScoreMosaic(map, grid, config, grid_yaml, name, Pose2{});
 }
 
 std::string Describe(const MapMetrics& m) {

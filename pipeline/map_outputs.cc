@@ -114,18 +114,6 @@ nlohmann::json AteJson(const AteResult& a) {
           {"yaw_rmse_deg", a.yaw_rmse_rad * 180.0 / M_PI}};
 }
 
-std::string GridYaml(const ImageGrid& grid, const std::string& what, const std::string& image) {
-  std::ostringstream yaml;
-  yaml.precision(12);
-  yaml << "# Pixel geometry of " << what << ": column = +x, row = -y (world frame)\n"
-       << "image: " << image << "  # the float map this file describes (uwbsar compare reads it)\n"
-       << "x0_m: " << grid.x0_m << "  # x of the centre of column 0\n"
-       << "y0_m: " << grid.y0_m << "  # y of the centre of row 0 (top row)\n"
-       << "resolution_m: " << grid.resolution_m << "\nrows: " << grid.rows
-       << "\ncols: " << grid.cols << "\n";
-  return yaml.str();
-}
-
 /// trajectory_<digits>.tum: one run of a joined session (pipeline/session_outputs.h).
 bool IsRunTrajectoryName(const std::string& name) {
   const std::string prefix = "trajectory_", suffix = ".tum";
@@ -394,6 +382,19 @@ std::vector<std::string> WriteExactMap(const MapRun& run, const std::string& out
   WriteImageAtomic(base + ".png",
                    Colorize(Enhance8U(exact.image, config.enhance), config.enhance.colormap));
   return {base + "_float.tif", base + "_grid.yaml", base + ".png"};
+}
+
+std::string GridYaml(const ImageGrid& grid, const std::string& what, const std::string& image,
+                     const std::string& frame) {
+  std::ostringstream yaml;
+  yaml.precision(12);
+  yaml << "# Pixel geometry of " << what << ": column = +x, row = -y (" << frame << " frame)\n"
+       << "image: " << image << "  # the float map this file describes (uwbsar compare reads it)\n"
+       << "x0_m: " << grid.x0_m << "  # x of the centre of column 0\n"
+       << "y0_m: " << grid.y0_m << "  # y of the centre of row 0 (top row)\n"
+       << "resolution_m: " << grid.resolution_m << "\nrows: " << grid.rows
+       << "\ncols: " << grid.cols << "\n";
+  return yaml.str();
 }
 
 }  // namespace uwbsar::pipeline

@@ -96,4 +96,9 @@ MapOutputs WriteMapOutputs(const MapState& state, const std::string& out_dir);
 /// with slam.keep_scan_profiles (std::logic_error otherwise).
 std::vector<std::string> WriteExactMap(const MapRun& run, const std::string& out_dir);
 
+/// The text of a *_grid.yaml: the pixel geometry of the float map `image` (what `uwbsar
+/// compare` reads), with a comment naming `what` it describes and the `frame` of x, y.
+std::string GridYaml(const ImageGrid& grid, const std::string& what, const std::string& image,
+                     const std::string& frame = "world");
+
 }  // namespace uwbsar::pipeline

@@ -140,13 +140,8 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
   cv::Mat observed;
   const cv::Mat map = RenderSessionMosaic(session, config, &grid, &observed);
   WriteFloatTiff(path("map_float.tif"), map);
-  std::ostringstream yaml;
-  yaml.precision(12);
-  yaml << "# Pixel geometry of map_float.tif and map.png: column = +x, row = -y (map frame)\n"
-       << "image: map_float.tif\nx0_m: " << grid.x0_m << "\ny0_m: " << grid.y0_m
-       << "\nresolution_m: " << grid.resolution_m << "\nrows: " << grid.rows
-       << "\ncols: " << grid.cols << "\n";
-  WriteTextAtomic(path("map_grid.yaml"), yaml.str());
+  WriteTextAtomic(path("map_grid.yaml"),
+                  GridYaml(grid, "map_float.tif and map.png", "map_float.tif", "map"));
 
   // map.png: the mosaic, each run's corrected trajectory in its colour, accepted loops cyan.
   std::vector<float> values;

@@ -90,12 +90,9 @@ void RunCompare(const CompareOptions& opts, const GlobalOptions& globals) {
   if (opts.tolerance_cells >= 0) config.compare.tolerance_cells = opts.tolerance_cells;
   const AlignRequest request = MakeAlignRequest(opts, config);
   // Everything is computed before the output folder is touched: bad input leaves nothing.
-  SarOccupancyRule rule;
-  rule.cell_m = config.slam.occupancy_resolution_m;
-  rule.occupied_fraction = config.slam.occupied_fraction;
-  rule.reference_percentile = config.slam.occupancy_reference_percentile;
-  const ComparisonReport report = CompareMapFiles(opts.sar, opts.lidar, request, config.compare,
-                                                  rule, config.limits.max_map_image_pixels);
+  const ComparisonReport report =
+      CompareMapFiles(opts.sar, opts.lidar, request, config.compare,
+                      SarOccupancyRuleOf(config.slam), config.limits.max_map_image_pixels);
   pipeline::EnsureDirectory(opts.out_dir);
   const auto files = WriteComparisonOutputs(report, opts.out_dir, config.compare);
   if (opts.json) {

@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "slam/config.h"
 #include "slam/occupancy_grid.h"
 
 namespace uwbsar {
@@ -18,6 +19,12 @@ struct SarOccupancyRule {
   double occupied_fraction = 0.3;
   double reference_percentile = 99.0;
 };
+
+/// The rule `uwbsar map` writes map.pgm with (slam.occupancy_resolution_m,
+/// slam.occupied_fraction, slam.occupancy_reference_percentile).
+inline SarOccupancyRule SarOccupancyRuleOf(const SlamConfig& slam) {
+  return {slam.occupancy_resolution_m, slam.occupied_fraction, slam.occupancy_reference_percentile};
+}
 
 /// True when `yaml_path` is a SAR grid YAML (has `x0_m`, no `origin`) rather than a
 /// map_server map. Throws InputError naming the file when it cannot be read as a mapping.
