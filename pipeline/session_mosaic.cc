@@ -106,12 +106,7 @@ cv::Mat RenderSessionMosaic(const SessionData& session, double resolution_m, Joi
   const auto mosaic = [&](const auto& scale_of) {
     GlobalMap global(resolution_m);
     for (const SessionKeyframe& k : session.keyframes) {
-      const double scale = scale_of(k.trajectory);
-      if (scale == 1.0) {
-        global.AddTile(k.detected, k.detected_grid, k.T_map_anchor);
-      } else {
-        global.AddTile(k.detected * scale, k.detected_grid, k.T_map_anchor);
-      }
+      global.AddTile(k.detected * scale_of(k.trajectory), k.detected_grid, k.T_map_anchor);
     }
     return global.Render(grid, observed);
   };
