@@ -10,14 +10,50 @@
 #include "drivers/rosbag/bag_storage.h"
 #include "drivers/rosbag/sqlite_util.h"
 #include "slam/errors.h"
+#include "slam/log.h"
 
 namespace uwbsar::rosbag {
 namespace {
 
+// A writer killed inside a transaction whose pages had already spilled into the file
+// (our live recorder after kill -9, between two flushes) leaves a hot rollback journal,
+// `<file>-journal`. sqlite will not read such a file read-only (SQLITE_READONLY_ROLLBACK):
+// the journal must first be played back, which restores the last commit, i.e. exactly
+// what the recording promises (everything up to its last flush). Does that once with a
+// read-write connection and returns `path`; a file that reads read-only is left untouched.
+const std::string& RolledBackAfterCrash(const std::string& path) {
+  int code = SQLITE_OK;
+  {
+    sqlite3* db = nullptr;
+    sqlite3_stmt* stmt = nullptr;
+    if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK) {
+      sqlite3_extended_result_codes(db, 1);
+      if (sqlite3_prepare_v2(db, "SELECT count(*) FROM sqlite_master", -1, &stmt, nullptr) ==
+          SQLITE_OK) {
+        sqlite3_step(stmt);
+      }
+      code = sqlite3_extended_errcode(db);
+    }
+    sqlite3_finalize(stmt);
+    sqlite3_close(db);
+  }
+  if (code != SQLITE_READONLY_ROLLBACK) return path;  // other errors: the real open names them
+  try {
+    SqliteDb db(path, SQLITE_OPEN_READWRITE);
+    db.Exec("SELECT count(*) FROM sqlite_master");  // the first read plays the journal back
+  } catch (const std::exception& e) {
+    throw InputError(path + ": holds a transaction interrupted by a crash (" + path +
+                     "-journal) that needs write access to roll back: " + e.what());
+  }
+  Log(LogLevel::kWarning, path + ": rolled back a transaction interrupted by a crash; " +
+                              "the file holds everything up to its writer's last commit");
+  return path;
+}
+
 class SqliteStorageReader final : public StorageReader {
  public:
   explicit SqliteStorageReader(const std::string& path)
-      : db_(path, SQLITE_OPEN_READONLY | SQLITE_OPEN_NOMUTEX) {
+      : db_(RolledBackAfterCrash(path), SQLITE_OPEN_READONLY | SQLITE_OPEN_NOMUTEX) {
     std::set<std::string> tables;
     {
       SqliteStatement q(db_, "SELECT name FROM sqlite_master WHERE type='table'");

@@ -4,6 +4,8 @@
 #include "drivers/rosbag/bag_writer.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 
@@ -108,6 +110,39 @@ TEST(BagWriterTest, FlushedMessagesAreReadableBeforeClose) {
     EXPECT_TRUE(fs::exists(tmp.path + "/live/metadata.yaml"));
     EXPECT_EQ(BagReader(tmp.path + "/live").Info().message_count, 25u);
   }
+}
+
+// kill -9 of a live recording between two flushes, after the open transaction has spilled
+// pages into the file, leaves a hot rollback journal; the bag must still read (sqlite
+// refuses that read-only) and hold exactly what was flushed.
+TEST(BagWriterTest, ARecordingKilledInsideATransactionReadsUpToItsLastFlush) {
+  TempDir tmp;
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    BagWriterOptions o;
+    o.flush_period_s = 1.0;
+    BagWriter w(tmp.path + "/live", o);
+    const int topic = w.AddTopic("/blob", "std_msgs/msg/UInt8MultiArray");
+    const std::vector<std::uint8_t> blob(64 * 1024, 0x5a);
+    for (int i = 0; i <= 10; ++i) w.Write(topic, kT0 + i * 100000000LL, blob);  // flushed
+    // 16 MiB more within the flush period: far past sqlite's 2 MiB page cache, so the
+    // transaction spills into the file and journals the pages it overwrites.
+    for (int i = 1; i <= 256; ++i) w.Write(topic, kT0 + 1000000000LL + i * 1000000LL, blob);
+    ::_exit(0);  // no destructor, no commit: what SIGKILL leaves
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  const std::string file = tmp.path + "/live.partial/live_0.db3";
+  ASSERT_TRUE(fs::exists(file + "-journal"));  // else this test no longer tests a crash
+  ASSERT_GT(fs::file_size(file + "-journal"), 0u);
+  BagReader reader(file);
+  EXPECT_EQ(reader.Info().message_count, 11u);
+  BagMessage msg;
+  int n = 0;
+  while (reader.Next(&msg)) ++n;
+  EXPECT_EQ(n, 11);
 }
 
 TEST(BagWriterTest, RefusesToOverwrite) {
