@@ -30,6 +30,7 @@ cv::Mat PlotPoseGraph(const std::map<int, Pose2>& poses, const std::vector<PoseG
     for (std::size_t i = 0; i < edges.size(); ++i) {
       const PoseGraphEdge& e = edges[i];
       const bool rejected = i < reports.size() && reports[i].rejected;
+      if (e.kind == EdgeKind::kWall) continue;  // short sideways ties along the path
       const int wanted = e.kind == EdgeKind::kOdometry ? 1 : (rejected ? 2 : 0);
       if (wanted != pass) continue;
       const auto a = poses.find(e.from_id), b = poses.find(e.to_id);

@@ -71,7 +71,7 @@ class SupportCounter {
         const UncertainPose2 forward = EdgeAsUncertainPose(e);
         chain_[e.from_id].push_back({e.to_id, forward});
         chain_[e.to_id].push_back({e.from_id, Inverse(forward)});
-      } else {
+      } else if (e.kind == EdgeKind::kLoop) {  // wall edges neither give nor get support
         loops_at_[e.from_id].push_back(i);
         loops_at_[e.to_id].push_back(i);
       }

@@ -19,8 +19,8 @@ namespace uwbsar {
 namespace {
 
 std::string EdgeName(const PoseGraphEdge& e) {
-  return std::string(e.kind == EdgeKind::kLoop ? "loop" : "odometry") + " edge " +
-         std::to_string(e.from_id) + " -> " + std::to_string(e.to_id);
+  return std::string(EdgeKindName(e.kind)) + " edge " + std::to_string(e.from_id) + " -> " +
+         std::to_string(e.to_id);
 }
 
 bool Finite(const Pose2& p) {

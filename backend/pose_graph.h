@@ -31,8 +31,8 @@
 // Odometry edges are never rejected. With odometry_calibration, the odometry edges of each
 // trajectory (AddOdometryEdge's `trajectory`) share a calibration block
 // (backend/odometry_calibration.h) with a weak prior at zero; it is free only while an
-// accepted loop touches the trajectory, and constant at zero otherwise. The gauge is held by the
-// nodes marked fixed, or by the first node added when none is.
+// accepted loop or wall edge touches the trajectory, and constant at zero otherwise. The gauge is
+// held by the nodes marked fixed, or by the first node added when none is.
 //
 // Incremental use: the Ceres problem lives as long as the graph; AddNode/AddEdge
 // queue new elements, Optimize() inserts them and re-solves from the current
@@ -65,7 +65,17 @@ class Problem;
 
 namespace uwbsar {
 
-enum class EdgeKind { kOdometry, kLoop };
+/// kWall: the sideways offset between two keyframes of one straight stretch, measured by their
+/// wall profiles (frontend/wall_profile.h); its information constrains (almost) only that
+/// direction. It is robust and rejected by its chi2 like a loop, but never held back for
+/// support, never counted or blamed as a loop, and it frees its trajectory's odometry
+/// calibration as a loop does (it observes the heading drift between loops).
+enum class EdgeKind { kOdometry, kLoop, kWall };
+
+/// "odometry", "loop", "wall": the names the session file and the reports use.
+inline const char* EdgeKindName(EdgeKind kind) {
+  return kind == EdgeKind::kLoop ? "loop" : kind == EdgeKind::kWall ? "wall" : "odometry";
+}
 
 struct PoseGraphEdge {
   int from_id = 0;
@@ -86,7 +96,7 @@ struct EdgeReport {
   int from_id = 0;
   int to_id = 0;
   EdgeKind kind = EdgeKind::kLoop;
-  bool rejected = false;  ///< only loops are ever rejected
+  bool rejected = false;  ///< only loops and wall edges are ever rejected
   std::string reason;     ///< why rejected: "chi2" (residual test), "unsupported" or
                           ///< "inconsistent" (bent the odometry, backend/odometry_consistency.h)
   int support = -1;       ///< loops: neighbouring loops that agree (-1: not computed)

@@ -84,7 +84,7 @@ void PoseGraph::ComputeSupport() {
   for (std::size_t i = 0; i < solver_edges_.size(); ++i) {
     SolverEdge& se = *solver_edges_[i];
     se.support = support[i];
-    if (!se.loss || se.trial_accepted) continue;
+    if (!se.loss || se.trial_accepted || se.edge.kind != EdgeKind::kLoop) continue;
     se.held_back = support[i] < config_.min_loop_support;
     if (se.held_back) se.rejected = true;
   }

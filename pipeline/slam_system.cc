@@ -42,6 +42,7 @@ SlamSystem::SlamSystem(const Config& config)
       frontend_(std::make_unique<ImagingFrontend>(ImagingFrontendConfig(config))),
       graph_(std::make_unique<PoseGraph>(config.backend)),
       recognizer_(std::make_unique<PlaceRecognizer>(PlaceRecognizerConfig(config))),
+      wall_edges_(config.place_recognition.wall_profiles),
       worker_(config.slam.keyframe_thread, config.slam.keyframe_queue_size,
               [this](Work&& work) { Process(std::move(work)); }) {
   frontend_->SetOdometryObserver(
@@ -134,6 +135,8 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
   const auto start = Clock::now();
   KeyframeRecord record;
   MakeDetected(keyframe, config_, &record.detected, &record.detected_grid);
+  const std::vector<PoseGraphEdge> walls =
+      wall_edges_.Add(keyframe, record.detected, record.detected_grid);
   if (!config_.slam.keep_tile_images) keyframe.image.release();
   keyframe.sensor_tiles.clear();           // per-radar images: only their features are kept
   if (!config_.slam.keep_scan_profiles) {  // the poses stay: they place the scans in time
@@ -147,6 +150,10 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
   }
   const auto lock = LockForKeyframeWork();
   for (const LoopAttempt& attempt : found.attempts) AddLoop(attempt, keyframe.id);
+  // Wall edges wait for the next solve a loop asks for (or Finish): solving for them alone
+  // would take the place of the solve right after a ring closure, which the keyframes after it
+  // need to find their own loops (their search radius is smallest then).
+  for (const PoseGraphEdge& wall : walls) graph_->AddEdge(wall);
   record.keyframe = std::move(keyframe);
   keyframes_.push_back(std::move(record));
   ++keyframes_since_solve_;

@@ -31,6 +31,7 @@
 #include "pipeline/app_config.h"
 #include "pipeline/ordered_worker.h"
 #include "pipeline/slam_snapshot.h"
+#include "pipeline/wall_edges.h"
 
 namespace uwbsar::pipeline {
 
@@ -124,6 +125,7 @@ class SlamSystem {
   // keyframe thread alone, outside the lock (features and matching are the long part).
   std::unique_ptr<PoseGraph> graph_;             // GUARDED_BY(state_mutex_), solves included
   std::unique_ptr<PlaceRecognizer> recognizer_;  // keyframe thread only
+  WallEdgeFinder wall_edges_;                    // keyframe thread only
   std::vector<KeyframeRecord> keyframes_;        // GUARDED_BY(state_mutex_)
   std::vector<LoopRecord> loops_;                // GUARDED_BY(state_mutex_)
   std::vector<OdometryEntry> odometry_;          // GUARDED_BY(state_mutex_)

@@ -1,5 +1,6 @@
 #include "pipeline/tour_eval.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +22,32 @@ Pose2 TruePoseAt(const std::vector<OdometrySample>& truth, TimestampNs t) {
     --it;
   }
   return it->T_world_robot;
+}
+
+void EvaluateWallEdges(const SlamSystem& slam, std::map<int, Pose2>& true_anchor,
+                       TourEvaluation* e) {
+  const std::vector<PoseGraphEdge> edges = slam.graph().Edges();
+  const std::vector<EdgeReport> reports = slam.graph().EdgeReports();
+  double sum_sq = 0.0;
+  int accepted = 0;
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    if (edges[i].kind != EdgeKind::kWall) continue;
+    ++e->wall_edges;
+    if (i < reports.size() && reports[i].rejected) {
+      ++e->wall_rejected;
+      continue;
+    }
+    // The direction the edge measures: its information's strongest direction in (x, y).
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(edges[i].information.topLeftCorner<2, 2>());
+    const Eigen::Vector2d n = eig.eigenvectors().col(1);
+    const Pose2 truth = Between(true_anchor[edges[i].from_id], true_anchor[edges[i].to_id]);
+    const double error = n.dot(
+        Eigen::Vector2d(edges[i].T_from_to.x_m - truth.x_m, edges[i].T_from_to.y_m - truth.y_m));
+    sum_sq += error * error;
+    ++accepted;
+    e->wall_error_max_m = std::max(e->wall_error_max_m, std::abs(error));
+  }
+  if (accepted > 0) e->wall_error_rms_m = std::sqrt(sum_sq / accepted);
 }
 
 }  // namespace
@@ -73,6 +100,7 @@ TourEvaluation EvaluateTour(const MapRun& run, double overlap_m) {
           std::max(e.longest_loop_path_m, std::abs(path_m[l.query_id] - path_m[l.match_id]));
     }
   }
+  EvaluateWallEdges(slam, true_anchor, &e);
   int previous = -10;
   bool recalled = false;
   for (const auto& [id, overlap] : query_overlap) {
@@ -89,17 +117,19 @@ TourEvaluation EvaluateTour(const MapRun& run, double overlap_m) {
 }
 
 std::string FormatTourEvaluation(const TourEvaluation& e) {
-  char line[512];
+  char line[640];
   std::snprintf(line, sizeof(line),
                 "travel %.1f m, ATE %.2f cm, odometry %.2f cm (%.1fx)%s, loops %d accepted / %d "
                 "validated / %d candidates, false %d accepted (%d validated), longest %.0f m, "
-                "recall %d/%d candidates (%.2f), %d/%d revisits (%.2f)",
+                "recall %d/%d candidates (%.2f), %d/%d revisits (%.2f), wall edges %d (%d "
+                "rejected, error rms %.1f max %.1f cm)",
                 e.travel_m, e.ate_m * 100, e.odometry_ate_m * 100,
                 e.ate_m > 0 ? e.odometry_ate_m / e.ate_m : 0.0,
                 e.ring_closed ? " ring closed" : " RING OPEN", e.accepted, e.validated,
                 e.candidates, e.false_accepted, e.false_validated, e.longest_loop_path_m,
                 e.overlap_accepted, e.overlap_candidates, e.candidate_recall(), e.revisits_recalled,
-                e.revisits, e.revisit_recall());
+                e.revisits, e.revisit_recall(), e.wall_edges, e.wall_rejected,
+                e.wall_error_rms_m * 100, e.wall_error_max_m * 100);
   return line;
 }
 

@@ -10,7 +10,8 @@
 //    overlap_m of each other (half a tile by default: the tiles share most of their area);
 //  - revisit: a maximal run of consecutive query keyframes that each have a candidate
 //    with true overlap; it is recalled when at least one of its loops is accepted;
-//  - ring closed: SLAM ATE at least 3x better than odometry alone.
+//  - ring closed: SLAM ATE at least 3x better than odometry alone;
+//  - a wall edge's error: its measured offset minus the true one, across the path.
 #pragma once
 
 #include <string>
@@ -34,6 +35,10 @@ struct TourEvaluation {
   int revisits = 0;
   int revisits_recalled = 0;
   double longest_loop_path_m = 0.0;  ///< path between the ends of the longest accepted loop
+  int wall_edges = 0;                ///< wall-profile edges (pipeline/wall_edges.h)
+  int wall_rejected = 0;             ///< of those, rejected by the backend
+  double wall_error_rms_m = 0.0;     ///< sideways error of the accepted ones against the truth
+  double wall_error_max_m = 0.0;
   bool ring_closed = false;
 
   double candidate_recall() const {

@@ -132,7 +132,7 @@ void WriteAll(SqliteDb& db, const SessionData& d) {
       s.Bind(1, idx++);
       s.Bind(2, e.edge.from_id);
       s.Bind(3, e.edge.to_id);
-      s.Bind(4, std::string(e.edge.kind == EdgeKind::kLoop ? "loop" : "odometry"));
+      s.Bind(4, std::string(EdgeKindName(e.edge.kind)));
       s.Bind(5, e.edge.T_from_to.x_m);
       s.Bind(6, e.edge.T_from_to.y_m);
       s.Bind(7, e.edge.T_from_to.yaw_rad);
@@ -323,7 +323,16 @@ SessionData ReadSession(const std::string& path, const CoreConfig* config) {
       SessionEdge e;
       e.edge.from_id = static_cast<int>(s.Int(1));
       e.edge.to_id = static_cast<int>(s.Int(2));
-      e.edge.kind = s.Text(3) == "loop" ? EdgeKind::kLoop : EdgeKind::kOdometry;
+      const std::string kind = s.Text(3);
+      if (kind == EdgeKindName(EdgeKind::kOdometry))
+        e.edge.kind = EdgeKind::kOdometry;
+      else if (kind == EdgeKindName(EdgeKind::kLoop))
+        e.edge.kind = EdgeKind::kLoop;
+      else if (kind == EdgeKindName(EdgeKind::kWall))
+        e.edge.kind = EdgeKind::kWall;
+      else
+        throw InputError(path + ": edge " + std::to_string(s.Int(0)) + ": unknown kind '" + kind +
+                         "'");
       e.edge.T_from_to = {s.Double(4), s.Double(5), s.Double(6)};
       const std::vector<unsigned char> info = s.Blob(7);
       if (info.size() != 9 * sizeof(double)) {

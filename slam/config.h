@@ -209,9 +209,9 @@ struct BackendConfig {
   double calibration_scale_sigma = 0.02;  ///< prior sigma of the distance scale (fraction)
   double calibration_heading_drift_sigma_rad_per_m = 0.005;  ///< prior sigma of the heading
                                                              ///< drift per metre travelled
-  double calibration_rotation_sigma = 0.001;  ///< prior sigma of the rotation scale (fraction):
-                                              ///< held near 0, since around a ring the turns'
-                                              ///< error cannot be told from the heading drift
+  double calibration_rotation_sigma = 0.05;  ///< prior sigma of the rotation scale (fraction);
+                                             ///< wall edges tell it from the heading drift (set
+                                             ///< 0.001 without them: a ring cannot)
   int max_trial_solves = 2;  ///< loops still held back as unsupported, tried per Optimize() in a
                              ///< solve of their own (lowest chi2 first, each once); 0 = off
   double trial_loop_chi2 = 16.27;      ///< trial: the most the solution's chi2 (all edges and

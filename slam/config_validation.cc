@@ -162,6 +162,21 @@ void Validate(const PlaceRecognitionConfig& p, const std::string& src) {
           "must be in [2, 100000]");
   Require(r.max_look_difference_deg >= 0 && r.max_look_difference_deg <= 180, src,
           k + "per_radar.max_look_difference_deg", "must be in [0, 180]");
+  const WallProfileConfig& w = p.wall_profiles;
+  Require(w.min_gap >= 1, src, k + "wall_profiles.min_gap", "must be >= 1");
+  Require(w.max_gap >= w.min_gap && w.max_gap <= 100, src, k + "wall_profiles.max_gap",
+          "must be in [wall_profiles.min_gap, 100]");
+  Require(w.max_heading_change_deg > 0 && w.max_heading_change_deg <= 45, src,
+          k + "wall_profiles.max_heading_change_deg", "must be in (0, 45]");
+  Require(w.bin_m > 0 && w.bin_m <= 0.1, src, k + "wall_profiles.bin_m", "must be in (0, 0.1]");
+  Require(w.half_width_m >= 10 * w.bin_m && w.half_width_m / w.bin_m <= 1e5, src,
+          k + "wall_profiles.half_width_m", "must be in [10, 1e5] x wall_profiles.bin_m");
+  Require(w.search_m >= w.bin_m && w.search_m < w.half_width_m, src, k + "wall_profiles.search_m",
+          "must be in [bin_m, half_width_m)");
+  Require(w.min_wall_contrast >= 1, src, k + "wall_profiles.min_wall_contrast", "must be >= 1");
+  Require(w.min_correlation > 0 && w.min_correlation <= 1, src, k + "wall_profiles.min_correlation",
+          "must be in (0, 1]");
+  Require(w.lateral_std_m > 0, src, k + "wall_profiles.lateral_std_m", "must be > 0");
 }
 
 void Validate(const SlamConfig& s, const std::string& src) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "slam/radar_match_config.h"
+#include "slam/wall_profile_config.h"
 
 namespace uwbsar {
 
@@ -165,6 +166,7 @@ struct PlaceRecognitionConfig {
   CandidateSearchConfig candidates;
   GuidedMatchConfig guided;
   RadarMatchConfig per_radar;
+  WallProfileConfig wall_profiles;
 
   template <class V>
   void Visit(V& v) {
@@ -174,6 +176,7 @@ struct PlaceRecognitionConfig {
     v("candidates", candidates);
     v("guided", guided);
     v("per_radar", per_radar);
+    v("wall_profiles", wall_profiles);
   }
 };
 

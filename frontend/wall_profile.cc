@@ -1,0 +1,128 @@
+#include "frontend/wall_profile.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace uwbsar {
+namespace {
+
+/// Normalised cross-correlation of a[q + shift] with b[q] over the bins both cover.
+double Correlation(const std::vector<float>& a, const std::vector<float>& b, int shift) {
+  const int n = static_cast<int>(a.size());
+  const int begin = std::max(0, -shift), end = std::min(n, n - shift);
+  if (end - begin < 10) return -1.0;
+  double mean_a = 0.0, mean_b = 0.0;
+  for (int q = begin; q < end; ++q) mean_a += a[q + shift], mean_b += b[q];
+  mean_a /= end - begin;
+  mean_b /= end - begin;
+  double ab = 0.0, aa = 0.0, bb = 0.0;
+  for (int q = begin; q < end; ++q) {
+    const double x = a[q + shift] - mean_a, y = b[q] - mean_b;
+    ab += x * y;
+    aa += x * x;
+    bb += y * y;
+  }
+  return aa > 0.0 && bb > 0.0 ? ab / std::sqrt(aa * bb) : -1.0;
+}
+
+}  // namespace
+
+WallProfile ComputeWallProfile(const cv::Mat& detected, const ImageGrid& grid, double heading_rad,
+                               const WallProfileConfig& config) {
+  if (detected.type() != CV_32FC1 || detected.rows != grid.rows || detected.cols != grid.cols) {
+    throw std::invalid_argument("ComputeWallProfile: a CV_32FC1 image of the grid's size");
+  }
+  WallProfile p;
+  p.heading_rad = heading_rad;
+  p.bin_m = config.bin_m;
+  const int num_bins = 2 * static_cast<int>(std::lround(config.half_width_m / config.bin_m));
+  p.bins.assign(static_cast<std::size_t>(num_bins), 0.0f);
+  const double half_width_m = p.half_width_m();
+  // Offset of pixel (c, r) along the normal: n . (x0 + c res, y0 - r res), linear in c and r.
+  const double nx = -std::sin(heading_rad), ny = std::cos(heading_rad);
+  // Each pixel is spread over the width its square covers across the path, so that bins finer
+  // than the pixels get no empty comb on an axis-aligned path.
+  const double footprint_m = grid.resolution_m * (std::abs(nx) + std::abs(ny));
+  for (int r = 0; r < detected.rows; ++r) {
+    const float* row = detected.ptr<float>(r);
+    const double s_row = nx * grid.x0_m + ny * grid.RowToY(r) + half_width_m;
+    for (int c = 0; c < detected.cols; ++c) {
+      if (!(row[c] > 0.0f)) continue;
+      const double lo = (s_row + nx * c * grid.resolution_m - 0.5 * footprint_m) / config.bin_m;
+      const double hi = lo + footprint_m / config.bin_m;
+      const double density = row[c] / (hi - lo);
+      for (int b = std::max(0, static_cast<int>(std::floor(lo)));
+           b < std::min(num_bins, static_cast<int>(std::ceil(hi))); ++b) {
+        const double overlap = std::min<double>(hi, b + 1) - std::max<double>(lo, b);
+        p.bins[static_cast<std::size_t>(b)] += static_cast<float>(density * overlap);
+      }
+    }
+  }
+  // The floor: the median of the bins the tile imaged. It is the same wherever a tile is (the
+  // imaged band's edges, sidelobes), so it is removed; walls stand out of it by their contrast.
+  std::vector<float> imaged;
+  for (const float v : p.bins) {
+    if (v > 0.0f) imaged.push_back(v);
+  }
+  if (imaged.empty()) return p;
+  std::nth_element(imaged.begin(), imaged.begin() + imaged.size() / 2, imaged.end());
+  const float floor = imaged[imaged.size() / 2];
+  float peak = 0.0f;
+  for (float& v : p.bins) {
+    peak = std::max(peak, v);
+    v = std::max(0.0f, v - floor);
+  }
+  p.contrast = floor > 0.0f ? peak / floor : 0.0;
+  return p;
+}
+
+WallProfileAlignment AlignWallProfiles(const WallProfile& a, const WallProfile& b,
+                                       double predicted_offset_m, const WallProfileConfig& config) {
+  if (a.bins.size() != b.bins.size() || a.bin_m != b.bin_m) {
+    throw std::invalid_argument("AlignWallProfiles: profiles of different geometry");
+  }
+  WallProfileAlignment result;
+  char text[96];
+  if (std::min(a.contrast, b.contrast) < config.min_wall_contrast) {
+    std::snprintf(text, sizeof text, "no wall: profile contrast %.1f < %.1f",
+                  std::min(a.contrast, b.contrast), config.min_wall_contrast);
+    result.reason = text;
+    return result;
+  }
+  // a's offset s_a of a world point is b's s_b plus b's anchor offset: a[q + shift] ~ b[q].
+  const int centre = static_cast<int>(std::lround(predicted_offset_m / a.bin_m));
+  const int reach = static_cast<int>(std::lround(config.search_m / a.bin_m));
+  std::vector<double> score(static_cast<std::size_t>(2 * reach + 1));
+  int best = -1;
+  for (int k = 0; k <= 2 * reach; ++k) {
+    score[static_cast<std::size_t>(k)] = Correlation(a.bins, b.bins, centre - reach + k);
+    if (best < 0 || score[static_cast<std::size_t>(k)] > score[static_cast<std::size_t>(best)]) {
+      best = k;
+    }
+  }
+  result.correlation = score[static_cast<std::size_t>(best)];
+  double refined = best;
+  if (best > 0 && best < 2 * reach) {  // parabola through the peak and its neighbours
+    const double l = score[static_cast<std::size_t>(best - 1)];
+    const double m = score[static_cast<std::size_t>(best)];
+    const double r = score[static_cast<std::size_t>(best + 1)];
+    const double curvature = l - 2.0 * m + r;
+    if (curvature < 0.0) refined += 0.5 * (l - r) / curvature;
+  }
+  result.offset_m = (centre - reach + refined) * a.bin_m;
+  if (best == 0 || best == 2 * reach) {
+    std::snprintf(text, sizeof text, "peak on the edge of the +-%.2f m search", config.search_m);
+    result.reason = text;
+  } else if (result.correlation < config.min_correlation) {
+    std::snprintf(text, sizeof text, "correlation %.2f < %.2f", result.correlation,
+                  config.min_correlation);
+    result.reason = text;
+  } else {
+    result.accepted = true;
+  }
+  return result;
+}
+
+}  // namespace uwbsar
