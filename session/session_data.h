@@ -19,8 +19,10 @@
 
 namespace uwbsar {
 
-/// Bumped whenever a table or column changes meaning; readers refuse other versions.
-constexpr int kSessionFormatVersion = 1;
+/// Bumped whenever a table or column changes meaning; readers refuse versions they do not know.
+/// 2: edges keep their odometry calibration fields (trajectory, path_m, turn_rad), so that a
+/// resumed or merged graph calibrates each run's odometry as its own run did; 1 still reads.
+constexpr int kSessionFormatVersion = 2;
 
 struct SessionKeyframe {
   int id = 0;          ///< unique in the session (graph node id)

@@ -38,7 +38,8 @@ CREATE TABLE features (
   keypoints BLOB NOT NULL, descriptors BLOB NOT NULL, PRIMARY KEY (keyframe_id, detector));
 CREATE TABLE edges (
   idx INTEGER PRIMARY KEY, from_id INTEGER NOT NULL, to_id INTEGER NOT NULL, kind TEXT NOT NULL,
-  x_m REAL, y_m REAL, yaw_rad REAL, information BLOB NOT NULL, rejected INTEGER NOT NULL);
+  x_m REAL, y_m REAL, yaw_rad REAL, information BLOB NOT NULL, rejected INTEGER NOT NULL,
+  trajectory INTEGER NOT NULL, path_m REAL, turn_rad REAL);
 CREATE TABLE loops (
   query_id INTEGER NOT NULL, match_id INTEGER NOT NULL, validated INTEGER NOT NULL,
   accepted INTEGER NOT NULL, x_m REAL, y_m REAL, yaw_rad REAL, chi2 REAL,
@@ -126,7 +127,7 @@ void WriteAll(SqliteDb& db, const SessionData& d) {
     }
   }
   {
-    SqliteStatement s(db, "INSERT INTO edges VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)");
+    SqliteStatement s(db, "INSERT INTO edges VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
     int idx = 0;
     for (const SessionEdge& e : d.edges) {
       s.Bind(1, idx++);
@@ -138,6 +139,9 @@ void WriteAll(SqliteDb& db, const SessionData& d) {
       s.Bind(7, e.edge.T_from_to.yaw_rad);
       s.BindBlob(8, InformationBlob(e.edge.information));
       s.Bind(9, e.rejected ? 1 : 0);
+      s.Bind(10, e.edge.trajectory);
+      s.Bind(11, e.edge.path_m);
+      s.Bind(12, e.edge.turn_rad);  // NaN (the yaw of T) is stored as NULL
       s.Run();
     }
   }
@@ -243,10 +247,13 @@ SessionData ReadSession(const std::string& path, const CoreConfig* config) {
   SessionData d;
   if (Meta(db, "format") != kFormatName) throw InputError(path + ": not a uwbsar session");
   const std::string version = Meta(db, "format_version");
-  if (version != std::to_string(kSessionFormatVersion)) {
-    throw InputError(path + ": session format version " + version + ", this uwbsar reads " +
+  // Version 1 differs only by the edges' calibration columns, which it lacks (its odometry
+  // edges are then solved uncalibrated, as they were).
+  if (version != "1" && version != std::to_string(kSessionFormatVersion)) {
+    throw InputError(path + ": session format version " + version + ", this uwbsar reads 1 to " +
                      std::to_string(kSessionFormatVersion));
   }
+  d.format_version = std::stoi(version);
   d.config_yaml = Meta(db, "config_yaml");
   d.fingerprint = Meta(db, "config_fingerprint");
   if (config != nullptr) {
@@ -343,6 +350,11 @@ SessionData ReadSession(const std::string& path, const CoreConfig* config) {
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) e.edge.information(r, c) = v[r * 3 + c];
       e.rejected = s.Int(8) != 0;
+      if (d.format_version >= 2) {
+        e.edge.trajectory = static_cast<int>(s.Int(9));
+        e.edge.path_m = s.Double(10);
+        e.edge.turn_rad = s.Double(11);
+      }
       d.edges.push_back(e);
     }
   }

@@ -39,6 +39,7 @@ SessionData Renumbered(const SessionData& b, int id_offset, int trajectory_offse
   for (SessionEdge& e : out.edges) {
     e.edge.from_id += id_offset;
     e.edge.to_id += id_offset;
+    if (e.edge.trajectory >= 0) e.edge.trajectory += trajectory_offset;
   }
   for (SessionLoop& l : out.loops) {
     l.query_id += id_offset;

@@ -1,13 +1,13 @@
 // A ring closed only after 50 m on a generated building floor
 // (config/maps/tours/two_rings.yaml, the west ring of the figure of eight, 55 m), mapped
 // with the default configuration: the ring's closure itself is accepted (a loop between
-// the tour's start and its end), no false loop, SLAM beats odometry alone. Measured (seed
-// 1): 9 loops, ATE 6.24 cm against 12.34 cm of odometry (2.0x; 6.49 cm before the online
-// odometry calibration): the 5 cm / 3x goal is not met here. What is left is the
-// odometry's systematic error, which one ring closure cannot separate: around a ring the
-// heading drift per metre and the turns' scale error move the closure alike, and the
-// distance scale not at all (with the simulator's true intrinsics held fixed the same run
-// gives 1.85 cm; README "Measured"). The full set of tours and seeds is
+// the tour's start and its end), no false loop, SLAM beats odometry alone, and the wall
+// edges of the straight stretches (pipeline/wall_edges.h) measure the sideways offsets to
+// within a few centimetres. Measured (seed 1): 9 loops, 87 wall edges (none rejected, error
+// 1.2 cm rms, 3.4 cm at most against the truth), ATE 4.29 cm against 12.34 cm of odometry
+// (2.9x). Before the wall edges: 6.24 cm (2.0x), as one ring closure cannot tell the heading
+// drift per metre from the turns' scale error; the odometry on this short ring is already
+// good, so the 3x of the tour bench is not asked here. The full set of tours and seeds is
 // `uwbsar_bench --benchmark_filter=Tour`.
 #include <gtest/gtest.h>
 
@@ -33,8 +33,12 @@ TEST(TourRunTest, RingClosedAfterFiftyMetresWithoutFalseLoops) {
   ASSERT_GE(e.travel_m, 50.0);
   EXPECT_EQ(e.false_accepted, 0);
   EXPECT_GE(e.longest_loop_path_m, 45.0);  // the ring's closure itself was accepted
-  EXPECT_LT(e.ate_m * 1.5, e.odometry_ate_m);
-  EXPECT_LE(e.ate_m, 0.08);
+  EXPECT_LT(e.ate_m * 2.5, e.odometry_ate_m);
+  EXPECT_LE(e.ate_m, 0.05);
+  EXPECT_GE(e.wall_edges, 50);
+  EXPECT_LE(e.wall_rejected * 10, e.wall_edges);
+  EXPECT_LE(e.wall_error_rms_m, 0.02);
+  EXPECT_LE(e.wall_error_max_m, 0.06);
 }
 
 }  // namespace

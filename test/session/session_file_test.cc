@@ -7,6 +7,7 @@
 #include <sqlite3.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -118,6 +119,9 @@ TEST_F(SessionFileTest, RoundTripKeepsPosesTilesFeaturesAndEdges) {
     ExpectSameFeatures(x.features.orb, y.features.orb);
   }
   ASSERT_EQ(loaded.edges.size(), a.edges.size());
+  int calibrated = 0;  // odometry edges that carry their trajectory (what the round trip keeps)
+  for (const SessionEdge& e : a.edges) calibrated += e.edge.trajectory >= 0 && e.edge.path_m > 0;
+  EXPECT_GT(calibrated, 0);
   for (std::size_t i = 0; i < a.edges.size(); ++i) {
     EXPECT_EQ(a.edges[i].edge.from_id, loaded.edges[i].edge.from_id);
     EXPECT_EQ(a.edges[i].edge.to_id, loaded.edges[i].edge.to_id);
@@ -125,6 +129,13 @@ TEST_F(SessionFileTest, RoundTripKeepsPosesTilesFeaturesAndEdges) {
     EXPECT_TRUE(SamePose(a.edges[i].edge.T_from_to, loaded.edges[i].edge.T_from_to));
     EXPECT_EQ(a.edges[i].edge.information, loaded.edges[i].edge.information);
     EXPECT_EQ(a.edges[i].rejected, loaded.edges[i].rejected);
+    // The odometry calibration's inputs (a NaN turn is stored as NULL and read back as NaN).
+    EXPECT_EQ(a.edges[i].edge.trajectory, loaded.edges[i].edge.trajectory);
+    EXPECT_EQ(a.edges[i].edge.path_m, loaded.edges[i].edge.path_m);
+    EXPECT_EQ(std::isnan(a.edges[i].edge.turn_rad), std::isnan(loaded.edges[i].edge.turn_rad));
+    if (!std::isnan(a.edges[i].edge.turn_rad)) {
+      EXPECT_EQ(a.edges[i].edge.turn_rad, loaded.edges[i].edge.turn_rad);
+    }
   }
   ASSERT_EQ(loaded.loops.size(), a.loops.size());
   EXPECT_EQ(loaded.odometry.size(), a.odometry.size());
@@ -173,6 +184,22 @@ TEST_F(SessionFileTest, ForeignDamagedAndOtherVersionFilesAreRefused) {
                nullptr);
   sqlite3_close(db);
   EXPECT_NE(ErrorOf([&] { ReadSession(future); }).find("format version 99"), std::string::npos);
+
+  // Version 1 had no calibration columns on its edges: it reads, its edges uncalibrated.
+  const std::string version1 = *dir_ + "/version1.uwbsar";
+  fs::copy_file(Path(), version1);
+  ASSERT_EQ(sqlite3_open(version1.c_str(), &db), SQLITE_OK);
+  for (const char* sql :
+       {"ALTER TABLE edges DROP COLUMN trajectory", "ALTER TABLE edges DROP COLUMN path_m",
+        "ALTER TABLE edges DROP COLUMN turn_rad",
+        "UPDATE meta SET value = '1' WHERE key = 'format_version'"}) {
+    ASSERT_EQ(sqlite3_exec(db, sql, nullptr, nullptr, nullptr), SQLITE_OK) << sql;
+  }
+  sqlite3_close(db);
+  const SessionData old = ReadSession(version1);
+  EXPECT_EQ(old.format_version, 1);
+  ASSERT_FALSE(old.edges.empty());
+  for (const SessionEdge& e : old.edges) EXPECT_EQ(e.edge.trajectory, -1);
 
   const std::string truncated = *dir_ + "/truncated.uwbsar";
   fs::copy_file(Path(), truncated);
