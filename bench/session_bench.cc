@@ -271,14 +271,15 @@ void BM_Session(benchmark::State& state) {
     std::printf(
         "%s resume: %s after %.2f m of B, %d loops between the runs (%d rejected, %d dropped), "
         "%d false; ATE common frame %.2f cm (A alone %.2f, B alone %.2f; A's part of the "
-        "joined map %.2f, B's %.2f); merge %.2f s\n",
+        "joined map %.2f, B's %.2f; A alone from its own session the same way %.2f); merge "
+        "%.2f s\n",
         label.c_str(), report.connected ? "connected" : "NOT connected", report.connect_path_m,
         between, report.loop_edges_rejected, report.dropped, false_loops, common.rmse_m * 100,
         ate_a.rmse_m * 100, ate_b.rmse_m * 100,
         pipeline::CommonFrameError(merged, {{0, a.ground_truth}}).rmse_m * 100,
         pipeline::CommonFrameError(merged, {{report.trajectory_offset, b.ground_truth}}).rmse_m *
             100,
-        merge_s);
+        pipeline::CommonFrameError(sa, {{0, a.ground_truth}}).rmse_m * 100, merge_s);
     std::printf(
         "%s localize: first fix after %.2f m, %zu keyframes, %d with fixes, %d false; ATE "
         "while tracking %.2f cm; wall clock with the simulator: %.2f s localising B vs %.2f s "
