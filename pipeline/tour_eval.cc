@@ -24,7 +24,7 @@ Pose2 TruePoseAt(const std::vector<OdometrySample>& truth, TimestampNs t) {
   return it->T_world_robot;
 }
 
-void EvaluateWallEdges(const SlamSystem& slam, std::map<int, Pose2>& true_anchor,
+void EvaluateWallEdges(const SlamSystem& slam, const std::map<int, Pose2>& true_anchor,
                        TourEvaluation* e) {
   const std::vector<PoseGraphEdge> edges = slam.graph().Edges();
   const std::vector<EdgeReport> reports = slam.graph().EdgeReports();
@@ -40,7 +40,7 @@ void EvaluateWallEdges(const SlamSystem& slam, std::map<int, Pose2>& true_anchor
     // The direction the edge measures: its information's strongest direction in (x, y).
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(edges[i].information.topLeftCorner<2, 2>());
     const Eigen::Vector2d n = eig.eigenvectors().col(1);
-    const Pose2 truth = Between(true_anchor[edges[i].from_id], true_anchor[edges[i].to_id]);
+    const Pose2 truth = Between(true_anchor.at(edges[i].from_id), true_anchor.at(edges[i].to_id));
     const double error = n.dot(
         Eigen::Vector2d(edges[i].T_from_to.x_m - truth.x_m, edges[i].T_from_to.y_m - truth.y_m));
     sum_sq += error * error;

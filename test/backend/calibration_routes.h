@@ -8,6 +8,7 @@
 
 #include "backend/odometry_calibration.h"
 #include "backend/pose_graph.h"
+#include "backend/trajectory_metrics.h"
 
 namespace uwbsar::testing {
 
@@ -68,6 +69,13 @@ inline void BuildOdometryChain(const OdometryRun& run, PoseGraph* g) {
     g->AddNode(static_cast<int>(k + 1), odom);
     g->AddOdometryEdge(static_cast<int>(k), static_cast<int>(k + 1), run.measured[k]);
   }
+}
+
+/// ATE of the graph's estimate (nodes in id order) against `truth`.
+inline double GraphAte(const PoseGraph& g, const std::vector<Pose2>& truth) {
+  std::vector<Pose2> est;
+  for (const auto& [id, p] : g.GetPoses()) est.push_back(p);
+  return ComputeAte(est, truth).rmse_m;
 }
 
 }  // namespace uwbsar::testing

@@ -7,7 +7,6 @@
 
 #include "backend/pose_graph.h"
 #include "backend/se2_edge_cost.h"
-#include "backend/trajectory_metrics.h"
 #include "test/backend/calibration_routes.h"
 
 namespace uwbsar {
@@ -15,6 +14,7 @@ namespace {
 
 using testing::BuildOdometryChain;
 using testing::DriveSteps;
+using testing::GraphAte;
 using testing::LShapeLap;
 using testing::MeasuredStep;
 using testing::OdometryRun;
@@ -41,12 +41,6 @@ void Build(const OdometryRun& run, bool loops, PoseGraph* g) {
       }
     }
   }
-}
-
-double Ate(const PoseGraph& g, const std::vector<Pose2>& truth) {
-  std::vector<Pose2> est;
-  for (const auto& [id, p] : g.GetPoses()) est.push_back(p);
-  return ComputeAte(est, truth).rmse_m;
 }
 
 TEST(OdometryCalibrationTest, ZeroCalibrationIsThePlainSe2Residual) {
@@ -100,7 +94,8 @@ TEST(OdometryCalibrationTest, LoopsRecoverAsymmetricDriftAndWheelbase) {
   Build(run, true, &plain);
   plain.Optimize();
   EXPECT_TRUE(plain.OdometryCalibrations().empty());
-  const double ate_plain = Ate(plain, run.truth), ate_calibrated = Ate(calibrated, run.truth);
+  const double ate_plain = GraphAte(plain, run.truth),
+               ate_calibrated = GraphAte(calibrated, run.truth);
   std::printf("ATE with calibration %.2f cm, without %.2f cm\n", ate_calibrated * 100,
               ate_plain * 100);
   EXPECT_LT(ate_calibrated, 0.01);

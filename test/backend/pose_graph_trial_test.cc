@@ -7,7 +7,6 @@
 #include <cstdio>
 
 #include "backend/pose_graph.h"
-#include "backend/trajectory_metrics.h"
 #include "test/backend/calibration_routes.h"
 
 namespace uwbsar {
@@ -15,18 +14,13 @@ namespace {
 
 using testing::BuildOdometryChain;
 using testing::DriveSteps;
+using testing::GraphAte;
 using testing::LShapeLap;
 using testing::OdometryRun;
 
 /// One lap of the L-shaped floor (54 m) with a heading drift of -0.004 rad per metre and
 /// turns under-reported by 3 % (both turn the same way over the lap, counter-clockwise).
 OdometryRun MakeLap() { return DriveSteps({0.0, -0.004, 0.03}, LShapeLap(false)); }
-
-double Ate(const PoseGraph& g, const std::vector<Pose2>& truth) {
-  std::vector<Pose2> est;
-  for (const auto& [id, p] : g.GetPoses()) est.push_back(p);
-  return ComputeAte(est, truth).rmse_m;
-}
 
 TEST(PoseGraphTrialTest, LoneRingClosureIsKeptAfterATrialSolve) {
   const OdometryRun lap = MakeLap();
@@ -47,7 +41,7 @@ TEST(PoseGraphTrialTest, LoneRingClosureIsKeptAfterATrialSolve) {
   const int loop = g.AddLoopEdge(last, 0, Between(lap.truth[last], lap.truth[0]));
   g.Optimize();
   EXPECT_FALSE(g.EdgeReports()[static_cast<std::size_t>(loop)].rejected);
-  const double ate = Ate(g, lap.truth), ate_odometry = Ate(held, lap.truth);
+  const double ate = GraphAte(g, lap.truth), ate_odometry = GraphAte(held, lap.truth);
   std::printf("ring closure: ATE %.2f cm, odometry %.2f cm\n", ate * 100, ate_odometry * 100);
   EXPECT_LT(3 * ate, ate_odometry);
   // A later solve keeps it without a new trial.
@@ -75,7 +69,7 @@ TEST(PoseGraphTrialTest, LoneFalseLoopsAreRefusedAndTheMapRestored) {
     const EdgeReport report = g.EdgeReports()[static_cast<std::size_t>(loop)];
     EXPECT_TRUE(report.rejected) << f.from << " -> " << f.to;
     EXPECT_EQ(report.reason, "unsupported");
-    EXPECT_NEAR(Ate(g, lap.truth), Ate(odometry, lap.truth), 1e-6);
+    EXPECT_NEAR(GraphAte(g, lap.truth), GraphAte(odometry, lap.truth), 1e-6);
     EXPECT_EQ(g.OdometryCalibrations().at(0)[0], 0.0);
   }
 }

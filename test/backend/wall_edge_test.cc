@@ -11,7 +11,6 @@
 
 #include "backend/odometry_calibration.h"
 #include "backend/pose_graph.h"
-#include "backend/trajectory_metrics.h"
 #include "test/backend/calibration_routes.h"
 
 namespace uwbsar {
@@ -19,6 +18,7 @@ namespace {
 
 using testing::BuildOdometryChain;
 using testing::DriveSteps;
+using testing::GraphAte;
 using testing::OdometryRun;
 
 constexpr double kDriftRadPerM = 0.003;  // the simulator's: wheel_scale_asymmetry / wheelbase
@@ -57,12 +57,6 @@ std::vector<int> AddWallEdges(const OdometryRun& run, int wrong_at, PoseGraph* g
   return indices;
 }
 
-double Ate(const PoseGraph& g, const std::vector<Pose2>& truth) {
-  std::vector<Pose2> est;
-  for (const auto& [id, p] : g.GetPoses()) est.push_back(p);
-  return ComputeAte(est, truth).rmse_m;
-}
-
 TEST(WallEdgeTest, StraightCorridorDriftIsRecoveredWithoutLoops) {
   const OdometryRun run = Corridor();
   PoseGraph odometry_only;  // default backend: min_loop_support 1, calibration on
@@ -76,7 +70,7 @@ TEST(WallEdgeTest, StraightCorridorDriftIsRecoveredWithoutLoops) {
   EXPECT_EQ(r.num_loops, 0);        // wall edges are not loops
   EXPECT_TRUE(r.rejected.empty());  // and are not held back as unsupported
   const OdometryCalibration c = g.OdometryCalibrations().at(0);
-  const double ate_odometry = Ate(odometry_only, run.truth), ate = Ate(g, run.truth);
+  const double ate_odometry = GraphAte(odometry_only, run.truth), ate = GraphAte(g, run.truth);
   std::printf("drift estimate %.5f rad/m (truth %.5f); ATE %.2f cm, odometry alone %.2f cm\n",
               c[kCalibHeadingDrift], kDriftRadPerM, ate * 100, ate_odometry * 100);
   EXPECT_EQ(odometry_only.OdometryCalibrations().at(0)[kCalibHeadingDrift], 0.0);
