@@ -1,5 +1,6 @@
 #include "pipeline/tour_eval.h"
 
+#include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -50,6 +51,29 @@ void EvaluateWallEdges(const SlamSystem& slam, const std::map<int, Pose2>& true_
   if (accepted > 0) e->wall_error_rms_m = std::sqrt(sum_sq / accepted);
 }
 
+/// Adds one accepted loop's error against `truth` and its claimed sigmas to the sums.
+struct LoopAccuracySums {
+  double error_sq_m2 = 0.0, error_sq_rad2 = 0.0, sigma_m = 0.0, sigma_rad = 0.0;
+  int count = 0;
+
+  void Add(const LoopConstraint& c, const Pose2& truth) {
+    const Pose2& T = c.T_ij;
+    error_sq_m2 += std::pow(T.x_m - truth.x_m, 2) + std::pow(T.y_m - truth.y_m, 2);
+    error_sq_rad2 += std::pow(NormalizeAngle(T.yaw_rad - truth.yaw_rad), 2);
+    const Eigen::Matrix3d covariance = c.information.inverse();
+    sigma_m += 0.5 * (std::sqrt(covariance(0, 0)) + std::sqrt(covariance(1, 1)));
+    sigma_rad += std::sqrt(covariance(2, 2));
+    ++count;
+  }
+  void Finish(TourEvaluation* e) const {
+    if (count == 0) return;
+    e->loop_error_rms_m = std::sqrt(error_sq_m2 / count);
+    e->loop_error_rms_yaw_rad = std::sqrt(error_sq_rad2 / count);
+    e->loop_sigma_mean_m = sigma_m / count;
+    e->loop_sigma_mean_yaw_rad = sigma_rad / count;
+  }
+};
+
 }  // namespace
 
 TourEvaluation EvaluateTour(const MapRun& run, double overlap_m) {
@@ -76,6 +100,7 @@ TourEvaluation EvaluateTour(const MapRun& run, double overlap_m) {
   e.keyframes = static_cast<int>(slam.keyframes().size());
 
   std::map<int, bool> query_overlap, query_recalled;  // per query keyframe with true overlap
+  LoopAccuracySums accuracy;
   for (const LoopRecord& l : slam.loops()) {
     ++e.candidates;
     const Pose2 truth = Between(true_anchor[l.match_id], true_anchor[l.query_id]);
@@ -96,10 +121,12 @@ TourEvaluation EvaluateTour(const MapRun& run, double overlap_m) {
     e.false_validated += is_false;
     if (l.accepted()) {
       e.false_accepted += is_false;
+      if (!is_false) accuracy.Add(l.validation.constraint, truth);
       e.longest_loop_path_m =
           std::max(e.longest_loop_path_m, std::abs(path_m[l.query_id] - path_m[l.match_id]));
     }
   }
+  accuracy.Finish(&e);
   EvaluateWallEdges(slam, true_anchor, &e);
   int previous = -10;
   bool recalled = false;
@@ -117,19 +144,22 @@ TourEvaluation EvaluateTour(const MapRun& run, double overlap_m) {
 }
 
 std::string FormatTourEvaluation(const TourEvaluation& e) {
-  char line[640];
+  char line[800];
   std::snprintf(line, sizeof(line),
                 "travel %.1f m, ATE %.2f cm, odometry %.2f cm (%.1fx)%s, loops %d accepted / %d "
                 "validated / %d candidates, false %d accepted (%d validated), longest %.0f m, "
                 "recall %d/%d candidates (%.2f), %d/%d revisits (%.2f), wall edges %d (%d "
-                "rejected, error rms %.1f max %.1f cm)",
+                "rejected, error rms %.1f max %.1f cm), true loops' error rms %.2f cm %.2f deg "
+                "(claimed sigma %.2f cm %.2f deg)",
                 e.travel_m, e.ate_m * 100, e.odometry_ate_m * 100,
                 e.ate_m > 0 ? e.odometry_ate_m / e.ate_m : 0.0,
                 e.ring_closed ? " ring closed" : " RING OPEN", e.accepted, e.validated,
                 e.candidates, e.false_accepted, e.false_validated, e.longest_loop_path_m,
                 e.overlap_accepted, e.overlap_candidates, e.candidate_recall(), e.revisits_recalled,
                 e.revisits, e.revisit_recall(), e.wall_edges, e.wall_rejected,
-                e.wall_error_rms_m * 100, e.wall_error_max_m * 100);
+                e.wall_error_rms_m * 100, e.wall_error_max_m * 100, e.loop_error_rms_m * 100,
+                e.loop_error_rms_yaw_rad * 180 / M_PI, e.loop_sigma_mean_m * 100,
+                e.loop_sigma_mean_yaw_rad * 180 / M_PI);
   return line;
 }
 

@@ -11,7 +11,11 @@
 //  - revisit: a maximal run of consecutive query keyframes that each have a candidate
 //    with true overlap; it is recalled when at least one of its loops is accepted;
 //  - ring closed: SLAM ATE at least 3x better than odometry alone;
-//  - a wall edge's error: its measured offset minus the true one, across the path.
+//  - a wall edge's error: its measured offset minus the true one, across the path;
+//  - an accepted loop's error: its measured transform against the true one (translation
+//    length, |yaw|), beside the standard deviation its information claims (the square root
+//    of the covariance's diagonal: the mean of x and y, and yaw): a claimed sigma far above the
+//    error means the loops are weighted below what they measure.
 #pragma once
 
 #include <string>
@@ -39,6 +43,10 @@ struct TourEvaluation {
   int wall_rejected = 0;             ///< of those, rejected by the backend
   double wall_error_rms_m = 0.0;     ///< sideways error of the accepted ones against the truth
   double wall_error_max_m = 0.0;
+  double loop_error_rms_m = 0.0;         ///< accepted loops, translation
+  double loop_error_rms_yaw_rad = 0.0;   ///< accepted loops, rotation
+  double loop_sigma_mean_m = 0.0;        ///< their claimed translation sigma, mean
+  double loop_sigma_mean_yaw_rad = 0.0;  ///< their claimed rotation sigma, mean
   bool ring_closed = false;
 
   double candidate_recall() const {

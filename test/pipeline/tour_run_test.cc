@@ -11,6 +11,7 @@
 // `uwbsar_bench --benchmark_filter=Tour`.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "pipeline/app_config.h"
@@ -39,6 +40,13 @@ TEST(TourRunTest, RingClosedAfterFiftyMetresWithoutFalseLoops) {
   EXPECT_LE(e.wall_rejected * 10, e.wall_edges);
   EXPECT_LE(e.wall_error_rms_m, 0.02);
   EXPECT_LE(e.wall_error_max_m, 0.06);
+  // The loops are accurate, and their information does not claim more than they deliver
+  // (the translation error is a length: sqrt(2) per-axis sigmas).
+  EXPECT_GT(e.loop_sigma_mean_m, 0.0);
+  EXPECT_LE(e.loop_error_rms_m, 0.01);
+  EXPECT_LE(e.loop_error_rms_yaw_rad, 1.0 * M_PI / 180);
+  EXPECT_LE(e.loop_error_rms_m, std::sqrt(2.0) * e.loop_sigma_mean_m);
+  EXPECT_LE(e.loop_error_rms_yaw_rad, e.loop_sigma_mean_yaw_rad);
 }
 
 }  // namespace
