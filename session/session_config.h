@@ -38,6 +38,11 @@ struct SessionConfig {
   /// of the runs' (best recall and F1, more false walls); "mean" = every tile averaged
   /// unscaled, as within one run.
   JoinedMosaic joined_mosaic = JoinedMosaic::kNormalizedMean;
+  /// Joining a run (map --resume, merge): true = the saved map's keyframes keep their poses and
+  /// the new run is fitted to them (as Cartographer loads a saved state frozen): a joined run
+  /// cannot bend a finished map, and what was placed in its frame stays put; false = both are
+  /// optimised together.
+  bool freeze_saved_map = true;
 
   template <class V>
   void Visit(V& v) {
@@ -48,6 +53,7 @@ struct SessionConfig {
     v("localize_lost_after_m", localize_lost_after_m);
     v("localize_window_keyframes", localize_window_keyframes);
     v("joined_mosaic", joined_mosaic);
+    v("freeze_saved_map", freeze_saved_map);
   }
 };
 

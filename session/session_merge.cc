@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "frontend/place_recognition/feature_matcher.h"
 #include "frontend/place_recognition/loop_validator.h"
@@ -50,6 +51,12 @@ SessionData Renumbered(const SessionData& b, int id_offset, int trajectory_offse
 }
 
 }  // namespace
+
+void ShareLoopInformationPerKeyframe(std::vector<PoseGraphEdge>* loops) {
+  std::map<int, int> loops_of_keyframe;
+  for (const PoseGraphEdge& e : *loops) ++loops_of_keyframe[e.to_id];
+  for (PoseGraphEdge& e : *loops) e.information /= loops_of_keyframe.at(e.to_id);
+}
 
 SessionData MergeSessions(const SessionData& a, const SessionData& b_in,
                           const SessionSettings& config, MergeReport* report) {
@@ -131,7 +138,7 @@ SessionData MergeSessions(const SessionData& a, const SessionData& b_in,
   bool any_fixed = false;
   for (const SessionKeyframe& k : a.keyframes) {
     graph.AddNode(k.id, k.T_map_anchor, false);
-    if (k.fixed) graph.FixNode(k.id), any_fixed = true;
+    if (k.fixed || config.session.freeze_saved_map) graph.FixNode(k.id), any_fixed = true;
   }
   if (!any_fixed && !a.keyframes.empty()) graph.FixNode(a.keyframes.front().id);
   for (const SessionKeyframe& k : b.keyframes) {
@@ -143,7 +150,7 @@ SessionData MergeSessions(const SessionData& a, const SessionData& b_in,
       graph.AddEdge(e.edge);
     }
   }
-  std::vector<int> new_edges;
+  std::vector<PoseGraphEdge> between;
   for (const Hypothesis& h : loops) {
     PoseGraphEdge e;
     e.from_id = h.a_id;
@@ -151,8 +158,11 @@ SessionData MergeSessions(const SessionData& a, const SessionData& b_in,
     e.T_from_to = h.T_ij;
     e.information = h.information;
     e.kind = EdgeKind::kLoop;
-    new_edges.push_back(graph.AddEdge(e));
+    between.push_back(e);
   }
+  ShareLoopInformationPerKeyframe(&between);
+  std::vector<int> new_edges;
+  for (const PoseGraphEdge& e : between) new_edges.push_back(graph.AddEdge(e));
   r.optimization = graph.Optimize();
   r.loop_edges = static_cast<int>(loops.size());
 

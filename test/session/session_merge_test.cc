@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -77,6 +78,29 @@ TEST(SessionMergeTest, SecondRunTurnedAndShiftedIsPlacedWithinThreeMetresWithout
   const AteResult alone_a =
       pipeline::TrajectoryError(a.slam->CorrectedTrajectory(), a.ground_truth);
   EXPECT_LE(common.rmse_m, 0.05);
+  // session.freeze_saved_map (default): the saved map does not move; the run is fitted to it.
+  ASSERT_TRUE(config_a.session.freeze_saved_map);
+  for (std::size_t i = 0; i < sa.keyframes.size(); ++i) {
+    const Pose2& before = sa.keyframes[i].T_map_anchor;
+    const Pose2& after = merged.keyframes[i].T_map_anchor;
+    ASSERT_EQ(merged.keyframes[i].id, sa.keyframes[i].id);
+    EXPECT_EQ(after.x_m, before.x_m);
+    EXPECT_EQ(after.y_m, before.y_m);
+    EXPECT_EQ(after.yaw_rad, before.yaw_rad);
+  }
+  // Optimised together, the saved map moves, and both runs still agree within 5 cm.
+  Config together = config_a;
+  together.session.freeze_saved_map = false;
+  MergeReport report_together;
+  const SessionData joint = MergeSessions(sa, sb, together, &report_together);
+  ASSERT_TRUE(report_together.connected);
+  double moved_m = 0.0;
+  for (std::size_t i = 0; i < sa.keyframes.size(); ++i) {
+    const Pose2 d = Between(sa.keyframes[i].T_map_anchor, joint.keyframes[i].T_map_anchor);
+    moved_m = std::max(moved_m, std::hypot(d.x_m, d.y_m));
+  }
+  EXPECT_GT(moved_m, 1e-4);
+  EXPECT_LE(pipeline::CommonFrameError(joint, gt).rmse_m, 0.05);
   std::printf(
       "merge: placed after %.2f m of the second run (keyframe %d), %d keyframe pairs matched, "
       "%d validated, %d loops between the runs (%d rejected, %d dropped), %d false; "
@@ -84,6 +108,22 @@ TEST(SessionMergeTest, SecondRunTurnedAndShiftedIsPlacedWithinThreeMetresWithout
       report.connect_path_m, report.connect_keyframe_id, report.candidates, report.validated,
       report.loop_edges, report.loop_edges_rejected, report.dropped, false_loops,
       common.rmse_m * 100, alone_a.rmse_m * 100);
+}
+
+TEST(SessionMergeTest, LoopsOfOneNewKeyframeShareItsInformation) {
+  std::vector<PoseGraphEdge> loops(4);
+  const int to_ids[] = {7, 7, 7, 9};  // keyframe 7 matched three saved ones, 9 one
+  for (int i = 0; i < 4; ++i) {
+    loops[i].from_id = i;
+    loops[i].to_id = to_ids[i];
+    loops[i].information = Eigen::Matrix3d::Identity() * 300.0 * (i + 1);
+  }
+  ShareLoopInformationPerKeyframe(&loops);
+  EXPECT_DOUBLE_EQ(loops[0].information(0, 0), 100.0);
+  EXPECT_DOUBLE_EQ(loops[1].information(1, 1), 200.0);
+  EXPECT_DOUBLE_EQ(loops[2].information(2, 2), 300.0);
+  EXPECT_DOUBLE_EQ(loops[2].information(0, 1), 0.0);
+  EXPECT_DOUBLE_EQ(loops[3].information(0, 0), 1200.0);  // alone: unchanged
 }
 
 TEST(SessionMergeTest, RunThatNeverSeesTheMapIsNotConnected) {
