@@ -133,7 +133,8 @@ SessionData MergeSessions(const SessionData& a, const SessionData& b_in,
     return out;
   }
 
-  // One graph: the saved map keeps its gauge; the new session starts where it was placed.
+  // One graph: the saved map keeps its gauge (all of it with session.freeze_saved_map); the new
+  // session starts where it was placed.
   PoseGraph graph(config.backend);
   bool any_fixed = false;
   for (const SessionKeyframe& k : a.keyframes) {
