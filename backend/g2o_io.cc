@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 #include <unordered_map>
+#include <utility>
 
 #include "backend/se2_edge_cost.h"
 #include "imaging/image_io.h"
@@ -13,6 +14,9 @@
 
 namespace uwbsar {
 namespace {
+
+/// The comment that marks the next EDGE_SE2 as a wall edge (see g2o_io.h).
+constexpr const char* kWallMarker = "uwbsar:wall";
 
 /// A rejected line; caught per line so that skip_bad_lines can go on.
 struct LineError {
@@ -101,10 +105,16 @@ G2oGraph ParseG2o(std::istream& in, const std::string& source, const G2oReadOpti
     if (!options.skip_bad_lines) throw InputError(full);
     g.skipped.push_back(full);
   };
+  bool wall_next = false;  // the previous line was `# uwbsar:wall`
   while (std::getline(in, line)) {
     ++line_no;
     const std::vector<std::string> t = Tokens(line);
-    if (t.empty() || t[0][0] == '#') continue;
+    if (t.empty()) continue;
+    if (t[0][0] == '#') {
+      wall_next = t.size() == 2 && t[0] == "#" && t[1] == kWallMarker;
+      continue;
+    }
+    const bool wall = std::exchange(wall_next, false);
     try {
       if (t[0] == "VERTEX_SE2") {
         G2oVertex v = ParseVertex(t);
@@ -118,6 +128,7 @@ G2oGraph ParseG2o(std::istream& in, const std::string& source, const G2oReadOpti
       } else if (t[0] == "EDGE_SE2") {
         G2oEdge e = ParseEdge(t);
         e.line = line_no;
+        e.wall = wall;
         g.edges.push_back(e);
       } else if (t[0] == "FIX") {
         if (t.size() < 2) throw LineError{"FIX needs at least one vertex id"};
@@ -163,6 +174,7 @@ G2oGraph ReadG2o(const std::string& path, const G2oReadOptions& options) {
 }
 
 EdgeKind ClassifyG2oEdge(const G2oEdge& edge) {
+  if (edge.wall) return EdgeKind::kWall;
   return std::abs(static_cast<long>(edge.to_id) - edge.from_id) == 1 ? EdgeKind::kOdometry
                                                                      : EdgeKind::kLoop;
 }
@@ -191,6 +203,7 @@ std::string G2oText(const std::map<int, Pose2>& poses, const std::vector<PoseGra
   for (const int id : fixed_ids) out << "FIX " << id << '\n';
   for (const PoseGraphEdge& e : edges) {
     const Eigen::Matrix3d& I = e.information;
+    if (e.kind == EdgeKind::kWall) out << "# " << kWallMarker << '\n';
     out << "EDGE_SE2 " << e.from_id << ' ' << e.to_id << ' ' << Fmt(e.T_from_to.x_m) << ' '
         << Fmt(e.T_from_to.y_m) << ' ' << Fmt(e.T_from_to.yaw_rad) << ' ' << Fmt(I(0, 0)) << ' '
         << Fmt(I(0, 1)) << ' ' << Fmt(I(0, 2)) << ' ' << Fmt(I(1, 1)) << ' ' << Fmt(I(1, 2)) << ' '

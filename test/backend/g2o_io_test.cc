@@ -137,6 +137,39 @@ TEST(G2oIoTest, WrittenGraphReadsBackTheSame) {
   EXPECT_DOUBLE_EQ(back.vertices[2].T_world_node.y_m, 0.1);
 }
 
+TEST(G2oIoTest, WallEdgesReadBackAsWallEdges) {
+  // uwbsar's graph.g2o marks a wall edge with a comment: other g2o tools see a plain edge,
+  // uwbsar's reader (uwbsar optimize) keeps it a wall edge instead of taking it for a loop.
+  PoseGraph graph;
+  for (int id = 0; id < 3; ++id) graph.AddNode(id, Pose2{double(id), 0.0, 0.0}, false);
+  graph.AddOdometryEdge(0, 1, Pose2{1.0, 0.0, 0.0});
+  graph.AddOdometryEdge(1, 2, Pose2{1.0, 0.0, 0.0});
+  PoseGraphEdge wall;
+  wall.from_id = 0;
+  wall.to_id = 2;
+  wall.T_from_to = Pose2{2.0, 0.01, 0.0};
+  wall.information = Eigen::Vector3d(0.025, 2500.0, 0.1).asDiagonal();
+  wall.kind = EdgeKind::kWall;
+  graph.AddEdge(wall);
+  const std::string text = G2oText(graph.GetPoses(), graph.Edges(), {});
+  EXPECT_NE(text.find("# uwbsar:wall\nEDGE_SE2 0 2 "), std::string::npos) << text;
+  const G2oGraph back = Parse(text);
+  ASSERT_EQ(back.edges.size(), 3u);
+  EXPECT_EQ(ClassifyG2oEdge(back.edges[0]), EdgeKind::kOdometry);
+  EXPECT_EQ(ClassifyG2oEdge(back.edges[1]), EdgeKind::kOdometry);
+  EXPECT_EQ(ClassifyG2oEdge(back.edges[2]), EdgeKind::kWall);
+  EXPECT_TRUE(back.edges[2].information.isApprox(wall.information));
+
+  // The marker applies to the very next record only; a plain edge between other ids is a loop.
+  const G2oGraph g = Parse(
+      "VERTEX_SE2 0 0 0 0\nVERTEX_SE2 1 1 0 0\nVERTEX_SE2 2 2 0 0\n"
+      "# uwbsar:wall\nVERTEX_SE2 3 3 0 0\nEDGE_SE2 0 2 2 0 0 10 0 0 10 0 10\n"
+      "# uwbsar:wall extra\nEDGE_SE2 1 3 2 0 0 10 0 0 10 0 10\n");
+  ASSERT_EQ(g.edges.size(), 2u);
+  EXPECT_EQ(ClassifyG2oEdge(g.edges[0]), EdgeKind::kLoop);
+  EXPECT_EQ(ClassifyG2oEdge(g.edges[1]), EdgeKind::kLoop);
+}
+
 TEST(G2oIoTest, TumLinesCarryTheYawAsAQuaternionAboutZ) {
   const std::string text = TumText({{1.5, Pose2{1, 2, M_PI / 2}}});
   double t, x, y, z, qx, qy, qz, qw;
