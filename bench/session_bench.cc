@@ -1,7 +1,7 @@
-// Sessions (issue 18) on the long scenarios of README "Sessions": a saved map of run A,
-// then run B of the same building (scene seed 1, noise seed s + 1 for A's s = 1, 3, 5;
-// odometry starting at zero: its start pose unknown) joined to it (`map B --resume A`, the same
-// MergeSessions as `merge`) and localised in it (`localize B --map A`).
+// Sessions (saved maps: docs/formats.md) on the long scenarios of README "Sessions": a saved
+// map of run A, then run B of the same building (scene seed 1, noise seed s + 1 for A's
+// s = 1, 3, 5; odometry starting at zero: its start pose unknown) joined to it (`map B
+// --resume A`, the same MergeSessions as `merge`) and localised in it (`localize B --map A`).
 //   seed_lab: A = the paper's depart-and-return (7.5 m); B starts 2 m further along
 //             and 20 deg turned and drives 3 m out and back.
 //   office:   A = route_loops.txt (74 m); B = route_ring_cw.txt (36 m); clearance 0.3 m.
