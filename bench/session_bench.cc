@@ -1,7 +1,7 @@
-// Sessions (issue 18) on the long scenarios of README "Sessions": a saved map of run A,
-// then run B of the same building (scene seed 1, noise seed s + 1 for A's s = 1, 3, 5;
-// odometry starting at zero: its start pose unknown) joined to it (`map B --resume A`, the same
-// MergeSessions as `merge`) and localised in it (`localize B --map A`).
+// Sessions (saved maps: docs/formats.md) on the long scenarios of README "Sessions": a saved
+// map of run A, then run B of the same building (scene seed 1, noise seed s + 1 for A's
+// s = 1, 3, 5; odometry starting at zero: its start pose unknown) joined to it (`map B
+// --resume A`, the same MergeSessions as `merge`) and localised in it (`localize B --map A`).
 //   seed_lab: A = the paper's depart-and-return (7.5 m); B starts 2 m further along
 //             and 20 deg turned and drives 3 m out and back.
 //   office:   A = route_loops.txt (74 m); B = route_ring_cw.txt (36 m); clearance 0.3 m.
@@ -155,6 +155,176 @@ double Seconds(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+/// B joined to A (`map B --resume A`, `merge`): the merge and its figures against the truth.
+struct ResumeFigures {
+  MergeReport report;
+  SessionData merged;
+  double merge_s = 0.0;
+  int between = 0, false_loops = 0;  ///< accepted loops between the runs; of them false
+  AteResult common, ate_a, ate_b;    ///< both runs in the joined frame; each run alone
+};
+
+ResumeFigures Resume(const Config& config_a, const pipeline::MapRun& a, const SessionData& sa,
+                     const pipeline::MapRun& b, const SessionData& sb) {
+  ResumeFigures f;
+  const auto t_merge = std::chrono::steady_clock::now();
+  f.merged = MergeSessions(sa, sb, config_a, &f.report);
+  f.merge_s = Seconds(t_merge);
+  std::map<int, Pose2> truth;
+  for (const SessionKeyframe& k : sa.keyframes) truth[k.id] = TrueAnchor(k, a.ground_truth);
+  for (const SessionKeyframe& k : sb.keyframes) {
+    truth[k.id + f.report.id_offset] = TrueAnchor(k, b.ground_truth);
+  }
+  for (const SessionLoop& l : f.merged.loops) {
+    if (!l.accepted || l.reason != "between sessions") continue;
+    ++f.between;
+    f.false_loops += IsFalse(l.T_ij, Between(truth.at(l.match_id), truth.at(l.query_id)));
+  }
+  f.common = pipeline::CommonFrameError(
+      f.merged, {{0, a.ground_truth}, {f.report.trajectory_offset, b.ground_truth}});
+  f.ate_a = pipeline::TrajectoryError(a.slam->CorrectedTrajectory(), a.ground_truth);
+  f.ate_b = pipeline::TrajectoryError(b.slam->CorrectedTrajectory(), b.ground_truth);
+  return f;
+}
+
+/// The maps against the grid: A alone, B alone (its own frame: ICP from its start), both
+/// joined, and the joined map on each run's own area (like for like).
+struct MapScores {
+  MapMetrics a, b, joined, joined_on_a, joined_on_b;
+};
+
+/// Scores and prints the maps; also prints the other joined mosaic and A's tiles alone at
+/// their joined poses (what the joint optimisation moved, without B's tiles).
+MapScores ScoreMaps(const Scenario& s, const std::string& label, const SessionData& sa,
+                    const SessionData& sb, const ResumeFigures& r, const Pose2& T_odom_world_b) {
+  const SessionData& merged = r.merged;
+  const int b_id = r.report.trajectory_offset;
+  MapScores m;
+  m.a = Score(sa, s.config_a, s.map_yaml, "a");
+  m.b = Score(sb, s.config_a, s.map_yaml, "b", T_odom_world_b.Inverse());
+  m.joined = Score(merged, s.config_a, s.map_yaml, "joined");
+  std::printf("%s maps vs the grid: A %s; B %s; joined %s\n", label.c_str(), Describe(m.a).c_str(),
+              Describe(m.b).c_str(), Describe(m.joined).c_str());
+  m.joined_on_a = ScoreOnRunArea(merged, 0, s.config_a, s.map_yaml, "on_a");
+  m.joined_on_b = ScoreOnRunArea(merged, b_id, s.config_a, s.map_yaml, "on_b");
+  std::printf("%s joined map on A's area: %s; on B's area: %s\n", label.c_str(),
+              Describe(m.joined_on_a).c_str(), Describe(m.joined_on_b).c_str());
+  for (const auto& [mode, mode_name] : EnumNames<JoinedMosaic>::kNames) {
+    if (mode == s.config_a.session.joined_mosaic) continue;
+    Config other = s.config_a;
+    other.session.joined_mosaic = mode;
+    std::printf("%s joined with session.joined_mosaic %s: %s; on A's area %s; on B's area %s\n",
+                label.c_str(), mode_name,
+                Describe(Score(merged, other, s.map_yaml, "joined")).c_str(),
+                Describe(ScoreOnRunArea(merged, 0, other, s.map_yaml, "on_a")).c_str(),
+                Describe(ScoreOnRunArea(merged, b_id, other, s.map_yaml, "on_b")).c_str());
+  }
+  SessionData a_joined = merged;
+  a_joined.keyframes.clear();
+  for (const SessionKeyframe& k : merged.keyframes) {
+    if (k.trajectory == 0) a_joined.keyframes.push_back(k);
+  }
+  std::printf("%s A's tiles at the joined poses: %s\n", label.c_str(),
+              Describe(Score(a_joined, s.config_a, s.map_yaml, "a_joined")).c_str());
+  std::fflush(stdout);
+  return m;
+}
+
+/// B localised in A's saved map (`localize B --map A`).
+struct LocalizeFigures {
+  pipeline::LocalizeRun loc;
+  double wall_s = 0.0;  ///< with the simulator
+  int fixes = 0, false_fixes = 0;
+  AteResult ate_tracking;
+};
+
+LocalizeFigures LocalizeB(const Scenario& s, std::uint64_t seed, const pipeline::MapRun& a,
+                          const SessionData& sa, const Pose2& T_odom_world_b) {
+  LocalizeFigures f;
+  const auto t_loc = std::chrono::steady_clock::now();
+  f.loc = pipeline::LocalizeSimulation(sa, s.config_b, s.map_yaml, s.route_b, 1, seed + 1,
+                                       T_odom_world_b);
+  f.wall_s = Seconds(t_loc);
+  const pipeline::LocalizeRun& loc = f.loc;
+  // The map frame in the world: the best fit of all of A's keyframes (one keyframe's
+  // heading error of 1 deg would move places 12 m away by 20 cm, the false-fix limit).
+  std::vector<Pose2> map_anchors, true_anchors;
+  for (const SessionKeyframe& k : sa.keyframes) {
+    map_anchors.push_back(k.T_map_anchor);
+    true_anchors.push_back(TrueAnchor(k, a.ground_truth));
+  }
+  const Pose2 T_world_map = ComputeAte(map_anchors, true_anchors).T_reference_estimate;
+  for (const LocalizedKeyframe& k : loc.keyframes) {
+    if (k.status == LocalizeStatus::kLost || k.loops == 0) continue;
+    ++f.fixes;
+    SessionKeyframe as_session;  // the localised keyframe's true anchor, as TrueAnchor
+    as_session.stamp_ns = k.stamp_ns;
+    as_session.T_odom_anchor = k.T_odom_anchor;
+    const OdometryEntry* odom = &loc.odometry.front();
+    for (const OdometryEntry& e : loc.odometry) {
+      if (std::llabs(e.stamp_ns - k.stamp_ns) < std::llabs(odom->stamp_ns - k.stamp_ns)) odom = &e;
+    }
+    as_session.T_odom_robot = odom->T_world_robot;
+    f.false_fixes +=
+        IsFalse(T_world_map * k.T_map_anchor, TrueAnchor(as_session, loc.ground_truth));
+  }
+  f.ate_tracking = pipeline::TrajectoryError(loc.Trajectory(true), loc.ground_truth);
+  return f;
+}
+
+void PrintResumeAndLocalize(const std::string& label, const pipeline::MapRun& a,
+                            const pipeline::MapRun& b, const SessionData& sa,
+                            const ResumeFigures& r, const LocalizeFigures& l, double map_b_wall_s) {
+  const MergeReport& report = r.report;
+  std::printf(
+      "%s resume: %s after %.2f m of B, %d loops between the runs (%d rejected, %d dropped), "
+      "%d false; ATE common frame %.2f cm (A alone %.2f, B alone %.2f; A's part of the "
+      "joined map %.2f, B's %.2f; A alone from its own session the same way %.2f); merge "
+      "%.2f s\n",
+      label.c_str(), report.connected ? "connected" : "NOT connected", report.connect_path_m,
+      r.between, report.loop_edges_rejected, report.dropped, r.false_loops, r.common.rmse_m * 100,
+      r.ate_a.rmse_m * 100, r.ate_b.rmse_m * 100,
+      pipeline::CommonFrameError(r.merged, {{0, a.ground_truth}}).rmse_m * 100,
+      pipeline::CommonFrameError(r.merged, {{report.trajectory_offset, b.ground_truth}}).rmse_m *
+          100,
+      pipeline::CommonFrameError(sa, {{0, a.ground_truth}}).rmse_m * 100, r.merge_s);
+  std::printf(
+      "%s localize: first fix after %.2f m, %zu keyframes, %d with fixes, %d false; ATE "
+      "while tracking %.2f cm; wall clock with the simulator: %.2f s localising B vs %.2f s "
+      "mapping B\n",
+      label.c_str(), l.loc.first_fix >= 0 ? l.loc.first_fix_path_m : -1.0, l.loc.keyframes.size(),
+      l.fixes, l.false_fixes, l.ate_tracking.rmse_m * 100, l.wall_s, map_b_wall_s);
+  std::fflush(stdout);
+}
+
+void SetCounters(const ResumeFigures& r, const MapScores& m, const LocalizeFigures& l,
+                 double map_b_wall_s, benchmark::State* state) {
+  auto& c = state->counters;
+  c["connected"] = r.report.connected;
+  c["connected_after_m"] = r.report.connect_path_m;
+  c["loops_between"] = r.between;
+  c["false_loops"] = r.false_loops;
+  c["ate_common_cm"] = r.common.rmse_m * 100;
+  c["ate_a_cm"] = r.ate_a.rmse_m * 100;
+  c["ate_b_cm"] = r.ate_b.rmse_m * 100;
+  c["first_fix_m"] = l.loc.first_fix >= 0 ? l.loc.first_fix_path_m : -1.0;
+  c["false_fixes"] = l.false_fixes;
+  c["ate_tracking_cm"] = l.ate_tracking.rmse_m * 100;
+  c["map_b_s"] = map_b_wall_s;
+  c["localize_b_s"] = l.wall_s;
+  c["merge_s"] = r.merge_s;
+  c["diff_a_pct"] = m.a.difference_ratio * 100;
+  c["diff_b_pct"] = m.b.difference_ratio * 100;
+  c["diff_joined_pct"] = m.joined.difference_ratio * 100;
+  c["f1_a"] = m.a.f1;
+  c["f1_b"] = m.b.f1;
+  c["f1_joined"] = m.joined.f1;
+  c["diff_joined_on_a_pct"] = m.joined_on_a.difference_ratio * 100;
+  c["diff_joined_on_b_pct"] = m.joined_on_b.difference_ratio * 100;
+  c["f1_joined_on_a"] = m.joined_on_a.f1;
+  c["f1_joined_on_b"] = m.joined_on_b.f1;
+}
+
 void BM_Session(benchmark::State& state) {
   const Scenario s = state.range(0) == 0 ? SeedLab() : Office();
   const std::uint64_t seed = static_cast<std::uint64_t>(state.range(1));  // A's; B's is seed + 1
@@ -176,140 +346,11 @@ void BM_Session(benchmark::State& state) {
     const double map_b_wall_s = Seconds(t_map_b);
     const SessionData sa = pipeline::CaptureSession(a);
     const SessionData sb = pipeline::CaptureSession(b);
-
-    // Resume / merge: B joined to A.
-    const auto t_merge = std::chrono::steady_clock::now();
-    MergeReport report;
-    const SessionData merged = MergeSessions(sa, sb, s.config_a, &report);
-    const double merge_s = Seconds(t_merge);
-    std::map<int, Pose2> truth;
-    for (const SessionKeyframe& k : sa.keyframes) truth[k.id] = TrueAnchor(k, a.ground_truth);
-    for (const SessionKeyframe& k : sb.keyframes) {
-      truth[k.id + report.id_offset] = TrueAnchor(k, b.ground_truth);
-    }
-    int between = 0, false_loops = 0;
-    for (const SessionLoop& l : merged.loops) {
-      if (!l.accepted || l.reason != "between sessions") continue;
-      ++between;
-      false_loops += IsFalse(l.T_ij, Between(truth.at(l.match_id), truth.at(l.query_id)));
-    }
-    const AteResult common = pipeline::CommonFrameError(
-        merged, {{0, a.ground_truth}, {report.trajectory_offset, b.ground_truth}});
-    const AteResult ate_a =
-        pipeline::TrajectoryError(a.slam->CorrectedTrajectory(), a.ground_truth);
-    const AteResult ate_b =
-        pipeline::TrajectoryError(b.slam->CorrectedTrajectory(), b.ground_truth);
-
-    // The maps against the grid: A alone, B alone (its own frame: ICP from its start),
-    // both joined.
-    const MapMetrics score_a = Score(sa, s.config_a, s.map_yaml, "a");
-    const MapMetrics score_b = Score(sb, s.config_a, s.map_yaml, "b", T_odom_world_b.Inverse());
-    const MapMetrics score_joined = Score(merged, s.config_a, s.map_yaml, "joined");
-    std::printf("%s maps vs the grid: A %s; B %s; joined %s\n", label.c_str(),
-                Describe(score_a).c_str(), Describe(score_b).c_str(),
-                Describe(score_joined).c_str());
-    // Like for like: the joined map on each run's own area.
-    const MapMetrics joined_on_a = ScoreOnRunArea(merged, 0, s.config_a, s.map_yaml, "on_a");
-    const MapMetrics joined_on_b =
-        ScoreOnRunArea(merged, report.trajectory_offset, s.config_a, s.map_yaml, "on_b");
-    std::printf("%s joined map on A's area: %s; on B's area: %s\n", label.c_str(),
-                Describe(joined_on_a).c_str(), Describe(joined_on_b).c_str());
-    // The other mosaic, for comparison; and A's tiles alone at their joined poses (what
-    // the joint optimisation moved, without B's tiles).
-    for (const auto& [mode, mode_name] : EnumNames<JoinedMosaic>::kNames) {
-      if (mode == s.config_a.session.joined_mosaic) continue;
-      Config other = s.config_a;
-      other.session.joined_mosaic = mode;
-      std::printf(
-          "%s joined with session.joined_mosaic %s: %s; on A's area %s; on B's area %s\n",
-          label.c_str(), mode_name, Describe(Score(merged, other, s.map_yaml, "joined")).c_str(),
-          Describe(ScoreOnRunArea(merged, 0, other, s.map_yaml, "on_a")).c_str(),
-          Describe(ScoreOnRunArea(merged, report.trajectory_offset, other, s.map_yaml, "on_b"))
-              .c_str());
-    }
-    SessionData a_joined = merged;
-    a_joined.keyframes.clear();
-    for (const SessionKeyframe& k : merged.keyframes) {
-      if (k.trajectory == 0) a_joined.keyframes.push_back(k);
-    }
-    std::printf("%s A's tiles at the joined poses: %s\n", label.c_str(),
-                Describe(Score(a_joined, s.config_a, s.map_yaml, "a_joined")).c_str());
-    std::fflush(stdout);
-
-    // Localise B in A.
-    const auto t_loc = std::chrono::steady_clock::now();
-    const pipeline::LocalizeRun loc = pipeline::LocalizeSimulation(
-        sa, s.config_b, s.map_yaml, s.route_b, 1, seed + 1, T_odom_world_b);
-    const double localize_b_wall_s = Seconds(t_loc);
-    // The map frame in the world: the best fit of all of A's keyframes (one keyframe's
-    // heading error of 1 deg would move places 12 m away by 20 cm, the false-fix limit).
-    std::vector<Pose2> map_anchors, true_anchors;
-    for (const SessionKeyframe& k : sa.keyframes) {
-      map_anchors.push_back(k.T_map_anchor);
-      true_anchors.push_back(TrueAnchor(k, a.ground_truth));
-    }
-    const Pose2 T_world_map = ComputeAte(map_anchors, true_anchors).T_reference_estimate;
-    int fixes = 0, false_fixes = 0;
-    for (const LocalizedKeyframe& k : loc.keyframes) {
-      if (k.status == LocalizeStatus::kLost || k.loops == 0) continue;
-      ++fixes;
-      SessionKeyframe as_session;  // the localised keyframe's true anchor, as TrueAnchor
-      as_session.stamp_ns = k.stamp_ns;
-      as_session.T_odom_anchor = k.T_odom_anchor;
-      const OdometryEntry* odom = &loc.odometry.front();
-      for (const OdometryEntry& e : loc.odometry) {
-        if (std::llabs(e.stamp_ns - k.stamp_ns) < std::llabs(odom->stamp_ns - k.stamp_ns))
-          odom = &e;
-      }
-      as_session.T_odom_robot = odom->T_world_robot;
-      false_fixes +=
-          IsFalse(T_world_map * k.T_map_anchor, TrueAnchor(as_session, loc.ground_truth));
-    }
-    const AteResult ate_tracking =
-        pipeline::TrajectoryError(loc.Trajectory(true), loc.ground_truth);
-
-    std::printf(
-        "%s resume: %s after %.2f m of B, %d loops between the runs (%d rejected, %d dropped), "
-        "%d false; ATE common frame %.2f cm (A alone %.2f, B alone %.2f; A's part of the "
-        "joined map %.2f, B's %.2f; A alone from its own session the same way %.2f); merge "
-        "%.2f s\n",
-        label.c_str(), report.connected ? "connected" : "NOT connected", report.connect_path_m,
-        between, report.loop_edges_rejected, report.dropped, false_loops, common.rmse_m * 100,
-        ate_a.rmse_m * 100, ate_b.rmse_m * 100,
-        pipeline::CommonFrameError(merged, {{0, a.ground_truth}}).rmse_m * 100,
-        pipeline::CommonFrameError(merged, {{report.trajectory_offset, b.ground_truth}}).rmse_m *
-            100,
-        pipeline::CommonFrameError(sa, {{0, a.ground_truth}}).rmse_m * 100, merge_s);
-    std::printf(
-        "%s localize: first fix after %.2f m, %zu keyframes, %d with fixes, %d false; ATE "
-        "while tracking %.2f cm; wall clock with the simulator: %.2f s localising B vs %.2f s "
-        "mapping B\n",
-        label.c_str(), loc.first_fix >= 0 ? loc.first_fix_path_m : -1.0, loc.keyframes.size(),
-        fixes, false_fixes, ate_tracking.rmse_m * 100, localize_b_wall_s, map_b_wall_s);
-    std::fflush(stdout);
-    state.counters["connected"] = report.connected;
-    state.counters["connected_after_m"] = report.connect_path_m;
-    state.counters["loops_between"] = between;
-    state.counters["false_loops"] = false_loops;
-    state.counters["ate_common_cm"] = common.rmse_m * 100;
-    state.counters["ate_a_cm"] = ate_a.rmse_m * 100;
-    state.counters["ate_b_cm"] = ate_b.rmse_m * 100;
-    state.counters["first_fix_m"] = loc.first_fix >= 0 ? loc.first_fix_path_m : -1.0;
-    state.counters["false_fixes"] = false_fixes;
-    state.counters["ate_tracking_cm"] = ate_tracking.rmse_m * 100;
-    state.counters["map_b_s"] = map_b_wall_s;
-    state.counters["localize_b_s"] = localize_b_wall_s;
-    state.counters["merge_s"] = merge_s;
-    state.counters["diff_a_pct"] = score_a.difference_ratio * 100;
-    state.counters["diff_b_pct"] = score_b.difference_ratio * 100;
-    state.counters["diff_joined_pct"] = score_joined.difference_ratio * 100;
-    state.counters["f1_a"] = score_a.f1;
-    state.counters["f1_b"] = score_b.f1;
-    state.counters["f1_joined"] = score_joined.f1;
-    state.counters["diff_joined_on_a_pct"] = joined_on_a.difference_ratio * 100;
-    state.counters["diff_joined_on_b_pct"] = joined_on_b.difference_ratio * 100;
-    state.counters["f1_joined_on_a"] = joined_on_a.f1;
-    state.counters["f1_joined_on_b"] = joined_on_b.f1;
+    const ResumeFigures resume = Resume(s.config_a, a, sa, b, sb);
+    const MapScores scores = ScoreMaps(s, label, sa, sb, resume, T_odom_world_b);
+    const LocalizeFigures localize = LocalizeB(s, seed, a, sa, T_odom_world_b);
+    PrintResumeAndLocalize(label, a, b, sa, resume, localize, map_b_wall_s);
+    SetCounters(resume, scores, localize, map_b_wall_s, &state);
   }
 }
 BENCHMARK(BM_Session)->ArgsProduct({{0, 1}, {1, 3, 5}})->Unit(benchmark::kSecond)->Iterations(1);

@@ -3,9 +3,9 @@
 
 The project's folders form one stack, listed bottom to top in LAYERS: a file may include
 headers of its own folder and of the folders below it, never of one above (the data flows
-up: sensor data enters in drivers, is imaged in frontend, optimised in backend and run as
-a whole by pipeline; tools is the command line over all of it). docs/architecture.md
-describes each floor.
+up: sensor data enters in drivers, is imaged in frontend, optimised in backend, saved and
+joined in session and run as a whole by pipeline; tools is the command line over all of
+it). docs/architecture.md describes each floor.
 
 Only quoted includes that name a project folder (`#include "backend/pose_graph.h"`) are
 checked; system and library headers (`<...>`) are not the project's. test/, bench/ and

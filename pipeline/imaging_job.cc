@@ -19,10 +19,7 @@ StripResult ImageRun(const Config& config, const std::vector<OdometrySample>& od
   StripResult result;
   ImagingFrontend frontend(config);
   frontend.SetScanObserver([&](const ImagedScan& s) { result.scans.push_back(s); });
-  LogSource(odometry, scans).Run([&](const Message& m) {
-    if (m.kind == Message::Kind::kOdometry) frontend.AddOdometry(m.odometry);
-    if (m.kind == Message::Kind::kRadarScan) frontend.AddScan(m.scan);
-  });
+  LogSource(odometry, scans).Run([&](const Message& m) { FeedScanOrOdometry(frontend, m); });
   frontend.Finish();
   frontend.TakeKeyframes();
   result.stats = frontend.stats();

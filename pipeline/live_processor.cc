@@ -175,8 +175,7 @@ void Processor::Process(const LiveMessage& msg) {
   }
   if (msg.kind == Message::Kind::kRadarScan) pending_.push_back(msg.arrival);
   if (localize_) {
-    if (msg.kind == Message::Kind::kRadarScan) localize_->AddScan(msg.scan);
-    if (msg.kind == Message::Kind::kOdometry) localize_->AddOdometry(msg.odometry);
+    FeedScanOrOdometry(*localize_, msg);
   } else {
     FeedSlam(*run_.slam, msg);
   }

@@ -7,8 +7,9 @@
 
 #include "backend/g2o_io.h"
 #include "drivers/rosbag/bag_reader.h"
+#include "drivers/rosbag/bag_source.h"
 #include "drivers/rosbag/robot_bag.h"
-#include "drivers/sim/sim_stream.h"
+#include "drivers/sim/sim_source.h"
 #include "frontend/imaging_frontend.h"
 #include "imaging/image_io.h"
 #include "pipeline/app_config.h"
@@ -21,17 +22,6 @@ namespace uwbsar::pipeline {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-class BagFeeder : public rosbag::RobotBagVisitor {
- public:
-  explicit BagFeeder(const LocalizeFeed& feed) : feed_(feed) {}
-  void OnRadarScan(const RadarScan& scan) override { feed_.scan(scan); }
-  void OnOdometry(const OdometrySample& odometry) override { feed_.odometry(odometry); }
-  void OnGroundTruth(const OdometrySample& pose) override { feed_.ground_truth(pose); }
-
- private:
-  const LocalizeFeed& feed_;
-};
 
 }  // namespace
 
@@ -48,28 +38,20 @@ std::vector<std::pair<TimestampNs, Pose2>> LocalizeRun::Trajectory(bool tracking
   return out;
 }
 
-LocalizeRun LocalizeStream(const SessionData& map, const Config& config,
-                           const std::string& description,
-                           const std::function<bool(const LocalizeFeed&)>& source) {
+LocalizeRun LocalizeSource(const SessionData& map, const Config& config,
+                           const std::string& description, MessageSource& source) {
   LocalizePipeline pipeline(map, config, description);
   std::vector<OdometrySample> ground_truth;
   // The feeding thread's time (imaging, hand-over, waiting for the keyframe thread when
   // it falls behind and at the end), not the source's.
   double busy_s = 0.0;
-  LocalizeFeed feed;
-  feed.odometry = [&](const OdometrySample& s) {
+  source.Run([&](const Message& m) {
+    if (m.kind == Message::Kind::kGroundTruth) ground_truth.push_back(m.odometry);
+    if (m.kind != Message::Kind::kRadarScan && m.kind != Message::Kind::kOdometry) return;
     const auto t0 = Clock::now();
-    pipeline.AddOdometry(s);
+    FeedScanOrOdometry(pipeline, m);
     busy_s += std::chrono::duration<double>(Clock::now() - t0).count();
-  };
-  feed.scan = [&](const RadarScan& s) {
-    const auto t0 = Clock::now();
-    pipeline.AddScan(s);
-    busy_s += std::chrono::duration<double>(Clock::now() - t0).count();
-  };
-  feed.ground_truth = [&](const OdometrySample& g) { ground_truth.push_back(g); };
-  while (source(feed)) {
-  }
+  });
   const auto t0 = Clock::now();
   pipeline.Finish();
   busy_s += std::chrono::duration<double>(Clock::now() - t0).count();
@@ -87,15 +69,8 @@ LocalizeRun LocalizeStream(const SessionData& map, const Config& config,
 
 LocalizeRun LocalizeBag(const SessionData& map, const Config& config, const std::string& bag) {
   rosbag::BagReader reader(bag);
-  const rosbag::RobotBagOptions options = rosbag::RobotBagOptionsFromConfig(config);
-  bool done = false;
-  return LocalizeStream(map, config, bag, [&](const LocalizeFeed& feed) {
-    if (done) return false;
-    BagFeeder feeder(feed);
-    rosbag::ReadRobotBag(reader, options, feeder);
-    done = true;
-    return false;
-  });
+  rosbag::BagSource source(reader, rosbag::RobotBagOptionsFromConfig(config));
+  return LocalizeSource(map, config, bag, source);
 }
 
 LocalizeRun LocalizeSimulation(const SessionData& map, const Config& config,
@@ -103,28 +78,10 @@ LocalizeRun LocalizeSimulation(const SessionData& map, const Config& config,
                                std::uint64_t scene_seed, std::uint64_t seed,
                                const Pose2& T_odom_world) {
   const sim::SimScenario scenario = sim::MakeScenario(config, map_yaml, route, scene_seed);
-  sim::SimStream stream(config, scenario, seed);
-  sim::SimMessage msg;
+  sim::SimSource source(config, scenario, seed, T_odom_world);
   const std::string description =
       "simulated " + route + " in " + map_yaml + " (seed " + std::to_string(seed) + ")";
-  return LocalizeStream(map, config, description, [&](const LocalizeFeed& feed) {
-    if (!stream.Next(&msg)) return false;
-    switch (msg.kind) {
-      case sim::SimMessage::Kind::kGroundTruth:
-        feed.ground_truth(msg.pose);
-        break;
-      case sim::SimMessage::Kind::kOdometry:
-        msg.pose.T_world_robot = T_odom_world * msg.pose.T_world_robot;
-        feed.odometry(msg.pose);
-        break;
-      case sim::SimMessage::Kind::kRadarScan:
-        feed.scan(msg.scan);
-        break;
-      case sim::SimMessage::Kind::kLaserScan:
-        break;
-    }
-    return true;
-  });
+  return LocalizeSource(map, config, description, source);
 }
 
 nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& out_dir) {

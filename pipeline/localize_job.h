@@ -7,7 +7,6 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -18,6 +17,7 @@
 #include "pipeline/app_config.h"
 #include "session/localizer.h"
 #include "session/session_data.h"
+#include "slam/message.h"
 
 namespace uwbsar::pipeline {
 
@@ -38,17 +38,10 @@ struct LocalizeRun {
   std::vector<std::pair<TimestampNs, Pose2>> Trajectory(bool tracking_only) const;
 };
 
-/// Feeds the frontend; the callbacks the message source calls.
-struct LocalizeFeed {
-  std::function<void(const OdometrySample&)> odometry;
-  std::function<void(const RadarScan&)> scan;
-  std::function<void(const OdometrySample&)> ground_truth;
-};
-
-/// Localises what `source` emits (it calls the feed until it returns false).
-LocalizeRun LocalizeStream(const SessionData& map, const Config& config,
-                           const std::string& description,
-                           const std::function<bool(const LocalizeFeed&)>& source);
+/// Localises what `source` emits: scans and odometry through FeedScanOrOdometry, ground
+/// truth kept for the evaluation.
+LocalizeRun LocalizeSource(const SessionData& map, const Config& config,
+                           const std::string& description, MessageSource& source);
 /// A ROS 2 bag.
 LocalizeRun LocalizeBag(const SessionData& map, const Config& config, const std::string& bag);
 /// A simulated run (as MapSimulationInScene: the scene from scene_seed, odometry in its

@@ -128,17 +128,6 @@ MapRun MapBag(const Config& config, const std::string& bag_path, bool progress,
   return run;
 }
 
-MapRun MapStream(const Config& config, const std::string& description,
-                 const std::function<bool(MapRun*)>& next) {
-  MapRun run;
-  run.input = description;
-  run.slam = std::make_unique<SlamSystem>(config);
-  while (next(&run)) {
-  }
-  FinishStreamed(&run);
-  return run;
-}
-
 MapRun MapSource(const Config& config, const std::string& description, MessageSource& source,
                  const std::function<void(MapRun*)>& on_message) {
   MapRun run;
@@ -181,10 +170,7 @@ void CountMessage(MapRun* run, const Message& m) {
   }
 }
 
-void FeedSlam(SlamSystem& slam, const Message& m) {
-  if (m.kind == Message::Kind::kRadarScan) slam.AddScan(m.scan);
-  if (m.kind == Message::Kind::kOdometry) slam.AddOdometry(m.odometry);
-}
+void FeedSlam(SlamSystem& slam, const Message& m) { FeedScanOrOdometry(slam, m); }
 
 void Feed(MapRun* run, const Message& m) {
   CountMessage(run, m);

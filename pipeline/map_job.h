@@ -26,7 +26,7 @@ struct MapRun {
   long long messages = 0;
   long long radar_messages = 0;
   long long odometry_messages = 0;
-  double processing_s = 0.0;  ///< MapBag: wall time of bag reading + SLAM; MapStream: SLAM's
+  double processing_s = 0.0;  ///< MapBag: wall time of bag reading + SLAM; MapSource: SLAM's
                               ///< own time (the source, e.g. the simulator, is not counted)
   /// The span of log the map was built from: first to last scan imaged into a keyframe
   /// (a stray message stamped far away does not count), else of the messages read;
@@ -40,13 +40,8 @@ struct MapRun {
 MapRun MapBag(const Config& config, const std::string& bag_path, bool progress,
               const rosbag::BagReadOptions& read_options = {});
 
-/// Maps what `next` emits (it calls run->slam->Add*), with the same checks;
-/// processing_s counts only the time spent in the SlamSystem.
-MapRun MapStream(const Config& config, const std::string& description,
-                 const std::function<bool(MapRun*)>& next);
-
-/// Maps what `source` emits, each message through Feed(); `on_message` (optional) is called
-/// after each. processing_s counts only the time spent in the SlamSystem.
+/// Maps what `source` emits, each message through Feed(), with the same checks; `on_message`
+/// (optional) is called after each. processing_s counts only the time spent in the SlamSystem.
 MapRun MapSource(const Config& config, const std::string& description, MessageSource& source,
                  const std::function<void(MapRun*)>& on_message = nullptr);
 

@@ -78,6 +78,93 @@ nlohmann::json AteJson(const AteResult& a) {
   return {{"poses", a.num_poses}, {"rmse_m", a.rmse_m}, {"max_m", a.max_m}};
 }
 
+/// Output paths in `dir`, each recorded in `files` (in the order written) as it is handed out.
+struct OutputPaths {
+  std::string dir;
+  std::vector<std::string>* files;
+  std::string operator()(const std::string& name) const {
+    files->push_back(dir + "/" + name);
+    return dir + "/" + name;
+  }
+};
+
+cv::Point Pixel(const ImageGrid& grid, const Pose2& p) {
+  return cv::Point(static_cast<int>(std::lround(grid.XToCol(p.x_m))),
+                   static_cast<int>(std::lround(grid.YToRow(p.y_m))));
+}
+
+/// The mosaic for map.png: scaled so that the 99.5th percentile of the observed pixels is
+/// white, coloured, unobserved pixels dark grey.
+cv::Mat MosaicPng(const cv::Mat& map, const cv::Mat& observed, const std::string& colormap) {
+  std::vector<float> values;
+  for (int r = 0; r < map.rows; ++r)
+    for (int c = 0; c < map.cols; ++c)
+      if (observed.at<unsigned char>(r, c)) values.push_back(map.at<float>(r, c));
+  float top = 1.0f;
+  if (!values.empty()) {
+    const auto k = static_cast<std::ptrdiff_t>(0.995 * static_cast<double>(values.size() - 1));
+    std::nth_element(values.begin(), values.begin() + k, values.end());
+    top = std::max(values[static_cast<std::size_t>(k)], 1e-12f);
+  }
+  cv::Mat gray;
+  map.convertTo(gray, CV_8U, 255.0 / top);
+  cv::Mat png = Colorize(gray, colormap);
+  png.setTo(cv::Scalar(40, 40, 40), ~observed);
+  return png;
+}
+
+/// Run `id` (the n-th): its trajectory drawn on `png` and into `report` in the run's
+/// colour, trajectory_<id>.tum written, ATE against its ground truth if any. Returns the
+/// run's entry of summary.json.
+nlohmann::json WriteRun(const SessionData& session, int id, std::size_t n, const ImageGrid& grid,
+                        const std::map<int, std::vector<OdometrySample>>& ground_truth,
+                        const OutputPaths& path, cv::Mat* png, RunReport* report) {
+  const auto traj = CorrectedTrajectory(session, id);
+  for (std::size_t i = 1; i < traj.size(); ++i) {
+    cv::line(*png, Pixel(grid, traj[i - 1].second), Pixel(grid, traj[i].second), kBgr[n % 4], 2,
+             cv::LINE_AA);
+  }
+  std::vector<std::pair<double, Pose2>> tum;
+  std::vector<Point2> points;
+  for (std::size_t i = 0; i < traj.size(); ++i) {
+    tum.push_back({NsToSeconds(traj[i].first), traj[i].second});
+    if (i % 5 == 0) points.push_back({traj[i].second.x_m, traj[i].second.y_m});
+  }
+  const std::string name = "trajectory_" + std::to_string(id) + ".tum";
+  WriteTum(path(name), tum);
+  std::string input;
+  for (const SessionTrajectory& t : session.trajectories)
+    if (t.id == id) input = t.input;
+  int keyframes = 0;
+  for (const SessionKeyframe& k : session.keyframes) keyframes += k.trajectory == id;
+  nlohmann::json rj = {{"id", id}, {"input", input}, {"keyframes", keyframes}, {"tum", name}};
+  report->trajectories.push_back({"run " + std::to_string(id), kCss[n % 4], points});
+  auto gt = ground_truth.find(id);
+  if (gt != ground_truth.end()) {
+    const AteResult ate = TrajectoryError(traj, gt->second);
+    rj["ate"] = AteJson(ate);
+    report->summary.push_back({"ATE RMSE run " + std::to_string(id) + " (own alignment)",
+                               Fixed(ate.rmse_m * 100, 2) + " cm"});
+  }
+  return rj;
+}
+
+/// The accepted loops between placed keyframes, drawn cyan on `png` and into `report`;
+/// returns their number.
+int DrawAcceptedLoops(const SessionData& session, const std::map<int, Pose2>& poses,
+                      const ImageGrid& grid, cv::Mat* png, RunReport* report) {
+  int accepted = 0;
+  for (const SessionLoop& l : session.loops) {
+    if (!l.accepted || !poses.count(l.match_id) || !poses.count(l.query_id)) continue;
+    ++accepted;
+    const Pose2& a = poses.at(l.match_id);
+    const Pose2& b = poses.at(l.query_id);
+    cv::line(*png, Pixel(grid, a), Pixel(grid, b), cv::Scalar(255, 255, 0), 1, cv::LINE_AA);
+    report->loop_segments.push_back({{a.x_m, a.y_m}, {b.x_m, b.y_m}});
+  }
+  return accepted;
+}
+
 }  // namespace
 
 std::vector<std::pair<TimestampNs, Pose2>> CorrectedTrajectory(const SessionData& session,
@@ -131,10 +218,7 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
                                    const nlohmann::json& extra, const std::string& title) {
   EnsureDirectory(out_dir);
   SessionOutputs result;
-  auto path = [&](const std::string& name) {
-    result.files.push_back(out_dir + "/" + name);
-    return out_dir + "/" + name;
-  };
+  const OutputPaths path{out_dir, &result.files};
   const std::map<int, Pose2> poses = session.Poses();
   ImageGrid grid;
   cv::Mat observed;
@@ -144,67 +228,15 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
                   GridYaml(grid, "map_float.tif and map.png", "map_float.tif", "map"));
 
   // map.png: the mosaic, each run's corrected trajectory in its colour, accepted loops cyan.
-  std::vector<float> values;
-  for (int r = 0; r < map.rows; ++r)
-    for (int c = 0; c < map.cols; ++c)
-      if (observed.at<unsigned char>(r, c)) values.push_back(map.at<float>(r, c));
-  float top = 1.0f;
-  if (!values.empty()) {
-    const auto k = static_cast<std::ptrdiff_t>(0.995 * static_cast<double>(values.size() - 1));
-    std::nth_element(values.begin(), values.begin() + k, values.end());
-    top = std::max(values[static_cast<std::size_t>(k)], 1e-12f);
-  }
-  cv::Mat gray;
-  map.convertTo(gray, CV_8U, 255.0 / top);
-  cv::Mat png = Colorize(gray, config.enhance.colormap);
-  png.setTo(cv::Scalar(40, 40, 40), ~observed);
-  auto pixel = [&](const Pose2& p) {
-    return cv::Point(static_cast<int>(std::lround(grid.XToCol(p.x_m))),
-                     static_cast<int>(std::lround(grid.YToRow(p.y_m))));
-  };
+  cv::Mat png = MosaicPng(map, observed, config.enhance.colormap);
   RunReport report;
   report.title = title;
   const std::vector<int> runs = TrajectoryIds(session);
   nlohmann::json runs_json = nlohmann::json::array();
   for (std::size_t n = 0; n < runs.size(); ++n) {
-    const int id = runs[n];
-    const auto traj = CorrectedTrajectory(session, id);
-    for (std::size_t i = 1; i < traj.size(); ++i) {
-      cv::line(png, pixel(traj[i - 1].second), pixel(traj[i].second), kBgr[n % 4], 2, cv::LINE_AA);
-    }
-    std::vector<std::pair<double, Pose2>> tum;
-    std::vector<Point2> points;
-    for (std::size_t i = 0; i < traj.size(); ++i) {
-      tum.push_back({NsToSeconds(traj[i].first), traj[i].second});
-      if (i % 5 == 0) points.push_back({traj[i].second.x_m, traj[i].second.y_m});
-    }
-    const std::string name = "trajectory_" + std::to_string(id) + ".tum";
-    WriteTum(path(name), tum);
-    std::string input;
-    for (const SessionTrajectory& t : session.trajectories)
-      if (t.id == id) input = t.input;
-    int keyframes = 0;
-    for (const SessionKeyframe& k : session.keyframes) keyframes += k.trajectory == id;
-    nlohmann::json rj = {{"id", id}, {"input", input}, {"keyframes", keyframes}, {"tum", name}};
-    report.trajectories.push_back({"run " + std::to_string(id), kCss[n % 4], points});
-    auto gt = ground_truth.find(id);
-    if (gt != ground_truth.end()) {
-      const AteResult ate = TrajectoryError(traj, gt->second);
-      rj["ate"] = AteJson(ate);
-      report.summary.push_back({"ATE RMSE run " + std::to_string(id) + " (own alignment)",
-                                Fixed(ate.rmse_m * 100, 2) + " cm"});
-    }
-    runs_json.push_back(rj);
+    runs_json.push_back(WriteRun(session, runs[n], n, grid, ground_truth, path, &png, &report));
   }
-  int accepted = 0;
-  for (const SessionLoop& l : session.loops) {
-    if (!l.accepted || !poses.count(l.match_id) || !poses.count(l.query_id)) continue;
-    ++accepted;
-    const Pose2& a = poses.at(l.match_id);
-    const Pose2& b = poses.at(l.query_id);
-    cv::line(png, pixel(a), pixel(b), cv::Scalar(255, 255, 0), 1, cv::LINE_AA);
-    report.loop_segments.push_back({{a.x_m, a.y_m}, {b.x_m, b.y_m}});
-  }
+  const int accepted = DrawAcceptedLoops(session, poses, grid, &png, &report);
   WriteImageAtomic(path("map.png"), png);
   const OccupancyGrid occupancy =
       MapToOccupancy(map, observed, grid, config.slam.occupancy_resolution_m,

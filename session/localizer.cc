@@ -49,54 +49,13 @@ const LocalizedKeyframe& Localizer::Add(const KeyframeFeatures& features,
   const bool was_lost = placed_ && path_end_m - path_at_last_loop_m_ > sc.localize_lost_after_m;
   const bool global = !placed_ || was_lost;
 
-  // Candidates: every map keyframe (global), or those near the estimate.
-  const Point2 centre = T_map_odom_ * (T_odom_anchor * features.centre_anchor);
-  std::vector<Loop> found;
-  for (const SessionKeyframe& m : map_.keyframes) {
-    if (!global) {
-      const Point2 q = m.T_map_anchor * m.features.centre_anchor;
-      if (std::hypot(q.x_m - centre.x_m, q.y_m - centre.y_m) > sc.search_radius_m) continue;
-    }
-    ++k.candidates;
-    const MatchResult akaze = MatchFeatures(m.features.akaze, features.akaze, pr_.matching);
-    const MatchResult orb = MatchFeatures(m.features.orb, features.orb, pr_.matching);
-    const LoopValidation v =
-        ValidateLoop(m.id, m.features.grid, features.id, features.grid, akaze, orb, pr_.validation);
-    if (!v.accepted) continue;
-    Loop l;
-    l.map_id = m.id;
-    l.keyframe_index = index;
-    l.T_ij = v.constraint.T_ij;
-    l.information = v.constraint.information;
-    l.T_map_odom = m.T_map_anchor * l.T_ij * T_odom_anchor.Inverse();
-    found.push_back(l);
-  }
+  const std::vector<Loop> found = MatchMap(features, T_odom_anchor, index, global, &k.candidates);
 
   keyframes_.push_back(k);
   LocalizedKeyframe& out = keyframes_.back();
   std::vector<Loop> used;
   if (global) {
-    // (Re-)placement: enough loops, over the recent keyframes, that agree with each other.
-    for (const Loop& l : found) unplaced_.push_back(l);
-    for (const Loop& l : found) {
-      std::vector<Loop> agreeing;
-      for (const Loop& o : unplaced_) {
-        if (Agree(o.T_map_odom, l.T_map_odom, sc)) agreeing.push_back(o);
-      }
-      if (static_cast<int>(agreeing.size()) >= sc.connect_min_loops) {
-        used = agreeing;
-        T_map_odom_ = l.T_map_odom;
-        break;
-      }
-    }
-    if (!used.empty()) {
-      placed_ = true;
-      unplaced_.clear();
-      window_loops_.clear();
-      out.status = LocalizeStatus::kRelocalised;
-    } else {
-      out.status = LocalizeStatus::kLost;
-    }
+    used = Place(found, &out);
   } else {
     // Tracking: keep the loops that agree with the estimate (a false one would not).
     SessionConfig gate = sc;
@@ -116,6 +75,63 @@ const LocalizedKeyframe& Localizer::Add(const KeyframeFeatures& features,
   out.T_map_anchor = T_map_odom_ * T_odom_anchor;
   out.placed = placed_;
   return out;
+}
+
+std::vector<Localizer::Loop> Localizer::MatchMap(const KeyframeFeatures& features,
+                                                 const Pose2& T_odom_anchor, int index, bool global,
+                                                 int* candidates) const {
+  const SessionConfig& sc = config_.session;
+  // Candidates: every map keyframe (global), or those near the estimate.
+  const Point2 centre = T_map_odom_ * (T_odom_anchor * features.centre_anchor);
+  std::vector<Loop> found;
+  for (const SessionKeyframe& m : map_.keyframes) {
+    if (!global) {
+      const Point2 q = m.T_map_anchor * m.features.centre_anchor;
+      if (std::hypot(q.x_m - centre.x_m, q.y_m - centre.y_m) > sc.search_radius_m) continue;
+    }
+    ++*candidates;
+    const MatchResult akaze = MatchFeatures(m.features.akaze, features.akaze, pr_.matching);
+    const MatchResult orb = MatchFeatures(m.features.orb, features.orb, pr_.matching);
+    const LoopValidation v =
+        ValidateLoop(m.id, m.features.grid, features.id, features.grid, akaze, orb, pr_.validation);
+    if (!v.accepted) continue;
+    Loop l;
+    l.map_id = m.id;
+    l.keyframe_index = index;
+    l.T_ij = v.constraint.T_ij;
+    l.information = v.constraint.information;
+    l.T_map_odom = m.T_map_anchor * l.T_ij * T_odom_anchor.Inverse();
+    found.push_back(l);
+  }
+  return found;
+}
+
+std::vector<Localizer::Loop> Localizer::Place(const std::vector<Loop>& found,
+                                              LocalizedKeyframe* out) {
+  const SessionConfig& sc = config_.session;
+  std::vector<Loop> used;
+  // (Re-)placement: enough loops, over the recent keyframes, that agree with each other.
+  for (const Loop& l : found) unplaced_.push_back(l);
+  for (const Loop& l : found) {
+    std::vector<Loop> agreeing;
+    for (const Loop& o : unplaced_) {
+      if (Agree(o.T_map_odom, l.T_map_odom, sc)) agreeing.push_back(o);
+    }
+    if (static_cast<int>(agreeing.size()) >= sc.connect_min_loops) {
+      used = agreeing;
+      T_map_odom_ = l.T_map_odom;
+      break;
+    }
+  }
+  if (!used.empty()) {
+    placed_ = true;
+    unplaced_.clear();
+    window_loops_.clear();
+    out->status = LocalizeStatus::kRelocalised;
+  } else {
+    out->status = LocalizeStatus::kLost;
+  }
+  return used;
 }
 
 void Localizer::SolveWindow() {

@@ -58,6 +58,14 @@ class Localizer {
     Eigen::Matrix3d information;
     Pose2 T_map_odom;  ///< where this loop puts the odometry frame
   };
+  /// The validated loops of a new keyframe (keyframes_[index] once added) with the map:
+  /// candidates are every map keyframe (`global`) or those near the current estimate;
+  /// `candidates` counts the pairs matched.
+  std::vector<Loop> MatchMap(const KeyframeFeatures& features, const Pose2& T_odom_anchor,
+                             int index, bool global, int* candidates) const;
+  /// (Re-)placement: keeps `found` among the recent unplaced loops; when enough of them agree,
+  /// sets T_map_odom_ and returns the agreeing loops, else none. Sets out->status.
+  std::vector<Loop> Place(const std::vector<Loop>& found, LocalizedKeyframe* out);
   void SolveWindow();
 
   const SessionData& map_;

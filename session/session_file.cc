@@ -67,113 +67,131 @@ void WriteFeatures(SqliteStatement& s, int id, const char* name, const FeatureSe
   s.Run();
 }
 
+/// The meta table: format, version and the configuration.
+void WriteMeta(SqliteDb& db, const SessionData& d) {
+  SqliteStatement s(db, "INSERT INTO meta VALUES (?, ?)");
+  for (const auto& [k, v] : std::vector<std::pair<std::string, std::string>>{
+           {"format", kFormatName},
+           {"format_version", std::to_string(kSessionFormatVersion)},
+           {"config_yaml", d.config_yaml},
+           {"config_fingerprint", d.fingerprint}}) {
+    s.Bind(1, k);
+    s.Bind(2, v);
+    s.Run();
+  }
+}
+
+/// The trajectories table: one row per run.
+void WriteTrajectories(SqliteDb& db, const SessionData& d) {
+  SqliteStatement s(db, "INSERT INTO trajectories VALUES (?, ?)");
+  for (const SessionTrajectory& t : d.trajectories) {
+    s.Bind(1, t.id);
+    s.Bind(2, t.input);
+    s.Run();
+  }
+}
+
+/// The keyframes table and each keyframe's AKAZE and ORB rows of the features table.
+void WriteKeyframes(SqliteDb& db, const SessionData& d) {
+  SqliteStatement s(db,
+                    "INSERT INTO keyframes VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
+                    "?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  SqliteStatement f(db, "INSERT INTO features VALUES (?, ?, ?, ?, ?)");
+  for (const SessionKeyframe& k : d.keyframes) {
+    int i = 1;
+    s.Bind(i++, k.id);
+    s.Bind(i++, k.trajectory);
+    s.Bind(i++, static_cast<std::int64_t>(k.stamp_ns));
+    for (const Pose2* p : {&k.T_odom_anchor, &k.T_odom_robot, &k.T_map_anchor}) {
+      s.Bind(i++, p->x_m);
+      s.Bind(i++, p->y_m);
+      s.Bind(i++, p->yaw_rad);
+    }
+    s.Bind(i++, k.fixed ? 1 : 0);
+    s.Bind(i++, k.path_begin_m);
+    s.Bind(i++, k.path_end_m);
+    s.Bind(i++, k.detected_grid.x0_m);
+    s.Bind(i++, k.detected_grid.y0_m);
+    s.Bind(i++, k.detected_grid.resolution_m);
+    s.BindBlob(i++, session::EncodeMat(k.detected, kZstdLevel));
+    const ImageGrid& g = k.features.grid;
+    s.Bind(i++, g.x0_m);
+    s.Bind(i++, g.y0_m);
+    s.Bind(i++, g.resolution_m);
+    s.Bind(i++, g.rows);
+    s.Bind(i++, g.cols);
+    s.Bind(i++, k.features.centre_anchor.x_m);
+    s.Bind(i++, k.features.centre_anchor.y_m);
+    s.Run();
+    WriteFeatures(f, k.id, "AKAZE", k.features.akaze);
+    WriteFeatures(f, k.id, "ORB", k.features.orb);
+  }
+}
+
+/// The edges table, in the pose graph's order (idx).
+void WriteEdges(SqliteDb& db, const SessionData& d) {
+  SqliteStatement s(db, "INSERT INTO edges VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  int idx = 0;
+  for (const SessionEdge& e : d.edges) {
+    s.Bind(1, idx++);
+    s.Bind(2, e.edge.from_id);
+    s.Bind(3, e.edge.to_id);
+    s.Bind(4, std::string(EdgeKindName(e.edge.kind)));
+    s.Bind(5, e.edge.T_from_to.x_m);
+    s.Bind(6, e.edge.T_from_to.y_m);
+    s.Bind(7, e.edge.T_from_to.yaw_rad);
+    s.BindBlob(8, InformationBlob(e.edge.information));
+    s.Bind(9, e.rejected ? 1 : 0);
+    s.Bind(10, e.edge.trajectory);
+    s.Bind(11, e.edge.path_m);
+    s.Bind(12, e.edge.turn_rad);  // NaN (the yaw of T) is stored as NULL
+    s.Run();
+  }
+}
+
+/// The loops table.
+void WriteLoops(SqliteDb& db, const SessionData& d) {
+  SqliteStatement s(db, "INSERT INTO loops VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  for (const SessionLoop& l : d.loops) {
+    s.Bind(1, l.query_id);
+    s.Bind(2, l.match_id);
+    s.Bind(3, l.validated ? 1 : 0);
+    s.Bind(4, l.accepted ? 1 : 0);
+    s.Bind(5, l.T_ij.x_m);
+    s.Bind(6, l.T_ij.y_m);
+    s.Bind(7, l.T_ij.yaw_rad);
+    s.Bind(8, l.chi2);
+    s.Bind(9, l.akaze_good);
+    s.Bind(10, l.orb_good);
+    s.Bind(11, l.reason);
+    s.Run();
+  }
+}
+
+/// The odometry table.
+void WriteOdometry(SqliteDb& db, const SessionData& d) {
+  SqliteStatement s(db, "INSERT INTO odometry VALUES (?, ?, ?, ?, ?, ?)");
+  for (const SessionOdometry& o : d.odometry) {
+    s.Bind(1, o.trajectory);
+    s.Bind(2, static_cast<std::int64_t>(o.stamp_ns));
+    s.Bind(3, o.T_odom_robot.x_m);
+    s.Bind(4, o.T_odom_robot.y_m);
+    s.Bind(5, o.T_odom_robot.yaw_rad);
+    s.Bind(6, o.path_m);
+    s.Run();
+  }
+}
+
 void WriteAll(SqliteDb& db, const SessionData& d) {
   db.Exec("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF;");
   db.Exec(kSchema);
   db.Exec("BEGIN");
-  {
-    SqliteStatement s(db, "INSERT INTO meta VALUES (?, ?)");
-    for (const auto& [k, v] : std::vector<std::pair<std::string, std::string>>{
-             {"format", kFormatName},
-             {"format_version", std::to_string(kSessionFormatVersion)},
-             {"config_yaml", d.config_yaml},
-             {"config_fingerprint", d.fingerprint}}) {
-      s.Bind(1, k);
-      s.Bind(2, v);
-      s.Run();
-    }
-  }
-  {
-    SqliteStatement s(db, "INSERT INTO trajectories VALUES (?, ?)");
-    for (const SessionTrajectory& t : d.trajectories) {
-      s.Bind(1, t.id);
-      s.Bind(2, t.input);
-      s.Run();
-    }
-  }
-  {
-    SqliteStatement s(db,
-                      "INSERT INTO keyframes VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
-                      "?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-    SqliteStatement f(db, "INSERT INTO features VALUES (?, ?, ?, ?, ?)");
-    for (const SessionKeyframe& k : d.keyframes) {
-      int i = 1;
-      s.Bind(i++, k.id);
-      s.Bind(i++, k.trajectory);
-      s.Bind(i++, static_cast<std::int64_t>(k.stamp_ns));
-      for (const Pose2* p : {&k.T_odom_anchor, &k.T_odom_robot, &k.T_map_anchor}) {
-        s.Bind(i++, p->x_m);
-        s.Bind(i++, p->y_m);
-        s.Bind(i++, p->yaw_rad);
-      }
-      s.Bind(i++, k.fixed ? 1 : 0);
-      s.Bind(i++, k.path_begin_m);
-      s.Bind(i++, k.path_end_m);
-      s.Bind(i++, k.detected_grid.x0_m);
-      s.Bind(i++, k.detected_grid.y0_m);
-      s.Bind(i++, k.detected_grid.resolution_m);
-      s.BindBlob(i++, session::EncodeMat(k.detected, kZstdLevel));
-      const ImageGrid& g = k.features.grid;
-      s.Bind(i++, g.x0_m);
-      s.Bind(i++, g.y0_m);
-      s.Bind(i++, g.resolution_m);
-      s.Bind(i++, g.rows);
-      s.Bind(i++, g.cols);
-      s.Bind(i++, k.features.centre_anchor.x_m);
-      s.Bind(i++, k.features.centre_anchor.y_m);
-      s.Run();
-      WriteFeatures(f, k.id, "AKAZE", k.features.akaze);
-      WriteFeatures(f, k.id, "ORB", k.features.orb);
-    }
-  }
-  {
-    SqliteStatement s(db, "INSERT INTO edges VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-    int idx = 0;
-    for (const SessionEdge& e : d.edges) {
-      s.Bind(1, idx++);
-      s.Bind(2, e.edge.from_id);
-      s.Bind(3, e.edge.to_id);
-      s.Bind(4, std::string(EdgeKindName(e.edge.kind)));
-      s.Bind(5, e.edge.T_from_to.x_m);
-      s.Bind(6, e.edge.T_from_to.y_m);
-      s.Bind(7, e.edge.T_from_to.yaw_rad);
-      s.BindBlob(8, InformationBlob(e.edge.information));
-      s.Bind(9, e.rejected ? 1 : 0);
-      s.Bind(10, e.edge.trajectory);
-      s.Bind(11, e.edge.path_m);
-      s.Bind(12, e.edge.turn_rad);  // NaN (the yaw of T) is stored as NULL
-      s.Run();
-    }
-  }
-  {
-    SqliteStatement s(db, "INSERT INTO loops VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-    for (const SessionLoop& l : d.loops) {
-      s.Bind(1, l.query_id);
-      s.Bind(2, l.match_id);
-      s.Bind(3, l.validated ? 1 : 0);
-      s.Bind(4, l.accepted ? 1 : 0);
-      s.Bind(5, l.T_ij.x_m);
-      s.Bind(6, l.T_ij.y_m);
-      s.Bind(7, l.T_ij.yaw_rad);
-      s.Bind(8, l.chi2);
-      s.Bind(9, l.akaze_good);
-      s.Bind(10, l.orb_good);
-      s.Bind(11, l.reason);
-      s.Run();
-    }
-  }
-  {
-    SqliteStatement s(db, "INSERT INTO odometry VALUES (?, ?, ?, ?, ?, ?)");
-    for (const SessionOdometry& o : d.odometry) {
-      s.Bind(1, o.trajectory);
-      s.Bind(2, static_cast<std::int64_t>(o.stamp_ns));
-      s.Bind(3, o.T_odom_robot.x_m);
-      s.Bind(4, o.T_odom_robot.y_m);
-      s.Bind(5, o.T_odom_robot.yaw_rad);
-      s.Bind(6, o.path_m);
-      s.Run();
-    }
-  }
+  WriteMeta(db, d);
+  WriteTrajectories(db, d);
+  WriteKeyframes(db, d);
+  WriteEdges(db, d);
+  WriteLoops(db, d);
+  WriteOdometry(db, d);
   db.Exec("COMMIT");
 }
 
@@ -200,6 +218,152 @@ FeatureSet ReadFeatureSet(const SqliteStatement& s, DetectorKind kind, const std
 void CheckPose(const Pose2& p, const std::string& what) {
   if (!std::isfinite(p.x_m) || !std::isfinite(p.y_m) || !std::isfinite(p.yaw_rad)) {
     throw InputError(what + ": non-finite pose");
+  }
+}
+
+/// The trajectories table, by id.
+void ReadTrajectories(SqliteDb& db, SessionData* d) {
+  SqliteStatement s(db, "SELECT id, input FROM trajectories ORDER BY id");
+  while (s.Step()) d->trajectories.push_back({static_cast<int>(s.Int(0)), s.Text(1)});
+}
+
+/// One row of the keyframes table (`path` names the file in errors).
+SessionKeyframe ReadKeyframeRow(const SqliteStatement& s, const std::string& path) {
+  SessionKeyframe k;
+  int i = 0;
+  k.id = static_cast<int>(s.Int(i++));
+  k.trajectory = static_cast<int>(s.Int(i++));
+  k.stamp_ns = static_cast<TimestampNs>(s.Int(i++));
+  for (Pose2* p : {&k.T_odom_anchor, &k.T_odom_robot, &k.T_map_anchor}) {
+    p->x_m = s.Double(i++);
+    p->y_m = s.Double(i++);
+    p->yaw_rad = s.Double(i++);
+  }
+  const std::string what = path + ": keyframe " + std::to_string(k.id);
+  CheckPose(k.T_odom_anchor, what);
+  CheckPose(k.T_map_anchor, what);
+  k.fixed = s.Int(i++) != 0;
+  k.path_begin_m = s.Double(i++);
+  k.path_end_m = s.Double(i++);
+  k.detected_grid.x0_m = s.Double(i++);
+  k.detected_grid.y0_m = s.Double(i++);
+  k.detected_grid.resolution_m = s.Double(i++);
+  k.detected = session::DecodeMat(s.Blob(i++), what + " tile");
+  if (k.detected.type() != CV_32FC1) throw InputError(what + ": tile is not CV_32FC1");
+  k.detected_grid.rows = k.detected.rows;
+  k.detected_grid.cols = k.detected.cols;
+  KeyframeFeatures& kf = k.features;
+  kf.id = k.id;
+  kf.grid.x0_m = s.Double(i++);
+  kf.grid.y0_m = s.Double(i++);
+  kf.grid.resolution_m = s.Double(i++);
+  kf.grid.rows = static_cast<int>(s.Int(i++));
+  kf.grid.cols = static_cast<int>(s.Int(i++));
+  kf.centre_anchor.x_m = s.Double(i++);
+  kf.centre_anchor.y_m = s.Double(i++);
+  kf.path_begin_m = k.path_begin_m;
+  kf.T_world_anchor = k.T_map_anchor;
+  if (!(k.detected_grid.resolution_m > 0) || !(kf.grid.resolution_m > 0)) {
+    throw InputError(what + ": grid resolution is not positive");
+  }
+  return k;
+}
+
+/// The AKAZE and ORB rows of the features table for keyframe kf->id (`f` selects by id).
+void ReadKeyframeFeatures(SqliteStatement& f, const std::string& what, KeyframeFeatures* kf) {
+  f.Bind(1, kf->id);
+  int found = 0;
+  while (f.Step()) {
+    const std::string name = f.Text(0);
+    if (name == "AKAZE") {
+      kf->akaze = ReadFeatureSet(f, DetectorKind::kAkaze, what + " AKAZE");
+      ++found;
+    } else if (name == "ORB") {
+      kf->orb = ReadFeatureSet(f, DetectorKind::kOrb, what + " ORB");
+      ++found;
+    }
+  }
+  f.Run();  // reset
+  if (found != 2) throw InputError(what + ": AKAZE or ORB features missing");
+}
+
+/// The keyframes table (by trajectory and time) with each keyframe's AKAZE and ORB features.
+void ReadKeyframes(SqliteDb& db, const std::string& path, SessionData* d) {
+  SqliteStatement s(db, "SELECT * FROM keyframes ORDER BY trajectory, stamp_ns, id");
+  SqliteStatement f(db,
+                    "SELECT detector, norm_type, keypoints, descriptors FROM features WHERE "
+                    "keyframe_id = ? ORDER BY detector");
+  while (s.Step()) {
+    SessionKeyframe k = ReadKeyframeRow(s, path);
+    ReadKeyframeFeatures(f, path + ": keyframe " + std::to_string(k.id), &k.features);
+    d->keyframes.push_back(std::move(k));
+  }
+}
+
+/// The edges table in its order; version 1 lacks the calibration columns.
+void ReadEdges(SqliteDb& db, const std::string& path, SessionData* d) {
+  SqliteStatement s(db, "SELECT * FROM edges ORDER BY idx");
+  while (s.Step()) {
+    SessionEdge e;
+    e.edge.from_id = static_cast<int>(s.Int(1));
+    e.edge.to_id = static_cast<int>(s.Int(2));
+    const std::string kind = s.Text(3);
+    if (kind == EdgeKindName(EdgeKind::kOdometry))
+      e.edge.kind = EdgeKind::kOdometry;
+    else if (kind == EdgeKindName(EdgeKind::kLoop))
+      e.edge.kind = EdgeKind::kLoop;
+    else if (kind == EdgeKindName(EdgeKind::kWall))
+      e.edge.kind = EdgeKind::kWall;
+    else
+      throw InputError(path + ": edge " + std::to_string(s.Int(0)) + ": unknown kind '" + kind +
+                       "'");
+    e.edge.T_from_to = {s.Double(4), s.Double(5), s.Double(6)};
+    const std::vector<unsigned char> info = s.Blob(7);
+    if (info.size() != 9 * sizeof(double)) {
+      throw InputError(path + ": edge " + std::to_string(s.Int(0)) + ": damaged information");
+    }
+    double v[9];
+    std::memcpy(v, info.data(), sizeof(v));
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) e.edge.information(r, c) = v[r * 3 + c];
+    e.rejected = s.Int(8) != 0;
+    if (d->format_version >= 2) {
+      e.edge.trajectory = static_cast<int>(s.Int(9));
+      e.edge.path_m = s.Double(10);
+      e.edge.turn_rad = s.Double(11);
+    }
+    d->edges.push_back(e);
+  }
+}
+
+/// The loops table.
+void ReadLoops(SqliteDb& db, SessionData* d) {
+  SqliteStatement s(db, "SELECT * FROM loops");
+  while (s.Step()) {
+    SessionLoop l;
+    l.query_id = static_cast<int>(s.Int(0));
+    l.match_id = static_cast<int>(s.Int(1));
+    l.validated = s.Int(2) != 0;
+    l.accepted = s.Int(3) != 0;
+    l.T_ij = {s.Double(4), s.Double(5), s.Double(6)};
+    l.chi2 = s.Double(7);
+    l.akaze_good = static_cast<int>(s.Int(8));
+    l.orb_good = static_cast<int>(s.Int(9));
+    l.reason = s.Text(10);
+    d->loops.push_back(l);
+  }
+}
+
+/// The odometry table, by trajectory and time.
+void ReadOdometry(SqliteDb& db, SessionData* d) {
+  SqliteStatement s(db, "SELECT * FROM odometry ORDER BY trajectory, stamp_ns");
+  while (s.Step()) {
+    SessionOdometry o;
+    o.trajectory = static_cast<int>(s.Int(0));
+    o.stamp_ns = static_cast<TimestampNs>(s.Int(1));
+    o.T_odom_robot = {s.Double(2), s.Double(3), s.Double(4)};
+    o.path_m = s.Double(5);
+    d->odometry.push_back(o);
   }
 }
 
@@ -260,131 +424,11 @@ SessionData ReadSession(const std::string& path, const CoreConfig* config) {
     const std::string diff = FingerprintDifference(d.fingerprint, *config);
     if (!diff.empty()) throw InputError(path + ": incompatible configuration: " + diff);
   }
-  {
-    SqliteStatement s(db, "SELECT id, input FROM trajectories ORDER BY id");
-    while (s.Step()) d.trajectories.push_back({static_cast<int>(s.Int(0)), s.Text(1)});
-  }
-  {
-    SqliteStatement s(db, "SELECT * FROM keyframes ORDER BY trajectory, stamp_ns, id");
-    SqliteStatement f(db,
-                      "SELECT detector, norm_type, keypoints, descriptors FROM features WHERE "
-                      "keyframe_id = ? ORDER BY detector");
-    while (s.Step()) {
-      SessionKeyframe k;
-      int i = 0;
-      k.id = static_cast<int>(s.Int(i++));
-      k.trajectory = static_cast<int>(s.Int(i++));
-      k.stamp_ns = static_cast<TimestampNs>(s.Int(i++));
-      for (Pose2* p : {&k.T_odom_anchor, &k.T_odom_robot, &k.T_map_anchor}) {
-        p->x_m = s.Double(i++);
-        p->y_m = s.Double(i++);
-        p->yaw_rad = s.Double(i++);
-      }
-      const std::string what = path + ": keyframe " + std::to_string(k.id);
-      CheckPose(k.T_odom_anchor, what);
-      CheckPose(k.T_map_anchor, what);
-      k.fixed = s.Int(i++) != 0;
-      k.path_begin_m = s.Double(i++);
-      k.path_end_m = s.Double(i++);
-      k.detected_grid.x0_m = s.Double(i++);
-      k.detected_grid.y0_m = s.Double(i++);
-      k.detected_grid.resolution_m = s.Double(i++);
-      k.detected = session::DecodeMat(s.Blob(i++), what + " tile");
-      if (k.detected.type() != CV_32FC1) throw InputError(what + ": tile is not CV_32FC1");
-      k.detected_grid.rows = k.detected.rows;
-      k.detected_grid.cols = k.detected.cols;
-      KeyframeFeatures& kf = k.features;
-      kf.id = k.id;
-      kf.grid.x0_m = s.Double(i++);
-      kf.grid.y0_m = s.Double(i++);
-      kf.grid.resolution_m = s.Double(i++);
-      kf.grid.rows = static_cast<int>(s.Int(i++));
-      kf.grid.cols = static_cast<int>(s.Int(i++));
-      kf.centre_anchor.x_m = s.Double(i++);
-      kf.centre_anchor.y_m = s.Double(i++);
-      kf.path_begin_m = k.path_begin_m;
-      kf.T_world_anchor = k.T_map_anchor;
-      if (!(k.detected_grid.resolution_m > 0) || !(kf.grid.resolution_m > 0)) {
-        throw InputError(what + ": grid resolution is not positive");
-      }
-      f.Bind(1, k.id);
-      int found = 0;
-      while (f.Step()) {
-        const std::string name = f.Text(0);
-        if (name == "AKAZE") {
-          kf.akaze = ReadFeatureSet(f, DetectorKind::kAkaze, what + " AKAZE");
-          ++found;
-        } else if (name == "ORB") {
-          kf.orb = ReadFeatureSet(f, DetectorKind::kOrb, what + " ORB");
-          ++found;
-        }
-      }
-      f.Run();  // reset
-      if (found != 2) throw InputError(what + ": AKAZE or ORB features missing");
-      d.keyframes.push_back(std::move(k));
-    }
-  }
-  {
-    SqliteStatement s(db, "SELECT * FROM edges ORDER BY idx");
-    while (s.Step()) {
-      SessionEdge e;
-      e.edge.from_id = static_cast<int>(s.Int(1));
-      e.edge.to_id = static_cast<int>(s.Int(2));
-      const std::string kind = s.Text(3);
-      if (kind == EdgeKindName(EdgeKind::kOdometry))
-        e.edge.kind = EdgeKind::kOdometry;
-      else if (kind == EdgeKindName(EdgeKind::kLoop))
-        e.edge.kind = EdgeKind::kLoop;
-      else if (kind == EdgeKindName(EdgeKind::kWall))
-        e.edge.kind = EdgeKind::kWall;
-      else
-        throw InputError(path + ": edge " + std::to_string(s.Int(0)) + ": unknown kind '" + kind +
-                         "'");
-      e.edge.T_from_to = {s.Double(4), s.Double(5), s.Double(6)};
-      const std::vector<unsigned char> info = s.Blob(7);
-      if (info.size() != 9 * sizeof(double)) {
-        throw InputError(path + ": edge " + std::to_string(s.Int(0)) + ": damaged information");
-      }
-      double v[9];
-      std::memcpy(v, info.data(), sizeof(v));
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) e.edge.information(r, c) = v[r * 3 + c];
-      e.rejected = s.Int(8) != 0;
-      if (d.format_version >= 2) {
-        e.edge.trajectory = static_cast<int>(s.Int(9));
-        e.edge.path_m = s.Double(10);
-        e.edge.turn_rad = s.Double(11);
-      }
-      d.edges.push_back(e);
-    }
-  }
-  {
-    SqliteStatement s(db, "SELECT * FROM loops");
-    while (s.Step()) {
-      SessionLoop l;
-      l.query_id = static_cast<int>(s.Int(0));
-      l.match_id = static_cast<int>(s.Int(1));
-      l.validated = s.Int(2) != 0;
-      l.accepted = s.Int(3) != 0;
-      l.T_ij = {s.Double(4), s.Double(5), s.Double(6)};
-      l.chi2 = s.Double(7);
-      l.akaze_good = static_cast<int>(s.Int(8));
-      l.orb_good = static_cast<int>(s.Int(9));
-      l.reason = s.Text(10);
-      d.loops.push_back(l);
-    }
-  }
-  {
-    SqliteStatement s(db, "SELECT * FROM odometry ORDER BY trajectory, stamp_ns");
-    while (s.Step()) {
-      SessionOdometry o;
-      o.trajectory = static_cast<int>(s.Int(0));
-      o.stamp_ns = static_cast<TimestampNs>(s.Int(1));
-      o.T_odom_robot = {s.Double(2), s.Double(3), s.Double(4)};
-      o.path_m = s.Double(5);
-      d.odometry.push_back(o);
-    }
-  }
+  ReadTrajectories(db, &d);
+  ReadKeyframes(db, path, &d);
+  ReadEdges(db, path, &d);
+  ReadLoops(db, &d);
+  ReadOdometry(db, &d);
   return d;
 }
 

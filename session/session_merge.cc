@@ -50,45 +50,43 @@ SessionData Renumbered(const SessionData& b, int id_offset, int trajectory_offse
   return out;
 }
 
-}  // namespace
-
-void ShareLoopInformationPerKeyframe(std::vector<PoseGraphEdge>* loops) {
-  std::map<int, int> loops_of_keyframe;
-  for (const PoseGraphEdge& e : *loops) ++loops_of_keyframe[e.to_id];
-  for (PoseGraphEdge& e : *loops) e.information /= loops_of_keyframe.at(e.to_id);
+/// The saved map's keyframes a new keyframe `kb` is matched against: all of them until
+/// the new session is placed, then those within session.search_radius_m of where it lies.
+std::vector<const SessionKeyframe*> MergeCandidates(const SessionData& a, const SessionKeyframe& kb,
+                                                    const MergeReport& r, const SessionConfig& sc) {
+  std::vector<const SessionKeyframe*> candidates;
+  if (!r.connected) {
+    for (const SessionKeyframe& ka : a.keyframes) candidates.push_back(&ka);
+  } else {
+    const Point2 p = Centre(kb, r.T_mapA_mapB * kb.T_map_anchor);
+    for (const SessionKeyframe& ka : a.keyframes) {
+      const Point2 q = Centre(ka, ka.T_map_anchor);
+      if (std::hypot(p.x_m - q.x_m, p.y_m - q.y_m) <= sc.search_radius_m) {
+        candidates.push_back(&ka);
+      }
+    }
+  }
+  return candidates;
 }
 
-SessionData MergeSessions(const SessionData& a, const SessionData& b_in,
-                          const SessionSettings& config, MergeReport* report) {
+/// Matches every keyframe of `b` (renumbered) against `a` in b's order. Until enough
+/// validated loops agree on where b lies (session.connect_min_loops), they are kept in
+/// `before`; then the agreeing ones and every later loop go into the graph (returned), and
+/// `r` records the connection.
+std::vector<Hypothesis> FindMergeLoops(const SessionData& a, const SessionData& b,
+                                       const SessionSettings& config, MergeReport* report,
+                                       std::vector<Hypothesis>* before) {
   MergeReport& r = *report;
-  r = MergeReport{};
-  r.id_offset = a.MaxKeyframeId() + 1;
-  r.trajectory_offset = a.MaxTrajectoryId() + 1;
-  const SessionData b = Renumbered(b_in, r.id_offset, r.trajectory_offset);
   const SessionConfig& sc = config.session;
   const PlaceRecognitionConfig pr =
       AtFeatureResolution(config.place_recognition, FeatureDownsampling(config));
-
   // Path of each new trajectory at its start, so that connect_path_m counts from there.
   std::map<int, double> path_origin;
   for (const SessionOdometry& o : b.odometry) path_origin.emplace(o.trajectory, o.path_m);
 
-  std::vector<Hypothesis> before;  // validated loops before placement
-  std::vector<Hypothesis> loops;   // the loops that go into the graph
+  std::vector<Hypothesis> loops;  // the loops that go into the graph
   for (const SessionKeyframe& kb : b.keyframes) {
-    std::vector<const SessionKeyframe*> candidates;
-    if (!r.connected) {
-      for (const SessionKeyframe& ka : a.keyframes) candidates.push_back(&ka);
-    } else {
-      const Point2 p = Centre(kb, r.T_mapA_mapB * kb.T_map_anchor);
-      for (const SessionKeyframe& ka : a.keyframes) {
-        const Point2 q = Centre(ka, ka.T_map_anchor);
-        if (std::hypot(p.x_m - q.x_m, p.y_m - q.y_m) <= sc.search_radius_m) {
-          candidates.push_back(&ka);
-        }
-      }
-    }
-    for (const SessionKeyframe* ka : candidates) {
+    for (const SessionKeyframe* ka : MergeCandidates(a, kb, r, sc)) {
       ++r.candidates;
       const MatchResult akaze = MatchFeatures(ka->features.akaze, kb.features.akaze, pr.matching);
       const MatchResult orb = MatchFeatures(ka->features.orb, kb.features.orb, pr.matching);
@@ -106,9 +104,9 @@ SessionData MergeSessions(const SessionData& a, const SessionData& b_in,
         loops.push_back(h);
         continue;
       }
-      before.push_back(h);
+      before->push_back(h);
       std::vector<Hypothesis> agreeing;
-      for (const Hypothesis& o : before) {
+      for (const Hypothesis& o : *before) {
         if (Agree(o.T_mapA_mapB, h.T_mapA_mapB, sc)) agreeing.push_back(o);
       }
       if (static_cast<int>(agreeing.size()) >= std::max(1, sc.connect_min_loops)) {
@@ -117,38 +115,33 @@ SessionData MergeSessions(const SessionData& a, const SessionData& b_in,
         r.connect_keyframe_id = kb.id;
         r.connect_path_m = kb.path_end_m - path_origin[kb.trajectory];
         loops.insert(loops.end(), agreeing.begin(), agreeing.end());
-        r.dropped = static_cast<int>(before.size() - agreeing.size());
+        r.dropped = static_cast<int>(before->size() - agreeing.size());
       }
     }
   }
+  return loops;
+}
 
-  SessionData out = a;
-  out.trajectories.insert(out.trajectories.end(), b.trajectories.begin(), b.trajectories.end());
-  if (!r.connected) {
-    r.reason = before.empty() ? "no loop connects the sessions (" + std::to_string(r.candidates) +
-                                    " keyframe pairs matched)"
-                              : std::to_string(before.size()) +
-                                    " loops between the sessions, fewer than "
-                                    "session.connect_min_loops agree on where the run lies";
-    return out;
-  }
-
-  // One graph: the saved map keeps its gauge (all of it with session.freeze_saved_map); the new
-  // session starts where it was placed.
-  PoseGraph graph(config.backend);
+/// One graph: the saved map keeps its gauge (its fixed keyframes, else its first; every
+/// keyframe with `freeze_saved_map`); the new session starts where it was placed; both
+/// sessions' kept edges and the new loops (ShareLoopInformationPerKeyframe). Returns the new
+/// loops' edge indices.
+std::vector<int> BuildJointGraph(const SessionData& a, const SessionData& b,
+                                 const Pose2& T_mapA_mapB, const std::vector<Hypothesis>& loops,
+                                 bool freeze_saved_map, PoseGraph* graph) {
   bool any_fixed = false;
   for (const SessionKeyframe& k : a.keyframes) {
-    graph.AddNode(k.id, k.T_map_anchor, false);
-    if (k.fixed || config.session.freeze_saved_map) graph.FixNode(k.id), any_fixed = true;
+    graph->AddNode(k.id, k.T_map_anchor, false);
+    if (k.fixed || freeze_saved_map) graph->FixNode(k.id), any_fixed = true;
   }
-  if (!any_fixed && !a.keyframes.empty()) graph.FixNode(a.keyframes.front().id);
+  if (!any_fixed && !a.keyframes.empty()) graph->FixNode(a.keyframes.front().id);
   for (const SessionKeyframe& k : b.keyframes) {
-    graph.AddNode(k.id, r.T_mapA_mapB * k.T_map_anchor, false);
+    graph->AddNode(k.id, T_mapA_mapB * k.T_map_anchor, false);
   }
   for (const SessionData* s : {&a, &b}) {
     for (const SessionEdge& e : s->edges) {
       if (e.rejected) continue;
-      graph.AddEdge(e.edge);
+      graph->AddEdge(e.edge);
     }
   }
   std::vector<PoseGraphEdge> between;
@@ -163,22 +156,26 @@ SessionData MergeSessions(const SessionData& a, const SessionData& b_in,
   }
   ShareLoopInformationPerKeyframe(&between);
   std::vector<int> new_edges;
-  for (const PoseGraphEdge& e : between) new_edges.push_back(graph.AddEdge(e));
-  r.optimization = graph.Optimize();
-  r.loop_edges = static_cast<int>(loops.size());
+  for (const PoseGraphEdge& e : between) new_edges.push_back(graph->AddEdge(e));
+  return new_edges;
+}
 
+/// `out` (a copy of the saved map) joined with `b` as `graph` solved it: every keyframe at
+/// its solved pose, the graph's edges, b's loops and the new ones (with their verdicts).
+void StoreJoined(const PoseGraph& graph, const SessionData& b, const std::vector<Hypothesis>& loops,
+                 const std::vector<int>& new_edges, MergeReport* r, SessionData* out) {
   const std::map<int, Pose2> poses = graph.GetPoses();
   const std::vector<PoseGraphEdge> edges = graph.Edges();
   const std::vector<EdgeReport> reports = graph.EdgeReports();
-  out.keyframes.insert(out.keyframes.end(), b.keyframes.begin(), b.keyframes.end());
-  for (SessionKeyframe& k : out.keyframes) {
+  out->keyframes.insert(out->keyframes.end(), b.keyframes.begin(), b.keyframes.end());
+  for (SessionKeyframe& k : out->keyframes) {
     k.T_map_anchor = poses.at(k.id);
     k.features.T_world_anchor = k.T_map_anchor;
   }
-  out.edges.clear();
+  out->edges.clear();
   for (std::size_t i = 0; i < edges.size(); ++i)
-    out.edges.push_back({edges[i], reports[i].rejected});
-  out.loops.insert(out.loops.end(), b.loops.begin(), b.loops.end());
+    out->edges.push_back({edges[i], reports[i].rejected});
+  out->loops.insert(out->loops.end(), b.loops.begin(), b.loops.end());
   for (std::size_t i = 0; i < loops.size(); ++i) {
     SessionLoop l;
     l.query_id = loops[i].b_id;
@@ -188,10 +185,46 @@ SessionData MergeSessions(const SessionData& a, const SessionData& b_in,
     l.T_ij = loops[i].T_ij;
     l.chi2 = reports[new_edges[i]].chi2;
     l.reason = "between sessions";
-    r.loop_edges_rejected += !l.accepted;
-    out.loops.push_back(l);
+    r->loop_edges_rejected += !l.accepted;
+    out->loops.push_back(l);
   }
-  out.odometry.insert(out.odometry.end(), b.odometry.begin(), b.odometry.end());
+  out->odometry.insert(out->odometry.end(), b.odometry.begin(), b.odometry.end());
+}
+
+}  // namespace
+
+void ShareLoopInformationPerKeyframe(std::vector<PoseGraphEdge>* loops) {
+  std::map<int, int> loops_of_keyframe;
+  for (const PoseGraphEdge& e : *loops) ++loops_of_keyframe[e.to_id];
+  for (PoseGraphEdge& e : *loops) e.information /= loops_of_keyframe.at(e.to_id);
+}
+
+SessionData MergeSessions(const SessionData& a, const SessionData& b_in,
+                          const SessionSettings& config, MergeReport* report) {
+  MergeReport& r = *report;
+  r = MergeReport{};
+  r.id_offset = a.MaxKeyframeId() + 1;
+  r.trajectory_offset = a.MaxTrajectoryId() + 1;
+  const SessionData b = Renumbered(b_in, r.id_offset, r.trajectory_offset);
+  std::vector<Hypothesis> before;  // validated loops before placement
+  const std::vector<Hypothesis> loops = FindMergeLoops(a, b, config, &r, &before);
+
+  SessionData out = a;
+  out.trajectories.insert(out.trajectories.end(), b.trajectories.begin(), b.trajectories.end());
+  if (!r.connected) {
+    r.reason = before.empty() ? "no loop connects the sessions (" + std::to_string(r.candidates) +
+                                    " keyframe pairs matched)"
+                              : std::to_string(before.size()) +
+                                    " loops between the sessions, fewer than "
+                                    "session.connect_min_loops agree on where the run lies";
+    return out;
+  }
+  PoseGraph graph(config.backend);
+  const std::vector<int> new_edges =
+      BuildJointGraph(a, b, r.T_mapA_mapB, loops, config.session.freeze_saved_map, &graph);
+  r.optimization = graph.Optimize();
+  r.loop_edges = static_cast<int>(loops.size());
+  StoreJoined(graph, b, loops, new_edges, &r, &out);
   return out;
 }
 

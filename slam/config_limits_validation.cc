@@ -27,6 +27,72 @@ void RequireWithin(double size, double budget, const std::string& src, const std
                     ", more than limits." + limit + " (" + Num(budget) + ")");
 }
 
+/// Range samples per scan (oversampled in coherent mode) within limits.max_range_samples.
+void ValidateRangeSamples(const CoreConfig& c, const std::string& src) {
+  const LimitsConfig& l = c.limits;
+  const bool coherent = c.imaging.coherent();
+  for (std::size_t i = 0; i < c.radars.size(); ++i) {
+    const double samples = static_cast<double>(c.radars[i].num_samples) *
+                           (coherent ? c.imaging.coherent_oversampling : 1);
+    const bool oversampling = coherent && c.radars[i].num_samples <= l.max_range_samples;
+    RequireWithin(samples, l.max_range_samples, src,
+                  oversampling ? "imaging.coherent_oversampling"
+                               : "radars[" + std::to_string(i) + "].num_samples",
+                  oversampling ? c.imaging.coherent_oversampling : c.radars[i].num_samples,
+                  "range samples per scan", "max_range_samples");
+  }
+}
+
+/// One segment's canvas (KeyframeBuilder): its half side and the spacing term in it.
+struct SegmentCanvas {
+  double spacing_term_m = 0.0;
+  double half_m = 0.0;
+  double pixels = 0.0;
+};
+
+/// A segment's canvas covers the robot's reach over one spacing plus every sensor's
+/// sector (within max_range_m of the antenna) plus the margin (KeyframeBuilder); checked
+/// against limits.max_tile_pixels, blaming the setting that makes it too large.
+SegmentCanvas ValidateSegmentCanvas(const CoreConfig& c, const std::string& src) {
+  const LimitsConfig& l = c.limits;
+  const KeyframeConfig& k = c.keyframe;
+  double reach_m = 0.0;
+  std::size_t reach_radar = 0;
+  for (std::size_t i = 0; i < c.radars.size(); ++i) {
+    const RadarConfig& r = c.radars[i];
+    const double reach = std::hypot(r.mount_x_m, r.mount_y_m) + r.max_range_m;
+    if (reach > reach_m) reach_m = reach, reach_radar = i;
+  }
+  SegmentCanvas out;
+  out.spacing_term_m = 1.05 * k.tile_spacing_m;
+  out.half_m = out.spacing_term_m + reach_m + k.margin_m;
+  auto canvas_pixels = [&](double pixel_m) {
+    const double side = 2.0 * std::ceil(out.half_m / pixel_m) + 1.0;
+    return side * side;
+  };
+  const double pixel_m = c.imaging.pixel_size_m;
+  out.pixels = canvas_pixels(pixel_m);
+  if (out.pixels > l.max_tile_pixels) {
+    // Blame the pixel size if the geometry fits at the default one, else the longest term.
+    std::string key = "imaging.pixel_size_m";
+    double value = pixel_m;
+    if (canvas_pixels(std::max(pixel_m, ImagingConfig{}.pixel_size_m)) > l.max_tile_pixels) {
+      if (reach_m >= out.spacing_term_m && reach_m >= k.margin_m) {
+        key = "radars[" + std::to_string(reach_radar) + "].max_range_m";
+        value = c.radars[reach_radar].max_range_m;
+      } else if (k.margin_m >= out.spacing_term_m) {
+        key = "keyframe.margin_m", value = k.margin_m;
+      } else {
+        key = "keyframe.tile_spacing_m", value = k.tile_spacing_m;
+      }
+    }
+    RequireWithin(out.pixels, l.max_tile_pixels, src, key, value,
+                  "one tile canvas (pixels, at imaging.pixel_size_m " + Num(pixel_m) + " m)",
+                  "max_tile_pixels");
+  }
+  return out;
+}
+
 }  // namespace
 
 /// Sizes the imaging and map settings imply, checked against `limits:` before any work
@@ -43,57 +109,13 @@ void ValidateLimits(const CoreConfig& c, const std::string& src) {
         std::make_pair("max_map_image_pixels", l.max_map_image_pixels)}) {
     Require(value > 0, src, std::string("limits.") + key, "must be > 0");
   }
-  const bool coherent = c.imaging.coherent();
-  for (std::size_t i = 0; i < c.radars.size(); ++i) {
-    const double samples = static_cast<double>(c.radars[i].num_samples) *
-                           (coherent ? c.imaging.coherent_oversampling : 1);
-    const bool oversampling = coherent && c.radars[i].num_samples <= l.max_range_samples;
-    RequireWithin(samples, l.max_range_samples, src,
-                  oversampling ? "imaging.coherent_oversampling"
-                               : "radars[" + std::to_string(i) + "].num_samples",
-                  oversampling ? c.imaging.coherent_oversampling : c.radars[i].num_samples,
-                  "range samples per scan", "max_range_samples");
-  }
+  ValidateRangeSamples(c, src);
   const KeyframeConfig& k = c.keyframe;
   RequireWithin(1.0 / k.tile_spacing_m, l.max_keyframes_per_m, src, "keyframe.tile_spacing_m",
                 k.tile_spacing_m, "keyframes per metre", "max_keyframes_per_m");
-  // A segment's canvas covers the robot's reach over one spacing plus every sensor's
-  // sector (within max_range_m of the antenna) plus the margin (KeyframeBuilder).
-  double reach_m = 0.0;
-  std::size_t reach_radar = 0;
-  for (std::size_t i = 0; i < c.radars.size(); ++i) {
-    const RadarConfig& r = c.radars[i];
-    const double reach = std::hypot(r.mount_x_m, r.mount_y_m) + r.max_range_m;
-    if (reach > reach_m) reach_m = reach, reach_radar = i;
-  }
-  const double spacing_term_m = 1.05 * k.tile_spacing_m;
-  const double half_m = spacing_term_m + reach_m + k.margin_m;
-  auto canvas_pixels = [&](double pixel_m) {
-    const double side = 2.0 * std::ceil(half_m / pixel_m) + 1.0;
-    return side * side;
-  };
-  const double pixel_m = c.imaging.pixel_size_m;
-  const double canvas = canvas_pixels(pixel_m);
-  if (canvas > l.max_tile_pixels) {
-    // Blame the pixel size if the geometry fits at the default one, else the longest term.
-    std::string key = "imaging.pixel_size_m";
-    double value = pixel_m;
-    if (canvas_pixels(std::max(pixel_m, ImagingConfig{}.pixel_size_m)) > l.max_tile_pixels) {
-      if (reach_m >= spacing_term_m && reach_m >= k.margin_m) {
-        key = "radars[" + std::to_string(reach_radar) + "].max_range_m";
-        value = c.radars[reach_radar].max_range_m;
-      } else if (k.margin_m >= spacing_term_m) {
-        key = "keyframe.margin_m", value = k.margin_m;
-      } else {
-        key = "keyframe.tile_spacing_m", value = k.tile_spacing_m;
-      }
-    }
-    RequireWithin(canvas, l.max_tile_pixels, src, key, value,
-                  "one tile canvas (pixels, at imaging.pixel_size_m " + Num(pixel_m) + " m)",
-                  "max_tile_pixels");
-  }
+  const SegmentCanvas canvas = ValidateSegmentCanvas(c, src);
   const double segments = std::round(k.tile_length_m / k.tile_spacing_m);
-  const double canvas_mb = canvas * (coherent ? 8.0 : 4.0) / (1024.0 * 1024.0);
+  const double canvas_mb = canvas.pixels * (c.imaging.coherent() ? 8.0 : 4.0) / (1024.0 * 1024.0);
   // Per-radar matching images each radar into a canvas of its own (keyframe_builder.h).
   const double layers = c.place_recognition.per_radar.enabled && c.radars.size() >= 2
                             ? static_cast<double>(c.radars.size())
@@ -103,7 +125,7 @@ void ValidateLimits(const CoreConfig& c, const std::string& src) {
                 "the segment canvases alive at once (MB)", "max_imaging_memory_mb");
   // A tile spans its segments' canvases; the map warps it at slam.map_resolution_m (the
   // tile is never upsampled, so a finer map still costs the footprint at map resolution).
-  const double tile_side_m = 2.0 * half_m + (segments - 1.0) * spacing_term_m;
+  const double tile_side_m = 2.0 * canvas.half_m + (segments - 1.0) * canvas.spacing_term_m;
   const double map_m = c.slam.map_resolution_m;
   RequireWithin(tile_side_m * tile_side_m / (map_m * map_m), l.max_tile_pixels, src,
                 "slam.map_resolution_m", map_m, "one tile's footprint in the map (pixels)",

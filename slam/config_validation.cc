@@ -96,9 +96,10 @@ void Validate(const BackendConfig& b, const std::string& src) {
   Require(b.num_threads >= 1, src, "backend.num_threads", "must be >= 1");
 }
 
-void Validate(const PlaceRecognitionConfig& p, const std::string& src) {
-  const std::string k = "place_recognition.";
-  const DetectorConfig& d = p.detectors;
+namespace {
+
+// The subsections of place_recognition, in the file's order; `k` is "place_recognition.".
+void ValidateDetectors(const DetectorConfig& d, const std::string& src, const std::string& k) {
   Require(d.max_keypoints >= 1 && d.max_keypoints <= 100000, src, k + "detectors.max_keypoints",
           "must be in [1, 100000]");
   Require(d.mask_erode_px >= 0 && d.mask_erode_px <= 1000, src, k + "detectors.mask_erode_px",
@@ -118,13 +119,18 @@ void Validate(const PlaceRecognitionConfig& p, const std::string& src) {
           k + "detectors.orb_fast_threshold", "must be in [1, 255]");
   Require(d.orb_wta_k >= 2 && d.orb_wta_k <= 4, src, k + "detectors.orb_wta_k",
           "must be 2, 3 or 4");
-  const FeatureMatchConfig& m = p.matching;
+}
+
+void ValidateMatching(const FeatureMatchConfig& m, const std::string& src, const std::string& k) {
   Require(m.ratio > 0 && m.ratio <= 1, src, k + "matching.ratio", "must be in (0, 1]");
   Require(m.ransac_reprojection_px > 0, src, k + "matching.ransac_reprojection_px", "must be > 0");
   Require(m.ransac_max_iterations >= 1, src, k + "matching.ransac_max_iterations", "must be >= 1");
   Require(m.ransac_confidence > 0 && m.ransac_confidence < 1, src, k + "matching.ransac_confidence",
           "must be in (0, 1)");
-  const LoopValidationConfig& v = p.validation;
+}
+
+void ValidateLoopValidation(const LoopValidationConfig& v, const std::string& src,
+                            const std::string& k) {
   Require(v.min_good_matches >= 2, src, k + "validation.min_good_matches", "must be >= 2");
   Require(v.min_scale > 0 && v.min_scale <= 1, src, k + "validation.min_scale",
           "must be in (0, 1]");
@@ -137,7 +143,10 @@ void Validate(const PlaceRecognitionConfig& p, const std::string& src) {
   Require(v.min_residual_px > 0, src, k + "validation.min_residual_px", "must be > 0");
   Require(v.min_xy_sigma_m > 0, src, k + "validation.min_xy_sigma_m", "must be > 0");
   Require(v.min_yaw_sigma_deg > 0, src, k + "validation.min_yaw_sigma_deg", "must be > 0");
-  const CandidateSearchConfig& c = p.candidates;
+}
+
+void ValidateCandidates(const CandidateSearchConfig& c, const std::string& src,
+                        const std::string& k) {
   Require(c.base_radius_m > 0, src, k + "candidates.base_radius_m", "must be > 0");
   Require(c.radius_growth_per_m >= 0, src, k + "candidates.radius_growth_per_m", "must be >= 0");
   Require(c.max_radius_m >= c.base_radius_m, src, k + "candidates.max_radius_m",
@@ -150,19 +159,26 @@ void Validate(const PlaceRecognitionConfig& p, const std::string& src) {
           "must be >= 0");
   Require(c.global_search_every_m >= 0, src, k + "candidates.global_search_every_m",
           "must be >= 0 (0 = never)");
-  const GuidedMatchConfig& g = p.guided;
+}
+
+void ValidateGuided(const GuidedMatchConfig& g, const std::string& src, const std::string& k) {
   Require(g.neighbours >= 0, src, k + "guided.neighbours", "must be >= 0 (0 = off)");
   Require(g.min_good_matches >= 2, src, k + "guided.min_good_matches", "must be >= 2");
   Require(g.max_offset_m > 0, src, k + "guided.max_offset_m", "must be > 0");
   Require(g.max_yaw_deg > 0 && g.max_yaw_deg <= 180, src, k + "guided.max_yaw_deg",
           "must be in (0, 180]");
   Require(g.max_centre_distance_m > 0, src, k + "guided.max_centre_distance_m", "must be > 0");
-  const RadarMatchConfig& r = p.per_radar;
+}
+
+void ValidatePerRadar(const RadarMatchConfig& r, const std::string& src, const std::string& k) {
   Require(r.max_keypoints >= 2 && r.max_keypoints <= 100000, src, k + "per_radar.max_keypoints",
           "must be in [2, 100000]");
   Require(r.max_look_difference_deg >= 0 && r.max_look_difference_deg <= 180, src,
           k + "per_radar.max_look_difference_deg", "must be in [0, 180]");
-  const WallProfileConfig& w = p.wall_profiles;
+}
+
+void ValidateWallProfiles(const WallProfileConfig& w, const std::string& src,
+                          const std::string& k) {
   Require(w.min_gap >= 1, src, k + "wall_profiles.min_gap", "must be >= 1");
   Require(w.max_gap >= w.min_gap && w.max_gap <= 100, src, k + "wall_profiles.max_gap",
           "must be in [wall_profiles.min_gap, 100]");
@@ -177,6 +193,19 @@ void Validate(const PlaceRecognitionConfig& p, const std::string& src) {
   Require(w.min_correlation > 0 && w.min_correlation <= 1, src, k + "wall_profiles.min_correlation",
           "must be in (0, 1]");
   Require(w.lateral_std_m > 0, src, k + "wall_profiles.lateral_std_m", "must be > 0");
+}
+
+}  // namespace
+
+void Validate(const PlaceRecognitionConfig& p, const std::string& src) {
+  const std::string k = "place_recognition.";
+  ValidateDetectors(p.detectors, src, k);
+  ValidateMatching(p.matching, src, k);
+  ValidateLoopValidation(p.validation, src, k);
+  ValidateCandidates(p.candidates, src, k);
+  ValidateGuided(p.guided, src, k);
+  ValidatePerRadar(p.per_radar, src, k);
+  ValidateWallProfiles(p.wall_profiles, src, k);
 }
 
 void Validate(const SlamConfig& s, const std::string& src) {

@@ -31,4 +31,14 @@ class MessageSource {
   virtual void Run(const MessageSink& sink) = 0;
 };
 
+/// Hands the radar scan or odometry sample in `m` to `consumer`: anything with
+/// AddScan(const RadarScan&) and AddOdometry(const OdometrySample&) (the SlamSystem, the
+/// imaging frontend, a localiser). Ground truth and events are not theirs: the caller keeps
+/// them. The one place a message's kind picks the consumer's call.
+template <class Consumer>
+void FeedScanOrOdometry(Consumer& consumer, const Message& m) {
+  if (m.kind == Message::Kind::kRadarScan) consumer.AddScan(m.scan);
+  if (m.kind == Message::Kind::kOdometry) consumer.AddOdometry(m.odometry);
+}
+
 }  // namespace uwbsar

@@ -201,10 +201,9 @@ std::vector<ImagedScan> ImageBag(const std::string& bag, const Config& config,
   std::vector<ImagedScan> scans;
   frontend->SetScanObserver([&](const ImagedScan& s) { scans.push_back(s); });
   // The one merge of a log's streams (odometry first on equal stamps); imaging only, so the
-  // messages go to the frontend rather than through pipeline::Feed into a SlamSystem.
+  // messages go to the frontend (FeedScanOrOdometry) rather than into a SlamSystem.
   LogSource(log.odometry, log.scans).Run([&](const Message& m) {
-    if (m.kind == Message::Kind::kOdometry) frontend->AddOdometry(m.odometry);
-    if (m.kind == Message::Kind::kRadarScan) frontend->AddScan(m.scan);
+    FeedScanOrOdometry(*frontend, m);
   });
   frontend->Finish();
   if (scans.size() < 10) throw InputError(bag + ": fewer than 10 radar scans could be imaged");

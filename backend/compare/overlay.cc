@@ -36,16 +36,9 @@ void Text(cv::Mat& img, const std::string& text, int x, int y) {
               cv::LINE_AA);
 }
 
-}  // namespace
-
-cv::Mat RenderOverlay(const ComparisonReport& report, int pixels_per_cell) {
-  const GridComparison& g = report.comparison;
-  const OccupancyGrid& lidar = report.lidar;
+/// One colour per cell of `crop` (lattice of the LiDAR grid), as the legend keys them.
+cv::Mat ColourCells(const GridComparison& g, const OccupancyGrid& lidar, const cv::Rect& crop) {
   const OccupancyGrid& sar = g.sar_on_lidar;
-  const cv::Rect crop = CropOfKnownSar(sar);
-  const int scale =
-      std::max(1, std::min(pixels_per_cell, kMaxMapWidthPx / std::max(1, crop.width)));
-
   cv::Mat cells(crop.height, crop.width, CV_8UC3);
   for (int r = 0; r < crop.height; ++r) {
     for (int c = 0; c < crop.width; ++c) {
@@ -66,6 +59,20 @@ cv::Mat RenderOverlay(const ComparisonReport& report, int pixels_per_cell) {
       cells.at<cv::Vec3b>(r, c) = colour;
     }
   }
+  return cells;
+}
+
+}  // namespace
+
+cv::Mat RenderOverlay(const ComparisonReport& report, int pixels_per_cell) {
+  const GridComparison& g = report.comparison;
+  const OccupancyGrid& lidar = report.lidar;
+  const OccupancyGrid& sar = g.sar_on_lidar;
+  const cv::Rect crop = CropOfKnownSar(sar);
+  const int scale =
+      std::max(1, std::min(pixels_per_cell, kMaxMapWidthPx / std::max(1, crop.width)));
+
+  const cv::Mat cells = ColourCells(g, lidar, crop);
   cv::Mat map;
   cv::resize(cells, map, cv::Size(crop.width * scale, crop.height * scale), 0, 0,
              cv::INTER_NEAREST);

@@ -79,6 +79,43 @@ class Parser {
 
 namespace {
 
+/// One entry of topics_with_message_count.
+TopicInfo ParseTopic(const Parser& p, const YAML::Node& entry) {
+  const std::string field = "topics_with_message_count.topic_metadata";
+  const YAML::Node tm = p.Required(entry, "topic_metadata", field);
+  TopicInfo t;
+  t.name = p.Get<std::string>(tm, "name", field + ".name");
+  t.type = p.Get<std::string>(tm, "type", field + ".type");
+  t.serialization_format =
+      p.Optional<std::string>(tm, "serialization_format", field + ".serialization_format", "cdr");
+  const YAML::Node qos = tm["offered_qos_profiles"];
+  if (qos.IsDefined() && !qos.IsNull()) {
+    if (qos.IsScalar()) {
+      t.offered_qos_profiles = qos.Scalar();
+    } else {  // version 9: a YAML list
+      YAML::Emitter e;
+      e << qos;
+      t.offered_qos_profiles = e.c_str();
+    }
+  }
+  t.type_description_hash =
+      p.Optional<std::string>(tm, "type_description_hash", field + ".type_description_hash", "");
+  t.message_count =
+      p.Get<std::uint64_t>(entry, "message_count", "topics_with_message_count.message_count");
+  return t;
+}
+
+/// One entry of files.
+BagFileInfo ParseFileInfo(const Parser& p, const YAML::Node& f) {
+  BagFileInfo info;
+  info.path = p.Get<std::string>(f, "path", "files.path");
+  info.starting_time_ns =
+      p.Nested(f, "starting_time", "nanoseconds_since_epoch", "files.starting_time");
+  info.duration_ns = p.Nested(f, "duration", "nanoseconds", "files.duration");
+  info.message_count = p.Get<std::uint64_t>(f, "message_count", "files.message_count");
+  return info;
+}
+
 BagMetadata Parse(const std::string& text, const std::string& name);
 
 }  // namespace
@@ -120,45 +157,14 @@ BagMetadata Parse(const std::string& text, const std::string& name) {
   const YAML::Node topics = root["topics_with_message_count"];
   if (topics.IsDefined() && !topics.IsNull()) {
     if (!topics.IsSequence()) p.Fail(topics, "topics_with_message_count", "is not a list");
-    for (const auto& entry : topics) {
-      const std::string field = "topics_with_message_count.topic_metadata";
-      const YAML::Node tm = p.Required(entry, "topic_metadata", field);
-      TopicInfo t;
-      t.name = p.Get<std::string>(tm, "name", field + ".name");
-      t.type = p.Get<std::string>(tm, "type", field + ".type");
-      t.serialization_format = p.Optional<std::string>(tm, "serialization_format",
-                                                       field + ".serialization_format", "cdr");
-      const YAML::Node qos = tm["offered_qos_profiles"];
-      if (qos.IsDefined() && !qos.IsNull()) {
-        if (qos.IsScalar()) {
-          t.offered_qos_profiles = qos.Scalar();
-        } else {  // version 9: a YAML list
-          YAML::Emitter e;
-          e << qos;
-          t.offered_qos_profiles = e.c_str();
-        }
-      }
-      t.type_description_hash = p.Optional<std::string>(tm, "type_description_hash",
-                                                        field + ".type_description_hash", "");
-      t.message_count =
-          p.Get<std::uint64_t>(entry, "message_count", "topics_with_message_count.message_count");
-      m.topics.push_back(std::move(t));
-    }
+    for (const auto& entry : topics) m.topics.push_back(ParseTopic(p, entry));
   }
   m.compression_format =
       p.Optional<std::string>(root, "compression_format", "compression_format", "");
   m.compression_mode = p.Optional<std::string>(root, "compression_mode", "compression_mode", "");
   const YAML::Node file_list = root["files"];
   if (file_list.IsDefined() && file_list.IsSequence()) {
-    for (const auto& f : file_list) {
-      BagFileInfo info;
-      info.path = p.Get<std::string>(f, "path", "files.path");
-      info.starting_time_ns =
-          p.Nested(f, "starting_time", "nanoseconds_since_epoch", "files.starting_time");
-      info.duration_ns = p.Nested(f, "duration", "nanoseconds", "files.duration");
-      info.message_count = p.Get<std::uint64_t>(f, "message_count", "files.message_count");
-      m.files.push_back(std::move(info));
-    }
+    for (const auto& f : file_list) m.files.push_back(ParseFileInfo(p, f));
   }
   m.ros_distro = p.Optional<std::string>(root, "ros_distro", "ros_distro", "");
   // Times must add up without overflow: the bag ends at starting_time + duration.

@@ -27,7 +27,11 @@ void SimSource::Run(const MessageSink& sink) {
   SimMessage msg;
   Message out;
   while (stream_.Next(&msg)) {
-    if (ToMessage(msg, &out)) sink(out);
+    if (!ToMessage(msg, &out)) continue;
+    if (T_odom_world_ && out.kind == Message::Kind::kOdometry) {
+      out.odometry.T_world_robot = *T_odom_world_ * out.odometry.T_world_robot;
+    }
+    sink(out);
   }
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 
 #include "drivers/sim/sim_stream.h"
 #include "slam/message.h"
@@ -14,12 +15,17 @@ bool ToMessage(const SimMessage& msg, Message* out);
 
 class SimSource : public MessageSource {
  public:
-  SimSource(const SimSettings& config, const SimScenario& scenario, std::uint64_t seed)
-      : stream_(config, scenario, seed) {}
+  /// With `T_odom_world`, the wheel odometry is reported in a frame of its own:
+  /// T_odom_world * (the simulator's odometry, which starts at the true start pose); the
+  /// ground truth stays in the world (map file) frame. Without it, odometry is as simulated.
+  SimSource(const SimSettings& config, const SimScenario& scenario, std::uint64_t seed,
+            std::optional<Pose2> T_odom_world = std::nullopt)
+      : stream_(config, scenario, seed), T_odom_world_(T_odom_world) {}
   void Run(const MessageSink& sink) override;
 
  private:
   SimStream stream_;
+  std::optional<Pose2> T_odom_world_;
 };
 
 }  // namespace uwbsar::sim

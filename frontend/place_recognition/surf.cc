@@ -150,6 +150,21 @@ bool Interpolate(const cv::Mat& below, const cv::Mat& here, const cv::Mat& above
   return true;
 }
 
+/// Whether dets[layer](i, j) exceeds its 26 neighbours in the 3x3x3 scale-space block.
+bool IsStrictMaximum(const std::vector<cv::Mat>& dets, int layer, int i, int j) {
+  const float val = dets[layer].at<float>(i, j);
+  for (int dl = -1; dl <= 1; ++dl) {
+    const cv::Mat& d = dets[layer + dl];
+    for (int di = -1; di <= 1; ++di) {
+      const float* nrow = d.ptr<float>(i + di);
+      for (int dj = -1; dj <= 1; ++dj) {
+        if ((dl || di || dj) && !(val > nrow[j + dj])) return false;
+      }
+    }
+  }
+  return true;
+}
+
 std::vector<cv::KeyPoint> FastHessian(const Integral& in, const cv::Mat& mask,
                                       const SurfParams& p) {
   std::vector<cv::KeyPoint> keypoints;
@@ -181,20 +196,7 @@ std::vector<cv::KeyPoint> FastHessian(const Integral& in, const cv::Mat& mask,
                     mask.at<uchar>(std::min(cy, mask.rows - 1), std::min(cx, mask.cols - 1)) == 0) {
                   continue;
                 }
-                bool is_max = true;
-                for (int dl = -1; dl <= 1 && is_max; ++dl) {
-                  const cv::Mat& d = dets[layer + dl];
-                  for (int di = -1; di <= 1 && is_max; ++di) {
-                    const float* nrow = d.ptr<float>(i + di);
-                    for (int dj = -1; dj <= 1; ++dj) {
-                      if ((dl || di || dj) && !(val > nrow[j + dj])) {
-                        is_max = false;
-                        break;
-                      }
-                    }
-                  }
-                }
-                if (!is_max) continue;
+                if (!IsStrictMaximum(dets, layer, i, j)) continue;
                 cv::Vec3d offset;
                 if (!Interpolate(dets[layer - 1], dets[layer], dets[layer + 1], i, j, &offset)) {
                   continue;

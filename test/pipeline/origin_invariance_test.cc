@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "drivers/sim/sim_source.h"
-#include "drivers/sim/sim_stream.h"
 #include "pipeline/app_config.h"
 #include "pipeline/map_job.h"
 #include "pipeline/slam_system.h"
+#include "slam/message.h"
 #include "test/shared_data.h"
 
 namespace uwbsar {
@@ -29,21 +29,30 @@ struct Outcome {
   std::vector<std::pair<TimestampNs, Pose2>> trajectory;  ///< shifted back by the offset
 };
 
-/// Maps the recorded messages with every odometry and ground-truth pose moved by
+/// Replays recorded messages with every odometry and ground-truth pose moved by
 /// (dx_m, dy_m): the same run, only the world origin is elsewhere.
-Outcome MapShifted(const Config& config, const std::vector<sim::SimMessage>& messages, double dx_m,
+class ShiftedReplay : public MessageSource {
+ public:
+  ShiftedReplay(const std::vector<Message>& messages, double dx_m, double dy_m)
+      : messages_(messages), dx_m_(dx_m), dy_m_(dy_m) {}
+  void Run(const MessageSink& sink) override {
+    for (Message m : messages_) {
+      m.odometry.T_world_robot.x_m += dx_m_;  // odometry and ground truth; unused for scans
+      m.odometry.T_world_robot.y_m += dy_m_;
+      sink(m);
+    }
+  }
+
+ private:
+  const std::vector<Message>& messages_;
+  double dx_m_, dy_m_;
+};
+
+/// Maps the recorded messages shifted by (dx_m, dy_m).
+Outcome MapShifted(const Config& config, const std::vector<Message>& messages, double dx_m,
                    double dy_m) {
-  std::size_t next = 0;
-  const pipeline::MapRun run = pipeline::MapStream(config, "shifted", [&](pipeline::MapRun* r) {
-    Message m;
-    while (next < messages.size() && !sim::ToMessage(messages[next], &m)) ++next;  // laser
-    if (next == messages.size()) return false;
-    ++next;
-    m.odometry.T_world_robot.x_m += dx_m;  // odometry and ground truth; unused for scans
-    m.odometry.T_world_robot.y_m += dy_m;
-    pipeline::Feed(r, m);
-    return true;
-  });
+  ShiftedReplay source(messages, dx_m, dy_m);
+  const pipeline::MapRun run = pipeline::MapSource(config, "shifted", source);
   Outcome out;
   out.keyframes = run.slam->keyframes().size();
   out.candidates = run.slam->loops().size();
@@ -63,12 +72,8 @@ TEST(OriginInvarianceTest, ShiftedWorldOriginGivesTheSameLoopsAndAte) {
   const Config config;
   // One simulated run, recorded once and replayed at every offset.
   const sim::SimScenario scenario = sim::MakeScenario(config, SeedLab(), "depart-return", 1);
-  sim::SimStream stream(config, scenario, 1);
-  std::vector<sim::SimMessage> messages;
-  sim::SimMessage msg;
-  while (stream.Next(&msg)) {
-    if (msg.kind != sim::SimMessage::Kind::kLaserScan) messages.push_back(msg);
-  }
+  std::vector<Message> messages;
+  sim::SimSource(config, scenario, 1).Run([&](const Message& m) { messages.push_back(m); });
 
   const Outcome base = MapShifted(config, messages, 0.0, 0.0);
   std::printf("origin 0: %zu keyframes, %zu candidates, %zu loops, ATE %.3f cm\n", base.keyframes,

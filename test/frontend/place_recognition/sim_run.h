@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "drivers/sim/sim_stream.h"
+#include "drivers/sim/sim_source.h"
 #include "frontend/imaging_frontend.h"
 #include "pipeline/app_config.h"
 #include "test/frontend/place_recognition/sar_scene.h"
@@ -24,27 +24,15 @@ inline std::string SeedLabMap() { return ::uwbsar::testing::SeedLabLidarMap(); }
 inline SimulatedRun SimulateAndImage(const Config& config, const std::string& map_yaml,
                                      const std::string& route, std::uint64_t seed) {
   const sim::SimScenario scenario = sim::MakeScenario(config, map_yaml, route, seed);
-  sim::SimStream stream(config, scenario, seed);
+  sim::SimSource source(config, scenario, seed);
   SimulatedRun run;
   ImagingFrontend frontend(config);
   frontend.SetScanObserver([&](const ImagedScan& s) { run.scans.push_back(s); });
-  sim::SimMessage msg;
-  while (stream.Next(&msg)) {
-    switch (msg.kind) {
-      case sim::SimMessage::Kind::kGroundTruth:
-        run.ground_truth.push_back(msg.pose);
-        break;
-      case sim::SimMessage::Kind::kOdometry:
-        frontend.AddOdometry(msg.pose);
-        break;
-      case sim::SimMessage::Kind::kRadarScan:
-        frontend.AddScan(msg.scan);
-        break;
-      default:
-        break;
-    }
+  source.Run([&](const Message& m) {
+    if (m.kind == Message::Kind::kGroundTruth) run.ground_truth.push_back(m.odometry);
+    FeedScanOrOdometry(frontend, m);
     for (Keyframe& k : frontend.TakeKeyframes()) run.keyframes.push_back(std::move(k));
-  }
+  });
   frontend.Finish();
   for (Keyframe& k : frontend.TakeKeyframes()) run.keyframes.push_back(std::move(k));
   return run;
