@@ -27,8 +27,11 @@ class Ros2Source : public LiveSource {
       : config_(config),
         dispatcher_(dispatcher),
         faults_(faults),
-        order_(static_cast<std::int64_t>(config.dds.reorder_window_s * 1e9),
-               [this](LiveMessage&& m, bool late) { Release(std::move(m), late); }),
+        order_(
+            static_cast<std::int64_t>(config.dds.reorder_window_s * 1e9),
+            [this](LiveMessage&& m, bool late) { Release(std::move(m), late); },
+            /*streams=*/static_cast<int>(config.radars.size()) + 1,  // radars, odometry
+            static_cast<std::int64_t>(config.dds.startup_hold_s * 1e9)),
         participant_(config.dds),
         results_(participant_, config.dds, faults, processor) {}
 
@@ -43,7 +46,8 @@ class Ros2Source : public LiveSource {
       m.stamp_ns = r.scan.stamp_ns;
       m.scan = std::move(r.scan);
       m.for_slam = r.in_order;  // a repeated or older stamp is recorded, not imaged
-      order_.Push(m.stamp_ns, SteadyNs(), std::move(m));
+      const int stream = m.scan.sensor_id;
+      order_.Push(m.stamp_ns, SteadyNs(), std::move(m), stream);
     };
     callbacks.on_odometry = [this](dds::OdometryMessage&& o) {
       LiveMessage m;
@@ -52,7 +56,7 @@ class Ros2Source : public LiveSource {
       if (m.odometry.stamp_ns == 0) m.odometry.stamp_ns = o.source_stamp_ns;
       m.stamp_ns = m.odometry.stamp_ns;
       m.for_slam = o.in_order;
-      order_.Push(m.stamp_ns, SteadyNs(), std::move(m));
+      order_.Push(m.stamp_ns, SteadyNs(), std::move(m), static_cast<int>(config_.radars.size()));
     };
     callbacks.on_event = [this](const dds::DdsEvent& e) {
       const bool good_news = e.kind == dds::DdsEventKind::kPublisherMatched ||

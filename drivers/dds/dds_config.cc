@@ -31,6 +31,8 @@ void Validate(const DdsConfig& d, const std::string& src) {
   Require(d.silence_timeout_s >= 0, src, k + "silence_timeout_s", "must be >= 0");
   Require(d.reorder_window_s >= 0 && d.reorder_window_s <= 10, src, k + "reorder_window_s",
           "must be in [0, 10]");
+  Require(d.startup_hold_s >= 0 && d.startup_hold_s <= 60, src, k + "startup_hold_s",
+          "must be in [0, 60]");
 }
 
 }  // namespace uwbsar

@@ -29,6 +29,9 @@ struct DdsConfig {
   double publish_pose_period_s = 0.1;  ///< at most one pose per this much sensor time (0 = all)
   double reorder_window_s = 0.1;       ///< radar and odometry samples are put back in stamp order
                                        ///< within this window before SLAM and the recording
+  double startup_hold_s = 2.0;         ///< at the start, nothing is passed on until every topic
+                                       ///< (radars, odometry) delivered a sample or this passed:
+                                       ///< topics matched one by one still start in stamp order
   double silence_timeout_s = 1.0;      ///< a matched topic without samples this long is reported
                                        ///< as silent (0 = never)
 
@@ -48,6 +51,7 @@ struct DdsConfig {
     v("map_frame", map_frame);
     v("publish_pose_period_s", publish_pose_period_s);
     v("reorder_window_s", reorder_window_s);
+    v("startup_hold_s", startup_hold_s);
     v("silence_timeout_s", silence_timeout_s);
   }
 };

@@ -52,6 +52,57 @@ TEST(StampOrderBufferTest, ABurstAfterAStallIsSortedWhateverItsStampSpan) {
   EXPECT_EQ(out.items[1], 2000);  // stamped 1 ms
 }
 
+TEST(StampOrderBufferTest, AStreamMatchedLateStillStartsInStampOrder) {
+  // Three streams (two radars, odometry); DDS matched the odometry reader 300 ms after the
+  // radars'. Without the startup hold, the radars' first scans would go out after 50 ms and
+  // the odometry's first samples, stamped before them, would come late.
+  Released out;
+  pipeline::StampOrderBuffer<int> buffer(
+      50 * kMs,
+      [&out](int&& item, bool late) {
+        out.items.push_back(item);
+        out.late.push_back(late);
+      },
+      /*streams=*/3, /*startup_hold_ns=*/2000 * kMs);
+  for (int i = 0; i < 10; ++i) {
+    buffer.Push((10 + 10 * i) * kMs, 10 * i * kMs, 100 + i, 0);
+    buffer.Push((15 + 10 * i) * kMs, 10 * i * kMs, 200 + i, 1);
+  }
+  buffer.Poll(250 * kMs);
+  EXPECT_TRUE(out.items.empty());  // the odometry has not been heard from
+  buffer.Push(0, 300 * kMs, 0, 2);
+  buffer.Push(12 * kMs, 300 * kMs, 1, 2);
+  buffer.Poll(351 * kMs);
+  ASSERT_EQ(out.items.size(), 22u);
+  EXPECT_EQ(buffer.late(), 0);
+  EXPECT_EQ(out.items[0], 0);  // stamped 0: first
+  EXPECT_EQ(out.items[1], 100);
+  EXPECT_EQ(out.items[2], 1);  // stamped 12 ms
+  EXPECT_EQ(out.items[3], 200);
+}
+
+TEST(StampOrderBufferTest, AStreamThatNeverComesHoldsTheStartOnlyThatLong) {
+  Released out;
+  pipeline::StampOrderBuffer<int> buffer(
+      50 * kMs,
+      [&out](int&& item, bool late) {
+        out.items.push_back(item);
+        out.late.push_back(late);
+      },
+      /*streams=*/2, /*startup_hold_ns=*/500 * kMs);
+  buffer.Push(10 * kMs, 0, 1, 0);
+  buffer.Push(20 * kMs, 100 * kMs, 2, 0);
+  buffer.Poll(499 * kMs);
+  EXPECT_TRUE(out.items.empty());
+  buffer.Poll(500 * kMs);  // stream 1 is silent: the hold is over
+  EXPECT_EQ(out.items, (std::vector<int>{1, 2}));
+  buffer.Push(30 * kMs, 510 * kMs, 3, 0);  // from here the window alone
+  buffer.Poll(559 * kMs);
+  EXPECT_EQ(out.items.size(), 2u);
+  buffer.Poll(560 * kMs);
+  EXPECT_EQ(out.items, (std::vector<int>{1, 2, 3}));
+}
+
 TEST(StampOrderBufferTest, EqualStampsKeepArrivalOrder) {
   Released out;
   auto buffer = MakeBuffer(&out);
