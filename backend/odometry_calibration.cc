@@ -28,7 +28,7 @@ double CalibratedOdometryChi2(const double* pose_a, const double* pose_b,
 
 bool OdometryCalibrationPrior::Evaluate(double const* const* parameters, double* residuals,
                                         double** jacobians) const {
-  for (int i = 0; i < 3; ++i) residuals[i] = parameters[0][i] / sigma_[i];
+  for (int i = 0; i < 3; ++i) residuals[i] = (parameters[0][i] - mean_[i]) / sigma_[i];
   if (jacobians != nullptr && jacobians[0] != nullptr) {
     for (int i = 0; i < 9; ++i) jacobians[0][i] = 0.0;
     for (int i = 0; i < 3; ++i) jacobians[0][i * 3 + i] = 1.0 / sigma_[i];
@@ -38,7 +38,10 @@ bool OdometryCalibrationPrior::Evaluate(double const* const* parameters, double*
 
 double OdometryCalibrationPrior::Chi2(const OdometryCalibration& calibration) const {
   double sum = 0.0;
-  for (int i = 0; i < 3; ++i) sum += (calibration[i] / sigma_[i]) * (calibration[i] / sigma_[i]);
+  for (int i = 0; i < 3; ++i) {
+    const double r = (calibration[i] - mean_[i]) / sigma_[i];
+    sum += r * r;
+  }
   return sum;
 }
 

@@ -16,8 +16,13 @@
 // node's yaw is then the rotation of the odometry's world frame, which the drift and the
 // turns' error change between the two.
 //
-// The block gets a weak prior at zero (OdometryCalibrationPrior) and is only left free while
-// loops constrain its trajectory (backend/pose_graph.h); without loops nothing observes it.
+// The block gets a prior (OdometryCalibrationPrior): weak and at zero for an uncalibrated base,
+// at the base's measured calibration when it has one. It is only left free while loops
+// constrain its trajectory (backend/pose_graph.h); without loops nothing observes it, and the
+// odometry is corrected by the prior's mean. Nothing on a tour observes the distance scale (a
+// ring scaled by any factor still closes, and every loop is a short relative measurement), so
+// the map's scale is the mean's: a base over-reporting its travel by 0.5 % scales the map by
+// 0.5 % unless its calibration is given.
 #pragma once
 
 #include <ceres/ceres.h>
@@ -110,16 +115,21 @@ double CalibratedOdometryChi2(const double* pose_a, const double* pose_b,
                               const OdometryTravel& travel,
                               const Eigen::Matrix3d& sqrt_information);
 
-/// The weak prior at zero: r_i = calibration_i / sigma_i.
+/// The prior: r_i = (calibration_i - mean_i) / sigma_i. The mean is the base's calibration as
+/// measured once (backend.calibration_*_mean; zero for an uncalibrated base), sigma how far
+/// the estimate may move from it.
 class OdometryCalibrationPrior final : public ceres::SizedCostFunction<3, 3> {
  public:
-  explicit OdometryCalibrationPrior(const Eigen::Vector3d& sigma) : sigma_(sigma) {}
+  OdometryCalibrationPrior(const OdometryCalibration& mean, const Eigen::Vector3d& sigma)
+      : mean_(mean), sigma_(sigma) {}
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override;
   /// |r|^2 at the given calibration.
   double Chi2(const OdometryCalibration& calibration) const;
+  const OdometryCalibration& mean() const { return mean_; }
 
  private:
+  OdometryCalibration mean_;
   Eigen::Vector3d sigma_;
 };
 

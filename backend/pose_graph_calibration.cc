@@ -22,14 +22,16 @@ PoseGraph::CalibrationBlock* PoseGraph::CalibrationFor(int trajectory) {
   const Eigen::Vector3d sigma(config_.calibration_scale_sigma,
                               config_.calibration_heading_drift_sigma_rad_per_m,
                               config_.calibration_rotation_sigma);
-  auto* prior = new OdometryCalibrationPrior(sigma);
+  const OdometryCalibration mean = config_.CalibrationMean();
+  block->x = mean;  // the base's own calibration until loops free the block
+  auto* prior = new OdometryCalibrationPrior(mean, sigma);
   block->prior = prior;
   problem_->AddResidualBlock(prior, nullptr, x);
   // Five sigmas bound the search: the prior is weak, and a calibration beyond that would
   // explain a loop by odometry no base has.
   for (int i = 0; i < 3; ++i) {
-    problem_->SetParameterLowerBound(x, i, -5.0 * sigma[i]);
-    problem_->SetParameterUpperBound(x, i, 5.0 * sigma[i]);
+    problem_->SetParameterLowerBound(x, i, mean[i] - 5.0 * sigma[i]);
+    problem_->SetParameterUpperBound(x, i, mean[i] + 5.0 * sigma[i]);
   }
   problem_->SetParameterBlockConstant(x);
   CalibrationBlock* out = block.get();
@@ -54,7 +56,7 @@ void PoseGraph::UpdateCalibrationFreedom() {
     if (free) {
       problem_->SetParameterBlockVariable(block->x.data());
     } else {
-      block->x = {0.0, 0.0, 0.0};  // nothing observes it: back to the prior
+      block->x = block->prior->mean();  // nothing observes it: back to the prior
       problem_->SetParameterBlockConstant(block->x.data());
     }
   }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
+#include "backend/odometry_calibration.h"
 #include "imaging/enhance.h"
 #include "pipeline/app_config.h"
 #include "slam/errors.h"
@@ -168,20 +169,24 @@ Pose2 SlamSystem::AddGraphNode(const Keyframe& keyframe) {
     graph_->FixNode(keyframe.id);
     return keyframe.T_world_anchor;
   }
-  // The node starts on the corrected trajectory: the previous keyframe's estimate
-  // composed with the odometry between the two.
   const Keyframe& prev = keyframes_.back().keyframe;
   const Pose2 T_prev_this = Between(prev.T_world_anchor, keyframe.T_world_anchor);
-  const Pose2 estimate = graph_->GetPose(prev.id) * T_prev_this;
-  graph_->AddNode(keyframe.id, estimate, /*reseed_from_odometry=*/false);
   // Anchors keep the world orientation (the step's yaw is 0): the odometry calibration
   // needs the robot's own path and turn between the two tiles' middles.
-  const double path_m = 0.5 * (keyframe.path_begin_m + keyframe.path_end_m) -
-                        0.5 * (prev.path_begin_m + prev.path_end_m);
+  const double path_m = std::max(0.0, 0.5 * (keyframe.path_begin_m + keyframe.path_end_m) -
+                                          0.5 * (prev.path_begin_m + prev.path_end_m));
   const double turn_rad =
       NormalizeAngle(keyframe.T_world_robot.yaw_rad - prev.T_world_robot.yaw_rad);
-  graph_->AddOdometryEdge(prev.id, keyframe.id, T_prev_this, /*trajectory=*/0,
-                          std::max(0.0, path_m), turn_rad);
+  // The node starts on the corrected trajectory: the previous keyframe's estimate composed
+  // with the odometry between the two, corrected by the base's calibration where one is given
+  // (all zero, the default, leaves the step exactly as measured).
+  const Pose2 estimate =
+      graph_->GetPose(prev.id) * (config_.backend.odometry_calibration
+                                      ? CorrectedOdometryStep(config_.backend.CalibrationMean(),
+                                                              T_prev_this, {path_m, turn_rad})
+                                      : T_prev_this);
+  graph_->AddNode(keyframe.id, estimate, /*reseed_from_odometry=*/false);
+  graph_->AddOdometryEdge(prev.id, keyframe.id, T_prev_this, /*trajectory=*/0, path_m, turn_rad);
   return estimate;
 }
 

@@ -7,6 +7,7 @@
 // config/default.yaml documents every field; a test keeps the two in sync.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -212,6 +213,11 @@ struct BackendConfig {
   double calibration_rotation_sigma = 0.05;  ///< prior sigma of the rotation scale (fraction);
                                              ///< wall edges tell it from the heading drift (set
                                              ///< 0.001 without them: a ring cannot)
+  /// The base's measured odometry calibration, the prior's mean (all 0: uncalibrated). Nothing
+  /// on a tour observes the distance scale, so the map's scale is this one's.
+  double calibration_scale_mean = 0.0;  ///< distances are multiplied by (1 + this)
+  double calibration_heading_drift_mean_rad_per_m = 0.0;  ///< heading lost per metre
+  double calibration_rotation_mean = 0.0;                 ///< turns are multiplied by (1 + this)
   int max_trial_solves = 2;  ///< loops still held back as unsupported, tried per Optimize() in a
                              ///< solve of their own (lowest chi2 first, each once); 0 = off
   double trial_loop_chi2 = 16.27;      ///< trial: the most the solution's chi2 (all edges and
@@ -241,6 +247,9 @@ struct BackendConfig {
     v("calibration_scale_sigma", calibration_scale_sigma);
     v("calibration_heading_drift_sigma_rad_per_m", calibration_heading_drift_sigma_rad_per_m);
     v("calibration_rotation_sigma", calibration_rotation_sigma);
+    v("calibration_scale_mean", calibration_scale_mean);
+    v("calibration_heading_drift_mean_rad_per_m", calibration_heading_drift_mean_rad_per_m);
+    v("calibration_rotation_mean", calibration_rotation_mean);
     v("max_trial_solves", max_trial_solves);
     v("trial_loop_chi2", trial_loop_chi2);
     v("loop_xy_information", loop_xy_information);
@@ -248,6 +257,12 @@ struct BackendConfig {
     v("max_iterations", max_iterations);
     v("function_tolerance", function_tolerance);
     v("num_threads", num_threads);
+  }
+
+  /// The calibration means as [scale, heading drift, rotation] (backend/odometry_calibration.h).
+  std::array<double, 3> CalibrationMean() const {
+    return {calibration_scale_mean, calibration_heading_drift_mean_rad_per_m,
+            calibration_rotation_mean};
   }
 };
 /// Semantic checks of backend.*; throws ConfigError naming the dotted key.

@@ -2,6 +2,7 @@
 // Validate() per section, declared beside its Visit() in slam/config.h, and the rules that
 // join sections. Each failure names the dotted key. The sections owned by higher folders
 // are checked by the Validate() beside their own Visit().
+#include <array>
 #include <cmath>
 #include <set>
 #include <string>
@@ -86,6 +87,18 @@ void Validate(const BackendConfig& b, const std::string& src) {
           "backend.calibration_heading_drift_sigma_rad_per_m", "must be > 0");
   Require(b.calibration_rotation_sigma > 0, src, "backend.calibration_rotation_sigma",
           "must be > 0");
+  // A base off by more than 20 % (distance or turns) or 0.1 rad per metre needs mending, not
+  // a calibration: beyond that a typo (a percentage for a fraction) would pass silently.
+  Require(std::abs(b.calibration_scale_mean) <= 0.2, src, "backend.calibration_scale_mean",
+          "must be in [-0.2, 0.2] (a fraction: -0.005 for a base over-reporting 0.5 %)");
+  Require(std::abs(b.calibration_heading_drift_mean_rad_per_m) <= 0.1, src,
+          "backend.calibration_heading_drift_mean_rad_per_m", "must be in [-0.1, 0.1]");
+  Require(std::abs(b.calibration_rotation_mean) <= 0.2, src, "backend.calibration_rotation_mean",
+          "must be in [-0.2, 0.2] (a fraction)");
+  const std::array<double, 3> mean = b.CalibrationMean();
+  Require(b.odometry_calibration || mean == std::array<double, 3>{0.0, 0.0, 0.0}, src,
+          "backend.odometry_calibration",
+          "must be true when a calibration is given (calibration_*_mean): it applies it");
   Require(b.trial_loop_chi2 > 0, src, "backend.trial_loop_chi2", "must be > 0");
   Require(b.max_trial_solves >= 0, src, "backend.max_trial_solves", "must be >= 0 (0 = off)");
   Require(b.loop_xy_information > 0, src, "backend.loop_xy_information", "must be > 0");

@@ -58,6 +58,7 @@ void AddMatchCommand(CLI::App& app, const GlobalOptions& globals);
 void AddDetectorsCommand(CLI::App& app, const GlobalOptions& globals);
 void AddMapCommand(CLI::App& app, const GlobalOptions& globals);
 void AddInfoCommand(CLI::App& app, const GlobalOptions& globals);
+void AddCalibrateCommand(CLI::App& app, const GlobalOptions& globals);
 void AddSimulateCommand(CLI::App& app, const GlobalOptions& globals);
 void AddCompareCommand(CLI::App& app, const GlobalOptions& globals);
 void AddExportPcdCommand(CLI::App& app, const GlobalOptions& globals);

@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
   AddImageCommand(app, globals);
   AddDemoCommand(app, globals);
   AddOptimizeCommand(app, globals);
+  AddCalibrateCommand(app, globals);
   AddLoopsCommand(app, globals);
   AddMatchCommand(app, globals);
   AddDetectorsCommand(app, globals);

@@ -118,6 +118,68 @@ TEST(OdometryCalibrationTest, WithoutLoopsTheCalibrationStaysAtThePrior) {
   }
 }
 
+// A base calibrated once (backend.calibration_*_mean): without any loop the odometry is
+// corrected by it, and the trajectory is the truth; uncalibrated, the same run is off by
+// decimetres.
+TEST(OdometryCalibrationTest, AGivenCalibrationCorrectsTheOdometryWithoutLoops) {
+  const OdometryCalibration base{-0.01, 0.004, 0.03};
+  const OdometryRun run = OutAndBack(base);
+  BackendConfig config;
+  config.calibration_scale_mean = base[kCalibScale];
+  config.calibration_heading_drift_mean_rad_per_m = base[kCalibHeadingDrift];
+  config.calibration_rotation_mean = base[kCalibRotation];
+  PoseGraph calibrated(config);
+  Build(run, false, &calibrated);
+  calibrated.Optimize();
+  EXPECT_EQ(calibrated.OdometryCalibrations().at(0), base);
+  PoseGraph plain;
+  Build(run, false, &plain);
+  plain.Optimize();
+  const double ate_calibrated = GraphAte(calibrated, run.truth),
+               ate_plain = GraphAte(plain, run.truth);
+  std::printf("ATE calibrated %.2e m, uncalibrated %.2f cm\n", ate_calibrated, ate_plain * 100);
+  EXPECT_LT(ate_calibrated, 1e-9);
+  EXPECT_GT(ate_plain, 0.05);
+}
+
+// The distance scale, which loops cannot observe (above), comes from the given calibration
+// when the prior is as tight as the calibration is good: with loops, the scale stays at the
+// given value and the drift and rotation are still estimated.
+TEST(OdometryCalibrationTest, WithLoopsAGivenScaleHoldsAndTheRestIsEstimated) {
+  const OdometryCalibration base{-0.01, 0.004, 0.03};
+  const OdometryRun run = OutAndBack(base);
+  BackendConfig config;
+  config.calibration_scale_mean = -0.01;
+  config.calibration_scale_sigma = 0.001;
+  config.calibration_rotation_sigma = 0.05;
+  PoseGraph g(config);
+  Build(run, true, &g);
+  const OptimizeResult r = g.Optimize();
+  EXPECT_TRUE(r.converged) << r.termination;
+  const OdometryCalibration estimate = g.OdometryCalibrations().at(0);
+  EXPECT_NEAR(estimate[kCalibScale], -0.01, 1e-4);
+  EXPECT_NEAR(estimate[kCalibHeadingDrift], 0.004, 0.0004);
+  EXPECT_NEAR(estimate[kCalibRotation], 0.03, 0.003);
+
+  BackendConfig uncalibrated = config;  // the scale's prior at 0, as tight: the map is scaled
+  uncalibrated.calibration_scale_mean = 0.0;
+  PoseGraph u(uncalibrated);
+  Build(run, true, &u);
+  u.Optimize();
+  const double ate_m = GraphAte(g, run.truth), ate_uncalibrated_m = GraphAte(u, run.truth);
+  std::printf("ATE with the scale given %.2f cm, with scale 0 %.2f cm\n", ate_m * 100,
+              ate_uncalibrated_m * 100);
+  EXPECT_LT(ate_m, 0.005);
+  EXPECT_GT(ate_uncalibrated_m, 2 * ate_m);
+}
+
+TEST(OdometryCalibrationTest, ThePriorIsCentredOnItsMean) {
+  const OdometryCalibrationPrior prior({-0.01, 0.002, 0.03}, Eigen::Vector3d(0.01, 0.001, 0.1));
+  EXPECT_EQ(prior.Chi2({-0.01, 0.002, 0.03}), 0.0);
+  EXPECT_NEAR(prior.Chi2({0.0, 0.002, 0.03}), 1.0, 1e-12);
+  EXPECT_NEAR(prior.Chi2({-0.01, 0.0, 0.13}), 4.0 + 1.0, 1e-12);
+}
+
 TEST(OdometryCalibrationTest, EdgesWithoutATrajectoryAreNotCalibrated) {
   // g2o data sets (AddEdge) carry their own odometry model: no calibration block.
   PoseGraph g;

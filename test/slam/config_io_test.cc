@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <array>
+#include <string>
+
 #include "pipeline/app_config_io.h"
 
 namespace uwbsar {
@@ -71,6 +74,26 @@ TEST(ConfigIoTest, InvalidValuesAreRejected) {
   EXPECT_THROW(LoadConfigFromString("dds:\n  domain_id: 300\n", "x.yaml"), ConfigError);
   EXPECT_THROW(LoadConfigFromString("dds:\n  map_topic: uwbsar/map\n", "x.yaml"), ConfigError);
   EXPECT_THROW(LoadConfigFromString("slam:\n  keyframe_queue_size: 0\n", "x.yaml"), ConfigError);
+}
+
+TEST(ConfigIoTest, AnOdometryCalibrationIsAFractionAndNeedsTheCalibrationOn) {
+  const Config c = LoadConfigFromString("backend:\n  calibration_scale_mean: -0.005\n", "x.yaml");
+  EXPECT_EQ(c.backend.CalibrationMean(), (std::array<double, 3>{-0.005, 0.0, 0.0}));
+  const auto rejected = [](const std::string& text, const std::string& key) {
+    try {
+      LoadConfigFromString(text, "robot.yaml");
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  };
+  rejected("backend:\n  calibration_scale_mean: -0.5\n", "backend.calibration_scale_mean");
+  rejected("backend:\n  calibration_scale_mean: .nan\n", "backend.calibration_scale_mean");
+  rejected("backend:\n  calibration_heading_drift_mean_rad_per_m: 0.2\n",
+           "backend.calibration_heading_drift_mean_rad_per_m");
+  rejected("backend:\n  calibration_rotation_mean: 3\n", "backend.calibration_rotation_mean");
+  rejected("backend:\n  odometry_calibration: false\n  calibration_rotation_mean: 0.01\n",
+           "backend.odometry_calibration");
 }
 
 TEST(ConfigIoTest, SyntaxErrorAndMissingFileAreReported) {

@@ -1,0 +1,244 @@
+#include "backend/odometry_calibration_fit.h"
+
+#include <ceres/ceres.h>
+#include <ceres/manifold.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include "backend/se2_edge_cost.h"
+#include "slam/errors.h"
+
+namespace uwbsar {
+namespace {
+
+/// One segment: the odometry's increments with their travel, and the truth's step.
+struct Segment {
+  std::vector<Pose2> increments;  ///< odometry sample to sample, in the robot's frame
+  std::vector<OdometryTravel> travels;
+  Pose2 truth;
+  double path_m = 0.0;
+  double turn_rad = 0.0;
+};
+
+/// The segment's odometry, each increment corrected by the calibration (CorrectOdometryStep,
+/// the backend's model applied at the odometry's own rate) and composed; the residual is its
+/// SE(2) error against the truth, whitened like an odometry edge of that path.
+class SegmentCost {
+ public:
+  SegmentCost(const Segment* segment, const Eigen::Matrix3d& sqrt_information)
+      : segment_(segment), sqrt_information_(sqrt_information) {}
+
+  template <typename T>
+  bool operator()(const T* calibration, T* residuals) const {
+    using std::cos;
+    using std::sin;
+    T x(0.0), y(0.0), yaw(0.0);
+    for (std::size_t i = 0; i < segment_->increments.size(); ++i) {
+      T step[3];
+      CorrectOdometryStep(calibration, segment_->increments[i], segment_->travels[i], step);
+      x += cos(yaw) * step[0] - sin(yaw) * step[1];
+      y += sin(yaw) * step[0] + cos(yaw) * step[1];
+      yaw += step[2];
+    }
+    const Pose2& t = segment_->truth;
+    const double c = std::cos(t.yaw_rad), s = std::sin(t.yaw_rad);
+    const T dx = x - t.x_m, dy = y - t.y_m;
+    // A segment turns less than 1 rad (CutSegments): the yaw difference needs no wrapping.
+    const T e[3] = {c * dx + s * dy, -s * dx + c * dy, yaw - t.yaw_rad};
+    for (int r = 0; r < 3; ++r) {
+      residuals[r] = sqrt_information_(r, 0) * e[0] + sqrt_information_(r, 1) * e[1] +
+                     sqrt_information_(r, 2) * e[2];
+    }
+    return true;
+  }
+
+ private:
+  const Segment* segment_;
+  Eigen::Matrix3d sqrt_information_;
+};
+
+/// Ground truth at `stamp_ns`, interpolated; false when no truth sample lies within `max_gap_ns`
+/// on both sides.
+class TruthAt {
+ public:
+  TruthAt(const std::vector<OdometrySample>& truth, TimestampNs max_gap_ns)
+      : truth_(truth), max_gap_ns_(max_gap_ns) {}
+
+  bool operator()(TimestampNs stamp_ns, Pose2* pose) {
+    while (next_ < truth_.size() && truth_[next_].stamp_ns < stamp_ns) ++next_;
+    if (next_ < truth_.size() && truth_[next_].stamp_ns == stamp_ns) {
+      *pose = truth_[next_].T_world_robot;
+      return true;
+    }
+    if (next_ >= truth_.size() || next_ == 0) return false;
+    const OdometrySample& a = truth_[next_ - 1];
+    const OdometrySample& b = truth_[next_];
+    if (stamp_ns - a.stamp_ns > max_gap_ns_ || b.stamp_ns - stamp_ns > max_gap_ns_) return false;
+    const double t = b.stamp_ns == a.stamp_ns ? 0.0
+                                              : static_cast<double>(stamp_ns - a.stamp_ns) /
+                                                    static_cast<double>(b.stamp_ns - a.stamp_ns);
+    *pose = Interpolate(a.T_world_robot, b.T_world_robot, t);
+    return true;
+  }
+
+ private:
+  const std::vector<OdometrySample>& truth_;
+  TimestampNs max_gap_ns_;
+  std::size_t next_ = 0;
+};
+
+std::vector<Segment> CutSegments(const std::vector<OdometrySample>& odometry,
+                                 const std::vector<OdometrySample>& ground_truth,
+                                 const CalibrationFitOptions& options) {
+  TruthAt truth_at(ground_truth, static_cast<TimestampNs>(options.max_truth_gap_s * 1e9));
+  std::vector<Segment> segments;
+  Segment current;
+  Pose2 truth_start;
+  const OdometrySample* prev = nullptr;  // null: no segment open
+  for (const OdometrySample& o : odometry) {
+    Pose2 truth;
+    if (!truth_at(o.stamp_ns, &truth)) {
+      prev = nullptr;  // a gap in the truth: start again after it
+      continue;
+    }
+    if (prev == nullptr) {
+      current = Segment{};
+      truth_start = truth;
+      prev = &o;
+      continue;
+    }
+    const Pose2 increment = Between(prev->T_world_robot, o.T_world_robot);
+    current.increments.push_back(increment);
+    current.travels.push_back(TravelOf(increment));
+    current.path_m += current.travels.back().path_m;
+    current.turn_rad += increment.yaw_rad;
+    prev = &o;
+    // A spin in place travels no path: its turn ends the segment (1 rad keeps it unambiguous).
+    // The small margin keeps a path of n equal steps from missing the end by rounding.
+    if (current.path_m < options.segment_m - 1e-9 && std::abs(current.turn_rad) < 1.0) continue;
+    current.truth = Between(truth_start, truth);
+    segments.push_back(std::move(current));
+    current = Segment{};
+    truth_start = truth;
+  }
+  return segments;
+}
+
+Eigen::Matrix3d SegmentSqrtInformation(const Segment& s, const BackendConfig& config) {
+  const double d = std::max(s.path_m, config.odometry_min_distance_m);
+  return *SqrtInformation(Eigen::Vector3d(config.odometry_xy_information / d,
+                                          config.odometry_xy_information / d,
+                                          config.odometry_yaw_information / d)
+                              .asDiagonal());
+}
+
+/// Position and heading error of the segments' odometry corrected by `c`, rms.
+void SegmentErrors(const std::vector<Segment>& segments, const OdometryCalibration& c,
+                   double* xy_rms_m, double* yaw_rms_rad) {
+  double xy = 0.0, yaw = 0.0;
+  const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
+  for (const Segment& s : segments) {
+    double e[3];
+    SegmentCost(&s, identity)(c.data(), e);
+    xy += e[0] * e[0] + e[1] * e[1];
+    yaw += e[2] * e[2];
+  }
+  const double n = std::max<double>(1.0, static_cast<double>(segments.size()));
+  *xy_rms_m = std::sqrt(xy / n);
+  *yaw_rms_rad = std::sqrt(yaw / n);
+}
+
+/// J^T J of every residual of `problem` at its current parameters (one 3-vector block).
+Eigen::Matrix3d InformationOf(ceres::Problem* problem) {
+  ceres::CRSMatrix jacobian;
+  problem->Evaluate(ceres::Problem::EvaluateOptions(), nullptr, nullptr, nullptr, &jacobian);
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+  for (int row = 0; row < jacobian.num_rows; ++row) {
+    for (int a = jacobian.rows[row]; a < jacobian.rows[row + 1]; ++a) {
+      for (int b = jacobian.rows[row]; b < jacobian.rows[row + 1]; ++b) {
+        information(jacobian.cols[a], jacobian.cols[b]) += jacobian.values[a] * jacobian.values[b];
+      }
+    }
+  }
+  return information;
+}
+
+double Solve(ceres::Problem* problem) {
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = 50;
+  solver.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, problem, &summary);
+  if (!summary.IsSolutionUsable()) {
+    throw InputError("odometry calibration: the fit failed: " + summary.message);
+  }
+  return summary.final_cost;
+}
+
+}  // namespace
+
+CalibrationFit FitOdometryCalibration(const std::vector<OdometrySample>& odometry,
+                                      const std::vector<OdometrySample>& ground_truth,
+                                      const BackendConfig& priors,
+                                      const CalibrationFitOptions& options) {
+  const std::vector<Segment> segments = CutSegments(odometry, ground_truth, options);
+  if (segments.size() < 10) {
+    std::ostringstream what;
+    what << "odometry calibration: " << segments.size() << " segments of " << options.segment_m
+         << " m overlap the ground truth, at least 10 are needed (" << odometry.size()
+         << " odometry and " << ground_truth.size() << " ground-truth samples)";
+    throw InputError(what.str());
+  }
+  CalibrationFit fit;
+  const OdometryCalibration mean = priors.CalibrationMean();
+  fit.calibration = mean;
+  ceres::Problem problem;
+  double* x = fit.calibration.data();
+  for (const Segment& s : segments) {
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<SegmentCost, 3, 3>(
+                                 new SegmentCost(&s, SegmentSqrtInformation(s, priors))),
+                             nullptr, x);
+    fit.path_m += s.path_m;
+    fit.abs_turn_rad += std::abs(s.turn_rad);
+  }
+  Solve(&problem);
+  // Observed: with the backend's prior, the run leaves it under half the prior's sigma (the
+  // data hold at least 3x the prior's information on it). A straight run cannot tell the
+  // heading drift from the turns' scale (its only turning is the drift); at the backend's
+  // prior the turns' scale barely moves, so the drift counts as observed and the rotation not.
+  const Eigen::Vector3d prior_sigma(priors.calibration_scale_sigma,
+                                    priors.calibration_heading_drift_sigma_rad_per_m,
+                                    priors.calibration_rotation_sigma);
+  Eigen::Matrix3d information = InformationOf(&problem);
+  information.diagonal() += prior_sigma.cwiseInverse().cwiseAbs2();
+  const Eigen::Vector3d sigma_m = information.inverse().diagonal().cwiseSqrt();
+  std::vector<int> unobserved;
+  for (int i = 0; i < 3; ++i) {
+    fit.observed[i] = std::isfinite(sigma_m[i]) && sigma_m[i] < 0.5 * prior_sigma[i];
+    if (!fit.observed[i]) unobserved.push_back(i);
+  }
+  // The unobserved ones are the base's given calibration (the prior's mean), and the others
+  // are fitted with them held there: the least squares alone, no prior pulling them.
+  for (const int i : unobserved) fit.calibration[i] = mean[i];
+  if (unobserved.size() == 3) {
+    problem.SetParameterBlockConstant(x);
+  } else if (!unobserved.empty()) {
+    problem.SetManifold(x, new ceres::SubsetManifold(3, unobserved));
+  }
+  const double final_cost = Solve(&problem);
+  // The standard error, scaled by the residuals' chi2 per degree of freedom: the base's actual
+  // noise, not the configured bound.
+  const double dof = std::max(1.0, 3.0 * static_cast<double>(segments.size()) - 3.0);
+  const double noise = std::sqrt(2.0 * final_cost / dof);
+  for (int i = 0; i < 3; ++i) fit.sigma[i] = fit.observed[i] ? sigma_m[i] * noise : prior_sigma[i];
+  fit.segments = static_cast<int>(segments.size());
+  SegmentErrors(segments, {0.0, 0.0, 0.0}, &fit.xy_rms_before_m, &fit.yaw_rms_before_rad);
+  SegmentErrors(segments, fit.calibration, &fit.xy_rms_after_m, &fit.yaw_rms_after_rad);
+  return fit;
+}
+
+}  // namespace uwbsar

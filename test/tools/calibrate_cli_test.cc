@@ -1,0 +1,72 @@
+// `uwbsar calibrate` as a user meets it: a simulated run with ground truth gives the simulated
+// base's distance scale and a configuration file that loads; a bag without ground truth, or
+// with too little of it, is refused with one line.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "test/cli_runner.h"
+
+namespace {
+
+using uwbsar::testing::CliRun;
+using uwbsar::testing::Uwbsar;
+
+class CalibrateCliTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = (std::filesystem::temp_directory_path() / "uwbsar_cli_calibrate").string();
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+    // seed_hall's 15 m loop: two straights and two U-turns, 2-3 s to simulate.
+    const CliRun sim = Uwbsar("simulate --map " + std::string(UWBSAR_SOURCE_DIR) +
+                              "/config/maps/seed_hall/seed_hall.yaml --route loop --seed 7 --out " +
+                              dir_ + "/bag");
+    ASSERT_EQ(sim.exit_code, 0) << sim.output;
+  }
+  static std::string dir_;
+};
+std::string CalibrateCliTest::dir_;
+
+/// The number after `label` in `text` (NaN when missing).
+double ValueAfter(const std::string& text, const std::string& label) {
+  const std::size_t at = text.find(label);
+  if (at == std::string::npos) return std::nan("");
+  return std::stod(text.substr(at + label.size()));
+}
+
+TEST_F(CalibrateCliTest, ASimulatedRunGivesTheBasesScaleAndAConfigurationThatLoads) {
+  const std::string out = dir_ + "/calibration.yaml";
+  const CliRun r = Uwbsar("calibrate " + dir_ + "/bag --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::printf("%s", r.output.c_str());
+  // simulator.odometry.wheel_scale_error 0.005: the encoders over-report by 0.5 %.
+  const double truth = 1.0 / 1.005 - 1.0;
+  const double scale = ValueAfter(r.output, "calibration_scale_mean:");
+  EXPECT_NEAR(scale, truth, 0.0015) << r.output;
+  EXPECT_GT(ValueAfter(r.output, "calibration_rotation_mean:"), 0.005);  // turns under-reported
+  const CliRun loaded = Uwbsar("--config " + out + " config");
+  ASSERT_EQ(loaded.exit_code, 0) << loaded.output;
+  EXPECT_NEAR(ValueAfter(loaded.output, "calibration_scale_mean:"), scale, 1e-5);
+  EXPECT_GT(ValueAfter(loaded.output, "calibration_scale_sigma:"), 0.0009);
+  EXPECT_LT(ValueAfter(loaded.output, "calibration_scale_sigma:"), 0.02);
+}
+
+TEST_F(CalibrateCliTest, NoGroundTruthOrTooLittleIsRefusedWithOneLine) {
+  std::ofstream(dir_ + "/other_topic.yaml") << "slam:\n  ground_truth_topic: /mocap/odom\n";
+  const CliRun none = Uwbsar("--config " + dir_ + "/other_topic.yaml calibrate " + dir_ +
+                             "/bag --out " + dir_ + "/none.yaml");
+  EXPECT_EQ(none.exit_code, 3);
+  EXPECT_NE(none.output.find("no ground truth (topic /mocap/odom)"), std::string::npos)
+      << none.output;
+  EXPECT_FALSE(std::filesystem::exists(dir_ + "/none.yaml"));
+  const CliRun short_run = Uwbsar("calibrate " + dir_ + "/bag --segment-m 5");
+  EXPECT_EQ(short_run.exit_code, 3);
+  EXPECT_NE(short_run.output.find("at least 10 are needed"), std::string::npos) << short_run.output;
+}
+
+}  // namespace
