@@ -9,9 +9,9 @@
 // Run by hand (about 1-2 minutes per run on 2 cores; not part of CI; the last entry is
 // the route of TourRunTest):
 //   build/bin/uwbsar_bench --benchmark_filter=Tour
-// UWBSAR_TOUR_SEEDS=N runs seeds 1..N (default 5); UWBSAR_TOUR_CONFIG=FILE.yaml maps with
-// that configuration instead of the defaults (for comparisons); UWBSAR_TOUR_VERBOSE=1 lists
-// every validated loop.
+// UWBSAR_TOUR_SEEDS=N runs seeds 1..N (default 5; UWBSAR_TOUR_FIRST_SEED=K: K..K+N-1);
+// UWBSAR_TOUR_CONFIG=FILE.yaml maps with that configuration instead of the defaults (for
+// comparisons); UWBSAR_TOUR_VERBOSE=1 lists every validated loop.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -52,13 +52,15 @@ void BM_Tour(benchmark::State& state) {
   const Tour& tour = Tours()[static_cast<std::size_t>(state.range(0))];
   const char* seeds_env = std::getenv("UWBSAR_TOUR_SEEDS");
   const int seeds = seeds_env ? std::atoi(seeds_env) : 5;
+  const char* first_env = std::getenv("UWBSAR_TOUR_FIRST_SEED");
+  const int first_seed = first_env ? std::atoi(first_env) : 1;
   const char* config_env = std::getenv("UWBSAR_TOUR_CONFIG");
   Config config = config_env ? LoadConfig(config_env) : Config{};
   config.simulator.route.clearance_m = 0.3;  // every route keeps 0.45 m from obstacles
   for (auto _ : state) {
     int closed = 0, false_loops = 0, overlap = 0, overlap_accepted = 0, revisits = 0, recalled = 0;
     double worst_ate_m = 0.0;
-    for (int seed = 1; seed <= seeds; ++seed) {
+    for (int seed = first_seed; seed < first_seed + seeds; ++seed) {
       const pipeline::MapRun run =
           pipeline::MapSimulation(config, MapsFile(tour.map), MapsFile(tour.route), seed);
       const pipeline::TourEvaluation e = pipeline::EvaluateTour(run);

@@ -99,8 +99,9 @@ struct SimOdometryConfig {
   double ticks_per_revolution = 2578.33;  ///< encoder ticks per wheel turn
   double wheel_scale_error = 0.005;       ///< encoders over-report wheel travel by this
                                           ///< fraction (true wheels smaller than assumed; a
-                                          ///< calibrated base). No loop on a there-and-back
-                                          ///< route can observe it: it bounds any ATE from below
+                                          ///< calibrated base). No loop can observe it: it
+                                          ///< bounds the ATE from below unless the base's
+                                          ///< calibration is given (`uwbsar calibrate`)
   double wheel_scale_asymmetry = 0.0007;  ///< right minus left scale error: heading drift
                                           ///< of about 1.7 deg per 10 m straight
   double wheelbase_error = 0.02;          ///< true wheelbase is this fraction shorter than
