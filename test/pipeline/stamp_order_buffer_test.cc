@@ -14,11 +14,17 @@ struct Released {
   std::vector<bool> late;
 };
 
-pipeline::StampOrderBuffer<int> MakeBuffer(Released* out, std::int64_t window_ns = 50 * kMs) {
-  return pipeline::StampOrderBuffer<int>(window_ns, [out](int&& item, bool late) {
-    out->items.push_back(item);
-    out->late.push_back(late);
-  });
+/// A buffer with a 50 ms window that records what it releases into `out`; `streams` and
+/// `startup_hold_ns` as in StampOrderBuffer (0: no startup hold).
+pipeline::StampOrderBuffer<int> MakeBuffer(Released* out, int streams = 0,
+                                           std::int64_t startup_hold_ns = 0) {
+  return pipeline::StampOrderBuffer<int>(
+      50 * kMs,
+      [out](int&& item, bool late) {
+        out->items.push_back(item);
+        out->late.push_back(late);
+      },
+      streams, startup_hold_ns);
 }
 
 TEST(StampOrderBufferTest, InterleavedStreamsComeOutInStampOrder) {
@@ -57,13 +63,7 @@ TEST(StampOrderBufferTest, AStreamMatchedLateStillStartsInStampOrder) {
   // radars'. Without the startup hold, the radars' first scans would go out after 50 ms and
   // the odometry's first samples, stamped before them, would come late.
   Released out;
-  pipeline::StampOrderBuffer<int> buffer(
-      50 * kMs,
-      [&out](int&& item, bool late) {
-        out.items.push_back(item);
-        out.late.push_back(late);
-      },
-      /*streams=*/3, /*startup_hold_ns=*/2000 * kMs);
+  auto buffer = MakeBuffer(&out, /*streams=*/3, /*startup_hold_ns=*/2000 * kMs);
   for (int i = 0; i < 10; ++i) {
     buffer.Push((10 + 10 * i) * kMs, 10 * i * kMs, 100 + i, 0);
     buffer.Push((15 + 10 * i) * kMs, 10 * i * kMs, 200 + i, 1);
@@ -83,13 +83,7 @@ TEST(StampOrderBufferTest, AStreamMatchedLateStillStartsInStampOrder) {
 
 TEST(StampOrderBufferTest, AStreamThatNeverComesHoldsTheStartOnlyThatLong) {
   Released out;
-  pipeline::StampOrderBuffer<int> buffer(
-      50 * kMs,
-      [&out](int&& item, bool late) {
-        out.items.push_back(item);
-        out.late.push_back(late);
-      },
-      /*streams=*/2, /*startup_hold_ns=*/500 * kMs);
+  auto buffer = MakeBuffer(&out, /*streams=*/2, /*startup_hold_ns=*/500 * kMs);
   buffer.Push(10 * kMs, 0, 1, 0);
   buffer.Push(20 * kMs, 100 * kMs, 2, 0);
   buffer.Poll(499 * kMs);
