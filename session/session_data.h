@@ -59,6 +59,10 @@ struct SessionOdometry {
 struct SessionTrajectory {
   int id = 0;
   std::string input;  ///< what was mapped (bag path or simulation description)
+  /// Identity of the recording it was mapped from (RunFingerprint: storage id, first and last
+  /// stamps, message count), so that joining the same recording twice is refused; "" in
+  /// sessions written before format version 3.
+  std::string fingerprint;
 };
 
 struct SessionEdge {
