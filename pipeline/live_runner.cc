@@ -13,7 +13,9 @@
 #include "pipeline/live_recorder.h"
 #include "pipeline/live_ros2_results.h"
 #include "pipeline/live_source.h"
+#include "pipeline/map_outputs.h"
 #include "pipeline/output_folder.h"
+#include "pipeline/saved_session.h"
 #include "session/session_file.h"
 #include "slam/errors.h"
 #include "slam/log.h"
@@ -153,11 +155,22 @@ LiveRunResult FinishRun(const LiveRunOptions& options, const live::FaultLog& fau
 
 }  // namespace
 
+FolderLock LockLiveOutputFolder(const LiveRunOptions& options) {
+  FolderLock lock = LockOutputFolder(options.out_dir);
+  if (!options.localize_in.empty()) {
+    RefuseMapFolderForLocalize(options.out_dir);
+  } else {
+    RefuseToReplaceSavedMap(options.out_dir, {}, options.overwrite,
+                            "give another --out, or --overwrite to replace it");
+  }
+  return lock;
+}
+
 LiveRunResult RunLive(const Config& config, LiveRunOptions options) {
   if (options.source != "serial" && options.source != "ros2") {
     throw InputError("live source '" + options.source + "' is not one of serial, ros2");
   }
-  EnsureDirectory(options.out_dir);
+  const FolderLock out_lock = LockLiveOutputFolder(options);
   const std::string recording =
       options.recording_dir.empty()
           ? (std::filesystem::path(options.out_dir) / DefaultRecordingName()).string()
@@ -190,12 +203,14 @@ LiveRunResult RunLive(const Config& config, LiveRunOptions options) {
     source->ConfigureImaging(&run_config);
   }
   // The saved map is read (and checked against the imaging geometry) before recording.
-  std::unique_ptr<SessionData> localize_map;
+  // Its folder stays locked (shared) for the whole run.
+  std::unique_ptr<SavedSession> localize_map;
   if (!options.localize_in.empty()) {
-    localize_map = std::make_unique<SessionData>(
-        ReadSession(ResolveSessionPath(options.localize_in), &run_config));
+    localize_map =
+        std::make_unique<SavedSession>(OpenSavedSession(options.localize_in, run_config));
   }
-  Processor processor(run_config, options, &dispatcher, localize_map.get());
+  Processor processor(run_config, options, &dispatcher,
+                      localize_map ? &localize_map->data : nullptr);
   if (!serial) source = MakeRos2Source(run_config, &dispatcher, &faults, &processor);
   const SerialModePublishing serial_publishing =
       serial ? MaybePublishInSerialMode(run_config, &faults, &processor) : SerialModePublishing{};

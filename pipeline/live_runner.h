@@ -47,6 +47,8 @@ struct LiveRunOptions {
   /// A saved session (folder or session.uwbsar): localise in it instead of mapping (the
   /// map is fixed; snapshots write trajectory.tum, localize.csv and summary.json).
   std::string localize_in;
+  /// Replace a saved map (session.uwbsar) that out_dir already holds; refused otherwise.
+  bool overwrite = false;
 };
 
 struct LiveRunResult {
@@ -77,6 +79,12 @@ struct LiveRunResult {
   /// request-to-answer time, what the radar reported), by name ("radar left").
   std::vector<std::pair<std::string, live::Lt102Stats>> radars;
 };
+
+/// Locks options.out_dir for this process (pipeline/map_outputs.h LockOutputFolder) and
+/// refuses a folder the run must not write: a saved map's folder when localising, one holding
+/// a saved map when mapping without options.overwrite. RunLive does this first; a caller that
+/// prepares devices inside out_dir (`run --emulate`) calls it before them.
+FolderLock LockLiveOutputFolder(const LiveRunOptions& options);
 
 /// Runs until the stop flag is set. Throws InputError / GpioError on start-up problems
 /// (device list not matching the radars, GPIO chip or line missing, DDS refusing).

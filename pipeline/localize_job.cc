@@ -15,6 +15,7 @@
 #include "pipeline/app_config.h"
 #include "pipeline/localize_pipeline.h"
 #include "pipeline/map_job.h"
+#include "pipeline/map_outputs.h"
 #include "pipeline/output_folder.h"
 #include "slam/errors.h"
 
@@ -84,8 +85,10 @@ LocalizeRun LocalizeSimulation(const SessionData& map, const Config& config,
   return LocalizeSource(map, config, description, source);
 }
 
-nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& out_dir) {
-  EnsureDirectory(out_dir);
+namespace {
+
+/// trajectory.tum, localize.csv and summary.json of `run` in `dir`; returns the summary.
+nlohmann::json WriteLocalizeFiles(const LocalizeRun& run, const std::string& out_dir) {
   const auto trajectory = run.Trajectory(false);
   std::vector<std::pair<double, Pose2>> tum;
   for (const auto& [t, p] : trajectory) tum.push_back({NsToSeconds(t), p});
@@ -142,6 +145,18 @@ nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& o
   }
   WriteTextAtomic(out_dir + "/summary.json", s.dump(2) + "\n");
   return s;
+}
+
+}  // namespace
+
+nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& out_dir) {
+  MapOutputStage stage(out_dir);
+  nlohmann::json summary;
+  stage.CommitWritten([&](const std::string& dir) {
+    summary = WriteLocalizeFiles(run, dir);
+    return std::vector<std::string>{"trajectory.tum", "localize.csv"};
+  });
+  return summary;
 }
 
 }  // namespace uwbsar::pipeline

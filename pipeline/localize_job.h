@@ -51,7 +51,10 @@ LocalizeRun LocalizeSimulation(const SessionData& map, const Config& config,
                                std::uint64_t scene_seed, std::uint64_t seed,
                                const Pose2& T_odom_world = {});
 
-/// trajectory.tum, localize.csv and summary.json (last) into out_dir; returns the summary.
+/// trajectory.tum, localize.csv and summary.json (last) into out_dir, staged and committed as
+/// one set under out_dir's lock (pipeline/map_outputs.h MapOutputStage), replacing an earlier
+/// run's outputs; returns the summary. The commands refuse a map's folder first
+/// (pipeline/saved_session.h RefuseMapFolderForLocalize).
 nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& out_dir);
 
 }  // namespace uwbsar::pipeline

@@ -25,6 +25,7 @@
 #include "pipeline/imaging_job.h"
 #include "pipeline/map_report.h"
 #include "pipeline/report_html.h"
+#include "slam/commit_journal.h"
 #include "slam/errors.h"
 
 namespace uwbsar::pipeline {
@@ -112,24 +113,6 @@ nlohmann::json AteJson(const AteResult& a) {
           {"mean_m", a.mean_m},
           {"max_m", a.max_m},
           {"yaw_rmse_deg", a.yaw_rmse_rad * 180.0 / M_PI}};
-}
-
-/// trajectory_<digits>.tum: one run of a joined session (pipeline/session_outputs.h).
-bool IsRunTrajectoryName(const std::string& name) {
-  const std::string prefix = "trajectory_", suffix = ".tum";
-  if (name.size() <= prefix.size() + suffix.size() || name.rfind(prefix, 0) != 0 ||
-      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
-    return false;
-  }
-  const std::string digits =
-      name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
-  return digits.find_first_not_of("0123456789") == std::string::npos;
-}
-
-void RemoveOutput(const fs::path& path) {
-  std::error_code ec;
-  fs::remove(path, ec);
-  if (ec) throw std::runtime_error(path.string() + ": cannot remove: " + ec.message());
 }
 
 std::string ReadFileBytes(const std::string& path) {
@@ -278,32 +261,18 @@ nlohmann::json SummaryJson(const MapState& run, const MapOutputs& outputs,
   return s;
 }
 
-/// Commit: drops a previous run's summary first, then the outputs this run does not write
-/// (a committed folder holds one run's files), then renames `names` from `stage` into
-/// `out_dir`, summary.json last. Appends the final paths to `files`.
+/// Commits `names` (and summary.json, last) from `stage` into `out_dir` as one set
+/// (slam/commit_journal.h), removing the outputs of an earlier run this run does not write (a
+/// committed folder holds one run's files). Appends the final paths to `files`.
 void CommitStagedOutputs(const fs::path& stage, const std::string& out_dir,
                          std::vector<std::string> names, std::vector<std::string>* files) {
-  RemoveOutput(fs::path(out_dir) / "summary.json");
-  auto written = [&names](const std::string& name) {
-    return std::find(names.begin(), names.end(), name) != names.end();
-  };
-  for (const std::string& name : AllMapOutputNames()) {
-    if (!written(name)) RemoveOutput(fs::path(out_dir) / name);
-  }
-  // A joined session's per-run trajectories (trajectory_<run>.tum) of an earlier commit.
-  std::error_code ec;
-  for (fs::directory_iterator it(out_dir, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if (IsRunTrajectoryName(name) && !written(name)) RemoveOutput(it->path());
-  }
   names.push_back("summary.json");
-  for (const std::string& name : names) {
-    const fs::path target = fs::path(out_dir) / name;
-    std::error_code ec;
-    fs::rename(stage / name, target, ec);
-    if (ec) throw std::runtime_error(target.string() + ": cannot commit: " + ec.message());
-    files->push_back(target.string());
-  }
+  CommitPlan plan;
+  plan.stage_name = stage.filename().string();
+  plan.publish = names;
+  plan.remove = EarlierOutputsNotIn(out_dir, names);
+  CommitFolder(out_dir, plan);
+  for (const std::string& name : names) files->push_back((fs::path(out_dir) / name).string());
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "pipeline/map_job.h"
+#include "slam/folder_lock.h"
 #include "slam/interrupt_cleanup.h"
 
 namespace uwbsar::pipeline {
@@ -44,11 +45,12 @@ struct MapOutputOptions {
 };
 
 /// The hidden staging folder of one run inside DIR (`.uwbsar-partial-<pid>`). Created before
-/// the work starts (it proves DIR writable); staging folders left by processes that are gone
-/// are removed then; Ctrl-C removes this one (slam/interrupt_cleanup.h), as does the
-/// destructor. Commit writes every output into it and renames them into DIR, summary.json
-/// last, after removing the outputs of an earlier run that this run does not write: a
-/// committed folder holds exactly one run's files.
+/// the work starts (it proves DIR writable), under DIR's exclusive lock (LockOutputFolder),
+/// held until the stage is destroyed; Ctrl-C removes it (slam/interrupt_cleanup.h), as does
+/// the destructor. Commit writes every output into it and publishes them into DIR as one set
+/// (slam/commit_journal.h), summary.json last, removing the outputs of an earlier run that
+/// this run does not write: a committed folder holds exactly one run's files, and a commit
+/// interrupted at any point is completed by the next command that locks DIR.
 class MapOutputStage {
  public:
   /// Throws InputError naming DIR when it cannot be created or written.
@@ -76,12 +78,25 @@ class MapOutputStage {
   MapOutputs CommitState(const MapState& state, const MapRun* exact_from);
 
   std::string out_dir_, stage_;
+  FolderLock lock_;
   std::unique_ptr<RemoveOnInterrupt> guard_;
   ExtraOutputs extra_outputs_;
 };
 
-/// Every file name a `uwbsar map` run may commit into DIR.
+/// Every file name a uwbsar command may commit into an output folder (map, joined session,
+/// localize, live), but the per-run trajectory_<run>.tum of a joined session.
 const std::vector<std::string>& AllMapOutputNames();
+
+/// The outputs of earlier runs in `out_dir` (AllMapOutputNames and trajectory_<run>.tum) that
+/// are not in `names`: a commit of `names` removes them.
+std::vector<std::string> EarlierOutputsNotIn(const std::string& out_dir,
+                                             const std::vector<std::string>& names);
+
+/// Creates `out_dir` when missing and locks it exclusively for this process (refused with one
+/// line naming the holder when another process writes or reads it), completes a commit that a
+/// dead process left in it and removes dead processes' staging folders. Every command that
+/// writes an output folder holds this for its whole run.
+FolderLock LockOutputFolder(const std::string& out_dir);
 
 /// MapOutputStage(out_dir).Commit(run, options).
 MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir,

@@ -12,7 +12,12 @@ SessionData CaptureSession(const MapRun& run) {
   SessionData d;
   d.config_yaml = ConfigToYaml(slam.config());
   d.fingerprint = ConfigFingerprint(slam.config());
-  d.trajectories.push_back({0, run.input});
+  // A run without a recording's identity (a simulation, a live run) is identified by what it
+  // is and when it began.
+  d.trajectories.push_back({0, run.input,
+                            !run.fingerprint.empty()
+                                ? run.fingerprint
+                                : "run " + run.input + " " + std::to_string(run.first_stamp_ns)});
   const std::map<int, Pose2> poses = slam.KeyframePoses();
   const std::vector<int> fixed = slam.graph().FixedNodes();
   for (const KeyframeRecord& r : slam.keyframes()) {

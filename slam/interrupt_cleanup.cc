@@ -3,6 +3,7 @@
 #include <pthread.h>
 #include <signal.h>
 
+#include <condition_variable>
 #include <filesystem>
 #include <map>
 #include <mutex>
@@ -16,6 +17,9 @@ struct Registry {
   std::map<long, std::string> paths;
   long next_id = 0;
   std::function<void()> handler;
+  int deferring = 0;         ///< live DeferInterrupts
+  bool terminating = false;  ///< the watcher is ending the process
+  std::condition_variable deferred_done;
 };
 
 Registry& TheRegistry() {
@@ -30,9 +34,11 @@ void WatchSignals(sigset_t set) {
     Registry& r = TheRegistry();
     std::function<void()> handler;
     {
-      std::lock_guard<std::mutex> lock(r.mutex);
+      std::unique_lock<std::mutex> lock(r.mutex);
       handler = r.handler;
       if (!handler) {
+        r.terminating = true;
+        r.deferred_done.wait(lock, [&r] { return r.deferring == 0; });
         for (const auto& [id, path] : r.paths) {
           std::error_code ec;
           std::filesystem::remove_all(path, ec);
@@ -67,6 +73,21 @@ RemoveOnInterrupt::~RemoveOnInterrupt() {
   Registry& r = TheRegistry();
   std::lock_guard<std::mutex> lock(r.mutex);
   r.paths.erase(id_);
+}
+
+DeferInterrupts::DeferInterrupts() {
+  Registry& r = TheRegistry();
+  std::unique_lock<std::mutex> lock(r.mutex);
+  // The process is ending on a signal: beginning a commit now could remove old outputs whose
+  // successors the watcher is deleting. Wait for the end instead.
+  while (r.terminating) r.deferred_done.wait(lock);
+  ++r.deferring;
+}
+
+DeferInterrupts::~DeferInterrupts() {
+  Registry& r = TheRegistry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  if (--r.deferring == 0) r.deferred_done.notify_all();
 }
 
 void InstallInterruptCleanup() {

@@ -22,6 +22,18 @@ class RemoveOnInterrupt {
   long id_;
 };
 
+/// Holds back the end of the process on SIGINT/SIGTERM while this object lives (a commit
+/// that must complete once begun, slam/commit_journal.h): the watcher waits for every
+/// DeferInterrupts to end before it removes the registered paths and ends the process. When
+/// the watcher is already ending the process, the constructor does not return.
+class DeferInterrupts {
+ public:
+  DeferInterrupts();
+  ~DeferInterrupts();
+  DeferInterrupts(const DeferInterrupts&) = delete;
+  DeferInterrupts& operator=(const DeferInterrupts&) = delete;
+};
+
 /// Blocks SIGINT and SIGTERM in the calling thread (and so in every thread it starts later)
 /// and starts a thread that waits for them. On a signal it calls the handler set with
 /// SetInterruptHandler when there is one; otherwise it removes every registered path and

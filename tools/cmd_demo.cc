@@ -8,6 +8,7 @@
 
 #include "pipeline/app_config.h"
 #include "pipeline/map_outputs.h"
+#include "pipeline/saved_session.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -40,6 +41,7 @@ void AddDemoCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
     pipeline::MapOutputStage stage(opts->out_dir);
+    pipeline::RefuseToReplaceSavedMap(opts->out_dir, {}, false, "give another --out");
     pipeline::MapRun run =
         pipeline::MapSimulation(config, opts->map_path.empty() ? BundledMap() : opts->map_path,
                                 "depart-return", opts->seed);

@@ -4,6 +4,8 @@
 
 #include "pipeline/app_config.h"
 #include "pipeline/localize_job.h"
+#include "pipeline/map_outputs.h"
+#include "pipeline/saved_session.h"
 #include "session/session_file.h"
 #include "tools/commands.h"
 
@@ -21,9 +23,12 @@ void AddLocalizeCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--out", opts->out_dir, "Output folder")->required();
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
-    pipeline::CheckOutputFolder(opts->out_dir);
-    const SessionData map = ReadSession(ResolveSessionPath(opts->map), &config);
-    const pipeline::LocalizeRun run = pipeline::LocalizeBag(map, config, opts->bag);
+    // The output folder is locked for the whole run and the map's folder shared: neither can
+    // change under the run, and the outputs never go into a map's folder.
+    const FolderLock out_lock = pipeline::LockOutputFolder(opts->out_dir);
+    pipeline::RefuseMapFolderForLocalize(opts->out_dir);
+    const pipeline::SavedSession map = pipeline::OpenSavedSession(opts->map, config);
+    const pipeline::LocalizeRun run = pipeline::LocalizeBag(map.data, config, opts->bag);
     const nlohmann::json s = pipeline::WriteLocalizeOutputs(run, opts->out_dir);
     if (globals.quiet) return;
     std::printf(

@@ -1,5 +1,6 @@
 // `uwbsar map BAG --out DIR`: the main job on a recorded (or simulated) bag.
 #include <cstdio>
+#include <optional>
 
 #include "drivers/tum_reader.h"
 #include "pipeline/app_config.h"
@@ -35,6 +36,7 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
     std::string bag, out_dir, ground_truth, resume;
     bool exact = false;
     bool skip_damaged = false;
+    bool overwrite = false;
   };
   auto opts = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("map", "Map a ROS 2 bag: trajectory, loops, global SAR map");
@@ -51,23 +53,34 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
                 "offset and message count) instead of failing the whole run");
   cmd->add_option("--resume", opts->resume,
                   "Continue a saved session (folder or session.uwbsar): this run joins its map "
-                  "as a new trajectory once a loop places it");
+                  "as a new trajectory once a loop places it (refused, leaving it unchanged, when "
+                  "no loop does or when it already holds this recording)");
+  cmd->add_flag("--overwrite", opts->overwrite,
+                "Replace the saved map (session.uwbsar) that --out already holds; without it such "
+                "a folder is refused unless it is the --resume session's own");
   cmd->callback([opts, &globals] {
     Config config = LoadConfigFor(globals);
     if (opts->exact) config.slam.keep_scan_profiles = true;  // the exact map re-images them
-    // Every input and output is checked before the work: the ground truth is read and the
-    // output folder's staging folder created first.
+    // Every input and output is checked before the work: the ground truth is read, the
+    // output folder locked and its staging folder created, the saved session read (an
+    // incompatible one, or one that holds this recording already, is refused first).
     std::vector<OdometrySample> ground_truth;
     if (!opts->ground_truth.empty()) ground_truth = ReadTum(opts->ground_truth);
-    SessionData saved;  // read before the work: an incompatible session is refused first
-    if (!opts->resume.empty()) saved = LoadSessionToResume(opts->resume, config);
     pipeline::MapOutputStage stage(opts->out_dir);
+    std::optional<pipeline::SavedSession> saved;
+    if (!opts->resume.empty()) saved = OpenSessionToResume(opts->resume, opts->bag, config);
+    pipeline::RefuseToReplaceSavedMap(
+        opts->out_dir, saved ? std::vector<std::string>{saved->dir} : std::vector<std::string>{},
+        opts->overwrite,
+        "give another --out, --resume " + opts->out_dir +
+            " to extend it, or --overwrite to "
+            "replace it");
     rosbag::BagReadOptions read_options;
     read_options.skip_damaged_chunks = opts->skip_damaged;
     pipeline::MapRun run = pipeline::MapBag(config, opts->bag, !globals.quiet, read_options);
     if (!opts->ground_truth.empty()) run.ground_truth = std::move(ground_truth);
     if (!opts->resume.empty()) {
-      WriteResumedMap(saved, run, &stage, opts->out_dir, globals.quiet);
+      WriteResumedMap(*saved, run, &stage, opts->out_dir, globals.quiet);
       return;
     }
     stage.SetExtraOutputs([&run](const std::string& dir) {

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "pipeline/app_config.h"
+#include "pipeline/saved_session.h"
 #include "pipeline/session_outputs.h"
 #include "session/session_file.h"
 #include "session/session_merge.h"
@@ -25,9 +26,19 @@ void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--out", opts->out_dir, "Output folder")->required();
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
-    pipeline::CheckOutputFolder(opts->out_dir);
-    const SessionData a = ReadSession(ResolveSessionPath(opts->a), &config);
-    const SessionData b = ReadSession(ResolveSessionPath(opts->b), &config);
+    pipeline::MapOutputStage stage(opts->out_dir);  // locked; the outputs committed as one set
+    if (pipeline::SamePlace(ResolveSessionPath(opts->a), ResolveSessionPath(opts->b))) {
+      throw InputError(opts->b + ": the same session as " + opts->a +
+                       "; merging a session with itself would count its data twice");
+    }
+    const pipeline::SavedSession saved_a = pipeline::OpenSavedSession(opts->a, config);
+    const pipeline::SavedSession saved_b = pipeline::OpenSavedSession(opts->b, config);
+    pipeline::RefuseToReplaceSavedMap(opts->out_dir, {saved_a.dir, saved_b.dir}, false,
+                                      "give another --out, or one of the merged sessions' folders");
+    pipeline::RefuseRunsAlreadyJoined(saved_a.data, saved_a.path, saved_b.data.trajectories,
+                                      saved_b.path);
+    const SessionData& a = saved_a.data;
+    const SessionData& b = saved_b.data;
     MergeReport report;
     const SessionData merged = MergeSessions(a, b, config, &report);
     if (!report.connected) {
@@ -36,7 +47,6 @@ void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
     nlohmann::json extra;
     extra["inputs"] = {opts->a, opts->b};
     extra["merge"] = pipeline::MergeReportJson(report);
-    pipeline::MapOutputStage stage(opts->out_dir);  // the outputs committed as one set
     pipeline::CommitSessionOutputs(&stage, merged, config, {}, extra,
                                    "uwbsar merge: " + opts->a + " + " + opts->b);
     if (globals.quiet) return;

@@ -37,6 +37,7 @@ struct RunOptions {
   std::string source = "serial";
   std::string map_path;     ///< --emulate: the map to simulate in
   std::string localize_in;  ///< a saved session: localise in it instead of mapping
+  bool overwrite = false;   ///< replace a saved map that --out holds
 };
 
 void AddRunOptions(CLI::App* cmd, RunOptions* opts) {
@@ -66,6 +67,9 @@ void AddRunOptions(CLI::App* cmd, RunOptions* opts) {
   cmd->add_option("--localize-in", opts->localize_in,
                   "Saved session (folder or session.uwbsar): localise in it instead of mapping "
                   "(the map is not changed; outputs as `localize`, pose and map->odom on /tf)");
+  cmd->add_flag("--overwrite", opts->overwrite,
+                "Replace the saved map (session.uwbsar) that --out already holds (refused "
+                "otherwise)");
 }
 
 /// The emulated devices of --emulate and the thread that stops the run when they end.
@@ -159,6 +163,9 @@ void Run(const RunOptions& opts, const GlobalOptions& globals) {
   options.stop = &g_stop;
   options.quiet = globals.quiet;
   options.localize_in = opts.localize_in;
+  options.overwrite = opts.overwrite;
+  // Locked and checked before any emulated device is made inside it.
+  const FolderLock out_lock = pipeline::LockLiveOutputFolder(options);
   Emulation emulation;
   if (opts.emulate) StartEmulation(opts, &config, &options, &emulation);
   pipeline::LiveRunResult result = pipeline::RunLive(config, std::move(options));

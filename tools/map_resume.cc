@@ -8,30 +8,31 @@
 #include "pipeline/session_outputs.h"
 #include "session/session_file.h"
 #include "session/session_merge.h"
+#include "slam/errors.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
 
-SessionData LoadSessionToResume(const std::string& dir_or_file, const Config& config) {
-  return ReadSession(ResolveSessionPath(dir_or_file), &config);
+pipeline::SavedSession OpenSessionToResume(const std::string& dir_or_file, const std::string& bag,
+                                           const Config& config) {
+  pipeline::SavedSession saved = pipeline::OpenSavedSession(dir_or_file, config);
+  SessionTrajectory run;
+  run.input = bag;
+  run.fingerprint = pipeline::BagFingerprint(bag);
+  pipeline::RefuseRunsAlreadyJoined(saved.data, saved.path, {run}, bag);
+  return saved;
 }
 
-void WriteResumedMap(const SessionData& saved, const pipeline::MapRun& run,
+void WriteResumedMap(const pipeline::SavedSession& saved, const pipeline::MapRun& run,
                      pipeline::MapOutputStage* stage, const std::string& out_dir, bool quiet) {
   const Config& config = run.slam->config();
   MergeReport report;
-  const SessionData merged = MergeSessions(saved, pipeline::CaptureSession(run), config, &report);
+  const SessionData merged =
+      MergeSessions(saved.data, pipeline::CaptureSession(run), config, &report);
   if (!report.connected) {
-    std::fprintf(stderr,
-                 "warning: the run is not connected to the saved map (%s): wrote it alone\n",
-                 report.reason.c_str());
-    stage->SetExtraOutputs([&run](const std::string& dir) {
-      WriteSession(dir + "/" + kSessionFileName, pipeline::CaptureSession(run));
-      return std::vector<std::string>{kSessionFileName};
-    });
-    const pipeline::MapOutputs outputs = stage->Commit(run);
-    if (!quiet) PrintMapSummary(run, outputs, out_dir);
-    return;
+    throw InputError(run.input + ": does not connect to the saved map " + saved.path + " (" +
+                     report.reason + "); nothing written. Map it on its own: uwbsar map " +
+                     run.input + " --out ANOTHER_DIR");
   }
   std::map<int, std::vector<OdometrySample>> ground_truth;
   if (!run.ground_truth.empty()) ground_truth[report.trajectory_offset] = run.ground_truth;

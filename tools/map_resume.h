@@ -1,6 +1,7 @@
 // `uwbsar map BAG --resume SESSION`: the new run mapped as usual, then joined to the saved
 // session as a new trajectory (session/session_merge.h) and the joined map written
-// (tools/session_outputs.h). A run that never connects is written alone, with a warning.
+// (pipeline/session_outputs.h). A run that never connects is refused and nothing is written:
+// the saved map is never replaced by a run that is not part of it.
 #pragma once
 
 #include <string>
@@ -10,15 +11,21 @@
 #include "pipeline/app_config.h"
 #include "pipeline/map_job.h"
 #include "pipeline/map_outputs.h"
+#include "pipeline/saved_session.h"
 #include "session/session_data.h"
 
 namespace uwbsar::tools {
 
-/// Reads the saved session for `config` (InputError, exit 3, when it cannot be resumed).
-SessionData LoadSessionToResume(const std::string& dir_or_file, const Config& config);
+/// Reads the saved session for `config` under a shared lock on its folder, held while the
+/// result lives (InputError, exit 3, when it cannot be resumed: incompatible, or it already
+/// holds the recording `bag`).
+pipeline::SavedSession OpenSessionToResume(const std::string& dir_or_file, const std::string& bag,
+                                           const Config& config);
 
 /// Joins `run` to `saved` and writes the outputs into out_dir; prints a summary unless quiet.
-void WriteResumedMap(const SessionData& saved, const pipeline::MapRun& run,
+/// Throws InputError naming the bag and the session, writing nothing, when the run does not
+/// connect to the saved map.
+void WriteResumedMap(const pipeline::SavedSession& saved, const pipeline::MapRun& run,
                      pipeline::MapOutputStage* stage, const std::string& out_dir, bool quiet);
 
 }  // namespace uwbsar::tools

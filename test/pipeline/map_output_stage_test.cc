@@ -22,6 +22,7 @@ void Write(const std::string& path, const std::string& text) { std::ofstream(pat
 std::map<std::string, std::string> Listing(const std::string& dir) {
   std::map<std::string, std::string> out;
   for (const auto& e : fs::directory_iterator(dir)) {
+    if (e.path().filename() == kFolderLockName) continue;  // the folder's lock, not an output
     std::ostringstream text;
     if (e.is_directory()) {
       text << "<dir>";

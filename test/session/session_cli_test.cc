@@ -13,62 +13,17 @@
 #include <string>
 
 #include "test/cli_runner.h"
+#include "test/session/session_cli_fixture.h"
 
 namespace uwbsar {
 namespace {
 
 namespace fs = std::filesystem;
 using testing::CliRun;
+using testing::Json;
+using testing::Lines;
+using testing::SessionCliTest;
 using testing::Uwbsar;
-
-nlohmann::json Json(const std::string& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
-
-int Lines(const std::string& text) {
-  int n = 0;
-  for (char c : text) n += c == '\n';
-  return n;
-}
-
-class SessionCliTest : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    dir_ = new std::string(
-        (fs::temp_directory_path() / ("uwbsar_session_cli_" + std::to_string(::getpid())))
-            .string());
-    fs::remove_all(*dir_);
-    fs::create_directories(*dir_);
-    const std::string hall =
-        std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_hall/seed_hall.yaml";
-    std::ofstream(*dir_ + "/a.yaml") << "simulator:\n  route:\n    depart_distance_m: 3.0\n";
-    std::ofstream(*dir_ + "/b.yaml")
-        << "simulator:\n  route:\n    depart_distance_m: 2.0\n    start_x_m: 1.0\n"
-           "    start_yaw_deg: 15.0\n";
-    for (const auto& [name, args] : std::vector<std::pair<std::string, std::string>>{
-             {"a", "--config " + *dir_ + "/a.yaml simulate --seed 1"},
-             {"b", "--config " + *dir_ + "/b.yaml simulate --scene-seed 1 --seed 2"},
-             {"c", "--config " + *dir_ + "/a.yaml simulate --scene-seed 7 --seed 3"}}) {
-      const CliRun r =
-          Uwbsar(args + " --map " + hall + " --route depart-return --out " + Bag(name));
-      ASSERT_EQ(r.exit_code, 0) << r.output;
-    }
-    for (const std::string name : {"a", "b", "c"}) {
-      const CliRun r = Uwbsar("-q map " + Bag(name) + " --out " + *dir_ + "/map_" + name);
-      ASSERT_EQ(r.exit_code, 0) << r.output;
-    }
-  }
-  static void TearDownTestSuite() {
-    fs::remove_all(*dir_);
-    delete dir_;
-    dir_ = nullptr;
-  }
-  static std::string Bag(const std::string& name) { return *dir_ + "/bag_" + name; }
-  static std::string Map(const std::string& name) { return *dir_ + "/map_" + name; }
-  static std::string* dir_;
-};
-std::string* SessionCliTest::dir_ = nullptr;
 
 TEST_F(SessionCliTest, MapWritesAnSqliteSession) {
   const std::string path = Map("a") + "/session.uwbsar";
@@ -108,10 +63,10 @@ TEST_F(SessionCliTest, ResumeIntoAPlainMapsFolderReplacesItsOutputsAsOneSet) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::set<std::string> names;
   for (const auto& e : fs::directory_iterator(out)) names.insert(e.path().filename().string());
-  const std::set<std::string> expected = {"trajectory_0.tum", "trajectory_1.tum", "map.png",
-                                          "map_float.tif",    "map_grid.yaml",    "map.yaml",
-                                          "map.pgm",          "graph.g2o",        "session.uwbsar",
-                                          "report.html",      "summary.json"};
+  const std::set<std::string> expected = {".uwbsar.lock",   "trajectory_0.tum", "trajectory_1.tum",
+                                          "map.png",        "map_float.tif",    "map_grid.yaml",
+                                          "map.yaml",       "map.pgm",          "graph.g2o",
+                                          "session.uwbsar", "report.html",      "summary.json"};
   EXPECT_EQ(names, expected);
   EXPECT_EQ(Json(out + "/summary.json")["runs"].size(), 2u);
 }

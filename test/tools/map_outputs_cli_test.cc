@@ -81,7 +81,8 @@ TEST(MapOutputsTest, CommittedFolderHoldsExactlyOneRunsFiles) {
   ASSERT_TRUE(fs::exists(out + "/ground_truth.tum"));
   ASSERT_TRUE(fs::exists(out + "/map_exact.png"));
   std::ofstream(out + "/notes.txt") << "not ours\n";
-  const CliRun second = Uwbsar("map " + bag + " --out " + out + " -q");
+  // The first run's saved map is replaced only when asked to.
+  const CliRun second = Uwbsar("map " + bag + " --out " + out + " -q --overwrite");
   ASSERT_EQ(second.exit_code, 0) << second.output;
   // The second run wrote neither ground truth nor an exact map: none of the first's stays.
   for (const char* f :
