@@ -91,4 +91,8 @@ struct SessionData {
   std::map<int, Pose2> Poses() const;
 };
 
+/// `s` with dense ids: keyframes 0..n-1 in their order, trajectories 0..m-1 in theirs, and
+/// every reference (edges, loops, odometry, features) renumbered with them.
+SessionData WithDenseIds(const SessionData& s);
+
 }  // namespace uwbsar
