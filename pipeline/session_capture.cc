@@ -12,7 +12,7 @@ SessionData CaptureSession(const MapRun& run) {
   SessionData d;
   d.config_yaml = ConfigToYaml(slam.config());
   d.fingerprint = ConfigFingerprint(slam.config());
-  d.trajectories.push_back({0, run.input});
+  d.trajectories.push_back({0, run.input, /*fingerprint=*/""});
   const std::map<int, Pose2> poses = slam.KeyframePoses();
   const std::vector<int> fixed = slam.graph().FixedNodes();
   for (const KeyframeRecord& r : slam.keyframes()) {
