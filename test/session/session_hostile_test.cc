@@ -12,6 +12,7 @@
 #include <zstd.h>
 
 #include <climits>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <functional>
@@ -348,6 +349,33 @@ TEST_F(SessionHostileTest, DiskFullWhileWritingIsAnIoFailureNamingTheCause) {
   for (const auto& e : fs::directory_iterator(dir_))
     left += e.path().filename() != "session.uwbsar";
   EXPECT_EQ(left, 0);
+}
+
+// How fuzz/corpus/session/ was made: UWBSAR_FUZZ_SEED_DIR=fuzz/corpus/session
+// build/bin/session_tests --gtest_filter='TinySessionSeed.*' (tiny.uwbsar, and swapped.uwbsar
+// with keyframes.x_m and y_m in the other order; 512-byte pages, a few KB each).
+TEST(TinySessionSeed, WritesTheFuzzSeedsWhenAsked) {
+  const char* dir = std::getenv("UWBSAR_FUZZ_SEED_DIR");
+  if (dir == nullptr) GTEST_SKIP() << "UWBSAR_FUZZ_SEED_DIR not set";
+  for (const std::string name : {"tiny", "swapped"}) {
+    const std::string path = std::string(dir) + "/" + name + ".uwbsar";
+    WriteSession(path, ::uwbsar::testing::TinySession());
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+    if (name == "swapped") {
+      ASSERT_EQ(sqlite3_exec(db,
+                             "ALTER TABLE keyframes RENAME COLUMN x_m TO tmp_x; "
+                             "ALTER TABLE keyframes RENAME COLUMN y_m TO x_m; "
+                             "ALTER TABLE keyframes RENAME COLUMN tmp_x TO y_m; "
+                             "UPDATE keyframes SET x_m = y_m, y_m = x_m;",
+                             nullptr, nullptr, nullptr),
+                SQLITE_OK);
+    }
+    ASSERT_EQ(sqlite3_exec(db, "PRAGMA page_size = 512; VACUUM;", nullptr, nullptr, nullptr),
+              SQLITE_OK);
+    sqlite3_close(db);
+    EXPECT_EQ(ReadSession(path).keyframes.size(), 3u);
+  }
 }
 
 }  // namespace
