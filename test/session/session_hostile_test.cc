@@ -129,6 +129,32 @@ TEST_F(SessionHostileTest, InfiniteTileIsRefused) {
             path_ + ": keyframes row 2: tile has non-finite pixels");
 }
 
+TEST_F(SessionHostileTest, TextWhereANumberBelongsIsRefused) {
+  Sql("UPDATE keyframes SET stamp_ns = 'yesterday' WHERE id = 0");
+  EXPECT_EQ(ErrorOf([&] { ReadSession(path_); }),
+            path_ + ": keyframes row 1: stamp_ns is not an integer ('yesterday')");
+}
+
+TEST_F(SessionHostileTest, InformationThatIsNotPositiveDefiniteIsRefused) {
+  // The loop edge's information with a negative yaw weight (diag 100, 100, -400).
+  const double v[9] = {100, 0, 0, 0, 100, 0, 0, 0, -400};
+  std::vector<unsigned char> blob(sizeof(v));
+  std::memcpy(blob.data(), v, sizeof(v));
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path_.c_str(), &db), SQLITE_OK);
+  sqlite3_stmt* s = nullptr;
+  ASSERT_EQ(
+      sqlite3_prepare_v2(db, "UPDATE edges SET information = ? WHERE idx = 2", -1, &s, nullptr),
+      SQLITE_OK);
+  sqlite3_bind_blob(s, 1, blob.data(), static_cast<int>(blob.size()), SQLITE_TRANSIENT);
+  EXPECT_EQ(sqlite3_step(s), SQLITE_DONE);
+  sqlite3_finalize(s);
+  sqlite3_close(db);
+  EXPECT_EQ(
+      ErrorOf([&] { ReadSession(path_); }),
+      path_ + ": edges row 3: information is not a finite symmetric positive definite matrix");
+}
+
 TEST_F(SessionHostileTest, LoopToAMissingKeyframeIsRefused) {
   Sql("UPDATE loops SET match_id = 7");
   EXPECT_EQ(ErrorOf([&] { ReadSession(path_); }),
