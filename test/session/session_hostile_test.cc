@@ -259,6 +259,7 @@ TEST_F(SessionHostileTest, MapExtentBeyondMaxImagePixelsIsRefusedNamingTheFile) 
   const SessionData moved = ReadSession(path_);
   const std::string error =
       ErrorOf([&] { pipeline::RenderSessionMosaic(moved, config, &grid, &observed); });
+  std::printf("%s\n", error.c_str());
   EXPECT_EQ(error.rfind(path_ + ": the map of its keyframes spans x ", 0), 0u) << error;
   EXPECT_NE(error.find("more than limits.max_image_pixels (2e+08); refused before allocation"),
             std::string::npos)
