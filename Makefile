@@ -61,7 +61,7 @@ sanitize-test: deps venv
 	cd $(SAN_BUILD_DIR) && UWBSAR_VENV=$(CURDIR)/$(VENV) ctest --output-on-failure -j $(JOBS) -L unit
 
 # libFuzzer targets of the input parsers (fuzz/: CDR, MCAP, bag metadata.yaml, the
-# configuration), built with clang, each run briefly from the seed corpus; fails on any
+# configuration, the session reader), built with clang, each run briefly from the seed corpus; fails on any
 # finding (crash, leak, timeout, out-of-memory).
 FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 10
@@ -69,7 +69,7 @@ FUZZ_RUNS ?= 150000
 fuzz-smoke: deps
 	cmake -S fuzz -B $(FUZZ_DIR) -G Ninja -DCMAKE_CXX_COMPILER=clang++
 	cmake --build $(FUZZ_DIR) -j $(JOBS)
-	for f in cdr mcap metadata_yaml config; do mkdir -p $(FUZZ_DIR)/corpus_$$f && \
+	for f in cdr mcap metadata_yaml config session; do mkdir -p $(FUZZ_DIR)/corpus_$$f && \
 	  $(FUZZ_DIR)/$${f}_fuzz -seed=1 -runs=$(FUZZ_RUNS) -max_total_time=$(FUZZ_SECONDS) \
 	    -timeout=10 -rss_limit_mb=2048 \
 	    -artifact_prefix=$(FUZZ_DIR)/$${f}_ $(FUZZ_DIR)/corpus_$$f fuzz/corpus/$$f || exit 1; done

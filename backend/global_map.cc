@@ -4,6 +4,8 @@
 #include <climits>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <stdexcept>
+#include <string>
 
 namespace uwbsar {
 
@@ -72,6 +74,17 @@ void GlobalMap::AddTile(const cv::Mat& tile, const ImageGrid& grid, const Pose2&
   }
 }
 
+double GlobalMap::RenderPixels() const {
+  if (blocks_.empty()) return 0.0;
+  long long bc0 = LLONG_MAX, bc1 = LLONG_MIN, br0 = LLONG_MAX, br1 = LLONG_MIN;
+  for (const auto& [key, block] : blocks_) {
+    bc0 = std::min(bc0, key.first), bc1 = std::max(bc1, key.first);
+    br0 = std::min(br0, key.second), br1 = std::max(br1, key.second);
+  }
+  return static_cast<double>(bc1 - bc0 + 1) * static_cast<double>(br1 - br0 + 1) *
+         static_cast<double>(block_px_) * static_cast<double>(block_px_);
+}
+
 cv::Mat GlobalMap::Render(ImageGrid* grid) const {
   cv::Mat observed;
   return Render(grid, &observed);
@@ -89,8 +102,15 @@ cv::Mat GlobalMap::Render(ImageGrid* grid, cv::Mat* observed) const {
     *observed = cv::Mat();
     return cv::Mat();
   }
-  grid->cols = static_cast<int>((bc1 - bc0 + 1) * block_px_);
-  grid->rows = static_cast<int>((br1 - br0 + 1) * block_px_);
+  const double cols = static_cast<double>(bc1 - bc0 + 1) * block_px_;
+  const double rows = static_cast<double>(br1 - br0 + 1) * block_px_;
+  if (cols > INT_MAX || rows > INT_MAX) {
+    throw std::length_error("global map: " + std::to_string(cols) + " x " + std::to_string(rows) +
+                            " pixels at " + std::to_string(resolution_m_) +
+                            " m is too large to render");
+  }
+  grid->cols = static_cast<int>(cols);
+  grid->rows = static_cast<int>(rows);
   grid->x0_m = static_cast<double>(bc0 * block_px_) * resolution_m_;
   grid->y0_m = -static_cast<double>(br0 * block_px_) * resolution_m_;
   cv::Mat out = cv::Mat::zeros(grid->rows, grid->cols, CV_32FC1);

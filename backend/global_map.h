@@ -31,6 +31,11 @@ class GlobalMap {
   /// The same, with a mask of observed pixels (CV_8UC1, 255 = observed).
   cv::Mat Render(ImageGrid* grid, cv::Mat* observed) const;
 
+  /// Pixels (rows x cols) of the dense image Render would allocate, computed without allocating:
+  /// a caller checks it against limits.max_image_pixels first, naming its input. Render itself
+  /// throws std::length_error for an image whose side does not fit an int.
+  double RenderPixels() const;
+
   double resolution_m() const { return resolution_m_; }
   std::size_t num_blocks() const { return blocks_.size(); }
   /// Bytes held by the blocks (sum and weight planes).

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <vector>
 
 #include "backend/global_map.h"
+#include "slam/errors.h"
 
 namespace uwbsar::pipeline {
 namespace {
@@ -92,17 +94,65 @@ cv::Mat MaxOfRuns(const std::vector<RunMap>& runs, double resolution_m, ImageGri
   return out;
 }
 
+std::string Num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.6g", v);
+  return buf;
+}
+
+/// What the session came from, for errors: its file, else its runs' inputs.
+std::string SessionSource(const SessionData& session) {
+  if (!session.source.empty()) return session.source;
+  std::string out;
+  for (const SessionTrajectory& t : session.trajectories)
+    out += (out.empty() ? "" : ", ") + t.input;
+  return out.empty() ? "session" : out;
+}
+
 }  // namespace
+
+void CheckSessionMosaicExtent(const SessionData& session, double resolution_m, double max_pixels) {
+  if (session.keyframes.empty() || !(resolution_m > 0)) return;
+  double lo_x = 1e300, hi_x = -1e300, lo_y = 1e300, hi_y = -1e300;
+  for (const SessionKeyframe& k : session.keyframes) {
+    const ImageGrid& g = k.detected_grid;
+    for (double c : {-0.5, g.cols - 0.5}) {
+      for (double r : {-0.5, g.rows - 0.5}) {
+        const Point2 p = k.T_map_anchor * g.PixelToMetric(c, r);
+        lo_x = std::min(lo_x, p.x_m), hi_x = std::max(hi_x, p.x_m);
+        lo_y = std::min(lo_y, p.y_m), hi_y = std::max(hi_y, p.y_m);
+      }
+    }
+  }
+  // GlobalMap's lattice: whole blocks (256 pixels) from the block of the lowest pixel to the
+  // block of the highest, in doubles (an extent of any size is measured, never wrapped).
+  constexpr double kBlockPx = 256.0;
+  const auto blocks = [&](double lo_m, double hi_m) {
+    return std::floor(std::ceil(hi_m / resolution_m) / kBlockPx) -
+           std::floor(std::floor(lo_m / resolution_m) / kBlockPx) + 1.0;
+  };
+  const double cols = blocks(lo_x, hi_x) * kBlockPx, rows = blocks(lo_y, hi_y) * kBlockPx;
+  if (!(cols * rows <= max_pixels)) {
+    throw InputError(SessionSource(session) + ": the map of its keyframes spans x " + Num(lo_x) +
+                     " .. " + Num(hi_x) + " m, y " + Num(lo_y) + " .. " + Num(hi_y) +
+                     " m: " + Num(cols) + " x " + Num(rows) + " pixels at " + Num(resolution_m) +
+                     " m, more than limits.max_image_pixels (" + Num(max_pixels) +
+                     "); refused before allocation");
+  }
+}
 
 cv::Mat RenderSessionMosaic(const SessionData& session, const Config& config, ImageGrid* grid,
                             cv::Mat* observed) {
   const JoinedMosaic mode = config.session.joined_mosaic;
   return RenderSessionMosaic(session, config.slam.map_resolution_m, mode, grid, observed,
-                             config.slam.occupancy_reference_percentile);
+                             config.slam.occupancy_reference_percentile,
+                             config.limits.max_image_pixels);
 }
 
 cv::Mat RenderSessionMosaic(const SessionData& session, double resolution_m, JoinedMosaic mode,
-                            ImageGrid* grid, cv::Mat* observed, double reference_percentile) {
+                            ImageGrid* grid, cv::Mat* observed, double reference_percentile,
+                            double max_pixels) {
+  CheckSessionMosaicExtent(session, resolution_m, max_pixels);
   const auto mosaic = [&](const auto& scale_of) {
     GlobalMap global(resolution_m);
     for (const SessionKeyframe& k : session.keyframes) {

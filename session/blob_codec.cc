@@ -2,7 +2,9 @@
 
 #include <zstd.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 
 #include "slam/errors.h"
@@ -57,7 +59,8 @@ std::vector<unsigned char> EncodeMat(const cv::Mat& mat, int zstd_level) {
   return out;
 }
 
-cv::Mat DecodeMat(const std::vector<unsigned char>& blob, const std::string& what) {
+cv::Mat DecodeMat(const std::vector<unsigned char>& blob, const std::string& what,
+                  const MatBudget& budget) {
   std::int32_t header[3];
   if (blob.size() < sizeof(header)) throw InputError(what + ": damaged blob (no header)");
   std::memcpy(header, blob.data(), sizeof(header));
@@ -67,12 +70,26 @@ cv::Mat DecodeMat(const std::vector<unsigned char>& blob, const std::string& wha
     throw InputError(what + ": damaged blob (header " + std::to_string(rows) + " x " +
                      std::to_string(cols) + ", type " + std::to_string(type) + ")");
   }
+  if (!budget.types.empty() &&
+      std::find(budget.types.begin(), budget.types.end(), type) == budget.types.end()) {
+    throw InputError(what + ": OpenCV type " + std::to_string(type) + " is not one of this blob's");
+  }
+  const double pixels = static_cast<double>(rows) * static_cast<double>(cols);
+  if (pixels > budget.max_pixels) {
+    char budget_text[32];
+    std::snprintf(budget_text, sizeof(budget_text), "%.3g", budget.max_pixels);
+    throw InputError(what + ": declares " + std::to_string(rows) + " x " + std::to_string(cols) +
+                     " pixels, more than " + budget.limit + " (" + budget_text +
+                     "); refused before decoding");
+  }
   if (rows == 0 || cols == 0) return cv::Mat();
-  cv::Mat m(rows, cols, type);
-  const std::size_t n = m.total() * m.elemSize();
-  const std::size_t elem = m.elemSize1();
+  const std::size_t elem = CV_ELEM_SIZE1(type);
+  const std::size_t n = static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols) *
+                        static_cast<std::size_t>(CV_ELEM_SIZE(type));
+  // The frame's declared content size is checked against n before anything is allocated.
   const std::vector<unsigned char> shuffled =
       Decompress(blob.data() + sizeof(header), blob.size() - sizeof(header), n, what);
+  cv::Mat m(rows, cols, type);
   const std::size_t count = n / elem;
   for (std::size_t i = 0; i < count; ++i) {
     for (std::size_t b = 0; b < elem; ++b) m.data[i * elem + b] = shuffled[b * count + i];
@@ -100,10 +117,14 @@ std::vector<unsigned char> EncodeKeypoints(const std::vector<cv::KeyPoint>& keyp
 }
 
 std::vector<cv::KeyPoint> DecodeKeypoints(const std::vector<unsigned char>& blob,
-                                          const std::string& what) {
+                                          const std::string& what, std::uint32_t max_keypoints) {
   std::uint32_t count = 0;
   if (blob.size() < sizeof(count)) throw InputError(what + ": damaged blob (no count)");
   std::memcpy(&count, blob.data(), sizeof(count));
+  if (count > max_keypoints) {
+    throw InputError(what + ": declares " + std::to_string(count) + " keypoints, more than " +
+                     std::to_string(max_keypoints) + "; refused before decoding");
+  }
   const std::vector<unsigned char> raw =
       Decompress(blob.data() + sizeof(count), blob.size() - sizeof(count),
                  static_cast<std::size_t>(count) * kKeypointBytes, what);

@@ -22,7 +22,8 @@ namespace uwbsar {
 /// Bumped whenever a table or column changes meaning; readers refuse versions they do not know.
 /// 2: edges keep their odometry calibration fields (trajectory, path_m, turn_rad), so that a
 /// resumed or merged graph calibrates each run's odometry as its own run did; 1 still reads.
-constexpr int kSessionFormatVersion = 2;
+/// 3: trajectories keep their recording's fingerprint; 1 and 2 still read (fingerprint "").
+constexpr int kSessionFormatVersion = 3;
 
 struct SessionKeyframe {
   int id = 0;          ///< unique in the session (graph node id)
@@ -74,6 +75,9 @@ struct SessionData {
   int format_version = kSessionFormatVersion;
   std::string config_yaml;  ///< the whole configuration it was made with
   std::string fingerprint;  ///< ConfigFingerprint of that configuration
+  /// The file it was read from (errors about what it implies name it); "" for a run captured
+  /// in memory. A join keeps the saved session's.
+  std::string source;
   std::vector<SessionTrajectory> trajectories;
   std::vector<SessionKeyframe> keyframes;  ///< by trajectory, then in time
   std::vector<SessionEdge> edges;
@@ -86,5 +90,9 @@ struct SessionData {
   /// Optimised T_map_anchor by keyframe id.
   std::map<int, Pose2> Poses() const;
 };
+
+/// `s` with dense ids: keyframes 0..n-1 in their order, trajectories 0..m-1 in theirs, and
+/// every reference (edges, loops, odometry, features) renumbered with them.
+SessionData WithDenseIds(const SessionData& s);
 
 }  // namespace uwbsar

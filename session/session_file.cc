@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "session/blob_codec.h"
+#include "session/session_reader.h"
 #include "session/sqlite_db.h"
 #include "slam/config_fingerprint.h"
 #include "slam/errors.h"
@@ -23,7 +24,7 @@ constexpr int kZstdLevel = 3;
 
 constexpr const char* kSchema = R"sql(
 CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
-CREATE TABLE trajectories (id INTEGER PRIMARY KEY, input TEXT NOT NULL);
+CREATE TABLE trajectories (id INTEGER PRIMARY KEY, input TEXT NOT NULL, fingerprint TEXT);
 CREATE TABLE keyframes (
   id INTEGER PRIMARY KEY, trajectory INTEGER NOT NULL, stamp_ns INTEGER NOT NULL,
   odom_x_m REAL, odom_y_m REAL, odom_yaw_rad REAL,
@@ -83,10 +84,11 @@ void WriteMeta(SqliteDb& db, const SessionData& d) {
 
 /// The trajectories table: one row per run.
 void WriteTrajectories(SqliteDb& db, const SessionData& d) {
-  SqliteStatement s(db, "INSERT INTO trajectories VALUES (?, ?)");
+  SqliteStatement s(db, "INSERT INTO trajectories (id, input, fingerprint) VALUES (?, ?, ?)");
   for (const SessionTrajectory& t : d.trajectories) {
     s.Bind(1, t.id);
     s.Bind(2, t.input);
+    s.Bind(3, t.fingerprint);
     s.Run();
   }
 }
@@ -202,171 +204,6 @@ std::string Meta(SqliteDb& db, const std::string& key) {
   return s.Text(0);
 }
 
-FeatureSet ReadFeatureSet(const SqliteStatement& s, DetectorKind kind, const std::string& what) {
-  FeatureSet f;
-  f.detector = kind;
-  f.norm_type = static_cast<int>(s.Int(1));
-  f.keypoints = session::DecodeKeypoints(s.Blob(2), what + " keypoints");
-  f.descriptors = session::DecodeMat(s.Blob(3), what + " descriptors");
-  if (f.descriptors.rows != f.size()) {
-    throw InputError(what + ": " + std::to_string(f.size()) + " keypoints but " +
-                     std::to_string(f.descriptors.rows) + " descriptors");
-  }
-  return f;
-}
-
-void CheckPose(const Pose2& p, const std::string& what) {
-  if (!std::isfinite(p.x_m) || !std::isfinite(p.y_m) || !std::isfinite(p.yaw_rad)) {
-    throw InputError(what + ": non-finite pose");
-  }
-}
-
-/// The trajectories table, by id.
-void ReadTrajectories(SqliteDb& db, SessionData* d) {
-  SqliteStatement s(db, "SELECT id, input FROM trajectories ORDER BY id");
-  while (s.Step()) d->trajectories.push_back({static_cast<int>(s.Int(0)), s.Text(1)});
-}
-
-/// One row of the keyframes table (`path` names the file in errors).
-SessionKeyframe ReadKeyframeRow(const SqliteStatement& s, const std::string& path) {
-  SessionKeyframe k;
-  int i = 0;
-  k.id = static_cast<int>(s.Int(i++));
-  k.trajectory = static_cast<int>(s.Int(i++));
-  k.stamp_ns = static_cast<TimestampNs>(s.Int(i++));
-  for (Pose2* p : {&k.T_odom_anchor, &k.T_odom_robot, &k.T_map_anchor}) {
-    p->x_m = s.Double(i++);
-    p->y_m = s.Double(i++);
-    p->yaw_rad = s.Double(i++);
-  }
-  const std::string what = path + ": keyframe " + std::to_string(k.id);
-  CheckPose(k.T_odom_anchor, what);
-  CheckPose(k.T_map_anchor, what);
-  k.fixed = s.Int(i++) != 0;
-  k.path_begin_m = s.Double(i++);
-  k.path_end_m = s.Double(i++);
-  k.detected_grid.x0_m = s.Double(i++);
-  k.detected_grid.y0_m = s.Double(i++);
-  k.detected_grid.resolution_m = s.Double(i++);
-  k.detected = session::DecodeMat(s.Blob(i++), what + " tile");
-  if (k.detected.type() != CV_32FC1) throw InputError(what + ": tile is not CV_32FC1");
-  k.detected_grid.rows = k.detected.rows;
-  k.detected_grid.cols = k.detected.cols;
-  KeyframeFeatures& kf = k.features;
-  kf.id = k.id;
-  kf.grid.x0_m = s.Double(i++);
-  kf.grid.y0_m = s.Double(i++);
-  kf.grid.resolution_m = s.Double(i++);
-  kf.grid.rows = static_cast<int>(s.Int(i++));
-  kf.grid.cols = static_cast<int>(s.Int(i++));
-  kf.centre_anchor.x_m = s.Double(i++);
-  kf.centre_anchor.y_m = s.Double(i++);
-  kf.path_begin_m = k.path_begin_m;
-  kf.T_world_anchor = k.T_map_anchor;
-  if (!(k.detected_grid.resolution_m > 0) || !(kf.grid.resolution_m > 0)) {
-    throw InputError(what + ": grid resolution is not positive");
-  }
-  return k;
-}
-
-/// The AKAZE and ORB rows of the features table for keyframe kf->id (`f` selects by id).
-void ReadKeyframeFeatures(SqliteStatement& f, const std::string& what, KeyframeFeatures* kf) {
-  f.Bind(1, kf->id);
-  int found = 0;
-  while (f.Step()) {
-    const std::string name = f.Text(0);
-    if (name == "AKAZE") {
-      kf->akaze = ReadFeatureSet(f, DetectorKind::kAkaze, what + " AKAZE");
-      ++found;
-    } else if (name == "ORB") {
-      kf->orb = ReadFeatureSet(f, DetectorKind::kOrb, what + " ORB");
-      ++found;
-    }
-  }
-  f.Run();  // reset
-  if (found != 2) throw InputError(what + ": AKAZE or ORB features missing");
-}
-
-/// The keyframes table (by trajectory and time) with each keyframe's AKAZE and ORB features.
-void ReadKeyframes(SqliteDb& db, const std::string& path, SessionData* d) {
-  SqliteStatement s(db, "SELECT * FROM keyframes ORDER BY trajectory, stamp_ns, id");
-  SqliteStatement f(db,
-                    "SELECT detector, norm_type, keypoints, descriptors FROM features WHERE "
-                    "keyframe_id = ? ORDER BY detector");
-  while (s.Step()) {
-    SessionKeyframe k = ReadKeyframeRow(s, path);
-    ReadKeyframeFeatures(f, path + ": keyframe " + std::to_string(k.id), &k.features);
-    d->keyframes.push_back(std::move(k));
-  }
-}
-
-/// The edges table in its order; version 1 lacks the calibration columns.
-void ReadEdges(SqliteDb& db, const std::string& path, SessionData* d) {
-  SqliteStatement s(db, "SELECT * FROM edges ORDER BY idx");
-  while (s.Step()) {
-    SessionEdge e;
-    e.edge.from_id = static_cast<int>(s.Int(1));
-    e.edge.to_id = static_cast<int>(s.Int(2));
-    const std::string kind = s.Text(3);
-    if (kind == EdgeKindName(EdgeKind::kOdometry))
-      e.edge.kind = EdgeKind::kOdometry;
-    else if (kind == EdgeKindName(EdgeKind::kLoop))
-      e.edge.kind = EdgeKind::kLoop;
-    else if (kind == EdgeKindName(EdgeKind::kWall))
-      e.edge.kind = EdgeKind::kWall;
-    else
-      throw InputError(path + ": edge " + std::to_string(s.Int(0)) + ": unknown kind '" + kind +
-                       "'");
-    e.edge.T_from_to = {s.Double(4), s.Double(5), s.Double(6)};
-    const std::vector<unsigned char> info = s.Blob(7);
-    if (info.size() != 9 * sizeof(double)) {
-      throw InputError(path + ": edge " + std::to_string(s.Int(0)) + ": damaged information");
-    }
-    double v[9];
-    std::memcpy(v, info.data(), sizeof(v));
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) e.edge.information(r, c) = v[r * 3 + c];
-    e.rejected = s.Int(8) != 0;
-    if (d->format_version >= 2) {
-      e.edge.trajectory = static_cast<int>(s.Int(9));
-      e.edge.path_m = s.Double(10);
-      e.edge.turn_rad = s.Double(11);
-    }
-    d->edges.push_back(e);
-  }
-}
-
-/// The loops table.
-void ReadLoops(SqliteDb& db, SessionData* d) {
-  SqliteStatement s(db, "SELECT * FROM loops");
-  while (s.Step()) {
-    SessionLoop l;
-    l.query_id = static_cast<int>(s.Int(0));
-    l.match_id = static_cast<int>(s.Int(1));
-    l.validated = s.Int(2) != 0;
-    l.accepted = s.Int(3) != 0;
-    l.T_ij = {s.Double(4), s.Double(5), s.Double(6)};
-    l.chi2 = s.Double(7);
-    l.akaze_good = static_cast<int>(s.Int(8));
-    l.orb_good = static_cast<int>(s.Int(9));
-    l.reason = s.Text(10);
-    d->loops.push_back(l);
-  }
-}
-
-/// The odometry table, by trajectory and time.
-void ReadOdometry(SqliteDb& db, SessionData* d) {
-  SqliteStatement s(db, "SELECT * FROM odometry ORDER BY trajectory, stamp_ns");
-  while (s.Step()) {
-    SessionOdometry o;
-    o.trajectory = static_cast<int>(s.Int(0));
-    o.stamp_ns = static_cast<TimestampNs>(s.Int(1));
-    o.T_odom_robot = {s.Double(2), s.Double(3), s.Double(4)};
-    o.path_m = s.Double(5);
-    d->odometry.push_back(o);
-  }
-}
-
 }  // namespace
 
 void WriteSession(const std::string& path, const SessionData& data) {
@@ -374,7 +211,7 @@ void WriteSession(const std::string& path, const SessionData& data) {
   std::error_code ec;
   fs::remove(tmp, ec);
   try {
-    SqliteDb db(tmp, /*create=*/true);
+    SqliteDb db(tmp, /*create=*/true, /*name_in_errors=*/path);
     WriteAll(db, data);
   } catch (...) {
     fs::remove(tmp, ec);
@@ -411,24 +248,21 @@ SessionData ReadSession(const std::string& path, const CoreConfig* config) {
   SessionData d;
   if (Meta(db, "format") != kFormatName) throw InputError(path + ": not a uwbsar session");
   const std::string version = Meta(db, "format_version");
-  // Version 1 differs only by the edges' calibration columns, which it lacks (its odometry
-  // edges are then solved uncalibrated, as they were).
-  if (version != "1" && version != std::to_string(kSessionFormatVersion)) {
-    throw InputError(path + ": session format version " + version + ", this uwbsar reads 1 to " +
-                     std::to_string(kSessionFormatVersion));
+  // Version 1 lacks the edges' calibration columns (its odometry edges are then solved
+  // uncalibrated, as they were), versions 1 and 2 the trajectories' fingerprints ("").
+  if (version != "1" && version != "2" && version != std::to_string(kSessionFormatVersion)) {
+    throw InputError(path + ": session format version " + version.substr(0, 40) +
+                     ", this uwbsar reads 1 to " + std::to_string(kSessionFormatVersion));
   }
   d.format_version = std::stoi(version);
+  d.source = path;
   d.config_yaml = Meta(db, "config_yaml");
   d.fingerprint = Meta(db, "config_fingerprint");
   if (config != nullptr) {
     const std::string diff = FingerprintDifference(d.fingerprint, *config);
     if (!diff.empty()) throw InputError(path + ": incompatible configuration: " + diff);
   }
-  ReadTrajectories(db, &d);
-  ReadKeyframes(db, path, &d);
-  ReadEdges(db, path, &d);
-  ReadLoops(db, &d);
-  ReadOdometry(db, &d);
+  session::ReadSessionTables(db, config != nullptr ? config->limits : LimitsConfig(), &d);
   return d;
 }
 

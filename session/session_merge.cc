@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 
 #include "frontend/place_recognition/feature_matcher.h"
@@ -199,13 +200,28 @@ void ShareLoopInformationPerKeyframe(std::vector<PoseGraphEdge>* loops) {
   for (PoseGraphEdge& e : *loops) e.information /= loops_of_keyframe.at(e.to_id);
 }
 
-SessionData MergeSessions(const SessionData& a, const SessionData& b_in,
+SessionData MergeSessions(const SessionData& a_in, const SessionData& b_in,
                           const SessionSettings& config, MergeReport* report) {
   MergeReport& r = *report;
   r = MergeReport{};
+  // Ids offset past the saved map's never wrap: when the joined ids would pass kMaxJoinedId
+  // (ids read from a file may be anything up to INT_MAX), both sessions are renumbered densely
+  // first.
+  const auto joined_max = [](const SessionData& x, const SessionData& y, bool keyframes) {
+    const auto max_id = [keyframes](const SessionData& s) {
+      return static_cast<std::int64_t>(keyframes ? s.MaxKeyframeId() : s.MaxTrajectoryId());
+    };
+    return max_id(x) + 1 + std::max<std::int64_t>(max_id(y), 0);
+  };
+  const bool dense =
+      joined_max(a_in, b_in, true) > kMaxJoinedId || joined_max(a_in, b_in, false) > kMaxJoinedId;
+  const SessionData a_dense = dense ? WithDenseIds(a_in) : SessionData();
+  const SessionData& a = dense ? a_dense : a_in;
+  r.renumbered = dense;
   r.id_offset = a.MaxKeyframeId() + 1;
   r.trajectory_offset = a.MaxTrajectoryId() + 1;
-  const SessionData b = Renumbered(b_in, r.id_offset, r.trajectory_offset);
+  const SessionData b =
+      Renumbered(dense ? WithDenseIds(b_in) : b_in, r.id_offset, r.trajectory_offset);
   std::vector<Hypothesis> before;  // validated loops before placement
   const std::vector<Hypothesis> loops = FindMergeLoops(a, b, config, &r, &before);
 

@@ -11,6 +11,7 @@
 // new run is fitted to them; without it, both move (the saved map's gauge is kept).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,7 @@ struct MergeReport {
   int loop_edges = 0;            ///< new loops between the sessions put into the graph
   int loop_edges_rejected = 0;   ///< of those, rejected by the backend
   int id_offset = 0;             ///< added to the new session's keyframe ids
+  bool renumbered = false;       ///< both sessions' ids were made dense first (kMaxJoinedId)
   int trajectory_offset = 0;     ///< added to its trajectory ids
   OptimizeResult optimization;
 };
@@ -44,8 +46,13 @@ struct MergeReport {
 /// 2.97 cm).
 void ShareLoopInformationPerKeyframe(std::vector<PoseGraphEdge>* loops);
 
+/// Joined keyframe and trajectory ids stay at or below this: a join whose offset ids would pass
+/// it renumbers both sessions densely (WithDenseIds) first, so ids never approach INT_MAX.
+constexpr std::int64_t kMaxJoinedId = std::int64_t{1} << 30;
+
 /// `b` joined to `a` (both read under `config`). The result holds a's keyframes with their
-/// ids and b's with ids + report->id_offset, in a's map frame; when b cannot be connected
+/// ids and b's with ids + report->id_offset, in a's map frame (with report->renumbered, the
+/// ids of both are first made dense: 0..n-1 in their order); when b cannot be connected
 /// it is `a` unchanged plus b's trajectories (report->connected false, reason set) and b's
 /// keyframes are not in it.
 SessionData MergeSessions(const SessionData& a, const SessionData& b, const SessionSettings& config,

@@ -1,20 +1,47 @@
 #include "session/sqlite_db.h"
 
 #include <sqlite3.h>
+#include <sys/statvfs.h>
 
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <limits>
+#include <stdexcept>
 
 #include "slam/errors.h"
 
 namespace uwbsar::session {
+namespace {
 
-SqliteDb::SqliteDb(const std::string& path, bool create) : path_(path) {
+/// Why writing `path` failed, as the OS says it; "no space left on device" when the disk is
+/// full (ENOSPC, or the folder's file system has no block left).
+std::string WriteFailureCause(const std::string& path, int code, int os_error) {
+  if (os_error == ENOSPC || (code & 0xff) == SQLITE_FULL) return "no space left on device";
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  struct statvfs fs {};
+  if (::statvfs(dir.empty() ? "." : dir.c_str(), &fs) == 0 && fs.f_bavail == 0) {
+    return "no space left on device";
+  }
+  return os_error != 0 ? std::strerror(os_error) : sqlite3_errstr(code);
+}
+
+}  // namespace
+
+SqliteDb::SqliteDb(const std::string& path, bool create, const std::string& name_in_errors)
+    : name_(name_in_errors.empty() ? path : name_in_errors), writing_(create) {
   const int flags = create ? (SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE) : SQLITE_OPEN_READONLY;
   if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
     const std::string message = db_ ? sqlite3_errmsg(db_) : "out of memory";
+    const int code = db_ ? sqlite3_extended_errcode(db_) : SQLITE_NOMEM;
+    const int os_error = db_ ? sqlite3_system_errno(db_) : 0;
     sqlite3_close(db_);
     db_ = nullptr;
-    throw InputError(path + ": cannot open the session: " + message);
+    if (create) {
+      throw std::runtime_error(name_ + ": cannot write: " +
+                               (os_error != 0 ? WriteFailureCause(path, code, os_error) : message));
+    }
+    throw InputError(name_ + ": cannot open the session: " + message);
   }
   sqlite3_extended_result_codes(db_, 1);
 }
@@ -22,15 +49,26 @@ SqliteDb::SqliteDb(const std::string& path, bool create) : path_(path) {
 SqliteDb::~SqliteDb() { sqlite3_close(db_); }
 
 void SqliteDb::Fail(const std::string& what) const {
-  throw InputError(path_ + ": " + what + ": " + sqlite3_errmsg(db_));
+  const int code = sqlite3_extended_errcode(db_);
+  if (writing_) {
+    switch (code & 0xff) {
+      case SQLITE_FULL:
+      case SQLITE_IOERR:
+      case SQLITE_READONLY:
+      case SQLITE_PERM:
+      case SQLITE_CANTOPEN:
+        throw std::runtime_error(
+            name_ + ": cannot write: " + WriteFailureCause(name_, code, sqlite3_system_errno(db_)));
+      default:
+        break;
+    }
+  }
+  throw InputError(name_ + ": " + what + ": " + sqlite3_errmsg(db_));
 }
 
 void SqliteDb::Exec(const std::string& sql) {
-  char* error = nullptr;
-  if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &error) != SQLITE_OK) {
-    const std::string message = error ? error : "unknown error";
-    sqlite3_free(error);
-    throw InputError(path_ + ": " + message);
+  if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, nullptr) != SQLITE_OK) {
+    Fail("'" + sql.substr(0, 40) + "'");
   }
 }
 
@@ -73,6 +111,23 @@ void SqliteStatement::Run() {
   sqlite3_clear_bindings(stmt_);
 }
 
+int SqliteStatement::ColumnCount() const { return sqlite3_column_count(stmt_); }
+std::string SqliteStatement::ColumnName(int column) const {
+  const char* name = sqlite3_column_name(stmt_, column);
+  return name ? name : "";
+}
+bool SqliteStatement::IsNull(int column) const {
+  return sqlite3_column_type(stmt_, column) == SQLITE_NULL;
+}
+bool SqliteStatement::IsInteger(int column) const {
+  return sqlite3_column_type(stmt_, column) == SQLITE_INTEGER;
+}
+bool SqliteStatement::IsReal(int column) const {
+  return sqlite3_column_type(stmt_, column) == SQLITE_FLOAT;
+}
+bool SqliteStatement::IsBlob(int column) const {
+  return sqlite3_column_type(stmt_, column) == SQLITE_BLOB;
+}
 std::int64_t SqliteStatement::Int(int column) const {
   return static_cast<std::int64_t>(sqlite3_column_int64(stmt_, column));
 }

@@ -1,6 +1,9 @@
 // A small RAII layer over the sqlite3 C API for the session file: one connection, prepared
-// statements with typed binds and column reads. Every sqlite failure becomes an InputError
-// naming the file and what was being done (a damaged or foreign file is bad input).
+// statements with typed binds and column reads. Reading, every sqlite failure becomes an
+// InputError naming the file and what was being done (a damaged or foreign file is bad input);
+// writing (a connection opened with `create`), a full or failing disk is an I/O failure: a
+// std::runtime_error "<path>: cannot write: <cause>" (cause "no space left on device" when the
+// disk is full), everything else an InputError as when reading.
 #pragma once
 
 #include <cstdint>
@@ -33,8 +36,15 @@ class SqliteStatement {
   void Run();
 
   // Columns are 0-based like sqlite's.
+  int ColumnCount() const;
+  std::string ColumnName(int column) const;
+  bool IsNull(int column) const;
+  /// True when the value is stored as an integer (not a real, text or blob).
+  bool IsInteger(int column) const;
+  bool IsReal(int column) const;
+  bool IsBlob(int column) const;
   std::int64_t Int(int column) const;
-  double Double(int column) const;
+  double Double(int column) const;  ///< NULL reads as NaN
   std::string Text(int column) const;
   std::vector<unsigned char> Blob(int column) const;
 
@@ -45,22 +55,26 @@ class SqliteStatement {
 
 class SqliteDb {
  public:
-  /// Opens `path` read-only, or creates it (read-write) with `create`. Throws InputError.
-  SqliteDb(const std::string& path, bool create);
+  /// Opens `path` read-only, or creates it (read-write) with `create`; errors name
+  /// `name_in_errors` (default: `path`), e.g. the final file a temporary one becomes. Throws
+  /// InputError (reading) or std::runtime_error (creating where it cannot be written).
+  SqliteDb(const std::string& path, bool create, const std::string& name_in_errors = "");
   ~SqliteDb();
   SqliteDb(const SqliteDb&) = delete;
   SqliteDb& operator=(const SqliteDb&) = delete;
 
   void Exec(const std::string& sql);
   bool HasTable(const std::string& name);
-  /// Throws InputError "PATH: <what>: <sqlite message>".
+  /// Throws InputError "PATH: <what>: <sqlite message>", or, on a connection that writes and a
+  /// full or failing disk, std::runtime_error "PATH: cannot write: <cause>".
   [[noreturn]] void Fail(const std::string& what) const;
   sqlite3* handle() { return db_; }
-  const std::string& path() const { return path_; }
+  const std::string& path() const { return name_; }
 
  private:
   sqlite3* db_ = nullptr;
-  std::string path_;
+  std::string name_;
+  bool writing_ = false;
 };
 
 }  // namespace uwbsar::session

@@ -52,6 +52,19 @@ TEST(GlobalMapTest, AnEmptyMapRendersNothing) {
   EXPECT_EQ(map.num_blocks(), 0u);
 }
 
+TEST(GlobalMapTest, RenderPixelsIsTheRenderedSizeBeforeAllocating) {
+  GlobalMap map(kResM, 32);
+  EXPECT_EQ(map.RenderPixels(), 0.0);
+  map.AddTile(Constant(20, 20, 2.0f), TileGrid(20, 20), Pose2{});
+  map.AddTile(Constant(20, 20, 2.0f), TileGrid(20, 20), Pose2{100.0, 40.0, 0.0});  // far away
+  // Two blocks far apart: sparse, but the dense image is their bounding box.
+  ImageGrid grid;
+  cv::Mat observed;
+  const cv::Mat image = map.Render(&grid, &observed);
+  EXPECT_EQ(map.RenderPixels(), static_cast<double>(image.rows) * image.cols);
+  EXPECT_GT(map.RenderPixels(), 100.0 / kResM * 40.0 / kResM);
+}
+
 TEST(GlobalMapTest, OverlappingTilesAreAveraged) {
   GlobalMap map(kResM, 32);
   map.AddTile(Constant(20, 20, 2.0f), TileGrid(20, 20), Pose2{});

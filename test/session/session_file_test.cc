@@ -212,7 +212,8 @@ TEST_F(SessionFileTest, ForeignDamagedAndOtherVersionFilesAreRefused) {
   sqlite3_exec(db, "UPDATE keyframes SET tile = x'0102030405060708090a0b0c0d' WHERE id = 1",
                nullptr, nullptr, nullptr);
   sqlite3_close(db);
-  EXPECT_NE(ErrorOf([&] { ReadSession(damaged); }).find("keyframe 1 tile"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { ReadSession(damaged); }).find("keyframes row 2: tile"),
+            std::string::npos);
 }
 
 TEST(BlobCodecTest, FloatImagesAndKeypointsAreLossless) {
