@@ -112,7 +112,6 @@ MapRun MapBag(const Config& config, const std::string& bag_path, bool progress,
   // decompressed once.
   rosbag::BagReader reader(bag_path, read_options);
   const TimestampNs start = reader.Info().start_ns, end = reader.Info().end_ns;
-  run.fingerprint = RecordingFingerprint(reader.Info());
   run.slam = std::make_unique<SlamSystem>(config);
   const rosbag::RobotBagOptions options = rosbag::RobotBagOptionsFromConfig(config);
   {
@@ -127,11 +126,6 @@ MapRun MapBag(const Config& config, const std::string& bag_path, bool progress,
   run.processing_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   CheckMappable(run);
   return run;
-}
-
-std::string RecordingFingerprint(const rosbag::BagInfo& info) {
-  return "bag " + info.storage_identifier + " " + std::to_string(info.start_ns) + " " +
-         std::to_string(info.end_ns) + " " + std::to_string(info.message_count);
 }
 
 MapRun MapSource(const Config& config, const std::string& description, MessageSource& source,

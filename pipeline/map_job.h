@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "backend/trajectory_metrics.h"
-#include "drivers/rosbag/bag_reader.h"
 #include "drivers/rosbag/bag_storage.h"
 #include "pipeline/app_config.h"
 #include "pipeline/slam_system.h"
@@ -22,8 +21,9 @@ struct MapRun {
   std::shared_ptr<SlamSystem> slam;  ///< shared: a live snapshot writer reads it on its own thread
   std::vector<OdometrySample> ground_truth;  ///< from the bag's topic or --ground-truth
   std::string input;                         ///< what was mapped (path or description)
-  /// The recording's identity (RecordingFingerprint): a session refuses to join it twice.
-  /// "" for sources without one (the session then uses the input and first stamp).
+  /// The recording's identity (pipeline/saved_session.h BagFingerprint, set by `uwbsar map`):
+  /// a session refuses to join it twice. "" for sources without one (the session then uses
+  /// the input and first stamp).
   std::string fingerprint;
   TimestampNs first_stamp_ns = 0;
   TimestampNs last_stamp_ns = 0;
@@ -43,9 +43,6 @@ struct MapRun {
 /// no scan overlapping the odometry, too short for one keyframe).
 MapRun MapBag(const Config& config, const std::string& bag_path, bool progress,
               const rosbag::BagReadOptions& read_options = {});
-
-/// The identity of a recording: "bag <storage id> <first_ns> <last_ns> <message count>".
-std::string RecordingFingerprint(const rosbag::BagInfo& info);
 
 /// Maps what `source` emits, each message through Feed(), with the same checks; `on_message`
 /// (optional) is called after each. processing_s counts only the time spent in the SlamSystem.

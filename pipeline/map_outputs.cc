@@ -188,6 +188,14 @@ MapExtent WriteMapAndOccupancy(const MapState& run, const StampedPoses& trajecto
   for (const TileSnapshot& k : slam.tiles) {
     global.AddTile(k.detected, k.detected_grid, slam.poses.at(k.id));
   }
+  // A keyframe placed kilometres away (a wild odometry jump) must not allocate gigabytes.
+  if (!(global.RenderPixels() <= config.limits.max_image_pixels)) {
+    std::ostringstream what;
+    what << run.input << ": the map of its keyframes is " << global.RenderPixels() << " pixels at "
+         << config.slam.map_resolution_m << " m, more than limits.max_image_pixels ("
+         << config.limits.max_image_pixels << "); refused before allocation";
+    throw InputError(what.str());
+  }
   MapExtent extent;
   cv::Mat observed;
   const cv::Mat map = global.Render(&extent.grid, &observed);

@@ -1,9 +1,10 @@
 #include "pipeline/saved_session.h"
 
+#include <cstdint>
+#include <cstdio>
 #include <filesystem>
 
 #include "drivers/rosbag/bag_reader.h"
-#include "pipeline/map_job.h"
 #include "session/session_file.h"
 #include "slam/commit_journal.h"
 #include "slam/errors.h"
@@ -89,8 +90,24 @@ void RefuseRunsAlreadyJoined(const SessionData& saved, const std::string& saved_
 }
 
 std::string BagFingerprint(const std::string& bag_path) {
-  const rosbag::BagReader reader(bag_path);
-  return RecordingFingerprint(reader.Info());
+  rosbag::BagReader reader(bag_path);
+  const rosbag::BagInfo& info = reader.Info();
+  std::uint64_t hash = 14695981039346656037ull;  // FNV-1a
+  const auto mix = [&hash](const void* data, std::size_t size) {
+    const auto* bytes = static_cast<const std::uint8_t*>(data);
+    for (std::size_t i = 0; i < size; ++i) hash = (hash ^ bytes[i]) * 1099511628211ull;
+  };
+  rosbag::BagMessage message;
+  for (int n = 0; n < 256 && reader.Next(&message); ++n) {
+    const std::string& topic = info.topics[static_cast<std::size_t>(message.topic)].name;
+    mix(topic.data(), topic.size());
+    mix(&message.log_time_ns, sizeof message.log_time_ns);
+    mix(message.data, message.size);
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
+  return "bag " + info.storage_identifier + " " + std::to_string(info.start_ns) + " " +
+         std::to_string(info.end_ns) + " " + std::to_string(info.message_count) + " " + hex;
 }
 
 }  // namespace uwbsar::pipeline

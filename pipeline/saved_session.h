@@ -48,9 +48,10 @@ void RefuseMapFolderForLocalize(const std::string& out_dir);
 void RefuseRunsAlreadyJoined(const SessionData& saved, const std::string& saved_path,
                              const std::vector<SessionTrajectory>& runs, const std::string& what);
 
-/// The identity of a recording: storage id, first and last stamps and message count of the
-/// bag at `bag_path` ("bag sqlite3 <first_ns> <last_ns> <count>"). Reads the bag's metadata
-/// (or its summary) only.
+/// The identity of a recording: "bag <storage id> <first_ns> <last_ns> <message count>
+/// <hash>", the hash (FNV-1a, 64 bits) over the topic, stamp and bytes of its first 256
+/// messages: two simulations of the same route share stamps and counts, never their data.
+/// Opens the bag (InputError naming it when it cannot be read) and reads only those messages.
 std::string BagFingerprint(const std::string& bag_path);
 
 }  // namespace uwbsar::pipeline

@@ -68,7 +68,10 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
     if (!opts->ground_truth.empty()) ground_truth = ReadTum(opts->ground_truth);
     pipeline::MapOutputStage stage(opts->out_dir);
     std::optional<pipeline::SavedSession> saved;
-    if (!opts->resume.empty()) saved = OpenSessionToResume(opts->resume, opts->bag, config);
+    const std::string fingerprint = pipeline::BagFingerprint(opts->bag);  // opens the bag
+    if (!opts->resume.empty()) {
+      saved = OpenSessionToResume(opts->resume, opts->bag, fingerprint, config);
+    }
     pipeline::RefuseToReplaceSavedMap(
         opts->out_dir, saved ? std::vector<std::string>{saved->dir} : std::vector<std::string>{},
         opts->overwrite,
@@ -79,6 +82,7 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
     read_options.skip_damaged_chunks = opts->skip_damaged;
     pipeline::MapRun run = pipeline::MapBag(config, opts->bag, !globals.quiet, read_options);
     if (!opts->ground_truth.empty()) run.ground_truth = std::move(ground_truth);
+    run.fingerprint = fingerprint;
     if (!opts->resume.empty()) {
       WriteResumedMap(*saved, run, &stage, opts->out_dir, globals.quiet);
       return;

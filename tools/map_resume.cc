@@ -14,11 +14,11 @@
 namespace uwbsar::tools {
 
 pipeline::SavedSession OpenSessionToResume(const std::string& dir_or_file, const std::string& bag,
-                                           const Config& config) {
+                                           const std::string& fingerprint, const Config& config) {
   pipeline::SavedSession saved = pipeline::OpenSavedSession(dir_or_file, config);
   SessionTrajectory run;
   run.input = bag;
-  run.fingerprint = pipeline::BagFingerprint(bag);
+  run.fingerprint = fingerprint;
   pipeline::RefuseRunsAlreadyJoined(saved.data, saved.path, {run}, bag);
   return saved;
 }

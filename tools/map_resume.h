@@ -18,9 +18,9 @@ namespace uwbsar::tools {
 
 /// Reads the saved session for `config` under a shared lock on its folder, held while the
 /// result lives (InputError, exit 3, when it cannot be resumed: incompatible, or it already
-/// holds the recording `bag`).
+/// holds the recording `bag` of identity `fingerprint`).
 pipeline::SavedSession OpenSessionToResume(const std::string& dir_or_file, const std::string& bag,
-                                           const Config& config);
+                                           const std::string& fingerprint, const Config& config);
 
 /// Joins `run` to `saved` and writes the outputs into out_dir; prints a summary unless quiet.
 /// Throws InputError naming the bag and the session, writing nothing, when the run does not

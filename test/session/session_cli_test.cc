@@ -47,8 +47,9 @@ TEST_F(SessionCliTest, ResumeJoinsTheRevisitAsASecondRun) {
                         "session.uwbsar", "map_grid.yaml", "map.yaml", "graph.g2o"}) {
     EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
   }
-  // The joined session can be resumed again: it reads back.
-  const CliRun again = Uwbsar("merge " + out + " " + Map("b") + " --out " + *dir_ + "/again");
+  // The joined session reads back: a revisit localises in it.
+  const CliRun again =
+      Uwbsar("localize " + Bag("b") + " --map " + out + " --out " + *dir_ + "/again");
   EXPECT_EQ(again.exit_code, 0) << again.output;
 }
 

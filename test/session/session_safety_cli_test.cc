@@ -133,7 +133,12 @@ TEST_F(SessionCliTest, LocalizeNeverWritesIntoAMapsFolder) {
     EXPECT_TRUE(Has(r.output, "localisation never writes into a map's folder")) << r.output;
     EXPECT_EQ(Lines(r.output), 1) << r.output;
   }
+  // The live path: refused before any emulated device or recording is made in the folder.
+  const CliRun live = Uwbsar("run --emulate --localize-in " + out + " --out " + out);
+  EXPECT_EQ(live.exit_code, 3) << live.output;
+  EXPECT_TRUE(Has(live.output, "localisation never writes into a map's folder")) << live.output;
   EXPECT_EQ(ReadFiles(out), before);
+  EXPECT_FALSE(fs::exists(out + "/dev"));
 }
 
 TEST_F(SessionCliTest, TheSameRecordingIsNeverJoinedTwice) {
@@ -170,6 +175,17 @@ TEST_F(SessionCliTest, APlainRunReplacesASavedMapOnlyWithOverwrite) {
   const CliRun o = Uwbsar("-q map " + Bag("b") + " --out " + out + " --overwrite");
   EXPECT_EQ(o.exit_code, 0) << o.output;
   EXPECT_EQ(Json(out + "/summary.json")["input"], Bag("b"));
+}
+
+TEST_F(SessionCliTest, AMapBeyondItsPixelBudgetIsRefusedBeforeAllocation) {
+  std::ofstream(*dir_ + "/tiny_budget.yaml") << "limits:\n  max_image_pixels: 1.0e+4\n";
+  const std::string out = *dir_ + "/over_budget";
+  const CliRun r =
+      Uwbsar("--config " + *dir_ + "/tiny_budget.yaml map " + Bag("a") + " --out " + out);
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_TRUE(Has(r.output, Bag("a") + ": the map of its keyframes is ")) << r.output;
+  EXPECT_TRUE(Has(r.output, "more than limits.max_image_pixels (10000)")) << r.output;
+  EXPECT_FALSE(fs::exists(out + "/summary.json"));
 }
 
 TEST_F(SessionCliTest, AnOutputThatIsAFolderIsFoundBeforeTheWork) {
