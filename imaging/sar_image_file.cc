@@ -94,15 +94,15 @@ cv::Mat ToSarImage(const std::string& path, std::vector<cv::Mat> pages, bool* en
 }
 
 /// NaN or infinite pixels of a float image are "not measured": set to 0 (what every imager
-/// leaves unobserved), with one warning giving the count. An image with no finite pixel is
-/// refused.
-void ZeroNonFinite(const std::string& path, cv::Mat* image) {
+/// leaves unobserved), with one warning giving the count, which is returned. An image with no
+/// finite pixel is refused.
+long long ZeroNonFinite(const std::string& path, cv::Mat* image) {
   cv::Mat flat = image->reshape(1);
   cv::Mat finite = (flat == flat) & (flat < std::numeric_limits<float>::infinity()) &
                    (flat > -std::numeric_limits<float>::infinity());
   const double total = static_cast<double>(flat.total());
   const double bad = total - cv::countNonZero(finite);
-  if (bad == 0) return;
+  if (bad == 0) return 0;
   if (bad == total) {
     throw InputError(path + ": SAR image holds no finite pixel (every value is NaN or infinite)");
   }
@@ -111,6 +111,7 @@ void ZeroNonFinite(const std::string& path, cv::Mat* image) {
   msg << path << ": " << static_cast<long long>(bad) << " of " << static_cast<long long>(total)
       << " values are NaN or infinite; read as not measured (0)";
   Log(LogLevel::kWarning, msg.str());
+  return static_cast<long long>(bad);
 }
 
 }  // namespace
@@ -161,7 +162,7 @@ SarImageFile ReadSarImageFile(const std::string& path, double default_resolution
   }
   out.grid.rows = out.image.rows;
   out.grid.cols = out.image.cols;
-  if (!out.enhanced) ZeroNonFinite(out.path, &out.image);
+  if (!out.enhanced) out.nonfinite_values = ZeroNonFinite(out.path, &out.image);
   // A measurement is a non-zero, finite pixel (0 is what every imager leaves unobserved).
   cv::Mat magnitude;
   if (out.image.channels() == 2) {

@@ -18,9 +18,10 @@ struct SarImageFile {
   std::string grid_yaml;  ///< the grid YAML that gave `grid`; empty when there was none
   cv::Mat image;  ///< CV_8UC1 (enhanced input; 16-bit scaled to 8 by its full scale: a PGM's
                   ///< maxval, else the image's maximum), CV_32FC1 or CV_32FC2 (NaN/inf -> 0)
-  bool enhanced = false;  ///< true for 8/16-bit input: already the paper's feature image
-  ImageGrid grid;         ///< from the grid YAML, else x0 = y0 = 0 at the given resolution
-  cv::Mat observed;       ///< CV_8UC1, 255 where the image holds a measurement (non-zero)
+  bool enhanced = false;           ///< true for 8/16-bit input: already the paper's feature image
+  ImageGrid grid;                  ///< from the grid YAML, else x0 = y0 = 0 at the given resolution
+  cv::Mat observed;                ///< CV_8UC1, 255 where the image holds a measurement (non-zero)
+  long long nonfinite_values = 0;  ///< NaN/inf values of a float image, read as 0
 };
 
 /// The grid YAML that describes `image_path`, if one exists beside it:
