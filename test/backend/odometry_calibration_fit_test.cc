@@ -188,5 +188,27 @@ TEST(OdometryCalibrationFitTest, AFitOutsideWhatTheConfigurationAcceptsIsRefused
   EXPECT_EQ(RefusalOf(run.odometry, run.truth), "");
 }
 
+// A bag holding two recordings interleaved in time (merged by log time) fitted 1004 segments
+// over 1603 m of a 6 m run: its odometry alternates between the runs, a jump at every switch.
+TEST(OdometryCalibrationFitTest, TwoRunsInterleavedInTimeAreRefused) {
+  const Streams first = StraightRun();
+  Streams second = StraightRun();
+  Streams merged;
+  for (std::size_t i = 0; i < first.odometry.size(); ++i) {
+    // The second run started 5 s later: at the same stamp it is 2.5 m behind.
+    OdometrySample late = second.odometry[i];
+    late.stamp_ns += 10'000'000;  // 10 ms after the first run's sample
+    late.T_world_robot.x_m -= 2.5;
+    merged.odometry.push_back(first.odometry[i]);
+    merged.odometry.push_back(late);
+  }
+  const std::string msg = RefusalOf(merged.odometry, first.truth);
+  EXPECT_EQ(msg.rfind("run.bag: odometry jumps 2.500 m and 0.000 rad in 0.010 s at t=1.010000 s "
+                      "(sample 1)",
+                      0),
+            0u)
+      << msg;
+}
+
 }  // namespace
 }  // namespace uwbsar
