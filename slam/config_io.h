@@ -18,7 +18,7 @@
 #include "slam/config.h"
 #include "slam/errors.h"
 #include "slam/named_enum.h"
-#include "slam/yaml_file.h"
+#include "slam/yaml_document.h"
 
 namespace uwbsar {
 

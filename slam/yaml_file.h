@@ -11,18 +11,9 @@
 
 #include "slam/bounded_file.h"
 #include "slam/errors.h"
+#include "slam/yaml_document.h"
 
 namespace uwbsar {
-
-/// The one document of `text`. Throws InputError naming `source` and the line on a syntax
-/// error, on a key that its mapping already holds ("duplicate key 'a.b' (first at line N)",
-/// the dotted path as the configuration names keys, list items as [i]) and on a second
-/// document. An empty text (or only comments) gives a null node.
-YAML::Node ParseYamlDocument(const std::string& text, const std::string& source);
-
-/// True for a number written with a leading zero ("010", "-007", "00.5"): YAML 1.1 reads it as
-/// octal, YAML 1.2 as decimal, so its value is ambiguous and it is refused.
-bool HasLeadingZero(const std::string& scalar);
 
 /// "file:line" of a node (just "file" when the node has no position).
 inline std::string YamlWhere(const std::string& file, const YAML::Node& node) {

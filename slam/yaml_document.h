@@ -1,14 +1,22 @@
-#include "slam/yaml_file.h"
+// Parsing one YAML document strictly: the checks yaml-cpp does not make (a key given twice in
+// one mapping, a second document, a number with a leading zero). Header-only, so that every
+// target that reads YAML through slam/yaml_file.h or slam/config_io.h (the fuzz targets too)
+// has it without another source file.
+#pragma once
 
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/parser.h>
+#include <yaml-cpp/yaml.h>
 
 #include <map>
 #include <sstream>
+#include <string>
 #include <vector>
 
+#include "slam/errors.h"
+
 namespace uwbsar {
-namespace {
+namespace yaml_document {
 
 /// Walks the event stream of one document (aliases are not expanded, so the walk is linear in
 /// the text) and throws at the first key that a mapping already holds.
@@ -112,15 +120,19 @@ class DocumentStart : public YAML::EventHandler {
   int line = -1;
 };
 
-}  // namespace
+}  // namespace yaml_document
 
-YAML::Node ParseYamlDocument(const std::string& text, const std::string& source) {
+/// The one document of `text`. Throws InputError naming `source` and the line on a syntax
+/// error, on a key that its mapping already holds ("duplicate key 'a.b' (first at line N)",
+/// the dotted path as the configuration names keys, list items as [i]) and on a second
+/// document. An empty text (or only comments) gives a null node.
+inline YAML::Node ParseYamlDocument(const std::string& text, const std::string& source) {
   try {
     std::istringstream in(text);
     YAML::Parser parser(in);
-    DuplicateKeyCheck duplicates(source);
+    yaml_document::DuplicateKeyCheck duplicates(source);
     if (!parser.HandleNextDocument(duplicates)) return YAML::Node();
-    DocumentStart second;
+    yaml_document::DocumentStart second;
     if (parser.HandleNextDocument(second)) {
       throw InputError(source + (second.line > 0 ? ":" + std::to_string(second.line) : "") +
                        ": a second YAML document (after '---'); a file holds one document");
@@ -132,7 +144,9 @@ YAML::Node ParseYamlDocument(const std::string& text, const std::string& source)
   }
 }
 
-bool HasLeadingZero(const std::string& scalar) {
+/// True for a number written with a leading zero ("010", "-007", "00.5"): YAML 1.1 reads it as
+/// octal, YAML 1.2 as decimal, so its value is ambiguous and it is refused.
+inline bool HasLeadingZero(const std::string& scalar) {
   std::size_t i = 0;
   if (i < scalar.size() && (scalar[i] == '-' || scalar[i] == '+')) ++i;
   return i + 1 < scalar.size() && scalar[i] == '0' && scalar[i + 1] >= '0' && scalar[i + 1] <= '9';
