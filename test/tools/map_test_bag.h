@@ -38,9 +38,9 @@ struct BagEdits {
   /// The odometry topic name (a non-default one needs slam.odometry_topic).
   std::string odometry_topic = "/odom";
   /// Every radar sample replaced by this value (0: powered but silent radars), if set.
-  std::optional<float> radar_sample_value;
+  std::optional<float> radar_sample_value = std::nullopt;
   /// The odometry restarts from zero at this time into the run (a base reset), if set.
-  std::optional<double> odometry_reset_at_s;
+  std::optional<double> odometry_reset_at_s = std::nullopt;
 };
 
 /// Writes the bag as `dir`/run; `truth_tum`, if given, receives the run's true poses (TUM).
