@@ -156,8 +156,14 @@ OccupancyGrid MapToOccupancy(const cv::Mat& map, const cv::Mat& observed, const 
   // Cells on a lattice of cell_m: the map's left/top edge is the grid's outer border.
   const double left = grid.x0_m - 0.5 * grid.resolution_m;
   const double top = grid.y0_m + 0.5 * grid.resolution_m;
-  occ.cols = std::max(1, static_cast<int>(std::ceil(grid.width_m() / cell_m)));
-  occ.rows = std::max(1, static_cast<int>(std::ceil(grid.height_m() / cell_m)));
+  const double cols = std::max(1.0, std::ceil(grid.width_m() / cell_m));
+  const double rows = std::max(1.0, std::ceil(grid.height_m() / cell_m));
+  if (!(cols * rows < static_cast<double>(INT_MAX))) {
+    throw std::length_error("MapToOccupancy: an occupancy grid of " + std::to_string(cols) + " x " +
+                            std::to_string(rows) + " cells (unbudgeted)");
+  }
+  occ.cols = static_cast<int>(cols);
+  occ.rows = static_cast<int>(rows);
   occ.origin = {left, top - occ.rows * cell_m, 0.0};
   occ.cells.assign(static_cast<std::size_t>(occ.rows) * occ.cols, OccupancyGrid::kUnknown);
   std::vector<float> cell_max(occ.cells.size(), -1.0f);

@@ -56,7 +56,9 @@ class GlobalMap {
 /// Occupancy from a rendered map: a cell (of `cell_m`) is unknown where no map pixel in
 /// it was observed; otherwise occupied when the cell's strongest pixel reaches
 /// `occupied_fraction` of the map's `reference_percentile` value (robust to a few
-/// very bright scatterers), else free.
+/// very bright scatterers), else free. The grid has ceil(extent / cell_m) cells a side: callers
+/// budget that size first (it follows from the inputs); one that cannot be indexed with int
+/// throws std::length_error rather than wrapping.
 OccupancyGrid MapToOccupancy(const cv::Mat& map, const cv::Mat& observed, const ImageGrid& grid,
                              double cell_m, double occupied_fraction, double reference_percentile);
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <memory>
 #include <sstream>
 
@@ -127,6 +128,86 @@ std::vector<Segment> CutSegments(const std::vector<OdometrySample>& odometry,
   return segments;
 }
 
+/// Throws when the stamps of `samples` go back.
+void RequireStampOrder(const std::vector<OdometrySample>& samples, const std::string& source) {
+  for (std::size_t i = 1; i < samples.size(); ++i) {
+    if (samples[i].stamp_ns >= samples[i - 1].stamp_ns) continue;
+    std::ostringstream what;
+    what << std::fixed << std::setprecision(6) << source << ": stamps go back at sample " << i
+         << " (t=" << NsToSeconds(samples[i].stamp_ns)
+         << " s after t=" << NsToSeconds(samples[i - 1].stamp_ns)
+         << " s): interleaved or merged recordings; calibrate needs one run in time order";
+    throw InputError(what.str());
+  }
+}
+
+/// Throws at the first odometry step that is a jump (options.max_step_m, max_speed_mps,
+/// max_turn_rate_radps): a reset or two runs in one recording would fit nonsense.
+void RequireNoJump(const std::vector<OdometrySample>& odometry,
+                   const CalibrationFitOptions& options) {
+  for (std::size_t i = 1; i < odometry.size(); ++i) {
+    const Pose2 step = Between(odometry[i - 1].T_world_robot, odometry[i].T_world_robot);
+    const double d = std::hypot(step.x_m, step.y_m), turn = std::abs(step.yaw_rad);
+    const double dt = NsToSeconds(odometry[i].stamp_ns - odometry[i - 1].stamp_ns);
+    const bool too_fast =
+        dt > 0.0 ? d / dt > options.max_speed_mps || turn / dt > options.max_turn_rate_radps
+                 : d > 0.0 || turn > 0.0;
+    if (d <= options.max_step_m && !(too_fast && (d > 0.05 || turn > 0.5))) continue;
+    std::ostringstream what;
+    what << std::fixed << std::setprecision(3) << options.odometry_source << ": odometry jumps "
+         << d << " m and " << turn << " rad in " << dt << " s at t=" << std::setprecision(6)
+         << NsToSeconds(odometry[i].stamp_ns) << " s (sample " << i
+         << "): a reset or two runs in one recording; calibrate needs one continuous run";
+    throw InputError(what.str());
+  }
+}
+
+/// Throws when the truth does not move over the segments, or when its path and the odometry's
+/// differ by more than options.max_path_ratio (each summed over the segments' straight steps).
+void RequirePlausiblePaths(const std::vector<Segment>& segments,
+                           const CalibrationFitOptions& options) {
+  double odometry_m = 0.0, truth_m = 0.0;
+  for (const Segment& s : segments) {
+    Pose2 composed;
+    for (const Pose2& step : s.increments) composed = composed * step;
+    odometry_m += std::hypot(composed.x_m, composed.y_m);
+    truth_m += std::hypot(s.truth.x_m, s.truth.y_m);
+  }
+  std::ostringstream what;
+  what << std::fixed << std::setprecision(3);
+  if (!(truth_m >= options.min_truth_path_m)) {
+    what << options.truth_source << ": the ground truth does not move: " << truth_m
+         << " m over the " << segments.size() << " segments where the odometry travels "
+         << odometry_m << " m (at least " << options.min_truth_path_m << " m needed)";
+    throw InputError(what.str());
+  }
+  const double ratio = odometry_m / truth_m;
+  if (ratio <= options.max_path_ratio && ratio >= 1.0 / options.max_path_ratio) return;
+  what << options.odometry_source << ": the odometry travels " << odometry_m
+       << " m where the ground truth (" << options.truth_source << ") travels " << truth_m
+       << " m, a ratio of " << ratio << " (a base's scale error is a few percent, at most "
+       << options.max_path_ratio << "x is plausible): not the same run, or another unit";
+  throw InputError(what.str());
+}
+
+/// Throws when a fitted value lies outside what backend.calibration_*_mean accept.
+void RequireLoadable(const CalibrationFit& fit, const CalibrationFitOptions& options) {
+  const char* keys[3] = {"backend.calibration_scale_mean",
+                         "backend.calibration_heading_drift_mean_rad_per_m",
+                         "backend.calibration_rotation_mean"};
+  const double limits[3] = {kMaxCalibrationScale, kMaxCalibrationHeadingDriftRadPerM,
+                            kMaxCalibrationRotation};
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(fit.calibration[i]) <= limits[i]) continue;
+    std::ostringstream what;
+    what << options.odometry_source << ": the fitted " << keys[i] << " is " << std::fixed
+         << std::setprecision(6) << fit.calibration[i] << ", outside [" << -limits[i] << ", "
+         << limits[i] << "] that the configuration accepts: the odometry and the ground truth "
+         << "do not describe the same motion (another run, frame or unit); nothing written";
+    throw InputError(what.str());
+  }
+}
+
 Eigen::Matrix3d SegmentSqrtInformation(const Segment& s, const BackendConfig& config) {
   const double d = std::max(s.path_m, config.odometry_min_distance_m);
   return *SqrtInformation(Eigen::Vector3d(config.odometry_xy_information / d,
@@ -185,14 +266,19 @@ CalibrationFit FitOdometryCalibration(const std::vector<OdometrySample>& odometr
                                       const std::vector<OdometrySample>& ground_truth,
                                       const BackendConfig& priors,
                                       const CalibrationFitOptions& options) {
+  RequireStampOrder(odometry, options.odometry_source);
+  RequireStampOrder(ground_truth, options.truth_source);
+  RequireNoJump(odometry, options);
   const std::vector<Segment> segments = CutSegments(odometry, ground_truth, options);
   if (segments.size() < 10) {
     std::ostringstream what;
-    what << "odometry calibration: " << segments.size() << " segments of " << options.segment_m
+    what << options.odometry_source << ": odometry calibration: " << segments.size()
+         << " segments of " << options.segment_m
          << " m overlap the ground truth, at least 10 are needed (" << odometry.size()
          << " odometry and " << ground_truth.size() << " ground-truth samples)";
     throw InputError(what.str());
   }
+  RequirePlausiblePaths(segments, options);
   CalibrationFit fit;
   const OdometryCalibration mean = priors.CalibrationMean();
   fit.calibration = mean;
@@ -238,6 +324,7 @@ CalibrationFit FitOdometryCalibration(const std::vector<OdometrySample>& odometr
   fit.segments = static_cast<int>(segments.size());
   SegmentErrors(segments, {0.0, 0.0, 0.0}, &fit.xy_rms_before_m, &fit.yaw_rms_before_rad);
   SegmentErrors(segments, fit.calibration, &fit.xy_rms_after_m, &fit.yaw_rms_after_rad);
+  RequireLoadable(fit, options);
   return fit;
 }
 

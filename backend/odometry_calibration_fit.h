@@ -27,6 +27,18 @@ struct CalibrationFitOptions {
   double segment_m = 0.5;        ///< odometry path per segment
   double max_truth_gap_s = 0.1;  ///< odometry stamps farther than this from a truth sample on
                                  ///< either side are skipped (the segment restarts)
+  /// An odometry step longer than this, or faster than max_speed_mps / max_turn_rate_radps
+  /// (and longer than 5 cm or 0.5 rad), is a jump (a reset, two runs in one recording): the
+  /// run is refused (gating.max_odom_jump_m, max_odom_speed_mps, max_odom_turn_rate_radps).
+  double max_step_m = 0.5;
+  double max_speed_mps = 10.0;
+  double max_turn_rate_radps = 12.0;
+  double min_truth_path_m = 1.0;  ///< ground truth moving less over the segments is refused
+  /// The odometry's and the truth's path over the segments may differ by this factor at most
+  /// (a base's scale error is a few percent; the fit accepts kMaxCalibrationScale).
+  double max_path_ratio = 1.5;
+  std::string odometry_source = "odometry";   ///< names the odometry in messages
+  std::string truth_source = "ground truth";  ///< names the ground truth in messages
 };
 
 struct CalibrationFit {
@@ -43,8 +55,11 @@ struct CalibrationFit {
 };
 
 /// Fits the calibration of `odometry` against `ground_truth` (both in stamp order, each in its
-/// own world frame). Throws InputError when fewer than 10 segments overlap the truth, naming
-/// how many there were.
+/// own world frame). Throws InputError (one line naming the source) when the stamps of either
+/// go back, the odometry jumps, fewer than 10 segments overlap the truth (naming how many
+/// there were), the truth moves less than min_truth_path_m over them, the two paths differ by
+/// more than max_path_ratio, or a fitted value lies outside what backend.calibration_*_mean
+/// accept (kMaxCalibration*): a result uwbsar would refuse to load is never returned.
 CalibrationFit FitOdometryCalibration(const std::vector<OdometrySample>& odometry,
                                       const std::vector<OdometrySample>& ground_truth,
                                       const BackendConfig& priors,

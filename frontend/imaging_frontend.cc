@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 namespace uwbsar {
 
@@ -90,12 +92,21 @@ void ImagingFrontend::AddScan(const RadarScan& scan) {
                                               std::to_string(expected) + "; rejected");
     return;
   }
-  const bool finite = std::all_of(scan.samples.begin(), scan.samples.end(),
-                                  [](float v) { return std::isfinite(v); });
-  if (!finite) {
+  const auto bad = std::find_if(scan.samples.begin(), scan.samples.end(),
+                                [](float v) { return !(std::abs(v) <= kMaxScanSample); });
+  if (bad != scan.samples.end()) {
     ++stats_.scans_rejected_nonfinite;
-    log_once_.Warn("scan_nan/" + name, "scan from radar '" + name + "' holds NaN/Inf; rejected");
+    std::ostringstream what;
+    what << "radar '" << name << "' (topic " << config_.radars[scan.sensor_id].topic
+         << ") at t=" << std::fixed << std::setprecision(6) << NsToSeconds(scan.stamp_ns)
+         << " s: sample " << (bad - scan.samples.begin()) << " is " << std::defaultfloat << *bad;
+    if (stats_.first_bad_samples.empty()) stats_.first_bad_samples = what.str();
+    log_once_.Warn("scan_nan/" + name,
+                   "scan with a NaN/Inf sample or one beyond 1e12 rejected: " + what.str());
     return;
+  }
+  if (std::all_of(scan.samples.begin(), scan.samples.end(), [](float v) { return v == 0.0f; })) {
+    ++stats_.scans_zero;
   }
   auto pos = std::upper_bound(pending_.begin(), pending_.end(), scan.stamp_ns,
                               [](TimestampNs t, const RadarScan& s) { return t < s.stamp_ns; });

@@ -18,14 +18,20 @@
 
 namespace uwbsar {
 
+/// The largest sample magnitude a scan may hold: beyond any digitiser's range (the LT102's
+/// int32 counts reach 2.1e9), and small enough that range compression and back-projection in
+/// float cannot overflow to inf (3e38 samples did, and ended in an assertion).
+constexpr float kMaxScanSample = 1e12f;
+
 struct FrontendStats {
   long long scans_received = 0;
   long long scans_imaged = 0;
   long long scans_gated = 0;  ///< dropped because the robot had not moved min_travel_m
   long long scans_rejected_unknown_sensor = 0;
   long long scans_rejected_empty = 0;
-  long long scans_rejected_length = 0;       ///< length differs from radars[i].num_samples
-  long long scans_rejected_nonfinite = 0;    ///< NaN or Inf samples
+  long long scans_rejected_length = 0;     ///< length differs from radars[i].num_samples
+  long long scans_rejected_nonfinite = 0;  ///< NaN/Inf samples, or beyond kMaxScanSample
+  long long scans_zero = 0;  ///< accepted scans whose samples are all 0 (a silent radar)
   long long scans_rejected_no_odometry = 0;  ///< before the first odometry or in a gap
   long long scans_rejected_stale = 0;        ///< waited longer than max_scan_latency_s for odometry
   long long odometry_received = 0;
@@ -35,6 +41,9 @@ struct FrontendStats {
   long long odometry_rejected_implausible = 0;  ///< impossible speed/turn rate, not confirmed
   long long pixel_updates = 0;
   long long keyframes = 0;
+  /// The first scan rejected for its samples (non-finite or beyond kMaxScanSample): radar,
+  /// topic, stamp and the sample, for the message that refuses a run with nothing imaged.
+  std::string first_bad_samples;
 
   long long scans_rejected() const {
     return scans_rejected_unknown_sensor + scans_rejected_empty + scans_rejected_length +

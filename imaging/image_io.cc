@@ -9,7 +9,11 @@
 #include <cstring>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
+#include <stdexcept>
+#include <string>
 #include <vector>
+
+#include "slam/errors.h"
 
 namespace uwbsar {
 namespace {
@@ -60,7 +64,11 @@ void WriteImageAtomic(const std::string& path, const cv::Mat& image) {
 }
 
 void WriteFloatTiff(const std::string& path, const cv::Mat& sar) {
-  CV_Assert(sar.depth() == CV_32F);
+  if (sar.empty()) throw InputError(path + ": nothing imaged: the image to write is empty");
+  if (sar.depth() != CV_32F) {
+    throw std::logic_error(path + ": WriteFloatTiff needs a 32-bit float image, got depth " +
+                           std::to_string(sar.depth()));
+  }
   if (sar.channels() == 1) return WriteImageAtomic(path, sar);
   // TIFF pages are 1, 3 or 4 channels: a complex image becomes two pages, re and im.
   std::vector<cv::Mat> pages;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <sstream>
 
 #include "slam/errors.h"
 #include "slam/yaml_file.h"
@@ -46,6 +47,13 @@ SarGridMetadata LoadSarGridMetadata(const std::string& yaml_path) {
   if (!(g.resolution_m > 0.0) || !std::isfinite(g.resolution_m)) {
     throw InputError(YamlWhere(yaml_path, root["resolution_m"]) +
                      ": grid key 'resolution_m' must be > 0");
+  }
+  if (g.resolution_m < kMinGridResolutionM || g.resolution_m > kMaxGridResolutionM) {
+    std::ostringstream msg;
+    msg << YamlWhere(yaml_path, root["resolution_m"]) << ": grid key 'resolution_m' is "
+        << g.resolution_m << " m per pixel, outside [" << kMinGridResolutionM << ", "
+        << kMaxGridResolutionM << "] (a SAR image's pixel is millimetres to centimetres)";
+    throw InputError(msg.str());
   }
   if (has_size && (g.rows < 1 || g.cols < 1)) {
     throw InputError(yaml_path + ": grid keys 'rows' and 'cols' must be >= 1");

@@ -12,6 +12,11 @@
 
 namespace uwbsar {
 
+/// The pixel sizes a grid YAML may declare: a SAR image's pixel is millimetres to centimetres;
+/// outside this a value is a typo (or a hostile file) whose extent would be kilometres.
+constexpr double kMinGridResolutionM = 1e-6;
+constexpr double kMaxGridResolutionM = 10.0;
+
 struct SarGridMetadata {
   double x0_m = 0.0;          ///< x of the centre of column 0
   double y0_m = 0.0;          ///< y of the centre of row 0 (the top row)
@@ -23,7 +28,8 @@ struct SarGridMetadata {
 };
 
 /// Reads a grid YAML. Throws InputError naming the file, line and key on a missing or
-/// unreadable file, a missing key, a non-finite value, resolution <= 0 or rows/cols < 1.
+/// unreadable file, a missing key, a non-finite value, a resolution outside
+/// [kMinGridResolutionM, kMaxGridResolutionM] or rows/cols < 1.
 SarGridMetadata LoadSarGridMetadata(const std::string& yaml_path);
 
 }  // namespace uwbsar

@@ -2,12 +2,15 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <opencv2/imgcodecs.hpp>
+#include <sstream>
 #include <vector>
 
 #include "imaging/sar_grid_metadata.h"
 #include "slam/errors.h"
 #include "slam/image_header.h"
+#include "slam/log.h"
 
 namespace uwbsar {
 namespace {
@@ -26,7 +29,15 @@ std::string Lower(std::string s) {
 
 /// All pages of the file, decoded as stored.
 std::vector<cv::Mat> DecodePages(const std::string& path, double max_pixels) {
-  if (!fs::is_regular_file(path)) throw InputError(path + ": SAR image does not exist");
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec && ec != std::errc::no_such_file_or_directory) {
+    throw InputError(path + ": cannot read SAR image: " + ec.message());  // e.g. a symlink loop
+  }
+  if (!fs::exists(status)) throw InputError(path + ": SAR image does not exist");
+  if (!fs::is_regular_file(status)) {
+    throw InputError(path + ": SAR image is not a regular file (a folder, device or FIFO)");
+  }
   CheckImageSize(path, max_pixels, "SAR image");
   std::vector<cv::Mat> pages;
   try {
@@ -44,6 +55,16 @@ std::vector<cv::Mat> DecodePages(const std::string& path, double max_pixels) {
   return pages;
 }
 
+/// The largest value a 16-bit image's pixels may take: a PGM's declared maxval (a 10-bit
+/// sensor writes 1023), else the image's own maximum (at least 1). Its range becomes 0..255.
+double SixteenBitFullScale(const std::string& path, const cv::Mat& image) {
+  const ImageHeader header = ReadImageHeader(path);
+  if (header.format == "PNM" && header.maxval > 0) return static_cast<double>(header.maxval);
+  double lo = 0.0, hi = 0.0;
+  cv::minMaxLoc(image, &lo, &hi);
+  return std::max(1.0, hi);
+}
+
 /// One CV_8UC1 (enhanced) or CV_32FC1/2 (as imaged) image from the decoded pages.
 cv::Mat ToSarImage(const std::string& path, std::vector<cv::Mat> pages, bool* enhanced) {
   const cv::Mat& first = pages.front();
@@ -52,7 +73,7 @@ cv::Mat ToSarImage(const std::string& path, std::vector<cv::Mat> pages, bool* en
     *enhanced = true;
     if (first.depth() == CV_8U) return first;
     cv::Mat out;
-    first.convertTo(out, CV_8U, 255.0 / 65535.0);
+    first.convertTo(out, CV_8U, 255.0 / SixteenBitFullScale(path, first));
     return out;
   }
   if (pages.size() <= 2) {
@@ -72,6 +93,27 @@ cv::Mat ToSarImage(const std::string& path, std::vector<cv::Mat> pages, bool* en
                    "32-bit float TIFF with 1 (real) or 2 (re, im) pages");
 }
 
+/// NaN or infinite pixels of a float image are "not measured": set to 0 (what every imager
+/// leaves unobserved), with one warning giving the count, which is returned. An image with no
+/// finite pixel is refused.
+long long ZeroNonFinite(const std::string& path, cv::Mat* image) {
+  cv::Mat flat = image->reshape(1);
+  cv::Mat finite = (flat == flat) & (flat < std::numeric_limits<float>::infinity()) &
+                   (flat > -std::numeric_limits<float>::infinity());
+  const double total = static_cast<double>(flat.total());
+  const double bad = total - cv::countNonZero(finite);
+  if (bad == 0) return 0;
+  if (bad == total) {
+    throw InputError(path + ": SAR image holds no finite pixel (every value is NaN or infinite)");
+  }
+  flat.setTo(0.0f, ~finite);
+  std::ostringstream msg;
+  msg << path << ": " << static_cast<long long>(bad) << " of " << static_cast<long long>(total)
+      << " values are NaN or infinite; read as not measured (0)";
+  Log(LogLevel::kWarning, msg.str());
+  return static_cast<long long>(bad);
+}
+
 }  // namespace
 
 std::string FindGridYaml(const std::string& image_path) {
@@ -81,7 +123,8 @@ std::string FindGridYaml(const std::string& image_path) {
   if (EndsWith(stem, "_float")) names.push_back(stem.substr(0, stem.size() - 6) + "_grid.yaml");
   for (const std::string& name : names) {
     const fs::path candidate = p.parent_path() / name;
-    if (fs::is_regular_file(candidate)) return candidate.string();
+    std::error_code ec;  // an unreadable candidate (a symlink loop) is no grid YAML
+    if (fs::is_regular_file(candidate, ec)) return candidate.string();
   }
   return {};
 }
@@ -119,6 +162,7 @@ SarImageFile ReadSarImageFile(const std::string& path, double default_resolution
   }
   out.grid.rows = out.image.rows;
   out.grid.cols = out.image.cols;
+  if (!out.enhanced) out.nonfinite_values = ZeroNonFinite(out.path, &out.image);
   // A measurement is a non-zero, finite pixel (0 is what every imager leaves unobserved).
   cv::Mat magnitude;
   if (out.image.channels() == 2) {

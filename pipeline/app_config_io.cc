@@ -48,10 +48,9 @@ std::vector<PointTargetConfig> LoadPointTargets(const std::string& path) {
   const std::string text = ReadConfigFile(path, "point-target");
   YAML::Node root;
   try {
-    root = YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    throw ConfigError(path + ":" + std::to_string(e.mark.line + 1) +
-                      ": YAML syntax error: " + e.msg);
+    root = ParseYamlDocument(text, path);
+  } catch (const InputError& e) {
+    throw ConfigError(e.what());
   }
   if (!root.IsMap()) throw ConfigError(path + ": expected a mapping with 'point_targets'");
   PointTargetFile file;

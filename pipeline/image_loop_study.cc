@@ -18,14 +18,30 @@ namespace {
 namespace fs = std::filesystem;
 
 void FindRegionImages(const std::string& dir, ImageLoopStudy* study) {
-  if (!fs::is_directory(dir)) throw InputError(dir + ": not a folder of D*/R* images");
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) {
+    throw InputError(dir + ": not a folder of D*/R* images" +
+                     (ec ? " (" + ec.message() + ")" : ""));
+  }
   const std::regex name(R"(([DR])(\d+)\.(png|pgm|tif|tiff))", std::regex::icase);
-  for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
+  fs::directory_iterator it(dir, ec);
+  if (ec) throw InputError(dir + ": cannot list the folder: " + ec.message());
+  for (const fs::directory_entry& e : it) {
     std::smatch m;
     const std::string file = e.path().filename().string();
-    if (!e.is_regular_file() || !std::regex_match(file, m, name)) continue;
+    if (!std::regex_match(file, m, name)) continue;
+    // A symlink loop or a dangling link is bad input naming the file, not an exception.
+    const bool regular = e.is_regular_file(ec);
+    if (ec) throw InputError(e.path().string() + ": cannot read the image: " + ec.message());
+    if (!regular) continue;
     const bool d = std::toupper(static_cast<unsigned char>(m[1].str()[0])) == 'D';
-    const int index = std::stoi(m[2].str());
+    const std::string digits = m[2].str();
+    const std::size_t first = std::min(digits.find_first_not_of('0'), digits.size() - 1);
+    if (digits.size() - first > 9) {
+      throw InputError(e.path().string() + ": region index '" + digits +
+                       "' is too large (at most 999999999)");
+    }
+    const int index = std::stoi(digits);
     auto& files = d ? study->d_files : study->r_files;
     if (files.count(index)) {
       throw InputError(dir + ": two images for region " + std::string(d ? "D" : "R") +

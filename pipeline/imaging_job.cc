@@ -12,6 +12,28 @@
 #include "slam/errors.h"
 
 namespace uwbsar::pipeline {
+namespace {
+
+/// A strip needs imaged scans, and scans that are not all zero (InputError otherwise).
+void CheckImaged(const FrontendStats& s) {
+  if (s.scans_received == 0) throw InputError("nothing to image: no scans");
+  const long long valid = s.scans_received - s.scans_rejected_unknown_sensor -
+                          s.scans_rejected_empty - s.scans_rejected_length -
+                          s.scans_rejected_nonfinite;
+  if (valid > 0 && s.scans_zero == valid) {
+    throw InputError("nothing imaged: every radar scan is zero (" + std::to_string(valid) +
+                     " scans)");
+  }
+  if (s.scans_imaged > 0) return;
+  throw InputError("nothing imaged: none of the " + std::to_string(s.scans_received) +
+                   " scans could be imaged (" + std::to_string(s.scans_rejected()) + " rejected, " +
+                   std::to_string(s.scans_gated) + " while not moving)" +
+                   (s.first_bad_samples.empty()
+                        ? std::string()
+                        : "; non-finite or overflowing samples, first: " + s.first_bad_samples));
+}
+
+}  // namespace
 
 StripResult ImageRun(const Config& config, const std::vector<OdometrySample>& odometry,
                      const std::vector<RadarScan>& scans) {
@@ -23,6 +45,7 @@ StripResult ImageRun(const Config& config, const std::vector<OdometrySample>& od
   frontend.Finish();
   frontend.TakeKeyframes();
   result.stats = frontend.stats();
+  CheckImaged(result.stats);
   std::vector<Pose2> poses;
   for (const ImagedScan& s : result.scans) poses.push_back(s.T_world_robot);
   const ImageGrid grid =

@@ -20,6 +20,8 @@ struct StripResult {
 };
 
 /// Feeds scans and odometry in time order through an ImagingFrontend and renders the strip.
+/// Throws InputError ("nothing imaged: ...", naming no file: the caller prefixes its input)
+/// when there are no scans, every valid scan is all zero, or no scan could be imaged.
 StripResult ImageRun(const Config& config, const std::vector<OdometrySample>& odometry,
                      const std::vector<RadarScan>& scans);
 

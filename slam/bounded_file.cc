@@ -13,6 +13,7 @@ std::string ReadBoundedFile(const std::string& path, const std::string& what,
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (ec || !fs::exists(status)) throw InputError(path + ": cannot open " + what + " file");
+  if (fs::is_directory(status)) throw InputError(path + ": " + what + " file is a folder");
   if (!fs::is_regular_file(status)) {
     throw InputError(path + ": " + what + " file is not a regular file (a device, FIFO or folder)");
   }

@@ -178,6 +178,13 @@ struct EnumNames<RobustLoss> {
       {RobustLoss::kCauchy, "cauchy"}, {RobustLoss::kHuber, "huber"}, {RobustLoss::kNone, "none"}};
 };
 
+/// The largest calibration backend.calibration_*_mean accept (config validation), and the
+/// largest `uwbsar calibrate` reports: a base off by more than 20 % (distance or turns) or
+/// 0.1 rad per metre needs mending, not a calibration.
+constexpr double kMaxCalibrationScale = 0.2;
+constexpr double kMaxCalibrationHeadingDriftRadPerM = 0.1;
+constexpr double kMaxCalibrationRotation = 0.2;
+
 /// Pose-graph backend (Ceres): loop outlier handling, odometry weighting, solver settings.
 struct BackendConfig {
   GraphInitialization initialization = GraphInitialization::kGuess;  ///< guess or chordal

@@ -18,6 +18,7 @@
 #include "slam/config.h"
 #include "slam/errors.h"
 #include "slam/named_enum.h"
+#include "slam/yaml_document.h"
 
 namespace uwbsar {
 
@@ -112,6 +113,13 @@ class Reader {
     } else {
       if (!node.IsScalar())
         throw ConfigError(Where(source_, node) + ": '" + key + "' must be a value");
+      if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
+        if (HasLeadingZero(node.Scalar())) {
+          throw ConfigError(Where(source_, node) + ": '" + key + "' has value '" + node.Scalar() +
+                            "' with a leading zero (octal in YAML 1.1, decimal in 1.2): write "
+                            "it without the zero");
+        }
+      }
       try {
         value = node.as<T>();
       } catch (const YAML::Exception&) {
@@ -169,15 +177,17 @@ class Writer {
 
 /// Reads YAML text over the defaults of `T` (a struct with Visit): keys that are absent keep
 /// their default; an empty text means all defaults. No semantic checks. Throws ConfigError
-/// on syntax errors, unknown keys and wrong types; `source_name` is used in messages.
+/// on syntax errors, duplicate keys, a second document (ParseYamlDocument), unknown keys,
+/// wrong types and numbers with a leading zero; `source_name` is used in messages.
 template <class T>
 T ReadConfigYaml(const std::string& yaml_text, const std::string& source_name) {
   YAML::Node root;
   try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw ConfigError(source_name + ":" + std::to_string(e.mark.line + 1) +
-                      ": YAML syntax error: " + e.msg);
+    root = ParseYamlDocument(yaml_text, source_name);
+  } catch (const ConfigError&) {
+    throw;
+  } catch (const InputError& e) {
+    throw ConfigError(e.what());
   }
   T config;
   if (root.IsNull()) return config;  // an empty file means all defaults

@@ -89,12 +89,14 @@ void Validate(const BackendConfig& b, const std::string& src) {
           "must be > 0");
   // A base off by more than 20 % (distance or turns) or 0.1 rad per metre needs mending, not
   // a calibration: beyond that a typo (a percentage for a fraction) would pass silently.
-  Require(std::abs(b.calibration_scale_mean) <= 0.2, src, "backend.calibration_scale_mean",
+  Require(std::abs(b.calibration_scale_mean) <= kMaxCalibrationScale, src,
+          "backend.calibration_scale_mean",
           "must be in [-0.2, 0.2] (a fraction: -0.005 for a base over-reporting 0.5 %)");
-  Require(std::abs(b.calibration_heading_drift_mean_rad_per_m) <= 0.1, src,
-          "backend.calibration_heading_drift_mean_rad_per_m", "must be in [-0.1, 0.1]");
-  Require(std::abs(b.calibration_rotation_mean) <= 0.2, src, "backend.calibration_rotation_mean",
-          "must be in [-0.2, 0.2] (a fraction)");
+  Require(
+      std::abs(b.calibration_heading_drift_mean_rad_per_m) <= kMaxCalibrationHeadingDriftRadPerM,
+      src, "backend.calibration_heading_drift_mean_rad_per_m", "must be in [-0.1, 0.1]");
+  Require(std::abs(b.calibration_rotation_mean) <= kMaxCalibrationRotation, src,
+          "backend.calibration_rotation_mean", "must be in [-0.2, 0.2] (a fraction)");
   const std::array<double, 3> mean = b.CalibrationMean();
   Require(b.odometry_calibration || mean == std::array<double, 3>{0.0, 0.0, 0.0}, src,
           "backend.odometry_calibration",

@@ -54,10 +54,15 @@ ImageHeader Png(Bytes& b) {
 }
 
 ImageHeader Pnm(Bytes& b) {
-  // Magic, then width and height as decimal tokens separated by whitespace and comments.
+  // Magic, then width, height and (but for the bitmaps P1, P4) maxval as decimal tokens
+  // separated by whitespace and comments.
+  std::uint8_t magic = 0;
+  b.Read(1, 1, &magic);
+  const int tokens = magic == '1' || magic == '4' ? 2 : 3;
   std::uint64_t at = 2;
-  long long values[2] = {0, 0};
-  for (long long& v : values) {
+  long long values[3] = {0, 0, 0};
+  for (int i = 0; i < tokens; ++i) {
+    long long& v = values[i];
     std::uint8_t c = ' ';
     std::string token;
     while (token.size() <= 12) {
@@ -71,13 +76,15 @@ ImageHeader Pnm(Bytes& b) {
       } else if (std::isdigit(c)) {
         token.push_back(static_cast<char>(c));
       } else {
-        b.Fail("PNM", "width or height is not a number");
+        b.Fail("PNM", "width, height or maxval is not a number");
       }
     }
-    if (token.empty() || token.size() > 12) b.Fail("PNM", "width or height is not a number");
+    if (token.empty() || token.size() > 12) {
+      b.Fail("PNM", "width, height or maxval is not a number");
+    }
     v = std::stoll(token);
   }
-  return {"PNM", 0.0, values[0], values[1]};
+  return {"PNM", 0.0, values[0], values[1], values[2]};
 }
 
 ImageHeader Bmp(Bytes& b) {

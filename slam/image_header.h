@@ -14,6 +14,7 @@ struct ImageHeader {
   double pixels = 0.0;   ///< width x height, summed over the pages of a TIFF
   long long width = 0;   ///< of the first page
   long long height = 0;  ///< of the first page
+  long long maxval = 0;  ///< PGM/PPM: the declared largest sample value; 0 for other formats
 };
 
 /// Throws InputError naming the file when it cannot be opened, is none of the formats

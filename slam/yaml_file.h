@@ -1,13 +1,17 @@
-// Reading a YAML file that must hold a mapping (map_server maps, grid files):
-// one place for the open / syntax / shape errors, each naming the file (and line).
+// Reading a YAML file that must hold a mapping (map_server maps, grid files, the
+// configuration): one place for the open / syntax / shape errors, each naming the file (and
+// line). Every YAML file uwbsar reads as input is parsed by ParseYamlDocument: a duplicate key,
+// a second document and a number with a leading zero are refused, never silently resolved.
 #pragma once
 
 #include <yaml-cpp/yaml.h>
 
 #include <string>
+#include <type_traits>
 
 #include "slam/bounded_file.h"
 #include "slam/errors.h"
+#include "slam/yaml_document.h"
 
 namespace uwbsar {
 
@@ -21,6 +25,14 @@ inline std::string YamlWhere(const std::string& file, const YAML::Node& node) {
 template <class T>
 T YamlValue(const std::string& file, const YAML::Node& node, const char* key,
             const std::string& what) {
+  if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
+    if (node.IsScalar() && HasLeadingZero(node.Scalar())) {
+      throw InputError(YamlWhere(file, node) + ": " + what + " key '" + key + "' has value '" +
+                       node.Scalar() +
+                       "' with a leading zero (octal in YAML 1.1, decimal in 1.2): write it "
+                       "without the zero");
+    }
+  }
   try {
     return node.as<T>();
   } catch (const YAML::Exception&) {
@@ -32,16 +44,9 @@ T YamlValue(const std::string& file, const YAML::Node& node, const char* key,
 
 /// The file's root mapping. `what` names the kind of file in messages ("map", "grid").
 /// Throws InputError when the file cannot be opened, is not a regular file, is larger than
-/// kMaxYamlFileBytes, is not valid YAML or is not a mapping.
+/// kMaxYamlFileBytes, is not valid YAML (ParseYamlDocument) or is not a mapping.
 inline YAML::Node LoadYamlMappingFile(const std::string& path, const std::string& what) {
-  const std::string text = ReadBoundedFile(path, what);
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    throw InputError(path + ":" + std::to_string(e.mark.line + 1) +
-                     ": YAML syntax error: " + e.msg);
-  }
+  const YAML::Node root = ParseYamlDocument(ReadBoundedFile(path, what), path);
   if (!root.IsMap()) throw InputError(path + ": a " + what + " file must be a YAML mapping");
   return root;
 }

@@ -87,15 +87,25 @@ void AddCalibrateCommand(CLI::App& app, const GlobalOptions& globals) {
     }
     CalibrationFitOptions fit_options;
     fit_options.segment_m = opts->segment_m;
+    fit_options.max_step_m = config.gating.max_odom_jump_m;
+    fit_options.max_speed_mps = config.gating.max_odom_speed_mps;
+    fit_options.max_turn_rate_radps = config.gating.max_odom_turn_rate_radps;
+    fit_options.odometry_source = opts->bag;
+    fit_options.truth_source = opts->ground_truth.empty()
+                                   ? opts->bag + " (" + config.slam.ground_truth_topic + ")"
+                                   : opts->ground_truth;
     const CalibrationFit fit =
         FitOdometryCalibration(streams.odometry, streams.ground_truth, config.backend, fit_options);
-    PrintFit(fit);
     const std::string yaml = CalibrationYaml(fit);
-    std::printf("\n%s", yaml.c_str());
-    if (!opts->out.empty()) {
-      WriteTextAtomic(opts->out, yaml);
-      std::printf("wrote %s\n", opts->out.c_str());
+    if (!opts->out.empty()) WriteTextAtomic(opts->out, yaml);
+    // -q: only the result, the configuration keys, and only when no file receives them.
+    if (globals.quiet) {
+      if (opts->out.empty()) std::printf("%s", yaml.c_str());
+      return;
     }
+    PrintFit(fit);
+    std::printf("\n%s", yaml.c_str());
+    if (!opts->out.empty()) std::printf("wrote %s\n", opts->out.c_str());
   });
 }
 

@@ -6,6 +6,7 @@
 #include "drivers/text_log.h"
 #include "pipeline/app_config_io.h"
 #include "pipeline/imaging_job.h"
+#include "slam/errors.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -40,6 +41,13 @@ void AddImageCommand(CLI::App& app, const GlobalOptions& globals) {
     std::vector<RadarScan> scans;
     if (!opts->log_path.empty()) {
       TextLog log = ReadTextLog(opts->log_path);
+      // An empty log used to give a 1 x 1 strip and exit 0.
+      if (log.scans.empty()) {
+        throw InputError(opts->log_path + ": no scans (no 'scan' records): nothing to image");
+      }
+      if (log.odometry.empty()) {
+        throw InputError(opts->log_path + ": no odometry ('odom' records): scans cannot be placed");
+      }
       odometry = std::move(log.odometry);
       scans = std::move(log.scans);
     } else if (!opts->synthetic.empty()) {
@@ -51,7 +59,14 @@ void AddImageCommand(CLI::App& app, const GlobalOptions& globals) {
     } else {
       throw CLI::RequiredError("--log or --synthetic");
     }
-    const pipeline::StripResult result = pipeline::ImageRun(config, odometry, scans);
+    pipeline::StripResult result;
+    try {
+      result = pipeline::ImageRun(config, odometry, scans);
+    } catch (const InputError& e) {  // nothing imaged: name the input
+      throw InputError(
+          (opts->log_path.empty() ? "--synthetic " + opts->synthetic : opts->log_path) + ": " +
+          e.what());
+    }
     const auto files =
         pipeline::WriteStripOutputs(opts->out_dir, opts->prefix, result.strip, config.enhance);
     if (globals.quiet) return;

@@ -118,13 +118,15 @@ void Optimize(const OptimizeOptions& opts, const GlobalOptions& globals) {
   G2oReadOptions read;
   read.skip_bad_lines = opts.skip_bad_lines;
   const G2oGraph file = ReadG2o(opts.in, read);
-  for (const std::string& s : file.skipped) std::cerr << "uwbsar: skipped " << s << "\n";
+  if (!globals.quiet) {
+    for (const std::string& s : file.skipped) std::cerr << "uwbsar: skipped " << s << "\n";
+  }
   PoseGraph graph(config.backend);
   LoadIntoPoseGraph(file, &graph);
   const OptimizeResult r = graph.Optimize();
   const std::string failure = SolveFailure(r, graph);
   if (!failure.empty()) {
-    if (!opts.json) {
+    if (!opts.json && !globals.quiet) {
       std::printf("termination: %s\ncost: %.6g -> %.6g\n", r.termination.c_str(), r.initial_cost,
                   r.final_cost);
     }
@@ -133,7 +135,7 @@ void Optimize(const OptimizeOptions& opts, const GlobalOptions& globals) {
   WriteOptimizeOutputs(opts, graph);
   if (opts.json) {
     PrintOptimizeJson(opts.in, r, file.skipped);
-  } else {
+  } else if (!globals.quiet) {
     PrintOptimizeText(r, opts.out);
   }
 }

@@ -21,8 +21,10 @@ int main(int argc, char** argv) {
   // a subcommand hands the options it does not know to the app.
   app.fallthrough();
   GlobalOptions globals;
+  // A path that is not a regular file (a folder, /dev/zero) is bad input, exit 3, refused by the
+  // loader with one line (slam/bounded_file.h); only a path that does not exist is exit 2.
   app.add_option("--config", globals.config_path, "YAML configuration (default: built-in)")
-      ->check(CLI::ExistingFile);
+      ->check(CLI::ExistingPath);
   app.add_flag("-q,--quiet", globals.quiet, "Only print errors");
   app.add_flag("-v,--verbose", globals.verbose, "Print debug messages");
   app.parse_complete_callback([&] {

@@ -34,7 +34,9 @@ bool IsSarGridYaml(const std::string& yaml_path);
 /// measured (unknown cells); 8/16-bit images are intensities as they are, float images
 /// (1 page real, 2 pages re/im) become their positive image (Re + |Re|, or |I|). Throws
 /// InputError naming the file on bad input.
-/// Images declaring more than `max_image_pixels` are refused before decoding.
+/// Images declaring more than `max_image_pixels` are refused before decoding, and so is an
+/// image whose extent (pixels x the grid's resolution_m) implies an occupancy grid of more
+/// than `max_image_pixels` cells at rule.cell_m, before the grid is allocated.
 OccupancyGrid SarImageToOccupancy(const std::string& grid_yaml, const SarOccupancyRule& rule,
                                   double max_image_pixels);
 

@@ -13,16 +13,21 @@ namespace {
 /// mask is the measured (non-zero) area with small gaps closed (dark speckle quantised to
 /// 0 inside the scene), eroded like a tile's so that the edges of the measured area (range
 /// limits, blind zone) are not taken for scene features.
-FeatureImage EnhancedFeatureImage(const SarImageFile& file, int erode_px) {
-  FeatureImage out;
-  out.gray = file.image;
-  out.mask = file.observed.clone();
+cv::Mat MeasuredMask(const cv::Mat& observed, int erode_px) {
+  cv::Mat mask = observed.clone();
   if (erode_px > 0) {
     const cv::Mat kernel =
         cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * erode_px + 1, 2 * erode_px + 1));
-    cv::morphologyEx(out.mask, out.mask, cv::MORPH_CLOSE, kernel);
-    cv::erode(out.mask, out.mask, kernel, cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+    cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, kernel);
+    cv::erode(mask, mask, kernel, cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
   }
+  return mask;
+}
+
+FeatureImage EnhancedFeatureImage(const SarImageFile& file, int erode_px) {
+  FeatureImage out;
+  out.gray = file.image;
+  out.mask = MeasuredMask(file.observed, erode_px);
   return out;
 }
 
@@ -54,6 +59,12 @@ ImageFeatures ExtractImageFeatures(const SarImageFile& file,
   FeatureImage image = file.enhanced
                            ? EnhancedFeatureImage(file, d.mask_erode_px)
                            : MakeFeatureImage(file.image, config.enhance, d.mask_erode_px);
+  // NaN/inf pixels scattered inside the scene (dropouts) are not edges of the measured area:
+  // their gaps are closed as an enhanced image's dark speckle (a float TIFF with 1/9 NaN
+  // pixels had no feature left after the erosion).
+  if (!file.enhanced && file.nonfinite_values > 0) {
+    image.mask = MeasuredMask(file.observed, d.mask_erode_px);
+  }
   out.image = DownsampleFeatureImage(
       std::move(image), feature_resolution_m / file.grid.resolution_m, d.white_percentile, &grid);
   out.grid = grid;

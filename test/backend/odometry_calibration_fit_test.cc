@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "slam/errors.h"
@@ -95,6 +97,117 @@ TEST(OdometryCalibrationFitTest, TooLittleOverlapWithTheTruthIsRefusedWithTheCou
   // 3 segments before the gap (1.98 m, the last 0.48 m unused) and 64 after it (32 m).
   EXPECT_EQ(fit.segments, 3 + 64);
   EXPECT_NEAR(fit.path_m, 33.5, 1e-6);
+}
+
+/// The message FitOdometryCalibration refuses the streams with ("" if it fits).
+std::string RefusalOf(const std::vector<OdometrySample>& odometry,
+                      const std::vector<OdometrySample>& truth) {
+  CalibrationFitOptions options;
+  options.odometry_source = "run.bag";
+  options.truth_source = "truth.tum";
+  try {
+    FitOdometryCalibration(odometry, truth, BackendConfig{}, options);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+Streams StraightRun() { return Drive({0, 0, 0}, std::vector<Pose2>(80, Pose2{0.5, 0.0, 0.0})); }
+
+// An odometry reset (the base restarted mid-run) fitted a scale of -0.337 with exit 0.
+TEST(OdometryCalibrationFitTest, AnOdometryResetIsRefusedNamingTheSample) {
+  Streams run = StraightRun();
+  const Pose2 at_reset = run.odometry[1000].T_world_robot;  // 20 m along
+  for (std::size_t i = 1000; i < run.odometry.size(); ++i) {
+    run.odometry[i].T_world_robot = Between(at_reset, run.odometry[i].T_world_robot);
+  }
+  const std::string msg = RefusalOf(run.odometry, run.truth);
+  EXPECT_EQ(msg.rfind("run.bag: odometry jumps 19.980 m and 0.000 rad in 0.020 s at t=21.000000 s "
+                      "(sample 1000): a reset or two runs in one recording",
+                      0),
+            0u)
+      << msg;
+}
+
+TEST(OdometryCalibrationFitTest, StampsGoingBackAreRefused) {
+  Streams run = StraightRun();
+  std::swap(run.odometry[300].stamp_ns, run.odometry[301].stamp_ns);
+  EXPECT_EQ(RefusalOf(run.odometry, run.truth),
+            "run.bag: stamps go back at sample 301 (t=7.000000 s after t=7.020000 s): "
+            "interleaved or merged recordings; calibrate needs one run in time order");
+  run = StraightRun();
+  std::swap(run.truth[5], run.truth[6]);
+  EXPECT_EQ(RefusalOf(run.odometry, run.truth).rfind("truth.tum: stamps go back at sample 6", 0),
+            0u);
+}
+
+// Ground truth that never moves fitted a scale of -1.000000 +- 0.
+TEST(OdometryCalibrationFitTest, GroundTruthThatDoesNotMoveIsRefused) {
+  Streams run = StraightRun();
+  for (OdometrySample& t : run.truth) t.T_world_robot = Pose2{3.0, 4.0, 0.5};
+  const std::string msg = RefusalOf(run.odometry, run.truth);
+  EXPECT_EQ(msg.rfind("truth.tum: the ground truth does not move: 0.000 m over the 80 segments "
+                      "where the odometry travels 40.000 m",
+                      0),
+            0u)
+      << msg;
+}
+
+TEST(OdometryCalibrationFitTest, PathsOfImplausiblyDifferentLengthAreRefused) {
+  Streams run = StraightRun();
+  for (OdometrySample& t : run.truth) {
+    t.T_world_robot.x_m *= 2.0;
+    t.T_world_robot.y_m *= 2.0;
+  }
+  const std::string msg = RefusalOf(run.odometry, run.truth);
+  EXPECT_NE(msg.find("run.bag: the odometry travels 40.000 m where the ground truth (truth.tum) "
+                     "travels 80.000 m, a ratio of 0.500"),
+            std::string::npos)
+      << msg;
+}
+
+// A fit the configuration would refuse to load is never reported (it was written with --out).
+TEST(OdometryCalibrationFitTest, AFitOutsideWhatTheConfigurationAcceptsIsRefused) {
+  Streams run = StraightRun();
+  for (OdometrySample& t : run.truth) {
+    t.T_world_robot.x_m *= 1.3;
+    t.T_world_robot.y_m *= 1.3;
+  }
+  const std::string msg = RefusalOf(run.odometry, run.truth);
+  EXPECT_EQ(msg.rfind("run.bag: the fitted backend.calibration_scale_mean is 0.300000, outside "
+                      "[-0.200000, 0.200000] that the configuration accepts",
+                      0),
+            0u)
+      << msg;
+  // 10 % is a (poor) base, not an error.
+  for (OdometrySample& t : run.truth) {
+    t.T_world_robot.x_m *= 1.1 / 1.3;
+    t.T_world_robot.y_m *= 1.1 / 1.3;
+  }
+  EXPECT_EQ(RefusalOf(run.odometry, run.truth), "");
+}
+
+// A bag holding two recordings interleaved in time (merged by log time) fitted 1004 segments
+// over 1603 m of a 6 m run: its odometry alternates between the runs, a jump at every switch.
+TEST(OdometryCalibrationFitTest, TwoRunsInterleavedInTimeAreRefused) {
+  const Streams first = StraightRun();
+  Streams second = StraightRun();
+  Streams merged;
+  for (std::size_t i = 0; i < first.odometry.size(); ++i) {
+    // The second run started 5 s later: at the same stamp it is 2.5 m behind.
+    OdometrySample late = second.odometry[i];
+    late.stamp_ns += 10'000'000;  // 10 ms after the first run's sample
+    late.T_world_robot.x_m -= 2.5;
+    merged.odometry.push_back(first.odometry[i]);
+    merged.odometry.push_back(late);
+  }
+  const std::string msg = RefusalOf(merged.odometry, first.truth);
+  EXPECT_EQ(msg.rfind("run.bag: odometry jumps 2.500 m and 0.000 rad in 0.010 s at t=1.010000 s "
+                      "(sample 1)",
+                      0),
+            0u)
+      << msg;
 }
 
 }  // namespace

@@ -6,7 +6,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <opencv2/imgcodecs.hpp>
+#include <string>
+#include <utility>
 
 #include "imaging/image_io.h"
 #include "slam/errors.h"
@@ -47,11 +50,12 @@ TEST_F(SarImageFileTest, EightAndSixteenBitImagesAreEnhancedInputAtTheGivenResol
   cv::Mat wide;
   image_.convertTo(wide, CV_16U, 257.0);
   cv::imwrite(Path("b.png"), wide);
-  for (const char* name : {"a.png", "b.png"}) {
+  // A 16-bit PNG has no declared range: its own maximum (200 x 257) becomes 255.
+  for (const auto& [name, bright] : {std::pair<const char*, int>{"a.png", 200}, {"b.png", 255}}) {
     const SarImageFile f = ReadSarImageFile(Path(name), 0.01);
     EXPECT_TRUE(f.enhanced);
     EXPECT_EQ(f.image.type(), CV_8UC1);
-    EXPECT_EQ(f.image.at<std::uint8_t>(10, 20), 200) << name;
+    EXPECT_EQ(f.image.at<std::uint8_t>(10, 20), bright) << name;
     EXPECT_DOUBLE_EQ(f.grid.resolution_m, 0.01);
     EXPECT_EQ(f.grid.cols, 60);
     EXPECT_EQ(cv::countNonZero(f.observed), 30 * 20);
@@ -111,6 +115,49 @@ TEST_F(SarImageFileTest, BadInputIsOneLineNamingTheFile) {
     EXPECT_NE(error.find(words), std::string::npos) << name << ": " << error;
     EXPECT_EQ(error.find('\n'), std::string::npos) << error;
   }
+}
+
+// A 10-bit sensor's PGM (maxval 1023) was scaled by 255/65535 into 0..4, a maxval-300 one was
+// "uniform": a PGM's maxval is its full scale.
+TEST_F(SarImageFileTest, SixteenBitPgmIsScaledByItsMaxval) {
+  for (const int maxval : {1023, 300, 65535}) {
+    const std::string path = Path("m" + std::to_string(maxval) + ".pgm");
+    {
+      std::ofstream out(path, std::ios::binary);
+      out << "P5\n" << image_.cols << " " << image_.rows << "\n" << maxval << "\n";
+      for (int r = 0; r < image_.rows; ++r) {
+        for (int c = 0; c < image_.cols; ++c) {
+          const int v = image_.at<std::uint8_t>(r, c) * maxval / 255;
+          out.put(static_cast<char>(v >> 8));
+          out.put(static_cast<char>(v & 0xff));
+        }
+      }
+    }
+    const SarImageFile f = ReadSarImageFile(path, 0.01);
+    EXPECT_EQ(f.image.type(), CV_8UC1);
+    EXPECT_NEAR(f.image.at<std::uint8_t>(10, 20), 200, 1) << maxval;
+    EXPECT_NEAR(f.image.at<std::uint8_t>(7, 12), 90, 1) << maxval;
+  }
+}
+
+// NaN pixels of a float image gave no keypoints without a word: they are not measured (0).
+TEST_F(SarImageFileTest, NonFinitePixelsOfAFloatImageAreNotMeasured) {
+  cv::Mat sar;
+  image_.convertTo(sar, CV_32F);
+  sar.at<float>(10, 20) = std::numeric_limits<float>::quiet_NaN();
+  sar.at<float>(11, 20) = std::numeric_limits<float>::infinity();
+  WriteFloatTiff(Path("nan.tif"), sar);
+  const SarImageFile f = ReadSarImageFile(Path("nan.tif"), 0.01);
+  EXPECT_EQ(f.image.at<float>(10, 20), 0.0f);
+  EXPECT_EQ(f.image.at<float>(11, 20), 0.0f);
+  EXPECT_EQ(f.image.at<float>(12, 20), 200.0f);
+  EXPECT_EQ(cv::countNonZero(f.observed), 30 * 20 - 2);
+  sar.setTo(std::numeric_limits<float>::quiet_NaN());
+  WriteFloatTiff(Path("all_nan.tif"), sar);
+  EXPECT_EQ(ErrorOf(Path("all_nan.tif")),
+            Path("all_nan.tif") +
+                ": SAR image holds no finite pixel (every value is NaN or "
+                "infinite)");
 }
 
 }  // namespace

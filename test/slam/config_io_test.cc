@@ -126,5 +126,45 @@ TEST(ConfigIoTest, WrongShapeIsBadInputNamingFileLineAndKey) {
   }
 }
 
+/// The one-line message LoadConfigFromString(yaml, "x.yaml") refuses `yaml` with ("" if none).
+std::string RefusalOf(const std::string& yaml) {
+  try {
+    LoadConfigFromString(yaml, "x.yaml");
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// The first of two equal keys used to win silently: a robot file overriding a key it already
+// set (or a section pasted twice) ran with the value the user did not read last.
+TEST(ConfigIoTest, ADuplicateKeyOrSectionIsRefusedNamingFileLineAndDottedKey) {
+  EXPECT_EQ(RefusalOf("imaging:\n  pixel_size_m: 0.005\n  pixel_size_m: 0.01\n"),
+            "x.yaml:3: duplicate key 'imaging.pixel_size_m' (first at line 2)");
+  EXPECT_EQ(RefusalOf("imaging:\n  mode: paper\nslam: {}\nimaging:\n  mode: coherent\n"),
+            "x.yaml:4: duplicate key 'imaging' (first at line 1)");
+  EXPECT_EQ(RefusalOf("radars:\n  - name: a\n    name: b\n"),
+            "x.yaml:3: duplicate key 'radars[0].name' (first at line 2)");
+  // The same key in two sections, or in two list items, is no duplicate.
+  EXPECT_EQ(RefusalOf("radars:\n  - name: left\n    topic: /a\n  - name: right\n    topic: /b\n"),
+            "");
+}
+
+TEST(ConfigIoTest, ASecondDocumentIsRefusedNamingItsLine) {
+  EXPECT_EQ(RefusalOf("imaging:\n  mode: paper\n---\nimaging:\n  mode: coherent\n"),
+            "x.yaml:3: a second YAML document (after '---'); a file holds one document");
+  // One document, with or without its markers, is fine.
+  EXPECT_EQ(RefusalOf("---\nimaging:\n  mode: paper\n...\n"), "");
+}
+
+// `010` is 8 in YAML 1.1 (yaml-cpp) and 10 in YAML 1.2: refused rather than guessed.
+TEST(ConfigIoTest, ANumberWithALeadingZeroIsRefusedNamingTheKey) {
+  const std::string msg = RefusalOf("imaging:\n  num_threads: 010\n");
+  EXPECT_EQ(msg.rfind("x.yaml:2: 'imaging.num_threads' has value '010' with a leading zero", 0), 0u)
+      << msg;
+  EXPECT_NE(RefusalOf("imaging:\n  pixel_size_m: -00.5\n").find("leading zero"), std::string::npos);
+  EXPECT_EQ(RefusalOf("imaging:\n  pixel_size_m: 0.005\n"), "");  // 0.x is no leading zero
+}
+
 }  // namespace
 }  // namespace uwbsar

@@ -94,7 +94,7 @@ TEST_F(BoundedFileTest, ConfigThatIsNotASmallRegularFileIsRefused) {
   }
   const std::pair<std::string, std::string> cases[] = {
       {"/dev/zero", "not a regular file"},
-      {dir_.string(), "not a regular file"},
+      {dir_.string(), "configuration file is a folder"},
       {big, "larger than 4 MiB"},
       {(dir_ / "missing.yaml").string(), "cannot open"}};
   for (const auto& [path, why] : cases) {
@@ -115,6 +115,28 @@ TEST_F(BoundedFileTest, MapYamlReaderHasTheSameGuard) {
   std::ofstream(ok) << "a: 1\n";
   EXPECT_EQ(LoadYamlMappingFile(ok, "map")["a"].as<int>(), 1);
   EXPECT_EQ(ReadBoundedFile(ok, "test"), "a: 1\n");
+}
+
+// The map and grid YAML reader is the configuration's: duplicates and a second document are
+// refused naming file and line, not resolved by the first one silently.
+TEST_F(BoundedFileTest, MapYamlReaderRefusesDuplicateKeysAndSecondDocuments) {
+  const std::string dup = (dir_ / "dup.yaml").string();
+  std::ofstream(dup) << "image: a.pgm\norigin: [0, 0, 0]\nimage: b.pgm\n";
+  try {
+    LoadYamlMappingFile(dup, "map");
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), dup + ":3: duplicate key 'image' (first at line 1)");
+  }
+  const std::string two = (dir_ / "two.yaml").string();
+  std::ofstream(two) << "image: a.pgm\n---\nimage: b.pgm\n";
+  try {
+    LoadYamlMappingFile(two, "map");
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              two + ":2: a second YAML document (after '---'); a file holds one document");
+  }
 }
 
 }  // namespace
