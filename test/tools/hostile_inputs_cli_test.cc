@@ -2,6 +2,7 @@
 // OpenCV assertion or give a nonsense answer with exit 0. Each is now exit 3 with one line
 // naming the file and the field (or, where the input is usable, a result and one warning).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdint>
@@ -21,8 +22,10 @@ namespace fs = std::filesystem;
 using uwbsar::testing::CliRun;
 using uwbsar::testing::Uwbsar;
 
+/// A fresh folder of this process (ctest runs the tests of a suite in parallel processes).
 std::string TempDir(const std::string& name) {
-  const auto dir = fs::temp_directory_path() / ("uwbsar_hostile_" + name);
+  const auto dir =
+      fs::temp_directory_path() / ("uwbsar_hostile_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir.string();
