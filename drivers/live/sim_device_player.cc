@@ -39,6 +39,8 @@ SimDevicePlayer::SimDevicePlayer(const EmulatorSettings& config, const sim::SimS
   lt102.missing_answer_times = faults.lt102_missing_answer_times;
   lt102.bad_size_every = faults.lt102_bad_size_every;
   lt102.corrupt_fraction = faults.corrupt_fraction;
+  lt102.actual_frame_rate_fps = faults.lt102_actual_frame_rate_fps;
+  lt102.hold_d_until_next_frame = faults.lt102_hold_d_until_next_frame;
   for (const std::string& link : radar_links) {
     lt102.seed = faults.seed + 1000 * radars_.size();
     radars_.push_back(std::make_unique<Lt102Emulator>(link, lt102));
@@ -70,6 +72,8 @@ EmulatorCounts SimDevicePlayer::counts() const {
     c.scans_sent += r.frames_answered;
     c.frames_acquired += r.frames_acquired;
     c.frames_overwritten += r.frames_overwritten;
+    c.frames_repeated += r.frames_repeated;
+    c.frames_missed += r.frames_missed;
     c.frames_corrupted += r.frames_corrupted;
     c.bytes_dropped += r.bytes_dropped;
   }

@@ -1,6 +1,7 @@
 // An LT102 emulator on a pseudo-terminal driven by its own thread for the driver tests:
-// it answers commands every millisecond and acquires a ramp frame (sample k = k / 2000)
-// at 100 frames/s while started.
+// it answers commands every millisecond and acquires a ramp frame (sample k = k / 2000,
+// except sample 0, which counts the frames so that no two are alike, as noise makes a real
+// radar's) at `period_ms` while started.
 #pragma once
 
 #include <unistd.h>
@@ -41,8 +42,11 @@ inline std::vector<float> Lt102Ramp() {
 
 class EmulatedLt102 {
  public:
-  explicit EmulatedLt102(const std::string& name, Lt102EmulatorOptions options = {})
-      : emulator_(Lt102TempLink(name), options), thread_([this] { Loop(); }) {}
+  explicit EmulatedLt102(const std::string& name, Lt102EmulatorOptions options = {},
+                         int period_ms = 10)
+      : emulator_(Lt102TempLink(name), options),
+        period_ms_(period_ms),
+        thread_([this] { Loop(); }) {}
   ~EmulatedLt102() {
     stop_ = true;
     thread_.join();
@@ -58,7 +62,8 @@ class EmulatedLt102 {
 
  private:
   void Loop() {
-    const std::vector<float> ramp = Lt102Ramp();
+    std::vector<float> ramp = Lt102Ramp();
+    int frame = 0;
     auto next = std::chrono::steady_clock::now();
     while (!stop_) {
       if (want_plugged_ != emulator_.plugged()) {
@@ -68,14 +73,16 @@ class EmulatedLt102 {
       emulator_.Serve();
       started_ = emulator_.started();
       if (std::chrono::steady_clock::now() >= next) {
+        ramp[0] = static_cast<float>(++frame % 1000) / 2000.0f;
         emulator_.Acquire(ramp, 0.0);
-        next += std::chrono::milliseconds(10);
+        next += std::chrono::milliseconds(period_ms_);
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
   }
 
   Lt102Emulator emulator_;
+  int period_ms_;
   std::atomic<bool> stop_{false}, want_plugged_{true}, plugged_{true}, started_{false};
   std::thread thread_;
 };
