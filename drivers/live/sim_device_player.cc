@@ -11,6 +11,7 @@ namespace uwbsar::live {
 namespace {
 using Clock = std::chrono::steady_clock;
 constexpr double kSpeedOfLight = 299792458.0;
+constexpr std::chrono::microseconds kServePeriod{250};
 }  // namespace
 
 SimDevicePlayer::SimDevicePlayer(const EmulatorSettings& config, const sim::SimScenario& scenario,
@@ -160,12 +161,13 @@ void SimDevicePlayer::Loop() {
     if (rel_s > duration_s_) break;
     const auto target = t0 + std::chrono::duration_cast<Clock::duration>(
                                  std::chrono::duration<double>(rel_s / speed_));
+    // Requests are answered within kServePeriod (a module on USB answers within a USB
+    // frame): a `d` waits at most that long for the latest frame.
     while (true) {
       for (auto& radar : radars_) radar->Serve();
       const auto now = Clock::now();
       if (now >= target || stop_) break;
-      std::this_thread::sleep_for(
-          std::min<Clock::duration>(target - now, std::chrono::milliseconds(2)));
+      std::this_thread::sleep_for(std::min<Clock::duration>(target - now, kServePeriod));
     }
     if (faults_.unplug_at_s >= 0 && faults_.unplug_radar < static_cast<int>(radars_.size())) {
       Lt102Emulator& dev = *radars_[static_cast<std::size_t>(faults_.unplug_radar)];
