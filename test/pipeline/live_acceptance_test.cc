@@ -100,7 +100,9 @@ TEST(LiveAcceptanceTest, A_B_RealTimeRunMatchesOfflineMappingAndReportsLatency) 
   // The emulator answers `d` at once with its latest frame: no frame is recorded twice. (A
   // frame lost on the wire, when the machine is too busy to read, is asked for again and
   // counted repeated by the emulator only.)
-  if (lost == 0) EXPECT_EQ(repeated, live.emulator.frames_repeated);
+  if (lost == 0) {
+    EXPECT_EQ(repeated, live.emulator.frames_repeated);
+  }
   EXPECT_LE(repeated, live.emulator.frames_repeated);
   EXPECT_EQ(delivered, r.scans_received);
   EXPECT_EQ(r.dropped_from_processing, 0);
