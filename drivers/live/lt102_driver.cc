@@ -17,6 +17,11 @@ constexpr double kInitialPhase = 0.25, kCreepFast = 0.05, kCreepSlow = 0.002, kB
 /// An answer this many periods slower than the fastest one was held by the radar: the
 /// poll went out before the frame (a radar that holds an early `d` instead of repeating).
 constexpr double kHeldAnswer = 0.4;
+/// A repeat this many periods after the predicted frame is a late frame, not an early poll.
+constexpr double kLateRepeat = 0.25;
+/// After a repeat the frame is asked for again this many periods later: soon after an early
+/// poll, later when the frame itself is late.
+constexpr double kRetryEarly = 0.05, kRetryLate = 0.25;
 
 double PercentileMs(std::vector<double> v, double p) {
   if (v.empty()) return 0.0;
@@ -63,6 +68,7 @@ bool Lt102Driver::OnOpen(SerialPort& port) {
     phase_s_ = kInitialPhase * period_s_;
     min_latency_s_ = -1.0;
     last_payload_.clear();
+    repeats_of_frame_ = 0;
     stamps_.Reset(1e9 * period_s_ * clock_scale_);
     return true;
   } catch (const Lt102ConfigError& e) {
@@ -163,13 +169,18 @@ void Lt102Driver::HandleFrame(const Lt102Frame& frame) {
   }
   if (!last_payload_.empty() && payload == last_payload_) {
     ++stats_.frames_repeated;  // the radar's latest frame is still the one delivered
-    if (answered) BackOff(sent_at_);
-    next_due_ = std::max(now + std::chrono::duration_cast<Clock::duration>(
-                                   std::chrono::duration<double>(0.05 * period_s_)),
-                         NextPoll());
+    // Asked again soon after an early poll, a little later when the frame itself is late:
+    // only the first repeat of a frame can be an early poll; more mean the next frame is late
+    // (the grid would otherwise follow the retries and hide the frames a stall overwrote).
+    const bool early = !answered || (repeats_of_frame_++ == 0 && BackOff(sent_at_));
+    next_due_ = std::max(
+        now + std::chrono::duration_cast<Clock::duration>(
+                  std::chrono::duration<double>((early ? kRetryEarly : kRetryLate) * period_s_)),
+        NextPoll());
     return;
   }
   last_payload_ = std::move(payload);
+  repeats_of_frame_ = 0;
   std::int64_t index = 0;
   const double upper_s = TrackFrame(now, answered, &index) ? min_latency_s_ : 0.0;
   RadarScan scan;
@@ -195,13 +206,20 @@ Lt102Driver::Clock::time_point Lt102Driver::NextPoll() const {
                      std::chrono::duration<double>(period_s_ + phase_s_));
 }
 
-void Lt102Driver::BackOff(Clock::time_point request) {
+bool Lt102Driver::BackOff(Clock::time_point request) {
+  const auto span = [](double s) {
+    return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
+  };
+  // A request more than kLateRepeat of a period after the predicted frame that still finds
+  // the last one is not an early poll: the frame is late at the radar (or at an emulator
+  // whose thread was held up). The grid and the phase stay; the poll is simply repeated.
+  if (have_grid_ && request > grid_ + span((1.0 + kLateRepeat) * period_s_)) return false;
   phase_locked_ = true;
   phase_s_ = std::min(kMaxPhase * period_s_, phase_s_ + kBackOff * period_s_);
   // The next frame is acquired after the request went out: the grid is at least that late.
-  const auto earliest = request - std::chrono::duration_cast<Clock::duration>(
-                                      std::chrono::duration<double>(period_s_));
+  const auto earliest = request - span(period_s_);
   if (have_grid_ && grid_ < earliest) grid_ = earliest;
+  return true;
 }
 
 bool Lt102Driver::TrackFrame(Clock::time_point arrival, bool answered, std::int64_t* index) {

@@ -110,8 +110,10 @@ class Lt102Driver : public LinkProtocol {
   /// Frame identity and pacing for a valid answer; false for a repeat (not delivered).
   /// `index` is the frame's index on the radar's grid.
   bool TrackFrame(Clock::time_point arrival, bool answered, std::int64_t* index);
-  /// A poll found early (a repeat, or an answer the radar held): the phase backs off.
-  void BackOff(Clock::time_point request);
+  /// A poll found early (a repeat, or an answer the radar held): the phase backs off and the
+  /// grid moves after `request`; true. False (nothing changed) for a repeat well after the
+  /// predicted frame: that frame is late, the poll was not early.
+  bool BackOff(Clock::time_point request);
   Clock::time_point NextPoll() const;
 
   std::string name_;
@@ -142,6 +144,7 @@ class Lt102Driver : public LinkProtocol {
   bool phase_locked_ = false;     ///< a poll was found early since the open: slow creep
   double min_latency_s_ = -1.0;   ///< smallest request-to-answer delay since the open
   std::vector<std::uint8_t> last_payload_;  ///< of the last delivered frame
+  int repeats_of_frame_ = 0;                ///< answers repeating it so far
   std::vector<double> answer_ms_;
   Lt102Stats stats_;
   // Start-up result, read by other threads.

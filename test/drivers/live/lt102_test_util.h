@@ -42,10 +42,13 @@ inline std::vector<float> Lt102Ramp() {
 
 class EmulatedLt102 {
  public:
+  /// `stall_every` > 0: every n-th frame is acquired a period late, together with the next
+  /// (as an emulator whose thread was held up: that frame is overwritten unasked).
   explicit EmulatedLt102(const std::string& name, Lt102EmulatorOptions options = {},
-                         int period_ms = 10)
+                         int period_ms = 10, int stall_every = 0)
       : emulator_(Lt102TempLink(name), options),
         period_ms_(period_ms),
+        stall_every_(stall_every),
         thread_([this] { Loop(); }) {}
   ~EmulatedLt102() {
     stop_ = true;
@@ -74,8 +77,18 @@ class EmulatedLt102 {
       started_ = emulator_.started();
       if (std::chrono::steady_clock::now() >= next) {
         ramp[0] = static_cast<float>(++frame % 1000) / 2000.0f;
-        emulator_.Acquire(ramp, 0.0);
         next += std::chrono::milliseconds(period_ms_);
+        if (stall_every_ > 0 && frame % stall_every_ == 0 && !stalled_) {
+          stalled_ = true;  // this frame comes with the next one
+          --frame;
+          continue;
+        }
+        if (stalled_) {
+          emulator_.Acquire(ramp, 0.0);
+          ramp[0] = static_cast<float>(++frame % 1000) / 2000.0f;
+          stalled_ = false;
+        }
+        emulator_.Acquire(ramp, 0.0);
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
@@ -83,6 +96,8 @@ class EmulatedLt102 {
 
   Lt102Emulator emulator_;
   int period_ms_;
+  int stall_every_;
+  bool stalled_ = false;
   std::atomic<bool> stop_{false}, want_plugged_{true}, plugged_{true}, started_{false};
   std::thread thread_;
 };
