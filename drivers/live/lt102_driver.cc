@@ -11,7 +11,8 @@ namespace {
 // Phase control, in frame periods (see lt102_driver.h). The phase creeps earlier by
 // kCreepFast per new frame until the first early poll after an open, then by kCreepSlow;
 // an early poll backs it off by kBackOff, so about kCreepSlow / kBackOff of the polls find
-// the frame not yet acquired (2 %: repeats, dropped). A miss advances it by kAdvance.
+// the frame not yet acquired (2 % once locked; 2-5 % measured over a run: repeats, dropped).
+// A miss advances it by kAdvance.
 constexpr double kInitialPhase = 0.25, kCreepFast = 0.05, kCreepSlow = 0.002, kBackOff = 0.1,
                  kAdvance = 0.02, kMinPhase = -0.5, kMaxPhase = 0.5;
 /// An answer this many periods slower than the fastest one was held by the radar: the
