@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "drivers/live/lt102_emulator.h"
+#include "drivers/live/thread_priority.h"
 
 namespace uwbsar::live {
 
@@ -44,11 +45,14 @@ class EmulatedLt102 {
  public:
   /// `stall_every` > 0: every n-th frame is acquired a period late, together with the next
   /// (as an emulator whose thread was held up: that frame is overwritten unasked).
+  /// `priority` > 0: the emulator's thread asks for SCHED_FIFO (hardware does not share the
+  /// host's CPU); realtime() says whether it got it.
   explicit EmulatedLt102(const std::string& name, Lt102EmulatorOptions options = {},
-                         int period_ms = 10, int stall_every = 0)
+                         int period_ms = 10, int stall_every = 0, int priority = 0)
       : emulator_(Lt102TempLink(name), options),
         period_ms_(period_ms),
         stall_every_(stall_every),
+        priority_(priority),
         thread_([this] { Loop(); }) {}
   ~EmulatedLt102() {
     stop_ = true;
@@ -58,6 +62,7 @@ class EmulatedLt102 {
   std::vector<std::uint8_t> received() const { return emulator_.received(); }
   Lt102EmulatorCounts counts() const { return emulator_.counts(); }
   bool started() const { return started_; }
+  bool realtime() const { return realtime_; }
   void SetPlugged(bool plugged) {
     want_plugged_ = plugged;
     WaitUntil([&] { return plugged_ == plugged; });
@@ -65,6 +70,7 @@ class EmulatedLt102 {
 
  private:
   void Loop() {
+    realtime_ = priority_ > 0 && SetCurrentThreadRealtime(priority_).empty();
     std::vector<float> ramp = Lt102Ramp();
     int frame = 0;
     auto next = std::chrono::steady_clock::now();
@@ -97,7 +103,9 @@ class EmulatedLt102 {
   Lt102Emulator emulator_;
   int period_ms_;
   int stall_every_;
+  int priority_;
   bool stalled_ = false;
+  std::atomic<bool> realtime_{false};
   std::atomic<bool> stop_{false}, want_plugged_{true}, plugged_{true}, started_{false};
   std::thread thread_;
 };
