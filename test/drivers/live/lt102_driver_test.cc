@@ -207,6 +207,8 @@ struct PacingCase {
   int stall_every = 0;  ///< every n-th frame comes a period late with the next (overwritten)
 };
 
+void PrintTo(const PacingCase& c, std::ostream* os) { *os << c.name; }
+
 class Lt102PacingTest : public ::testing::TestWithParam<PacingCase> {};
 
 TEST_P(Lt102PacingTest, EachFrameIsDeliveredOnceAndPollsFollowTheRadarsFrameRate) {
