@@ -1,6 +1,7 @@
 #include "pipeline/live_runner.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -50,8 +51,15 @@ void WriteLiveJson(const LiveRunResult& result, const std::string& source,
         {"startups", s.startups},
         {"startup_failures", s.startup_failures},
         {"config_errors", s.config_errors},
+        {"frame_rate_fps", s.setup.frame_rate_fps},
+        {"frame_rate_requested_fps", s.setup.frame_rate_requested_fps},
         {"frame_requests", s.requests},
         {"frame_answers", s.answers},
+        {"requests_per_s",
+         s.acquiring_s > 0 ? static_cast<double>(s.requests) / s.acquiring_s : 0.0},
+        {"frames_delivered", s.frames_delivered},
+        {"frames_repeated", s.frames_repeated},
+        {"frames_missed", s.frames_missed},
         {"frames_lost", s.lost},
         {"late_answers", s.late_answers},
         {"stamp_reanchors", s.stamp_reanchors},
@@ -148,6 +156,18 @@ LiveRunResult FinishRun(const LiveRunOptions& options, const live::FaultLog& fau
     result.localize_summary = processor.last_localize_summary();
   }
   WriteLiveJson(result, options.source, options.out_dir);
+  if (!options.quiet) {
+    for (const auto& [name, s] : result.radars) {
+      char line[320];
+      std::snprintf(line, sizeof(line),
+                    "%s: %lld frames at %d frames/s, %lld repeated answers dropped, %lld frames "
+                    "missed, %lld requests lost; %.1f requests/s",
+                    name.c_str(), s.frames_delivered, s.setup.frame_rate_fps, s.frames_repeated,
+                    s.frames_missed, s.lost,
+                    s.acquiring_s > 0 ? static_cast<double>(s.requests) / s.acquiring_s : 0.0);
+      Log(LogLevel::kInfo, line);
+    }
+  }
   result.outputs = processor.last_outputs();
   result.run = processor.FinalRun();
   return result;

@@ -18,7 +18,8 @@ struct Lt102Config {
   int sample_format = 1;          ///< 0x0A: 0 Q7, 1 Q15, 2 Q31, 3 F32, 4 F16
   double range_min_m = 0.0;       ///< `x`: range of the first sample asked for
   double range_max_m = 6.42;      ///< `X`: range of the last sample asked for
-  int frame_rate_fps = 100;       ///< `f`: acquisition rate; `d` is polled at this rate
+  int frame_rate_fps = 100;       ///< `f`: acquisition rate asked; the answer (the actual
+                                  ///< rate) paces the `d` polls
   int crc_polynomial = 0x07;      ///< CRC-8 polynomial (not public; default CRC-8/SMBUS)
   int crc_init = 0x00;            ///< CRC-8 initial value
   double answer_timeout_s = 0.5;  ///< start-up and stop: wait for an answer this long

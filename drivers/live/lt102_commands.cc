@@ -1,5 +1,6 @@
 #include "drivers/live/lt102_commands.h"
 
+#include <cassert>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -23,25 +24,29 @@ unsigned GetU16(const std::uint8_t* p) { return static_cast<unsigned>(p[0] | (p[
 const std::vector<Lt102Command>& Lt102Commands() {
   // The toolbox's command bytes, each with its LT102-relevant use.
   static const std::vector<Lt102Command> table = {
-      {"start acquisition", lt102::kStart, V::kNone, lt102::kStarted, V::kNone, E::kNone},
-      {"stop acquisition", lt102::kStop, V::kNone, lt102::kStop, V::kNone, E::kNone},
-      {"reset to defaults", lt102::kReset, V::kNone, lt102::kReset, V::kNone, E::kNone},
-      {"read one raw frame", lt102::kReadFrame, V::kNone, lt102::kReadFrame, V::kRawData, E::kNone},
-      {"range minimum", lt102::kRangeMin, V::kF32, lt102::kRangeMin, V::kF32, E::kActual},
-      {"range maximum", lt102::kRangeMax, V::kF32, lt102::kRangeMax, V::kF32, E::kActual},
-      {"first-sample offset", lt102::kOffset, V::kF32, lt102::kOffset, V::kF32, E::kActual},
-      {"frame rate", lt102::kFrameRate, V::kU16, lt102::kFrameRate, V::kI16, E::kExact},
-      {"PRF divider", lt102::kPrfDivider, V::kU8, lt102::kPrfDivider, V::kI8, E::kExact},
-      {"sample format", lt102::kFormat, V::kU8, lt102::kFormat, V::kI8, E::kExact},
-      {"data channel", lt102::kChannel, V::kU8, lt102::kChannel, V::kI8, E::kExact},
-      {"decimation", lt102::kDecimation, V::kU8, lt102::kDecimation, V::kI8, E::kExact},
-      {"carrier frequency", lt102::kCarrier, V::kU16, lt102::kCarrier, V::kI16, E::kActual},
-      {"pulse bandwidth", lt102::kBandwidth, V::kU16, lt102::kBandwidth, V::kI16, E::kActual},
-      {"TX power", lt102::kTxPower, V::kU8, lt102::kTxPower, V::kI8, E::kActual},
-      {"output", lt102::kOutput, V::kU8, lt102::kOutput, V::kI8, E::kExact},
-      {"processing", lt102::kProcessing, V::kU8, lt102::kProcessing, V::kI8, E::kExact},
-      {"firmware version", lt102::kVersion, V::kNone, lt102::kVersion, V::kVersion, E::kNone},
-      {"ADC frequency", lt102::kAdcFrequency, V::kU16, lt102::kAdcFrequency, V::kI16, E::kQuery},
+      {"start acquisition", lt102::kStart, V::kNone, lt102::kStarted, V::kNone, E::kNone, false},
+      {"stop acquisition", lt102::kStop, V::kNone, lt102::kStop, V::kNone, E::kNone, false},
+      {"reset to defaults", lt102::kReset, V::kNone, lt102::kReset, V::kNone, E::kNone, false},
+      {"read one raw frame", lt102::kReadFrame, V::kNone, lt102::kReadFrame, V::kRawData, E::kNone,
+       false},
+      {"range minimum", lt102::kRangeMin, V::kF32, lt102::kRangeMin, V::kF32, E::kActual, true},
+      {"range maximum", lt102::kRangeMax, V::kF32, lt102::kRangeMax, V::kF32, E::kActual, true},
+      {"first-sample offset", lt102::kOffset, V::kF32, lt102::kOffset, V::kF32, E::kActual, true},
+      // "f + i16 actual": the rate the radar runs at, which may differ from the one asked.
+      {"frame rate", lt102::kFrameRate, V::kU16, lt102::kFrameRate, V::kI16, E::kActual, true},
+      {"PRF divider", lt102::kPrfDivider, V::kU8, lt102::kPrfDivider, V::kI8, E::kExact, false},
+      {"sample format", lt102::kFormat, V::kU8, lt102::kFormat, V::kI8, E::kExact, true},
+      {"data channel", lt102::kChannel, V::kU8, lt102::kChannel, V::kI8, E::kExact, true},
+      {"decimation", lt102::kDecimation, V::kU8, lt102::kDecimation, V::kI8, E::kExact, false},
+      {"carrier frequency", lt102::kCarrier, V::kU16, lt102::kCarrier, V::kI16, E::kActual, true},
+      {"pulse bandwidth", lt102::kBandwidth, V::kU16, lt102::kBandwidth, V::kI16, E::kActual, true},
+      {"TX power", lt102::kTxPower, V::kU8, lt102::kTxPower, V::kI8, E::kActual, true},
+      {"output", lt102::kOutput, V::kU8, lt102::kOutput, V::kI8, E::kExact, true},
+      {"processing", lt102::kProcessing, V::kU8, lt102::kProcessing, V::kI8, E::kExact, false},
+      {"firmware version", lt102::kVersion, V::kNone, lt102::kVersion, V::kVersion, E::kNone,
+       false},
+      {"ADC frequency", lt102::kAdcFrequency, V::kU16, lt102::kAdcFrequency, V::kI16, E::kQuery,
+       true},
   };
   return table;
 }
@@ -146,6 +151,7 @@ std::vector<std::uint8_t> Lt102RequestBody(const Lt102Request& request) {
   const Lt102Command* c = FindLt102Command(request.code);
   if (c == nullptr || c->request == V::kNone) return body;
   if (request.query) {
+    assert(c->queryable && "the vendor table defines no query value for this command");
     AppendLt102Query(c->request, &body);
   } else {
     AppendLt102Value(c->request, request.value, &body);

@@ -31,6 +31,9 @@ struct Lt102Command {
   std::uint8_t answer_code;
   Lt102Value answer;
   Lt102Echo echo;
+  /// The vendor table defines a query value for this command (0xFF, 0xFFFF or i32 -1 in
+  /// place of the setting); a command without one is never sent as a query.
+  bool queryable;
 };
 
 /// Command bytes (the table's rows).
@@ -66,7 +69,8 @@ struct Lt102Request {
   bool query = false;
   double value = 0.0;
 };
-/// The body (command byte + payload) of a request.
+/// The body (command byte + payload) of a request. A query of a command without a query
+/// value is a programmer error (asserted).
 std::vector<std::uint8_t> Lt102RequestBody(const Lt102Request& request);
 
 /// The CRC-8 used on the link: whether frames carry it, and its parameters.

@@ -8,10 +8,21 @@
 namespace uwbsar::live {
 namespace {
 
-/// The next `d` goes out this fraction of a frame period early, so it waits at the radar
-/// for the frame being acquired instead of arriving just after it (the stamp is the
-/// answer's arrival).
-constexpr double kPollLead = 0.2;
+// Phase control, in frame periods (see lt102_driver.h). The phase creeps earlier by
+// kCreepFast per new frame until the first early poll after an open, then by kCreepSlow;
+// an early poll backs it off by kBackOff, so about kCreepSlow / kBackOff of the polls find
+// the frame not yet acquired (2 % once locked; 2-5 % measured over a run: repeats, dropped).
+// A miss advances it by kAdvance.
+constexpr double kInitialPhase = 0.25, kCreepFast = 0.05, kCreepSlow = 0.002, kBackOff = 0.1,
+                 kAdvance = 0.02, kMinPhase = -0.5, kMaxPhase = 0.5;
+/// An answer this many periods slower than the fastest one was held by the radar: the
+/// poll went out before the frame (a radar that holds an early `d` instead of repeating).
+constexpr double kHeldAnswer = 0.4;
+/// A repeat this many periods after the predicted frame is a late frame, not an early poll.
+constexpr double kLateRepeat = 0.25;
+/// After a repeat the frame is asked for again this many periods later: soon after an early
+/// poll, later when the frame itself is late.
+constexpr double kRetryEarly = 0.05, kRetryLate = 0.25;
 
 double PercentileMs(std::vector<double> v, double p) {
   if (v.empty()) return 0.0;
@@ -50,11 +61,16 @@ bool Lt102Driver::OnOpen(SerialPort& port) {
     configured_cv_.notify_all();
     Log(LogLevel::kInfo, name_ + ": " + setup.Describe());
     if (events_) events_(name_ + ": " + setup.Describe());
-    period_ = std::chrono::duration_cast<Clock::duration>(
-        std::chrono::duration<double>(1.0 / std::max(1, setup.frame_rate_fps)));
+    // The radar's actual frame rate paces the polls (the `f` answer, not the rate asked).
+    period_s_ = 1.0 / std::max(1, setup.frame_rate_fps);
     acquiring_ = true;
     next_due_ = Clock::now();
-    stamps_.Reset(1e9 / std::max(1, setup.frame_rate_fps) * clock_scale_);
+    have_grid_ = phase_locked_ = false;
+    phase_s_ = kInitialPhase * period_s_;
+    min_latency_s_ = -1.0;
+    last_payload_.clear();
+    repeats_of_frame_ = 0;
+    stamps_.Reset(1e9 * period_s_ * clock_scale_);
     return true;
   } catch (const Lt102ConfigError& e) {
     {
@@ -89,10 +105,9 @@ double Lt102Driver::OnPoll(SerialPort& port) {
   if (!in_flight_ && now >= next_due_) {
     const std::vector<std::uint8_t> bytes = exchange_.Encode({lt102::kReadFrame, false, 0.0});
     if (!port.Write(bytes.data(), bytes.size(), 0.05)) return 0.05;  // the read sees the unplug
-    ++stats_.requests;
+    if (stats_.requests++ == 0) first_request_ = now;
     in_flight_ = true;
     sent_at_ = now;
-    if (clock_) request_ns_ = clock_();
   }
   const auto wait = in_flight_ ? sent_at_ + timeout - now : next_due_ - now;
   return std::clamp(std::chrono::duration<double>(wait).count(), 0.0005, 0.05);
@@ -124,9 +139,10 @@ void Lt102Driver::HandleFrame(const Lt102Frame& frame) {
     ++stats_.answers;
     answer_ms_.push_back(std::chrono::duration<double, std::milli>(now - sent_at_).count());
     in_flight_ = false;
-    next_due_ = now + std::chrono::duration_cast<Clock::duration>(period_ * (1.0 - kPollLead));
+    last_answer_ = now;
+    stats_.acquiring_s = std::chrono::duration<double>(now - first_request_).count();
   } else {
-    ++stats_.late_answers;  // still a valid frame: delivered
+    ++stats_.late_answers;  // still a valid frame: delivered unless a repeat
   }
   std::vector<std::uint8_t> payload;
   std::string error;
@@ -149,44 +165,101 @@ void Lt102Driver::HandleFrame(const Lt102Frame& frame) {
   if (!error.empty()) {
     ++stats_.invalid_frames;
     faults_->Report(name_ + ": invalid raw-data messages", error);
+    if (answered) next_due_ = std::max(now, NextPoll());
     return;
   }
+  if (!last_payload_.empty() && payload == last_payload_) {
+    ++stats_.frames_repeated;  // the radar's latest frame is still the one delivered
+    // Asked again soon after an early poll, a little later when the frame itself is late:
+    // only the first repeat of a frame can be an early poll; more mean the next frame is late
+    // (the grid would otherwise follow the retries and hide the frames a stall overwrote).
+    const bool early = !answered || (repeats_of_frame_++ == 0 && BackOff(sent_at_));
+    next_due_ = std::max(
+        now + std::chrono::duration_cast<Clock::duration>(
+                  std::chrono::duration<double>((early ? kRetryEarly : kRetryLate) * period_s_)),
+        NextPoll());
+    return;
+  }
+  last_payload_ = std::move(payload);
+  repeats_of_frame_ = 0;
+  std::int64_t index = 0;
+  const double upper_s = TrackFrame(now, answered, &index) ? min_latency_s_ : 0.0;
   RadarScan scan;
   scan.sensor_id = sensor_id_;
   scan.samples.assign(raw_.i.begin(), raw_.i.begin() + raw_.samples_per_scan);
   if (clock_) {
-    scan.stamp_ns = StampFrame(arrival_ns);
-    if (answered) {
-      // Pace the next `d` on the radar's frame grid, kPollLead of a period before its next
-      // frame, not on this answer's arrival: a late answer does not push the next request
-      // past the frame (which would then wait at the radar and arrive up to a period late,
-      // a delay the envelope cannot tell from the clock).
-      const double ahead_ns = static_cast<double>(stamps_.Predict(frame_index_ + 1) - arrival_ns) -
-                              kPollLead * stamps_.ns_per_unit();
-      const double period_s = std::chrono::duration<double>(period_).count();
-      const double wait_s = std::clamp(ahead_ns * 1e-9 / clock_scale_, 0.0, period_s);
-      next_due_ =
-          now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(wait_s));
+    // The frame was acquired before its answer arrived less the transfer time.
+    const auto acquired_ns =
+        arrival_ns - static_cast<TimestampNs>(std::llround(upper_s * 1e9 * clock_scale_));
+    scan.stamp_ns = stamps_.Stamp(index, acquired_ns);
+    if (stats_.stamp_trace.size() < 100000) {
+      stats_.stamp_trace.push_back({arrival_ns, scan.stamp_ns});
     }
+    stats_.stamp_reanchors = stamps_.reanchors();
   }
+  ++stats_.frames_delivered;
   ++scans_;
   sink_(std::move(scan));
 }
 
-TimestampNs Lt102Driver::StampFrame(TimestampNs arrival_ns) {
-  std::int64_t k = 0;
-  if (stamps_.anchored()) {
-    // Grid points after the last frame up to the request: 0 when the `d` was sent before
-    // the next one (it waited for it), n when it went out n periods late.
-    const double since_ns = static_cast<double>(request_ns_ - stamps_.Predict(frame_index_));
-    const auto late = static_cast<std::int64_t>(std::floor(since_ns / stamps_.ns_per_unit()));
-    k = frame_index_ + std::max<std::int64_t>(1, late);
+Lt102Driver::Clock::time_point Lt102Driver::NextPoll() const {
+  return grid_ + std::chrono::duration_cast<Clock::duration>(
+                     std::chrono::duration<double>(period_s_ + phase_s_));
+}
+
+bool Lt102Driver::BackOff(Clock::time_point request) {
+  const auto span = [](double s) {
+    return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
+  };
+  // A request more than kLateRepeat of a period after the predicted frame that still finds
+  // the last one is not an early poll: the frame is late at the radar (or at an emulator
+  // whose thread was held up). The grid and the phase stay; the poll is simply repeated.
+  if (have_grid_ && request > grid_ + span((1.0 + kLateRepeat) * period_s_)) return false;
+  phase_locked_ = true;
+  phase_s_ = std::min(kMaxPhase * period_s_, phase_s_ + kBackOff * period_s_);
+  // The next frame is acquired after the request went out: the grid is at least that late.
+  const auto earliest = request - span(period_s_);
+  if (have_grid_ && grid_ < earliest) grid_ = earliest;
+  return true;
+}
+
+bool Lt102Driver::TrackFrame(Clock::time_point arrival, bool answered, std::int64_t* index) {
+  const auto seconds = [](Clock::duration d) { return std::chrono::duration<double>(d).count(); };
+  const auto span = [](double s) {
+    return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
+  };
+  if (!answered) {  // a late answer: no request time to place it by
+    *index = ++frame_index_;
+    if (have_grid_) grid_ += span(period_s_);
+    return false;
   }
-  frame_index_ = k;
-  const TimestampNs stamp = stamps_.Stamp(k, arrival_ns);
-  if (stats_.stamp_trace.size() < 100000) stats_.stamp_trace.push_back({arrival_ns, stamp});
-  stats_.stamp_reanchors = stamps_.reanchors();
-  return stamp;
+  const double latency_s = seconds(arrival - sent_at_);
+  if (min_latency_s_ < 0 || latency_s < min_latency_s_) min_latency_s_ = latency_s;
+  const auto upper = arrival - span(min_latency_s_);  // the frame was acquired before this
+  if (!have_grid_) {
+    have_grid_ = true;
+    grid_ = upper;
+    *index = frame_index_ = 0;
+    next_due_ = NextPoll();
+    return true;
+  }
+  // Grid points up to the request's write time: the frame answered is the latest of those.
+  const double ahead = std::floor(seconds(sent_at_ - grid_) / period_s_);
+  const auto n = std::max<std::int64_t>(1, static_cast<std::int64_t>(ahead));
+  stats_.frames_missed += n - 1;
+  frame_index_ += n;
+  *index = frame_index_;
+  grid_ += span(static_cast<double>(n) * period_s_);
+  if (upper < grid_) grid_ = upper;  // tightened from above
+  if (latency_s > min_latency_s_ + kHeldAnswer * period_s_) {
+    BackOff(sent_at_);  // held by the radar: the poll went out before the frame
+  } else {
+    phase_s_ -= (phase_locked_ ? kCreepSlow : kCreepFast) * period_s_;
+  }
+  if (n > 1) phase_s_ -= kAdvance * period_s_;
+  phase_s_ = std::clamp(phase_s_, kMinPhase * period_s_, kMaxPhase * period_s_);
+  next_due_ = std::max(arrival, NextPoll());
+  return true;
 }
 
 void Lt102Driver::OnStop(SerialPort& port) {

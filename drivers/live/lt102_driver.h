@@ -2,21 +2,37 @@
 // start-up sequence (lt102_startup.h: settings sent, every echo checked, `s` answered
 // `r`); a failed step fails the open, so the link's reconnect, backoff and power cycle
 // take over. Acquisition is polled: from the link's thread one `d` request is in flight
-// at a time, paced at the echoed frame rate; an answer that does not come within
-// live.lt102.frame_timeout_s is counted lost and the decoder resynchronises on the next
-// 0xFF. Each raw-data answer is validated (size = total x 2 x bytes per value, samples
-// per scan = the count from the echoed range, one channel, the configured format) and
-// its I samples handed to the sink. With a clock, each scan is stamped by a StreamClock
-// (stream_clock.h) on the radar's acquisition grid, not at the answer's arrival: what is
-// periodic in polled acquisition is the radar's frame clock (it acquires at the echoed frame
-// rate whether or not a `d` waits; a waiting `d` is answered as the frame is acquired). The
-// frame's index on that grid comes from the request time, which the link thread takes just
-// before writing, not from the arrival: a request sent before the next grid point gets that
-// frame (last + 1); one sent n > 1 periods late gets the newest, last + n (the frames in
-// between were overwritten at the radar). The answers' arrivals against those indices give
-// the lower envelope; re-anchored at every start-up (new frame rate). Without a clock the
-// sink stamps at arrival (scan.stamp_ns = 0). On a deliberate
-// stop and before a power cycle the radar is stopped with `o`. Faults go to the FaultLog.
+// at a time; an answer that does not come within live.lt102.frame_timeout_s is counted lost
+// and the decoder resynchronises on the next 0xFF. Each raw-data answer is validated (size
+// = total x 2 x bytes per value, samples per scan = the count from the echoed range, one
+// channel, the configured format).
+//
+// The radar behaviour assumed (REFERENCE.md 4a): it acquires at its actual frame rate (the
+// `f` answer) whether or not a `d` waits, and answers `d` with its latest frame, so a `d`
+// sent before the next frame returns the same frame again and one sent more than a period
+// late skips frames. The documentation does not say whether an early `d` is answered at once
+// or held until the next frame: both work here.
+// - Frame identity: an answer whose payload equals the last delivered frame's byte for byte
+//   is that frame again (frame noise makes two acquisitions differ): dropped, counted
+//   `frames_repeated`; it is never handed to the sink. (The header's 12-bit elapsed-time
+//   field is not documented as a per-frame counter and is not used.)
+// - Pacing by the radar's frame clock: the driver keeps an estimate of the acquisition
+//   time of the last frame (the grid, on the steady clock) and polls at grid + period +
+//   phase. Each new frame's acquisition lies before its answer's arrival less the smallest
+//   request-to-answer delay seen (the transfer time), which tightens the grid from above;
+//   the phase creeps earlier frame by frame (fast until the first early poll after an open,
+//   then slowly), and a poll found early (a repeat, or an answer held well beyond the
+//   transfer time) backs it off, so the polls stay locked just after the radar's frames.
+// - Frame index and misses: a new frame's index is the grid points up to the request's
+//   write time (at least one past the last frame); indices skipped are counted
+//   `frames_missed` (the phase then advances a little).
+// - Stamps: with a clock, each scan is stamped by a StreamClock (stream_clock.h) fed the
+//   frame index and that upper bound of its acquisition time (arrival less the transfer
+//   time), whose lower envelope is the radar's acquisition grid: the frame's acquisition
+//   time, not the poll's or the answer's. Without a clock the sink stamps at arrival
+//   (scan.stamp_ns = 0).
+// On a deliberate stop and before a power cycle the radar is stopped with `o`. Faults go to
+// the FaultLog.
 #pragma once
 
 #include <chrono>
@@ -41,6 +57,10 @@ struct Lt102Stats {
   long long config_errors = 0;
   long long requests = 0;            ///< `d` requests sent
   long long answers = 0;             ///< `d` answers to a request in flight
+  long long frames_delivered = 0;    ///< distinct frames handed to the sink (scans)
+  long long frames_repeated = 0;     ///< answers repeating the last delivered frame: dropped
+  long long frames_missed = 0;       ///< frame indices skipped between delivered frames
+  double acquiring_s = 0.0;          ///< wall time from the first `d` to the last answer
   long long lost = 0;                ///< `d` requests unanswered within frame_timeout_s
   long long late_answers = 0;        ///< `d` answers after their request was given up
   long long unanswered_at_stop = 0;  ///< a `d` still in flight when the link stopped
@@ -87,7 +107,14 @@ class Lt102Driver : public LinkProtocol {
  private:
   using Clock = std::chrono::steady_clock;
   void HandleFrame(const Lt102Frame& frame);
-  TimestampNs StampFrame(TimestampNs arrival_ns);
+  /// Frame identity and pacing for a valid answer; false for a repeat (not delivered).
+  /// `index` is the frame's index on the radar's grid.
+  bool TrackFrame(Clock::time_point arrival, bool answered, std::int64_t* index);
+  /// A poll found early (a repeat, or an answer the radar held): the phase backs off and the
+  /// grid moves after `request`; true. False (nothing changed) for a repeat well after the
+  /// predicted frame: that frame is late, the poll was not early.
+  bool BackOff(Clock::time_point request);
+  Clock::time_point NextPoll() const;
 
   std::string name_;
   int sensor_id_;
@@ -105,13 +132,19 @@ class Lt102Driver : public LinkProtocol {
   std::function<bool()> gate_;
   double clock_scale_;
   StreamClock stamps_;
-  TimestampNs request_ns_ = 0;    ///< host clock when the `d` in flight was written
-  std::int64_t frame_index_ = 0;  ///< of the last frame stamped
   // Acquisition state (link thread).
   bool acquiring_ = false;
   bool in_flight_ = false;
-  Clock::time_point sent_at_, next_due_;
-  Clock::duration period_{};
+  Clock::time_point sent_at_, next_due_, first_request_, last_answer_;
+  double period_s_ = 0.01;        ///< the radar's actual frame period
+  bool have_grid_ = false;        ///< a frame was delivered since the open
+  Clock::time_point grid_;        ///< estimated acquisition time of the last delivered frame
+  std::int64_t frame_index_ = 0;  ///< of the last delivered frame
+  double phase_s_ = 0.0;          ///< the next poll goes out at grid_ + period + phase_s_
+  bool phase_locked_ = false;     ///< a poll was found early since the open: slow creep
+  double min_latency_s_ = -1.0;   ///< smallest request-to-answer delay since the open
+  std::vector<std::uint8_t> last_payload_;  ///< of the last delivered frame
+  int repeats_of_frame_ = 0;                ///< answers repeating it so far
   std::vector<double> answer_ms_;
   Lt102Stats stats_;
   // Start-up result, read by other threads.

@@ -12,7 +12,7 @@ Lt102Emulator::Lt102Emulator(std::string link_path, Lt102EmulatorOptions options
 }
 
 void Lt102Emulator::ResetState() {
-  started_ = d_waiting_ = have_frame_ = false;
+  started_ = d_waiting_ = have_frame_ = frame_handed_ = handed_any_ = false;
   range_min_m_ = 0.0;
   range_max_m_ = 999 * options_.bin_m;
   format_ = 1;
@@ -85,11 +85,16 @@ void Lt102Emulator::Handle(const Lt102Frame& request) {
   if (HandleControl(request.code)) return;
   const Lt102Command& command = *FindLt102Command(request.code);
   const std::size_t size = Lt102ValueSize(command.request);
-  const bool query = size > 0 && std::all_of(request.payload.begin(), request.payload.end(),
-                                             [](std::uint8_t b) { return b == 0xFF; });
+  const bool query = command.queryable && size > 0 &&
+                     std::all_of(request.payload.begin(), request.payload.end(),
+                                 [](std::uint8_t b) { return b == 0xFF; });
   const double value = size > 0 ? ReadLt102Value(command.request, request.payload.data()) : 0.0;
   if (HandleRange(command, query, value)) return;
   if (request.code == lt102::kAdcFrequency) return SendValue(command, options_.adc_frequency);
+  if (request.code == lt102::kFrameRate && !query && options_.actual_frame_rate_fps > 0) {
+    frame_rate_ = options_.actual_frame_rate_fps;  // the rate it can run at
+    return SendValue(command, frame_rate_);
+  }
   if (int* field = SettingField(request.code)) {
     if (!query) *field = static_cast<int>(value);
     SendValue(command, *field);
@@ -106,10 +111,11 @@ bool Lt102Emulator::HandleControl(std::uint8_t code) {
     }
     case lt102::kStart:
       started_ = true;
+      have_frame_ = frame_handed_ = handed_any_ = d_waiting_ = false;
       SendAnswer(lt102::kStarted, {});
       return true;
     case lt102::kStop:
-      started_ = d_waiting_ = have_frame_ = false;
+      started_ = d_waiting_ = have_frame_ = frame_handed_ = handed_any_ = false;
       SendAnswer(lt102::kStop, {});
       return true;
     case lt102::kReset:
@@ -118,10 +124,10 @@ bool Lt102Emulator::HandleControl(std::uint8_t code) {
       return true;
     case lt102::kReadFrame:
       if (!started_) return true;  // not acquiring: nothing to hand out
-      if (have_frame_) {
-        SendFrame();
+      if (have_frame_ && !(frame_handed_ && options_.hold_d_until_next_frame)) {
+        SendFrame();  // the latest frame, again if it was handed out already
       } else {
-        d_waiting_ = true;
+        d_waiting_ = true;  // the first frame of the acquisition (or, holding, the next)
       }
       return true;
     default:
@@ -224,9 +230,13 @@ void Lt102Emulator::Acquire(const std::vector<float>& samples, double range_offs
   {
     std::lock_guard<std::mutex> lock(mutex_);
     ++counts_.frames_acquired;
-    if (have_frame_) ++counts_.frames_overwritten;
+    if (have_frame_ && !frame_handed_) {
+      ++counts_.frames_overwritten;
+      if (handed_any_) ++counts_.frames_missed;
+    }
   }
   have_frame_ = true;
+  frame_handed_ = false;
   if (d_waiting_) SendFrame();
 }
 
@@ -234,11 +244,14 @@ void Lt102Emulator::SendFrame() {
   const std::vector<float> q(frame_.size(), 0.0f);
   std::vector<std::uint8_t> payload =
       EncodeLt102RawData(format_, static_cast<int>(frame_.size()), 250, frame_, q);
-  have_frame_ = d_waiting_ = false;
+  const bool repeated = frame_handed_;
+  frame_handed_ = handed_any_ = true;
+  d_waiting_ = false;
   long long answered = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     answered = ++counts_.frames_answered;
+    if (repeated) ++counts_.frames_repeated;
   }
   const bool bad_size = options_.bad_size_every > 0 && answered % options_.bad_size_every == 0;
   if (bad_size) payload.resize(payload.size() - 2);

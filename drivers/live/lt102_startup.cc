@@ -16,12 +16,18 @@ Lt102Request Plain(std::uint8_t code) { return {code, false, 0.0}; }
 }  // namespace
 
 std::string Lt102Setup::Describe() const {
-  char text[400];
+  char asked[48] = "";
+  if (frame_rate_requested_fps != frame_rate_fps) {
+    std::snprintf(asked, sizeof(asked), " (%d asked)", frame_rate_requested_fps);
+  }
+  char text[480];
   std::snprintf(text, sizeof(text),
-                "LT102 %s; CRC %s; range %.4f-%.4f m (%d samples); frame rate %d fps; carrier "
-                "%d MHz, bandwidth %d MHz, PRF divider %d, TX power %d, ADC frequency %d",
-                version.ToString().c_str(), crc ? "on" : "off", range_min_m, range_max_m,
-                samples_per_scan, frame_rate_fps, carrier_mhz, bandwidth_mhz, prf_divider, tx_power,
+                "LT102 %s; CRC %s; output %d%s; range %.4f-%.4f m (%d samples), first-sample "
+                "offset %.4f m; frame rate %d fps%s; carrier %d MHz, bandwidth %d MHz, TX power "
+                "%d, ADC frequency %d",
+                version.ToString().c_str(), crc ? "on" : "off", output,
+                output == 0 ? " (last reading)" : "", range_min_m, range_max_m, samples_per_scan,
+                offset_m, frame_rate_fps, asked, carrier_mhz, bandwidth_mhz, tx_power,
                 adc_frequency);
   return text;
 }
@@ -34,15 +40,16 @@ std::vector<Lt102Request> Lt102StartupRequests(const Lt102Config& c) {
   return {
       Plain(lt102::kVersion),
       Plain(lt102::kStop),
-      Set(lt102::kProcessing, 0),  // raw output
+      Set(lt102::kProcessing, 0),  // raw
+      Set(lt102::kOutput, 0),      // last reading: not slow-time filtered, not evaluated
       Set(lt102::kChannel, c.channel),
       Set(lt102::kFormat, c.sample_format),
       Set(lt102::kRangeMin, c.range_min_m),
       Set(lt102::kRangeMax, c.range_max_m),
+      Query(lt102::kOffset),
       Set(lt102::kFrameRate, c.frame_rate_fps),
       Query(lt102::kCarrier),
       Query(lt102::kBandwidth),
-      Query(lt102::kPrfDivider),
       Query(lt102::kTxPower),
       Query(lt102::kAdcFrequency),
       Plain(lt102::kStart),
@@ -74,6 +81,12 @@ void StoreAnswer(std::uint8_t code, double value, Lt102Setup* setup) {
     case lt102::kRangeMax:
       setup->range_max_m = value;
       break;
+    case lt102::kOffset:
+      setup->offset_m = value;
+      break;
+    case lt102::kOutput:
+      setup->output = static_cast<int>(value);
+      break;
     case lt102::kFrameRate:
       setup->frame_rate_fps = static_cast<int>(value);
       break;
@@ -82,9 +95,6 @@ void StoreAnswer(std::uint8_t code, double value, Lt102Setup* setup) {
       break;
     case lt102::kBandwidth:
       setup->bandwidth_mhz = static_cast<int>(value);
-      break;
-    case lt102::kPrfDivider:
-      setup->prf_divider = static_cast<int>(value);
       break;
     case lt102::kTxPower:
       setup->tx_power = static_cast<int>(value);
@@ -121,10 +131,21 @@ void CheckCarrier(double carrier_mhz, const Lt102Setup& setup, const LiveSetting
     char text[200];
     std::snprintf(text, sizeof(text),
                   "the radar's carrier is %d MHz, pulse.center_frequency_hz is %.0f MHz "
-                  "(%.1f %% apart, more than 1 %%)",
-                  setup.carrier_mhz, fc_hz / 1e6, 100.0 * off);
+                  "(%.1f %% apart, more than 1 %%): set pulse.center_frequency_hz to %de6 to "
+                  "image with this radar",
+                  setup.carrier_mhz, fc_hz / 1e6, 100.0 * off, setup.carrier_mhz);
     throw Lt102ConfigError(name + ": configuration error: " + text);
   }
+}
+
+/// The actual frame rate paces the polling: any rate of at least 1 frame/s is taken (and
+/// logged when it differs from the one asked); below that nothing can be polled.
+void CheckFrameRate(const Lt102Setup& setup, const std::string& name) {
+  if (setup.frame_rate_fps >= 1) return;
+  throw Lt102ConfigError(name + ": configuration error: the radar answered frame rate " +
+                         std::to_string(setup.frame_rate_fps) + " fps to " +
+                         std::to_string(setup.frame_rate_requested_fps) +
+                         " asked: set live.lt102.frame_rate_fps to a rate it supports");
 }
 
 }  // namespace
@@ -132,6 +153,7 @@ void CheckCarrier(double carrier_mhz, const Lt102Setup& setup, const LiveSetting
 Lt102Setup RunLt102Startup(SerialPort& port, Lt102Exchange& exchange, const LiveSettings& config,
                            const std::string& name) {
   Lt102Setup setup;
+  setup.frame_rate_requested_fps = config.live.lt102.frame_rate_fps;
   for (const Lt102Request& request : Lt102StartupRequests(config.live.lt102)) {
     const std::vector<std::uint8_t> answer = exchange.Ask(port, request);
     const Lt102Command& command = *FindLt102Command(request.code);
@@ -148,6 +170,7 @@ Lt102Setup RunLt102Startup(SerialPort& port, Lt102Exchange& exchange, const Live
     StoreAnswer(request.code, value, &setup);
     if (request.code == lt102::kRangeMax) SetSamplesPerScan(config, name, &setup);
     if (request.code == lt102::kCarrier) CheckCarrier(value, setup, config, name);
+    if (request.code == lt102::kFrameRate) CheckFrameRate(setup, name);
   }
   return setup;
 }

@@ -11,6 +11,7 @@ namespace uwbsar::live {
 namespace {
 using Clock = std::chrono::steady_clock;
 constexpr double kSpeedOfLight = 299792458.0;
+constexpr std::chrono::microseconds kServePeriod{250};
 }  // namespace
 
 SimDevicePlayer::SimDevicePlayer(const EmulatorSettings& config, const sim::SimScenario& scenario,
@@ -39,6 +40,8 @@ SimDevicePlayer::SimDevicePlayer(const EmulatorSettings& config, const sim::SimS
   lt102.missing_answer_times = faults.lt102_missing_answer_times;
   lt102.bad_size_every = faults.lt102_bad_size_every;
   lt102.corrupt_fraction = faults.corrupt_fraction;
+  lt102.actual_frame_rate_fps = faults.lt102_actual_frame_rate_fps;
+  lt102.hold_d_until_next_frame = faults.lt102_hold_d_until_next_frame;
   for (const std::string& link : radar_links) {
     lt102.seed = faults.seed + 1000 * radars_.size();
     radars_.push_back(std::make_unique<Lt102Emulator>(link, lt102));
@@ -70,6 +73,8 @@ EmulatorCounts SimDevicePlayer::counts() const {
     c.scans_sent += r.frames_answered;
     c.frames_acquired += r.frames_acquired;
     c.frames_overwritten += r.frames_overwritten;
+    c.frames_repeated += r.frames_repeated;
+    c.frames_missed += r.frames_missed;
     c.frames_corrupted += r.frames_corrupted;
     c.bytes_dropped += r.bytes_dropped;
   }
@@ -156,12 +161,13 @@ void SimDevicePlayer::Loop() {
     if (rel_s > duration_s_) break;
     const auto target = t0 + std::chrono::duration_cast<Clock::duration>(
                                  std::chrono::duration<double>(rel_s / speed_));
+    // Requests are answered within kServePeriod (a module on USB answers within a USB
+    // frame): a `d` waits at most that long for the latest frame.
     while (true) {
       for (auto& radar : radars_) radar->Serve();
       const auto now = Clock::now();
       if (now >= target || stop_) break;
-      std::this_thread::sleep_for(
-          std::min<Clock::duration>(target - now, std::chrono::milliseconds(2)));
+      std::this_thread::sleep_for(std::min<Clock::duration>(target - now, kServePeriod));
     }
     if (faults_.unplug_at_s >= 0 && faults_.unplug_radar < static_cast<int>(radars_.size())) {
       Lt102Emulator& dev = *radars_[static_cast<std::size_t>(faults_.unplug_radar)];

@@ -43,6 +43,12 @@ struct EmulatorFaults {
   int lt102_bad_size_every = 0;        ///< every n-th `d` answer is two bytes short
   bool lt102_crc = false;              ///< the radars append a CRC-8 byte to every answer
   int lt102_carrier_mhz = 0;           ///< the radars' carrier; 0 = pulse.center_frequency_hz
+  /// The radars' `f` answer (they acquire at the simulated scan rate whatever is asked);
+  /// 0 = the rate asked.
+  int lt102_actual_frame_rate_fps = 0;
+  /// `d` polled before the next frame waits for it instead of repeating the latest one
+  /// (Lt102EmulatorOptions::hold_d_until_next_frame; the vendor behaviour repeats).
+  bool lt102_hold_d_until_next_frame = false;
   std::uint64_t seed = 7;
 };
 
@@ -50,6 +56,8 @@ struct EmulatorCounts {
   long long scans_sent = 0;          ///< LT102 frames answered to `d` requests
   long long frames_acquired = 0;     ///< simulated scans while the radars were started
   long long frames_overwritten = 0;  ///< acquired but replaced before a `d` asked for them
+  long long frames_repeated = 0;     ///< `d` answered with a frame already handed out
+  long long frames_missed = 0;       ///< overwritten after the acquisition's first answer
   long long packets_sent = 0;
   long long frames_corrupted = 0;
   long long packets_corrupted = 0;

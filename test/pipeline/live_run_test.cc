@@ -28,7 +28,7 @@ TEST(LiveRunTest, RecordingMappedOfflineReproducesTheLiveTrajectory) {
   // emulator's starved thread acquires frames back to back and overwrites some (1952 under
   // ASan). Every frame the emulator answered must have arrived (one per radar may be in
   // flight at the stop).
-  EXPECT_GE(r.scans_received, live.emulator.scans_sent - 2);
+  EXPECT_GE(r.scans_received, live.emulator.scans_sent - live.emulator.frames_repeated - 2);
   EXPECT_GT(r.scans_received, 500);
   // Every scan and odometry sample is recorded (plus GPIO / fault / run events).
   EXPECT_GE(r.recorded_messages, r.scans_received + r.odometry_received);
@@ -101,7 +101,7 @@ TEST(LiveRunTest, Lt102FaultsAreCountedAndEveryScanThatArrivedIsRecorded) {
   config.live.lt102.frame_timeout_s = 0.25;  // the request in flight when the run ends stays so
   const EmulatedRun live = RunEmulated(config, "lt102_faults", 2.0, 8.0, faults);
   const pipeline::LiveRunResult& r = live.result;
-  long long answers = 0, invalid = 0;
+  long long answers = 0, invalid = 0, repeated = 0;
   for (const auto& [name, s] : r.radars) {
     std::printf("%s: %lld requests, %lld answers, %lld lost, %lld invalid; CRC %s\n", name.c_str(),
                 s.requests, s.answers, s.lost, s.invalid_frames, s.setup.crc ? "on" : "off");
@@ -111,10 +111,11 @@ TEST(LiveRunTest, Lt102FaultsAreCountedAndEveryScanThatArrivedIsRecorded) {
     EXPECT_GT(s.invalid_frames, 0);
     answers += s.answers + s.late_answers;
     invalid += s.invalid_frames;
+    repeated += s.frames_repeated;
   }
   EXPECT_EQ(Fault(r, "radar left: lost frames"), 3);
   EXPECT_GT(Fault(r, "radar right: invalid raw-data messages"), 0);
-  EXPECT_EQ(r.scans_received, answers - invalid);
+  EXPECT_EQ(r.scans_received, answers - invalid - repeated);
   EXPECT_GE(r.recorded_messages, r.scans_received + r.odometry_received);
   ASSERT_FALSE(r.run.slam->keyframes().empty());
 }
@@ -153,34 +154,86 @@ TEST(LiveRunTest, ARadarRefusingASettingStopsTheRunWithOneLineNamingIt) {
   EXPECT_FALSE(fs::exists(dir + "/live.json"));
 }
 
-// Polled acquisition keeps up at 100 frames/s per radar, two radars, on the
-// 2-core machine (the figure goes into live.json; no wall-clock bound is asserted).
-TEST(LiveRunTest, PolledAcquisitionAt100FramesPerSecondFromTwoRadarsLosesNoFrame) {
+struct PollCase {
+  const char* name;
+  int radar_fps;  ///< the emulated radars' actual frame rate (the simulated scan rate)
+  bool crc;
+};
+
+void PrintTo(const PollCase& c, std::ostream* os) { *os << c.name; }
+
+class LivePollingTest : public ::testing::TestWithParam<PollCase> {};
+
+// Against radars that answer `d` at once with their latest frame (the vendor behaviour),
+// from two radars on the 2-core machine: polls within 10 % of the radar's frame rate (the
+// rate it answers to `f`, here also when 100 was asked and it runs at 50), no frame delivered
+// twice (repeats dropped, counted as the emulator counted them), misses at most 1 % (3 %
+// under uwbsar_load: UWBSAR_UNDER_LOAD), counted as the emulator counted them; live.json holds
+// the figures.
+TEST_P(LivePollingTest, EachFrameOnceAtTheRadarsFrameRate) {
+  UWBSAR_NEED_SEED_LAB_MAP();
+  const PollCase c = GetParam();
   Config config;
+  config.simulator.radar.rate_hz = c.radar_fps;
   config.live.lt102.frame_timeout_s = 0.5;  // the request in flight when the run ends stays so
-  const EmulatedRun live = RunEmulated(config, "poll100", 1.0, 10.0);
+  EmulatorFaults faults;
+  faults.lt102_crc = c.crc;
+  faults.lt102_actual_frame_rate_fps = c.radar_fps;
+  const EmulatedRun live = RunEmulated(config, std::string("poll_") + c.name, 1.0, 10.0, faults, 1,
+                                       {}, /*asked_frame_rate_fps=*/100);
   const pipeline::LiveRunResult& r = live.result;
   ASSERT_EQ(r.radars.size(), 2u);
-  for (const auto& [name, s] : r.radars) {
-    std::printf(
-        "%s at %d frames/s: %lld requests, %lld answers, %lld lost, %lld unanswered at stop; "
-        "request-to-answer p50 %.2f ms, p99 %.2f ms, max %.2f ms\n",
-        name.c_str(), s.setup.frame_rate_fps, s.requests, s.answers, s.lost, s.unanswered_at_stop,
-        s.answer_p50_ms, s.answer_p99_ms, s.answer_max_ms);
-    EXPECT_EQ(s.setup.frame_rate_fps, 100);
-    EXPECT_EQ(s.lost, 0);
-    EXPECT_EQ(s.requests, s.answers + s.unanswered_at_stop);
-    EXPECT_GT(s.answers, 0);  // how many depends on the machine's load: printed, not asserted
-    EXPECT_GT(s.answer_p99_ms, 0.0);
-  }
-  std::printf("emulator: %lld frames acquired, %lld answered, %lld overwritten before a request\n",
-              live.emulator.frames_acquired, live.emulator.scans_sent,
-              live.emulator.frames_overwritten);
+  const bool loaded = std::getenv("UWBSAR_UNDER_LOAD") != nullptr;
+  long long delivered = 0, repeated = 0, missed = 0;
   std::ifstream in(live.out_dir + "/live.json");
   const nlohmann::json j = nlohmann::json::parse(in);
-  EXPECT_GT(j["radars"]["radar left"]["request_to_answer_ms"]["p99"].get<double>(), 0.0);
-  EXPECT_EQ(j["radars"]["radar right"]["frames_lost"].get<long long>(), 0);
+  for (const auto& [name, s] : r.radars) {
+    const double polls_per_s = static_cast<double>(s.requests) / s.acquiring_s;
+    std::printf(
+        "%s%s, %s at %d frames/s (%d asked), CRC %s: %lld requests (%.1f/s), %lld answers, "
+        "%lld frames, %lld repeated, %lld missed, %lld lost; request-to-answer p50 %.2f ms, p99 "
+        "%.2f ms\n",
+        c.name, loaded ? " (under load)" : "", name.c_str(), s.setup.frame_rate_fps,
+        s.setup.frame_rate_requested_fps, s.setup.crc ? "on" : "off", s.requests, polls_per_s,
+        s.answers, s.frames_delivered, s.frames_repeated, s.frames_missed, s.lost, s.answer_p50_ms,
+        s.answer_p99_ms);
+    EXPECT_EQ(s.setup.frame_rate_fps, c.radar_fps);
+    EXPECT_EQ(s.setup.frame_rate_requested_fps, 100);
+    EXPECT_EQ(s.setup.crc, c.crc);
+    EXPECT_EQ(s.lost, 0);
+    EXPECT_EQ(s.requests, s.answers + s.unanswered_at_stop);
+    EXPECT_NEAR(polls_per_s, c.radar_fps, 0.1 * c.radar_fps);
+    EXPECT_LE(static_cast<double>(s.frames_missed),
+              (loaded ? 0.03 : 0.01) * static_cast<double>(s.frames_delivered) + 1);
+    const nlohmann::json& jr = j["radars"][name];
+    EXPECT_EQ(jr["frames_repeated"].get<long long>(), s.frames_repeated);
+    EXPECT_EQ(jr["frames_missed"].get<long long>(), s.frames_missed);
+    EXPECT_EQ(jr["frames_delivered"].get<long long>(), s.frames_delivered);
+    delivered += s.frames_delivered;
+    repeated += s.frames_repeated;
+    missed += s.frames_missed;
+  }
+  const EmulatorCounts& e = live.emulator;
+  std::printf(
+      "%s%s emulator: %lld frames acquired, %lld answered, %lld repeated, %lld missed, %lld "
+      "overwritten before a request\n",
+      c.name, loaded ? " (under load)" : "", e.frames_acquired, e.scans_sent, e.frames_repeated,
+      e.frames_missed, e.frames_overwritten);
+  // Every scan is a distinct frame: the answers less the repeats the emulator counted.
+  EXPECT_EQ(repeated, e.frames_repeated);
+  EXPECT_EQ(delivered, e.scans_sent - e.frames_repeated);
+  EXPECT_EQ(r.scans_received, delivered);
+  // Misses as the emulator counted them (a frame acquired just before a radar's stop is
+  // counted there only).
+  EXPECT_NEAR(static_cast<double>(missed), static_cast<double>(e.frames_missed), 2.0);
 }
+
+// Named under LiveRunTest so that CI runs it again under uwbsar_load with the other live tests.
+INSTANTIATE_TEST_SUITE_P(
+    LiveRunTest, LivePollingTest,
+    ::testing::Values(PollCase{"fps100", 100, false}, PollCase{"fps100_crc", 100, true},
+                      PollCase{"fps50", 50, false}, PollCase{"fps50_crc", 50, true}),
+    [](const ::testing::TestParamInfo<PollCase>& info) { return std::string(info.param.name); });
 
 }  // namespace
 }  // namespace uwbsar::live

@@ -40,10 +40,12 @@ inline std::set<std::pair<int, int>> AcceptedPairs(const pipeline::SlamSystem& s
 inline std::string SeedLabMapPath() { return ::uwbsar::testing::SeedLabLidarMap(); }
 
 /// `seed`: the simulation seed of the played run (the scene is always seed 1's);
-/// `localize_in`: LiveRunOptions::localize_in.
+/// `localize_in`: LiveRunOptions::localize_in; `asked_frame_rate_fps` > 0: the frame rate
+/// the drivers ask for instead of the emulated radars' (which answer theirs).
 inline EmulatedRun RunEmulated(Config config, const std::string& name, double speed,
                                double duration_s, const EmulatorFaults& faults = {},
-                               std::uint64_t seed = 1, const std::string& localize_in = {}) {
+                               std::uint64_t seed = 1, const std::string& localize_in = {},
+                               int asked_frame_rate_fps = 0) {
   namespace fs = std::filesystem;
   EmulatedRun out;
   out.out_dir =
@@ -54,6 +56,7 @@ inline EmulatedRun RunEmulated(Config config, const std::string& name, double sp
   config.live.radar_devices = {out.out_dir + "/dev/radar0", out.out_dir + "/dev/radar1"};
   config.live.kobuki_device = out.out_dir + "/dev/kobuki";
   ConfigureLiveForEmulation(config.simulator, speed, &config.live);
+  if (asked_frame_rate_fps > 0) config.live.lt102.frame_rate_fps = asked_frame_rate_fps;
   config.live.lt102.sample_format = 3;  // F32: the simulated samples unquantised
   const sim::SimScenario scenario = sim::MakeScenario(config, SeedLabMapPath(), "depart-return", 1);
   HostClock truth_clock(speed);

@@ -1,11 +1,15 @@
 // The LT102 start-up sequence against the emulated module: the exact bytes of the default
-// sequence, and for every step a missing answer (retried once, then the open fails naming
-// the command) and a wrong echo (a configuration error naming the command and both values,
-// or the actual value taken where the radar may adjust it); CRC detection and the carrier
-// check.
+// sequence, every request's payload within the vendor table's values (a query only where
+// the table defines a query value), and for every step a missing answer (retried once, then the
+// open fails naming the command) and a wrong echo (a configuration error naming the command and
+// both values, or the actual value taken where the radar may adjust it); CRC detection and the
+// carrier check.
 #include "drivers/live/lt102_startup.h"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
 
 #include "lt102_test_util.h"
 #include "pipeline/app_config.h"
@@ -46,17 +50,18 @@ StartupRun Startup(const EmulatedLt102& radar, const Config& config, FaultLog* f
 TEST(Lt102StartupTest, DefaultSequenceSendsExactlyTheseBytes) {
   // Hand-written: 0xFF, command, payload (0xFF/0x00/0x80 escaped as 0x80 0xFE/0x01/0x81), 0x00.
   const std::vector<std::uint8_t> expected = {
-      0xFF, 0x01, 0x00,                                                  // firmware version
-      0xFF, 0x6F, 0x00,                                                  // 'o' stop
-      0xFF, 0x65, 0x80, 0x01, 0x00,                                      // 'e' 0: raw output
-      0xFF, 0x24, 0x80, 0x01, 0x00,                                      // '$' 0: channel 0
-      0xFF, 0x0A, 0x01, 0x00,                                            // 0x0A 1: Q15
+      0xFF, 0x01, 0x00,              // firmware version
+      0xFF, 0x6F, 0x00,              // 'o' stop
+      0xFF, 0x65, 0x80, 0x01, 0x00,  // 'e' 0: raw
+      0xFF, 0x62, 0x80, 0x01, 0x00,  // 'b' 0: output last reading
+      0xFF, 0x24, 0x80, 0x01, 0x00,  // '$' 0: channel 0
+      0xFF, 0x0A, 0x01, 0x00,        // 0x0A 1: Q15
       0xFF, 0x78, 0x80, 0x01, 0x80, 0x01, 0x80, 0x01, 0x80, 0x01, 0x00,  // 'x' 0.0f
       0xFF, 0x58, 0xA4, 0x70, 0xCD, 0x40, 0x00,                          // 'X' 6.42f
+      0xFF, 0x30, 0x80, 0xFE, 0x80, 0xFE, 0x80, 0xFE, 0x80, 0xFE, 0x00,  // '0' query (i32 -1)
       0xFF, 0x66, 0x64, 0x80, 0x01, 0x00,                                // 'f' 100 (u16)
       0xFF, 0x0B, 0x80, 0xFE, 0x80, 0xFE, 0x00,  // 0x0B query (0xFFFF): carrier
       0xFF, 0x0C, 0x80, 0xFE, 0x80, 0xFE, 0x00,  // 0x0C query: bandwidth
-      0xFF, 0x76, 0x80, 0xFE, 0x00,              // 'v' query (0xFF): PRF divider
       0xFF, 0x70, 0x80, 0xFE, 0x00,              // 'p' query: TX power
       0xFF, 0x05, 0x80, 0xFE, 0x80, 0xFE, 0x00,  // 0x05 query: ADC frequency
       0xFF, 0x73, 0x00,                          // 's' start
@@ -73,11 +78,120 @@ TEST(Lt102StartupTest, DefaultSequenceSendsExactlyTheseBytes) {
   EXPECT_DOUBLE_EQ(run.setup.range_min_m, 0.0);
   EXPECT_NEAR(run.setup.range_max_m, 999 * 299792458.0 / (2 * 23.328e9), 1e-6);
   EXPECT_EQ(run.setup.frame_rate_fps, 100);
+  EXPECT_EQ(run.setup.output, 0);
+  EXPECT_DOUBLE_EQ(run.setup.offset_m, 0.0);
   EXPECT_EQ(run.setup.carrier_mhz, 7290);
   EXPECT_EQ(run.setup.bandwidth_mhz, 1400);
   EXPECT_EQ(run.setup.adc_frequency, 23328);
-  EXPECT_EQ(run.counts.requests, 14);
+  EXPECT_EQ(run.counts.requests, 15);
   EXPECT_EQ(run.counts.retries, 0);
+}
+
+/// The request payloads the vendor table (REFERENCE.md section 4a) defines for each command
+/// the start-up may send; a command missing here may not be sent at all. Query values
+/// (0xFF, 0xFFFF, i32 -1) appear only where the table gives one.
+bool AllowedByTheVendorTable(std::uint8_t code, const std::vector<std::uint8_t>& p,
+                             std::string* why) {
+  auto u8_in = [&](int lo, int hi, bool query) {
+    return p.size() == 1 && ((p[0] >= lo && p[0] <= hi) || (query && p[0] == 0xFF));
+  };
+  auto u16 = [&] { return p.size() == 2 ? p[0] | (p[1] << 8) : -1; };
+  auto f32_or_query = [&] {
+    if (p.size() != 4) return false;
+    if (p == std::vector<std::uint8_t>(4, 0xFF)) return true;  // i32 -1
+    float f;
+    std::memcpy(&f, p.data(), 4);
+    return std::isfinite(f) && f >= 0.0f;
+  };
+  bool ok = false;
+  switch (code) {
+    case lt102::kVersion:
+    case lt102::kStop:
+    case lt102::kStart:
+      ok = p.empty();
+      break;
+    case lt102::kProcessing:  // 0 raw ... 4 targets; no query value
+      ok = u8_in(0, 4, false);
+      break;
+    case lt102::kOutput:  // 0 last reading, 1 filtered, 2 evaluated; 0xFF query
+      ok = u8_in(0, 2, true);
+      break;
+    case lt102::kChannel:  // 0-3 one, 4 combined, 5 all; 0xFF query
+      ok = u8_in(0, 5, true);
+      break;
+    case lt102::kFormat:  // 0 Q7 ... 4 F16; 0xFF query
+      ok = u8_in(0, 4, true);
+      break;
+    case lt102::kTxPower:  // 0-7; 0xFF query
+      ok = u8_in(0, 7, true);
+      break;
+    case lt102::kRangeMin:
+    case lt102::kRangeMax:
+    case lt102::kOffset:
+      ok = f32_or_query();
+      break;
+    case lt102::kFrameRate:  // u16 fps, 0xFFFF query
+      ok = u16() >= 1;
+      break;
+    case lt102::kCarrier:
+    case lt102::kBandwidth:
+      ok = u16() >= 0;
+      break;
+    case lt102::kAdcFrequency:  // u16 0xFFFF only
+      ok = u16() == 0xFFFF;
+      break;
+    default:  // e.g. `v` (no query value; a setting we do not make) or `q` (undocumented)
+      ok = false;
+  }
+  if (!ok) {
+    *why = Lt102CommandLabel(code) + " with a " + std::to_string(p.size()) +
+           "-byte payload outside the vendor table";
+  }
+  return ok;
+}
+
+TEST(Lt102StartupTest, EveryRequestPayloadIsOneTheVendorTableDefines) {
+  for (const bool crc : {false, true}) {
+    Lt102EmulatorOptions options;
+    options.crc = crc;
+    EmulatedLt102 radar(crc ? "allowed_crc" : "allowed", options);
+    FaultLog faults;
+    const StartupRun run = Startup(radar, TestConfig(), &faults);
+    ASSERT_TRUE(run.error.empty()) << run.error;
+    std::vector<Lt102Frame> frames;
+    Lt102FrameDecoder decoder;
+    const std::vector<std::uint8_t> bytes = radar.received();
+    decoder.Push(bytes.data(), bytes.size(), &frames);
+    ASSERT_EQ(frames.size(), 15u);
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      Lt102Frame f = frames[i];
+      if (crc && i > 0) f.payload.pop_back();  // after the version answer, requests carry one
+      std::string why;
+      EXPECT_TRUE(AllowedByTheVendorTable(f.code, f.payload, &why))
+          << "request " << i << ": " << why;
+    }
+  }
+  // And the table itself: a query is encoded only for commands with a query value.
+  for (const Lt102Command& c : Lt102Commands()) {
+    if (c.code == lt102::kPrfDivider || c.code == lt102::kDecimation ||
+        c.code == lt102::kProcessing) {
+      EXPECT_FALSE(c.queryable) << c.name;
+    }
+  }
+}
+
+TEST(Lt102StartupTest, AnActualFrameRateOtherThanAskedIsTakenAndLogged) {
+  Lt102EmulatorOptions options;
+  options.actual_frame_rate_fps = 50;
+  EmulatedLt102 radar("actual_rate", options);
+  FaultLog faults;
+  const StartupRun run = Startup(radar, TestConfig(), &faults);
+  ASSERT_TRUE(run.error.empty()) << run.error;
+  EXPECT_EQ(run.setup.frame_rate_fps, 50);
+  EXPECT_EQ(run.setup.frame_rate_requested_fps, 100);
+  EXPECT_NE(run.setup.Describe().find("frame rate 50 fps (100 asked)"), std::string::npos)
+      << run.setup.Describe();
+  EXPECT_TRUE(WaitUntil([&] { return radar.started(); }));
 }
 
 class Lt102StartupStepTest : public ::testing::TestWithParam<int> {};
@@ -121,16 +235,12 @@ TEST_P(Lt102StartupStepTest, AWrongEchoIsAConfigurationErrorOrTheActualValue) {
   const double bin_m = 299792458.0 / (2 * 23.328e9);
   switch (code) {
     case lt102::kProcessing:
+    case lt102::kOutput:
     case lt102::kChannel:
-    case lt102::kFormat:
-    case lt102::kFrameRate: {
+    case lt102::kFormat: {
       ASSERT_TRUE(run.config_error) << run.error;
-      const std::string sent = code == lt102::kFormat      ? "1"
-                               : code == lt102::kFrameRate ? "100"
-                                                           : "0";
-      const std::string echoed = code == lt102::kFormat      ? "2"
-                                 : code == lt102::kFrameRate ? "101"
-                                                             : "1";
+      const std::string sent = code == lt102::kFormat ? "1" : "0";
+      const std::string echoed = code == lt102::kFormat ? "2" : "1";
       EXPECT_EQ(run.error, "radar left: configuration error: " + Lt102CommandLabel(code) +
                                " sent " + sent + ", the radar echoed " + echoed);
       EXPECT_FALSE(radar.started());
@@ -152,8 +262,13 @@ TEST_P(Lt102StartupStepTest, AWrongEchoIsAConfigurationErrorOrTheActualValue) {
     case lt102::kBandwidth:
       EXPECT_EQ(run.setup.bandwidth_mhz, 1401);
       break;
-    case lt102::kPrfDivider:
-      EXPECT_EQ(run.setup.prf_divider, 2);
+    case lt102::kFrameRate:  // the actual rate: taken, it paces the polling
+      ASSERT_TRUE(run.error.empty()) << run.error;
+      EXPECT_EQ(run.setup.frame_rate_fps, 101);
+      break;
+    case lt102::kOffset:  // queried, logged
+      ASSERT_TRUE(run.error.empty()) << run.error;
+      EXPECT_NEAR(run.setup.offset_m, bin_m, 1e-6);
       break;
     case lt102::kTxPower:
       EXPECT_EQ(run.setup.tx_power, 8);
@@ -247,7 +362,8 @@ TEST(Lt102StartupTest, ACarrierMoreThanOnePercentFromTheConfigIsAConfigurationEr
   EXPECT_TRUE(run.config_error);
   EXPECT_EQ(run.error,
             "radar left: configuration error: the radar's carrier is 7900 MHz, "
-            "pulse.center_frequency_hz is 7290 MHz (8.4 % apart, more than 1 %)");
+            "pulse.center_frequency_hz is 7290 MHz (8.4 % apart, more than 1 %): set "
+            "pulse.center_frequency_hz to 7900e6 to image with this radar");
   EXPECT_FALSE(radar.started());
 }
 

@@ -1,6 +1,7 @@
 // An LT102 emulator on a pseudo-terminal driven by its own thread for the driver tests:
-// it answers commands every millisecond and acquires a ramp frame (sample k = k / 2000)
-// at 100 frames/s while started.
+// it answers commands every millisecond and acquires a ramp frame (sample k = k / 2000,
+// except sample 0, which counts the frames so that no two are alike, as noise makes a real
+// radar's) at `period_ms` while started.
 #pragma once
 
 #include <unistd.h>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "drivers/live/lt102_emulator.h"
+#include "drivers/live/thread_priority.h"
 
 namespace uwbsar::live {
 
@@ -41,8 +43,17 @@ inline std::vector<float> Lt102Ramp() {
 
 class EmulatedLt102 {
  public:
-  explicit EmulatedLt102(const std::string& name, Lt102EmulatorOptions options = {})
-      : emulator_(Lt102TempLink(name), options), thread_([this] { Loop(); }) {}
+  /// `stall_every` > 0: every n-th frame is acquired a period late, together with the next
+  /// (as an emulator whose thread was held up: that frame is overwritten unasked).
+  /// `priority` > 0: the emulator's thread asks for SCHED_FIFO (hardware does not share the
+  /// host's CPU); realtime() says whether it got it.
+  explicit EmulatedLt102(const std::string& name, Lt102EmulatorOptions options = {},
+                         int period_ms = 10, int stall_every = 0, int priority = 0)
+      : emulator_(Lt102TempLink(name), options),
+        period_ms_(period_ms),
+        stall_every_(stall_every),
+        priority_(priority),
+        thread_([this] { Loop(); }) {}
   ~EmulatedLt102() {
     stop_ = true;
     thread_.join();
@@ -51,6 +62,7 @@ class EmulatedLt102 {
   std::vector<std::uint8_t> received() const { return emulator_.received(); }
   Lt102EmulatorCounts counts() const { return emulator_.counts(); }
   bool started() const { return started_; }
+  bool realtime() const { return realtime_; }
   void SetPlugged(bool plugged) {
     want_plugged_ = plugged;
     WaitUntil([&] { return plugged_ == plugged; });
@@ -58,7 +70,9 @@ class EmulatedLt102 {
 
  private:
   void Loop() {
-    const std::vector<float> ramp = Lt102Ramp();
+    realtime_ = priority_ > 0 && SetCurrentThreadRealtime(priority_).empty();
+    std::vector<float> ramp = Lt102Ramp();
+    int frame = 0;
     auto next = std::chrono::steady_clock::now();
     while (!stop_) {
       if (want_plugged_ != emulator_.plugged()) {
@@ -68,14 +82,30 @@ class EmulatedLt102 {
       emulator_.Serve();
       started_ = emulator_.started();
       if (std::chrono::steady_clock::now() >= next) {
+        ramp[0] = static_cast<float>(++frame % 1000) / 2000.0f;
+        next += std::chrono::milliseconds(period_ms_);
+        if (stall_every_ > 0 && frame % stall_every_ == 0 && !stalled_) {
+          stalled_ = true;  // this frame comes with the next one
+          --frame;
+          continue;
+        }
+        if (stalled_) {
+          emulator_.Acquire(ramp, 0.0);
+          ramp[0] = static_cast<float>(++frame % 1000) / 2000.0f;
+          stalled_ = false;
+        }
         emulator_.Acquire(ramp, 0.0);
-        next += std::chrono::milliseconds(10);
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
   }
 
   Lt102Emulator emulator_;
+  int period_ms_;
+  int stall_every_;
+  int priority_;
+  bool stalled_ = false;
+  std::atomic<bool> realtime_{false};
   std::atomic<bool> stop_{false}, want_plugged_{true}, plugged_{true}, started_{false};
   std::thread thread_;
 };
