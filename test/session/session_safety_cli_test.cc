@@ -115,12 +115,15 @@ TEST_F(SessionCliTest, ASecondProcessOnTheSameFolderIsRefusedNamingTheFirst) {
         << r.output;
     EXPECT_EQ(Lines(r.output), 1) << r.output;
   }
-  // Two real processes: the second starts once the first holds the folder.
+  // Two real processes: the second starts once the first holds the folder (its pid is in
+  // the lock file: the first's, not the test's of a moment ago).
   const std::string bin = UWBSAR_BIN;
+  const std::string wait_for_first =
+      "n=0; while ! grep -q \"pid $pid:\" " + out +
+      "/.uwbsar.lock && [ $n -lt 600 ]; do sleep 0.05; n=$((n+1)); done; ";  // at most 30 s
   const CliRun r = RunCommand(bin + " -q map " + Bag("a") + " --out " + out + " & pid=$!; " +
-                              "while ! grep -q pid " + out +
-                              "/.uwbsar.lock; do sleep 0.05; done; " + bin + " -q map " + Bag("b") +
-                              " --out " + out + "; echo second=$?; wait $pid; echo first=$?");
+                              wait_for_first + bin + " -q map " + Bag("b") + " --out " + out +
+                              "; echo second=$?; wait $pid; echo first=$?");
   EXPECT_TRUE(Has(r.output, "second=3")) << r.output;
   EXPECT_TRUE(Has(r.output, "first=0")) << r.output;
   EXPECT_EQ(Json(out + "/summary.json")["input"], Bag("a"));
