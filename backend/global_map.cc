@@ -16,11 +16,20 @@ std::size_t GlobalMap::memory_bytes() const {
   return blocks_.size() * 2u * static_cast<std::size_t>(block_px_) * block_px_ * sizeof(float);
 }
 
+void GlobalMap::BlockSpan::Include(long long bc, long long br) {
+  bc0 = std::min(bc0, bc), bc1 = std::max(bc1, bc);
+  br0 = std::min(br0, br), br1 = std::max(br1, br);
+}
+
+void GlobalMap::BlockSpan::Include(const BlockSpan& other) {
+  if (other.empty()) return;
+  Include(other.bc0, other.br0);
+  Include(other.bc1, other.br1);
+}
+
 // Lattice pixel (c, r) has its centre at world (c * res, -r * res); block (bc, br)
 // holds lattice pixels [bc * B, bc * B + B) x [br * B, br * B + B).
-void GlobalMap::AddTile(const cv::Mat& tile, const ImageGrid& grid, const Pose2& T_world_tile) {
-  CV_Assert(tile.type() == CV_32FC1 && tile.rows == grid.rows && tile.cols == grid.cols);
-  if (tile.empty()) return;
+GlobalMap::BlockSpan GlobalMap::TileBlocks(const ImageGrid& grid, const Pose2& T_world_tile) const {
   // World bounding box of the tile's corners.
   double lo_x = 1e300, hi_x = -1e300, lo_y = 1e300, hi_y = -1e300;
   for (double c : {-0.5, grid.cols - 0.5}) {
@@ -33,10 +42,31 @@ void GlobalMap::AddTile(const cv::Mat& tile, const ImageGrid& grid, const Pose2&
   const auto floor_div = [](long long a, long long b) {
     return a >= 0 ? a / b : -((-a + b - 1) / b);
   };
-  const long long c0 = static_cast<long long>(std::floor(lo_x / resolution_m_));
-  const long long c1 = static_cast<long long>(std::ceil(hi_x / resolution_m_));
-  const long long r0 = static_cast<long long>(std::floor(-hi_y / resolution_m_));
-  const long long r1 = static_cast<long long>(std::ceil(-lo_y / resolution_m_));
+  BlockSpan span;
+  span.bc0 = floor_div(static_cast<long long>(std::floor(lo_x / resolution_m_)), block_px_);
+  span.bc1 = floor_div(static_cast<long long>(std::ceil(hi_x / resolution_m_)), block_px_);
+  span.br0 = floor_div(static_cast<long long>(std::floor(-hi_y / resolution_m_)), block_px_);
+  span.br1 = floor_div(static_cast<long long>(std::ceil(-lo_y / resolution_m_)), block_px_);
+  return span;
+}
+
+double GlobalMap::SpanPixels(const BlockSpan& span) const {
+  if (span.empty()) return 0.0;
+  return (static_cast<double>(span.bc1) - static_cast<double>(span.bc0) + 1.0) *
+         (static_cast<double>(span.br1) - static_cast<double>(span.br0) + 1.0) *
+         static_cast<double>(block_px_) * static_cast<double>(block_px_);
+}
+
+GlobalMap::BlockSpan GlobalMap::AllocatedBlocks() const {
+  BlockSpan span;
+  for (const auto& [key, block] : blocks_) span.Include(key.first, key.second);
+  return span;
+}
+
+void GlobalMap::AddTile(const cv::Mat& tile, const ImageGrid& grid, const Pose2& T_world_tile) {
+  CV_Assert(tile.type() == CV_32FC1 && tile.rows == grid.rows && tile.cols == grid.cols);
+  if (tile.empty()) return;
+  const BlockSpan span = TileBlocks(grid, T_world_tile);
   // Block pixel (u, v) of block (bc, br) -> world -> tile pixel: an affine map.
   const Pose2 T_tile_world = T_world_tile.Inverse();
   const double ct = std::cos(T_tile_world.yaw_rad), st = std::sin(T_tile_world.yaw_rad);
@@ -44,8 +74,8 @@ void GlobalMap::AddTile(const cv::Mat& tile, const ImageGrid& grid, const Pose2&
   cv::compare(tile, 0.0f, observed, cv::CMP_GT);
   cv::Mat ones;
   observed.convertTo(ones, CV_32F, 1.0 / 255.0);
-  for (long long br = floor_div(r0, block_px_); br <= floor_div(r1, block_px_); ++br) {
-    for (long long bc = floor_div(c0, block_px_); bc <= floor_div(c1, block_px_); ++bc) {
+  for (long long br = span.br0; br <= span.br1; ++br) {
+    for (long long bc = span.bc0; bc <= span.bc1; ++bc) {
       // World of block pixel (u, v): x = (bc B + u) res, y = -(br B + v) res.
       // Tile metric p = T_tile_world * world; tile pixel col = (p.x - x0) / res_t,
       // row = (y0 - p.y) / res_t.
@@ -74,16 +104,7 @@ void GlobalMap::AddTile(const cv::Mat& tile, const ImageGrid& grid, const Pose2&
   }
 }
 
-double GlobalMap::RenderPixels() const {
-  if (blocks_.empty()) return 0.0;
-  long long bc0 = LLONG_MAX, bc1 = LLONG_MIN, br0 = LLONG_MAX, br1 = LLONG_MIN;
-  for (const auto& [key, block] : blocks_) {
-    bc0 = std::min(bc0, key.first), bc1 = std::max(bc1, key.first);
-    br0 = std::min(br0, key.second), br1 = std::max(br1, key.second);
-  }
-  return static_cast<double>(bc1 - bc0 + 1) * static_cast<double>(br1 - br0 + 1) *
-         static_cast<double>(block_px_) * static_cast<double>(block_px_);
-}
+double GlobalMap::RenderPixels() const { return SpanPixels(AllocatedBlocks()); }
 
 cv::Mat GlobalMap::Render(ImageGrid* grid) const {
   cv::Mat observed;
@@ -91,11 +112,8 @@ cv::Mat GlobalMap::Render(ImageGrid* grid) const {
 }
 
 cv::Mat GlobalMap::Render(ImageGrid* grid, cv::Mat* observed) const {
-  long long bc0 = LLONG_MAX, bc1 = LLONG_MIN, br0 = LLONG_MAX, br1 = LLONG_MIN;
-  for (const auto& [key, block] : blocks_) {
-    bc0 = std::min(bc0, key.first), bc1 = std::max(bc1, key.first);
-    br0 = std::min(br0, key.second), br1 = std::max(br1, key.second);
-  }
+  const BlockSpan span = AllocatedBlocks();
+  const long long bc0 = span.bc0, bc1 = span.bc1, br0 = span.br0, br1 = span.br1;
   grid->resolution_m = resolution_m_;
   if (blocks_.empty()) {
     grid->rows = grid->cols = 0;

@@ -6,6 +6,7 @@
 // made when rendering outputs, at any resolution.
 #pragma once
 
+#include <climits>
 #include <map>
 #include <opencv2/core.hpp>
 #include <utility>
@@ -31,12 +32,27 @@ class GlobalMap {
   /// The same, with a mask of observed pixels (CV_8UC1, 255 = observed).
   cv::Mat Render(ImageGrid* grid, cv::Mat* observed) const;
 
-  /// Pixels (rows x cols) of the dense image Render would allocate, computed without allocating:
-  /// a caller checks it against limits.max_image_pixels first, naming its input. Render itself
-  /// throws std::length_error for an image whose side does not fit an int.
+  /// A rectangle of blocks of the lattice (block columns and rows, inclusive); empty as made.
+  struct BlockSpan {
+    long long bc0 = LLONG_MAX, bc1 = LLONG_MIN, br0 = LLONG_MAX, br1 = LLONG_MIN;
+    bool empty() const { return bc0 > bc1; }
+    void Include(long long bc, long long br);
+    void Include(const BlockSpan& other);
+  };
+  /// The blocks a tile on `grid` at T_world_tile reaches (those AddTile visits), computed
+  /// without adding it: a caller can budget a whole mosaic before making it.
+  BlockSpan TileBlocks(const ImageGrid& grid, const Pose2& T_world_tile) const;
+  /// Pixels (rows x cols) of the dense image over `span`, in doubles (never wrapped).
+  double SpanPixels(const BlockSpan& span) const;
+
+  /// Pixels of the dense image Render would allocate (SpanPixels of the allocated blocks),
+  /// computed without allocating: a caller checks it against limits.max_image_pixels first,
+  /// naming its input. Render itself throws std::length_error for an image whose side does not
+  /// fit an int.
   double RenderPixels() const;
 
   double resolution_m() const { return resolution_m_; }
+  int block_px() const { return block_px_; }
   std::size_t num_blocks() const { return blocks_.size(); }
   /// Bytes held by the blocks (sum and weight planes).
   std::size_t memory_bytes() const;
@@ -47,6 +63,8 @@ class GlobalMap {
     cv::Mat weight;  ///< CV_32FC1: number of tiles that observed the pixel
   };
   using BlockKey = std::pair<long long, long long>;  ///< (block column, block row)
+
+  BlockSpan AllocatedBlocks() const;
 
   double resolution_m_;
   int block_px_;

@@ -113,31 +113,22 @@ std::string SessionSource(const SessionData& session) {
 
 void CheckSessionMosaicExtent(const SessionData& session, double resolution_m, double max_pixels) {
   if (session.keyframes.empty() || !(resolution_m > 0)) return;
-  double lo_x = 1e300, hi_x = -1e300, lo_y = 1e300, hi_y = -1e300;
+  // The lattice of the mosaic, without allocating a block of it.
+  const GlobalMap lattice(resolution_m);
+  GlobalMap::BlockSpan span;
   for (const SessionKeyframe& k : session.keyframes) {
-    const ImageGrid& g = k.detected_grid;
-    for (double c : {-0.5, g.cols - 0.5}) {
-      for (double r : {-0.5, g.rows - 0.5}) {
-        const Point2 p = k.T_map_anchor * g.PixelToMetric(c, r);
-        lo_x = std::min(lo_x, p.x_m), hi_x = std::max(hi_x, p.x_m);
-        lo_y = std::min(lo_y, p.y_m), hi_y = std::max(hi_y, p.y_m);
-      }
-    }
+    span.Include(lattice.TileBlocks(k.detected_grid, k.T_map_anchor));
   }
-  // GlobalMap's lattice: whole blocks (256 pixels) from the block of the lowest pixel to the
-  // block of the highest, in doubles (an extent of any size is measured, never wrapped).
-  constexpr double kBlockPx = 256.0;
-  const auto blocks = [&](double lo_m, double hi_m) {
-    return std::floor(std::ceil(hi_m / resolution_m) / kBlockPx) -
-           std::floor(std::floor(lo_m / resolution_m) / kBlockPx) + 1.0;
-  };
-  const double cols = blocks(lo_x, hi_x) * kBlockPx, rows = blocks(lo_y, hi_y) * kBlockPx;
-  if (!(cols * rows <= max_pixels)) {
-    throw InputError(SessionSource(session) + ": the map of its keyframes spans x " + Num(lo_x) +
-                     " .. " + Num(hi_x) + " m, y " + Num(lo_y) + " .. " + Num(hi_y) +
-                     " m: " + Num(cols) + " x " + Num(rows) + " pixels at " + Num(resolution_m) +
-                     " m, more than limits.max_image_pixels (" + Num(max_pixels) +
-                     "); refused before allocation");
+  const double pixels = lattice.SpanPixels(span);
+  if (!(pixels <= max_pixels)) {
+    const double block_m = lattice.block_px() * resolution_m;
+    throw InputError(SessionSource(session) + ": the map of its keyframes spans x " +
+                     Num(static_cast<double>(span.bc0) * block_m) + " .. " +
+                     Num(static_cast<double>(span.bc1 + 1) * block_m) + " m, y " +
+                     Num(-static_cast<double>(span.br1 + 1) * block_m) + " .. " +
+                     Num(-static_cast<double>(span.br0) * block_m) + " m: " + Num(pixels) +
+                     " pixels at " + Num(resolution_m) + " m, more than limits.max_image_pixels (" +
+                     Num(max_pixels) + "); refused before allocation");
   }
 }
 
