@@ -18,11 +18,13 @@
 #include "pipeline/session_capture.h"
 #include "session/blob_codec.h"
 #include "slam/errors.h"
+#include "test/session/session_test_util.h"
 #include "test/shared_data.h"
 
 namespace uwbsar {
 namespace {
 namespace fs = std::filesystem;
+using testing::ErrorOf;
 
 bool SameBytes(const cv::Mat& a, const cv::Mat& b) {
   if (a.rows != b.rows || a.cols != b.cols || a.type() != b.type()) return false;
@@ -47,15 +49,6 @@ void ExpectSameFeatures(const FeatureSet& a, const FeatureSet& b) {
     EXPECT_EQ(a.keypoints[i].octave, b.keypoints[i].octave);
   }
   EXPECT_TRUE(SameBytes(a.descriptors, b.descriptors));
-}
-
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 class SessionFileTest : public ::testing::Test {

@@ -23,20 +23,13 @@
 #include "session/session_file.h"
 #include "session/session_merge.h"
 #include "slam/errors.h"
+#include "test/session/session_test_util.h"
 #include "test/session/tiny_session.h"
 
 namespace uwbsar {
 namespace {
 namespace fs = std::filesystem;
-
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::ErrorOf;
 
 class SessionHostileTest : public ::testing::Test {
  protected:

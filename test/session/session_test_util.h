@@ -2,9 +2,12 @@
 #pragma once
 
 #include <cstdlib>
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "pipeline/app_config.h"
+#include "slam/errors.h"
 #include "slam/types.h"
 
 namespace uwbsar::testing {
@@ -33,6 +36,16 @@ inline const OdometrySample& NearestGroundTruth(const std::vector<OdometrySample
     if (std::llabs(g.stamp_ns - t) < std::llabs(best->stamp_ns - t)) best = &g;
   }
   return *best;
+}
+
+/// The message of the InputError `f` throws; "" when it throws none.
+inline std::string ErrorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
 }
 
 }  // namespace uwbsar::testing
