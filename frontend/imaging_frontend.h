@@ -49,6 +49,20 @@ struct FrontendStats {
     return scans_rejected_unknown_sensor + scans_rejected_empty + scans_rejected_length +
            scans_rejected_nonfinite + scans_rejected_no_odometry + scans_rejected_stale;
   }
+  /// Scans whose samples passed validation (a known radar, the right length, finite).
+  long long scans_valid() const {
+    return scans_received - scans_rejected_unknown_sensor - scans_rejected_empty -
+           scans_rejected_length - scans_rejected_nonfinite;
+  }
+  /// Every valid scan was all zero: radars powered but silent (nothing to image).
+  bool all_valid_scans_zero() const { return scans_valid() > 0 && scans_zero == scans_valid(); }
+  /// "; non-finite or overflowing samples, first: <first_bad_samples>", or "" without one: the
+  /// end of a message refusing a run with nothing imaged.
+  std::string BadSamplesNote() const {
+    return first_bad_samples.empty()
+               ? std::string()
+               : "; non-finite or overflowing samples, first: " + first_bad_samples;
+  }
 };
 
 /// The sections the imaging frontend reads: the pulse and radars (range compression, sensor

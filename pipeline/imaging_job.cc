@@ -17,20 +17,14 @@ namespace {
 /// A strip needs imaged scans, and scans that are not all zero (InputError otherwise).
 void CheckImaged(const FrontendStats& s) {
   if (s.scans_received == 0) throw InputError("nothing to image: no scans");
-  const long long valid = s.scans_received - s.scans_rejected_unknown_sensor -
-                          s.scans_rejected_empty - s.scans_rejected_length -
-                          s.scans_rejected_nonfinite;
-  if (valid > 0 && s.scans_zero == valid) {
-    throw InputError("nothing imaged: every radar scan is zero (" + std::to_string(valid) +
-                     " scans)");
+  if (s.all_valid_scans_zero()) {
+    throw InputError("nothing imaged: every radar scan is zero (" +
+                     std::to_string(s.scans_valid()) + " scans)");
   }
   if (s.scans_imaged > 0) return;
   throw InputError("nothing imaged: none of the " + std::to_string(s.scans_received) +
                    " scans could be imaged (" + std::to_string(s.scans_rejected()) + " rejected, " +
-                   std::to_string(s.scans_gated) + " while not moving)" +
-                   (s.first_bad_samples.empty()
-                        ? std::string()
-                        : "; non-finite or overflowing samples, first: " + s.first_bad_samples));
+                   std::to_string(s.scans_gated) + " while not moving)" + s.BadSamplesNote());
 }
 
 }  // namespace

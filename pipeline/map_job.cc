@@ -92,12 +92,9 @@ void CheckMappable(const MapRun& run) {
   }
   // Scans whose samples passed validation: all zero means radars powered but silent, whose
   // map would be empty (it ended in an OpenCV assertion writing map_float.tif).
-  const long long valid = s.scans_received - s.scans_rejected_unknown_sensor -
-                          s.scans_rejected_empty - s.scans_rejected_length -
-                          s.scans_rejected_nonfinite;
-  if (valid > 0 && s.scans_zero == valid) {
+  if (s.all_valid_scans_zero()) {
     throw InputError(run.input + ": nothing imaged: every radar scan is zero (" +
-                     std::to_string(valid) + " scans; radars powered but silent?)");
+                     std::to_string(s.scans_valid()) + " scans; radars powered but silent?)");
   }
   if (s.scans_imaged == 0) {
     throw InputError(run.input + ": no radar scan could be imaged (" +
@@ -106,9 +103,7 @@ void CheckMappable(const MapRun& run) {
                      std::to_string(s.scans_rejected_length + s.scans_rejected_nonfinite +
                                     s.scans_rejected_empty) +
                      " malformed, " + std::to_string(s.scans_gated) + " while not moving)" +
-                     (s.first_bad_samples.empty()
-                          ? std::string()
-                          : "; non-finite or overflowing samples, first: " + s.first_bad_samples));
+                     s.BadSamplesNote());
   }
   if (run.slam->keyframes().empty()) {
     throw InputError(run.input + ": the run is too short for one keyframe tile");
