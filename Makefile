@@ -15,7 +15,7 @@ DEB_PACKAGES := build-essential cmake ninja-build pkg-config git \
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps venv build test demo bench sanitize-test format format-check layering-check clean fuzz-smoke
+.PHONY: all deps venv build test demo bench sanitize-test format format-check layering-check path-check clean fuzz-smoke
 
 all: build
 
@@ -80,9 +80,13 @@ format:
 format-check:
 	git ls-files '*.h' '*.cc' | xargs clang-format --dry-run --Werror
 
-# No #include runs from a lower folder to a higher one (the order is in the script).
+# Every #include is allowed by the dependency table (cmake/check_layering.py).
 layering-check:
 	python3 cmake/check_layering.py
+
+# Every repository path named in a comment, README or document exists.
+path-check:
+	python3 cmake/check_paths.py
 
 clean:
 	rm -rf $(BUILD_DIR) $(SAN_BUILD_DIR)

@@ -9,8 +9,8 @@
 #include <utility>
 
 #include "backend/se2_edge_cost.h"
+#include "core/errors.h"
 #include "imaging/image_io.h"
-#include "slam/errors.h"
 
 namespace uwbsar {
 namespace {

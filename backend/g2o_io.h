@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "backend/pose_graph.h"
-#include "slam/pose2.h"
+#include "core/pose2.h"
 
 namespace uwbsar {
 

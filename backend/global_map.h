@@ -11,9 +11,9 @@
 #include <opencv2/core.hpp>
 #include <utility>
 
+#include "core/pose2.h"
 #include "imaging/image_grid.h"
-#include "slam/occupancy_grid.h"
-#include "slam/pose2.h"
+#include "imaging/occupancy_grid.h"
 
 namespace uwbsar {
 

@@ -3,12 +3,12 @@
 // resolution, origin [x, y, yaw], negate 0, occupied_thresh 0.65, free_thresh
 // 0.196), both written atomically. free_thresh 0.196 (as ROS 1's map_saver) makes
 // grey 205 read back as unknown in every map_server reader, ours
-// (slam/occupancy_grid.h) included: p(205) = 50/255 = 0.196 is not below it.
+// (imaging/occupancy_grid.h) included: p(205) = 50/255 = 0.196 is not below it.
 #pragma once
 
 #include <string>
 
-#include "slam/occupancy_grid.h"
+#include "imaging/occupancy_grid.h"
 
 namespace uwbsar {
 

@@ -31,7 +31,7 @@
 #include <array>
 #include <cmath>
 
-#include "slam/pose2.h"
+#include "core/pose2.h"
 
 namespace uwbsar {
 

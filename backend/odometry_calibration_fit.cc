@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "backend/se2_edge_cost.h"
-#include "slam/errors.h"
+#include "core/errors.h"
 
 namespace uwbsar {
 namespace {

@@ -17,9 +17,9 @@
 #include <string>
 #include <vector>
 
+#include "backend/backend_config.h"
 #include "backend/odometry_calibration.h"
-#include "slam/config.h"
-#include "slam/types.h"
+#include "core/types.h"
 
 namespace uwbsar {
 

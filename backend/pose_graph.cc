@@ -12,7 +12,7 @@
 #include "backend/chordal_init.h"
 #include "backend/pose_graph_solver.h"
 #include "backend/se2_edge_cost.h"
-#include "slam/errors.h"
+#include "core/errors.h"
 
 namespace uwbsar {
 

@@ -56,8 +56,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "slam/config.h"
-#include "slam/pose2.h"
+#include "backend/backend_config.h"
+#include "core/pose2.h"
 
 namespace ceres {
 class Problem;

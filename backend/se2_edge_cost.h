@@ -11,7 +11,7 @@
 #include <Eigen/Core>
 #include <optional>
 
-#include "slam/pose2.h"
+#include "core/pose2.h"
 
 namespace uwbsar {
 

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "slam/errors.h"
+#include "core/errors.h"
 
 namespace uwbsar {
 

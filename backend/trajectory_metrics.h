@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "slam/pose2.h"
+#include "core/pose2.h"
 
 namespace uwbsar {
 

@@ -11,10 +11,10 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "backend/false_loops.h"
 #include "backend/g2o_io.h"
 #include "backend/pose_graph.h"
 #include "backend/trajectory_metrics.h"
+#include "eval/false_loops.h"
 
 namespace uwbsar {
 namespace {

@@ -5,10 +5,10 @@
 #include <opencv2/core.hpp>
 #include <random>
 
-#include "drivers/echo_simulator.h"
-#include "frontend/back_projection.h"
-#include "frontend/range_profile.h"
-#include "pipeline/app_config.h"
+#include "drivers/sim/echo_simulator.h"
+#include "imaging/back_projection.h"
+#include "imaging/range_profile.h"
+#include "slam/app_config.h"
 
 namespace uwbsar {
 namespace {

@@ -11,7 +11,7 @@
 #include "frontend/place_recognition/feature_matcher.h"
 #include "frontend/place_recognition/features.h"
 #include "frontend/place_recognition/loop_validator.h"
-#include "pipeline/app_config.h"
+#include "slam/app_config.h"
 #include "test/frontend/place_recognition/sar_scene.h"
 
 namespace uwbsar {

@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/app_config.h"
-#include "pipeline/map_job.h"
+#include "slam/app_config.h"
+#include "slam/map_job.h"
 
 namespace uwbsar {
 namespace {

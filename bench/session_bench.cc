@@ -24,19 +24,19 @@
 #include <map>
 #include <string>
 
-#include "backend/compare/map_comparison.h"
-#include "backend/compare/sar_image_occupancy.h"
 #include "backend/global_map.h"
 #include "backend/trajectory_metrics.h"
+#include "eval/compare/map_comparison.h"
+#include "eval/compare/sar_image_occupancy.h"
 #include "imaging/image_io.h"
-#include "pipeline/localize_job.h"
-#include "pipeline/map_job.h"
-#include "pipeline/map_outputs.h"
-#include "pipeline/scene_simulation.h"
-#include "pipeline/session_capture.h"
-#include "pipeline/session_mosaic.h"
-#include "pipeline/session_outputs.h"
-#include "session/session_merge.h"
+#include "slam/localize_job.h"
+#include "slam/map_job.h"
+#include "slam/map_outputs.h"
+#include "slam/scene_simulation.h"
+#include "slam/session/session_merge.h"
+#include "slam/session_capture.h"
+#include "slam/session_mosaic.h"
+#include "slam/session_outputs.h"
 #include "test/shared_data.h"
 
 namespace uwbsar {

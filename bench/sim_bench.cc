@@ -8,7 +8,7 @@
 
 #include "drivers/sim/radar_simulator.h"
 #include "drivers/sim/sim_stream.h"
-#include "pipeline/app_config.h"
+#include "slam/app_config.h"
 
 namespace uwbsar {
 namespace {

@@ -2,7 +2,7 @@
 // office and floor50, each mapped with the default configuration over several seeds.
 // Reported per run: ring closed (SLAM ATE >= 3x better than odometry), ATE, odometry ATE,
 // loops accepted / validated / candidates, false loops, recall per candidate with true
-// overlap and per revisit (tools/tour_eval.h), loops found by the per-radar pass
+// overlap and per revisit (eval/tour/tour_eval.h), loops found by the per-radar pass
 // (radar_match.h) and the keyframe thread's feature and matching time. Targets: every ring
 // closes, 0 false loops, ATE <= 5 cm.
 //
@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/app_config_io.h"
-#include "pipeline/tour_eval.h"
+#include "eval/tour/tour_eval.h"
+#include "slam/app_config_io.h"
 
 namespace uwbsar {
 namespace {

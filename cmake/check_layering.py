@@ -1,96 +1,131 @@
 #!/usr/bin/env python3
-"""Fails when a source folder includes a header from a folder above it.
+"""Fails when a source folder includes a header it may not: the dependency table below.
 
-The project's folders form one stack, listed bottom to top in LAYERS: a file may include
-headers of its own folder and of the folders below it, never of one above (the data flows
-up: sensor data enters in drivers, is imaged in frontend, optimised in backend, saved and
-joined in session and run as a whole by pipeline; tools is the command line over all of
-it). docs/architecture.md describes each floor.
+Each library folder lists the folders whose headers it may include (besides its own). The
+table follows the data: core is the floor; imaging sits on it; the driver families, the
+frontend and the backend sit on imaging and never include each other (drivers never include
+OpenCV feature code either); eval scores what frontend and backend make; slam/ is the SLAM
+system that ties them together, with its configuration (slam/config) and session file
+(slam/session) below it and the live runtime (slam/live) above it; eval/tour scores whole
+runs of the SLAM system; tools is the command line and includes slam/ only (and core/, the
+floor every layer shares). docs/architecture.md describes each folder.
 
 Only quoted includes that name a project folder (`#include "backend/pose_graph.h"`) are
-checked; system and library headers (`<...>`) are not the project's. test/, bench/ and
-fuzz/ sit on top of everything and are not checked. A top-level folder with C++ sources
-that is neither a layer nor exempt is an error too, so a new folder must be given a floor.
+checked, against the longest folder of the table that holds the header; `<...>` includes are
+not the project's, except the OpenCV feature headers in drivers. test/, bench/ and fuzz/ sit
+on top of everything and are not checked. A folder with C++ sources that the table does not
+name is an error too, so a new folder must be given its row.
 
 Usage: check_layering.py [ROOT]   (ROOT defaults to the repository holding this script).
-Exit 0 when every include points down or sideways, 1 with one line per violation.
+Exit 0 when every include is allowed, 1 with one line per violation.
 Standard library only: runs from `make layering-check`, `.ci/run` and ctest.
 """
 import os
 import re
 import sys
 
-# Bottom to top. A folder may include its own headers and those of any folder before it.
-LAYERS = [
-    "slam",      # core: types, pose2, config (+ loading, validation), log, errors
-    "imaging",   # imaging core: image grid and files, enhancement, pulse, sensor geometry
-    "drivers",   # sensors, bags, simulator, live device drivers, DDS (drivers/dds)
-    "frontend",  # scans -> keyframe SAR tiles, place recognition
-    "backend",   # pose graph, global map, occupancy, map comparison (backend/compare)
-    "session",   # saved sessions (session.uwbsar), joining them, localising in them
-    "pipeline",  # SlamSystem, mapping and imaging jobs, map outputs, live runtime
-    "tools",     # the `uwbsar` command line: flags and printing
-]
-# Folders above every layer (they may include anything) or without project C++ code.
-EXEMPT = {"test", "bench", "fuzz", "build", "cmake", "config", "docs", ".git", ".venv"}
+DRIVERS = ["drivers/rosbag", "drivers/logs", "drivers/sim", "drivers/live", "drivers/dds"]
+BELOW_SLAM = ["core", "imaging", *DRIVERS, "drivers/emulators", "frontend",
+              "frontend/place_recognition", "backend", "eval", "eval/compare"]
+SLAM_PARTS = ["slam", "slam/config", "slam/session", "slam/live"]
+
+# folder -> the folders whose headers it may include (its own always).
+ALLOWED = {
+    "core": [],
+    "imaging": ["core"],
+    "drivers/rosbag": ["core"],
+    "drivers/logs": ["core"],
+    "drivers/sim": ["core", "imaging", "drivers/rosbag", "drivers/logs"],
+    "drivers/live": ["core", "imaging"],
+    "drivers/dds": ["core", "imaging"],
+    "drivers/emulators": ["core", "imaging", *DRIVERS],
+    "frontend": ["core", "imaging"],
+    "frontend/place_recognition": ["core", "imaging", "frontend"],
+    "backend": ["core", "imaging"],
+    "eval": ["core", "imaging", "frontend", "frontend/place_recognition", "backend"],
+    "eval/compare": ["core", "imaging", "backend"],
+    "slam/config": ["core", "imaging", "frontend", "frontend/place_recognition", "backend"],
+    "slam/session": ["core", "imaging", "frontend", "frontend/place_recognition", "backend",
+                     "slam/config"],
+    "slam": [*BELOW_SLAM, "slam/config", "slam/session"],
+    "slam/live": [*BELOW_SLAM, "slam", "slam/config", "slam/session"],
+    "eval/tour": [*BELOW_SLAM, *SLAM_PARTS],
+    "tools": ["core", *SLAM_PARTS],
+}
+# Folders whose sources may not include these system headers (drivers: no feature code).
+FORBIDDEN_SYSTEM = {folder: ("opencv2/features2d", "opencv2/xfeatures2d")
+                    for folder in [*DRIVERS, "drivers/emulators"]}
+# Folders above the table (they may include anything) or without project C++ code.
+EXEMPT = {"test", "bench", "fuzz", "build", "cmake", "config", "docs", ".git", ".venv", "out"}
 
 SOURCE_SUFFIXES = (".h", ".hpp", ".cc", ".cpp")
-INCLUDE_RE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
+INCLUDE_RE = re.compile(r'^\s*#\s*include\s+([<"])([^">]+)[">]')
 
 
-def layer_of(top_folder):
-    return LAYERS.index(top_folder) if top_folder in LAYERS else None
+def folder_of(rel_path):
+    """The longest folder of the table holding `rel_path`, or None."""
+    parts = rel_path.split("/")[:-1]
+    for n in range(len(parts), 0, -1):
+        candidate = "/".join(parts[:n])
+        if candidate in ALLOWED:
+            return candidate
+    return None
+
+
+def source_files(root):
+    for top in sorted(os.listdir(root)):
+        path = os.path.join(root, top)
+        if not os.path.isdir(path) or top in EXEMPT or top.startswith((".", "build")):
+            continue
+        for dirpath, dirnames, names in os.walk(path):
+            dirnames.sort()
+            for name in sorted(names):
+                if name.endswith(SOURCE_SUFFIXES):
+                    yield os.path.relpath(os.path.join(dirpath, name), root).replace(os.sep, "/")
 
 
 def check(root):
     errors = []
-    for entry in sorted(os.listdir(root)):
-        path = os.path.join(root, entry)
-        if not os.path.isdir(path) or entry in EXEMPT or entry.startswith((".", "build")):
-            continue
-        has_sources = any(
-            name.endswith(SOURCE_SUFFIXES) for _, _, names in os.walk(path) for name in names
-        )
-        if has_sources and entry not in LAYERS:
-            errors.append(f"{entry}/: folder with C++ sources is not in LAYERS of {__file__}")
-    for folder in LAYERS:
+    for folder in ALLOWED:
         if not os.path.isdir(os.path.join(root, folder)):
-            errors.append(f"{folder}/: layer folder is missing (update LAYERS)")
-    for folder in LAYERS:
-        own = layer_of(folder)
-        for dirpath, _, names in os.walk(os.path.join(root, folder)):
-            for name in sorted(names):
-                if not name.endswith(SOURCE_SUFFIXES):
+            errors.append(f"{folder}/: folder of the dependency table is missing (update ALLOWED)")
+    for rel in source_files(root):
+        own = folder_of(rel)
+        if own is None:
+            errors.append(f"{rel}: its folder has no row in ALLOWED of {__file__}")
+            continue
+        with open(os.path.join(root, rel), encoding="utf-8", errors="replace") as f:
+            for line_no, line in enumerate(f, 1):
+                m = INCLUDE_RE.match(line)
+                if not m:
                     continue
-                file_path = os.path.join(dirpath, name)
-                rel = os.path.relpath(file_path, root)
-                with open(file_path, encoding="utf-8", errors="replace") as f:
-                    for line_no, line in enumerate(f, 1):
-                        m = INCLUDE_RE.match(line)
-                        if not m or "/" not in m.group(1):
-                            continue
-                        target = m.group(1).split("/", 1)[0]
-                        other = layer_of(target)
-                        if other is not None and other > own:
-                            errors.append(
-                                f"{rel}:{line_no}: {folder}/ (layer {own}) includes "
-                                f'"{m.group(1)}" from {target}/ (layer {other}), a higher layer'
-                            )
+                kind, header = m.groups()
+                if kind == "<":
+                    if header.startswith(FORBIDDEN_SYSTEM.get(own, ())):
+                        errors.append(f"{rel}:{line_no}: {own}/ may not include <{header}>")
+                    continue
+                if "/" not in header:
+                    continue
+                target = folder_of(header)
+                if target is None or target == own or target in ALLOWED[own]:
+                    continue
+                errors.append(f'{rel}:{line_no}: {own}/ may not include "{header}" from '
+                              f"{target}/ (it may include: {', '.join(ALLOWED[own]) or 'nothing'})")
     return errors
 
 
-def main(argv):
-    root = argv[1] if len(argv) > 1 else os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+def main():
+    root = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(
+        os.path.dirname(os.path.abspath(__file__)))
     errors = check(root)
     for e in errors:
         print(e)
     if errors:
-        print(f"layering check: {len(errors)} violation(s); order, bottom to top: "
-              + " -> ".join(LAYERS))
+        print(f"{len(errors)} include(s) break the dependency table (cmake/check_layering.py)")
         return 1
-    print("layering check: no include runs upward (" + " -> ".join(LAYERS) + ")")
+    print("layering: every include is allowed by the dependency table")
     return 0
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    sys.exit(main())

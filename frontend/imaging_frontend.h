@@ -10,11 +10,15 @@
 #include <string>
 #include <vector>
 
+#include "core/log.h"
+#include "core/radar_config.h"
+#include "frontend/gating_config.h"
 #include "frontend/keyframe.h"
 #include "frontend/keyframe_builder.h"
+#include "frontend/keyframe_config.h"
 #include "frontend/odometry_buffer.h"
-#include "slam/config.h"
-#include "slam/log.h"
+#include "imaging/imaging_config.h"
+#include "imaging/pulse_config.h"
 
 namespace uwbsar {
 
@@ -78,8 +82,10 @@ struct ImagingFrontendConfig {
   bool per_radar_tiles = false;
 
   ImagingFrontendConfig() = default;
-  /// Its sections of a configuration (implicit: callers hand the configuration they hold).
-  ImagingFrontendConfig(const CoreConfig& config)  // NOLINT(google-explicit-constructor)
+  /// Its sections of any configuration holding them (implicit: callers hand the configuration
+  /// they hold, the frontend keeps its part).
+  template <class Config>
+  ImagingFrontendConfig(const Config& config)  // NOLINT(google-explicit-constructor)
       : pulse(config.pulse),
         radars(config.radars),
         imaging(config.imaging),

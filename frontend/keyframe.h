@@ -7,9 +7,9 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "frontend/range_profile.h"
+#include "core/types.h"
 #include "imaging/image_grid.h"
-#include "slam/types.h"
+#include "imaging/range_profile.h"
 
 namespace uwbsar {
 

@@ -15,24 +15,12 @@ KeyframeBuilder::KeyframeBuilder(const KeyframeConfig& keyframe, const ImagingCo
       segments_per_tile_(std::max(
           1, static_cast<int>(std::lround(keyframe.tile_length_m / keyframe.tile_spacing_m)))),
       sensors_(std::move(sensors)),
-      projector_(std::max(1, imaging.num_threads)) {
-  // A segment's robot stays within tile_spacing_m (plus one scan step) of where the
-  // segment started, in any direction: its canvas covers that disk plus the
-  // farthest corner of any sensor's sector.
-  double reach = 0.0;
-  for (const SensorGeometry& s : sensors_) {
-    double b[4];
-    s.SectorBoundsInRobot(b);
-    for (double x : {b[0], b[1]}) {
-      for (double y : {b[2], b[3]}) reach = std::max(reach, std::hypot(x, y));
-    }
-  }
-  canvas_half_size_m_ = 1.05 * keyframe.tile_spacing_m + reach + keyframe.margin_m;
-}
+      canvas_(SegmentCanvasFor(keyframe, sensors_)),
+      projector_(std::max(1, imaging.num_threads)) {}
 
 void KeyframeBuilder::OpenSegment(const ImagedScan& scan) {
   Segment seg;
-  const long long half = static_cast<long long>(std::ceil(canvas_half_size_m_ / resolution_m_));
+  const long long half = canvas_.HalfPixels(resolution_m_);
   const long long cx = std::llround(scan.T_world_robot.x_m / resolution_m_);
   const long long cy = std::llround(scan.T_world_robot.y_m / resolution_m_);
   seg.lattice_col0 = cx - half;

@@ -13,10 +13,12 @@
 #include <deque>
 #include <vector>
 
-#include "frontend/back_projection.h"
 #include "frontend/keyframe.h"
+#include "frontend/keyframe_config.h"
+#include "frontend/segment_canvas.h"
+#include "imaging/back_projection.h"
+#include "imaging/imaging_config.h"
 #include "imaging/sensor_geometry.h"
-#include "slam/config.h"
 
 namespace uwbsar {
 
@@ -70,7 +72,7 @@ class KeyframeBuilder {
   bool keep_sensor_images_;
   int segments_per_tile_;
   std::vector<SensorGeometry> sensors_;
-  double canvas_half_size_m_;  ///< reach of one segment's sensors around its start
+  SegmentCanvas canvas_;  ///< one segment's canvas (SegmentCanvasFor)
   BackProjector projector_;
   std::deque<Segment> segments_;  ///< the last segments_per_tile_ segments, newest last
   std::vector<Keyframe> closed_;

@@ -21,8 +21,8 @@
 #include <deque>
 #include <optional>
 
-#include "slam/config.h"
-#include "slam/types.h"
+#include "core/types.h"
+#include "frontend/gating_config.h"
 
 namespace uwbsar {
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "frontend/back_projection.h"
+#include "imaging/back_projection.h"
 
 namespace uwbsar {
 

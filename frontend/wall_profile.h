@@ -1,5 +1,5 @@
 // Wall profiles: the sideways offset between two keyframes of one straight stretch,
-// measured from their tiles (place_recognition.wall_profiles, slam/wall_profile_config.h).
+// measured from their tiles (place_recognition.wall_profiles, frontend/wall_profile_config.h).
 //
 // A side-looking radar images the walls beside the path. Summing a detected tile along the
 // robot's heading gives a profile across the path (walls are its peaks); two tiles of the
@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "frontend/wall_profile_config.h"
 #include "imaging/image_grid.h"
-#include "slam/wall_profile_config.h"
 
 namespace uwbsar {
 

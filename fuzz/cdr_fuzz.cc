@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/errors.h"
 #include "drivers/rosbag/ros_codecs.h"
-#include "slam/errors.h"
 
 namespace {
 

@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/errors.h"
+#include "core/log.h"
 #include "drivers/rosbag/mcap_storage_reader.h"
-#include "slam/errors.h"
-#include "slam/log.h"
 
 namespace {
 

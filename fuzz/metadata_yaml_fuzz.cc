@@ -7,8 +7,8 @@
 #include <limits>
 #include <string>
 
+#include "core/errors.h"
 #include "drivers/rosbag/bag_metadata.h"
-#include "slam/errors.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

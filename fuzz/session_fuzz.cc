@@ -13,8 +13,8 @@
 #include <set>
 #include <string>
 
-#include "session/session_file.h"
-#include "slam/errors.h"
+#include "core/errors.h"
+#include "slam/session/session_file.h"
 
 namespace {
 

@@ -6,7 +6,7 @@
 #include <opencv2/core.hpp>
 #include <string>
 
-#include "slam/config.h"
+#include "imaging/enhance_config.h"
 
 namespace uwbsar {
 

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "slam/pose2.h"
+#include "core/pose2.h"
 
 namespace uwbsar {
 

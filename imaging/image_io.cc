@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "slam/errors.h"
+#include "core/errors.h"
 
 namespace uwbsar {
 namespace {

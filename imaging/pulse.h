@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "slam/config.h"
+#include "imaging/pulse_config.h"
 
 namespace uwbsar {
 

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <sstream>
 
-#include "slam/errors.h"
-#include "slam/yaml_file.h"
+#include "core/errors.h"
+#include "core/yaml_file.h"
 
 namespace uwbsar {
 namespace {

@@ -1,10 +1,10 @@
 // Pixel geometry of a SAR image: `<prefix>_grid.yaml` next to a float SAR image
-// (pipeline/imaging_job.cc WriteStripOutputs, `map_grid.yaml` of `uwbsar map`), or a grid
+// (slam/imaging_job.cc WriteStripOutputs, `map_grid.yaml` of `uwbsar map`), or a grid
 // YAML written by hand for an image from another tool. Column = +x, row = -y in the world
 // frame, (x0_m, y0_m) = the centre of pixel (row 0, col 0). Keys: x0_m, y0_m,
 // resolution_m (required); rows, cols (optional: checked against the image when given);
 // image (optional: the image file, relative to the YAML's folder); mode (optional).
-// Read with slam/yaml_file.h (the one YAML reader); imaging/image_grid.h holds the same
+// Read with core/yaml_file.h (the one YAML reader); imaging/image_grid.h holds the same
 // numbers as an ImageGrid.
 #pragma once
 

@@ -7,10 +7,10 @@
 #include <sstream>
 #include <vector>
 
+#include "core/errors.h"
+#include "core/log.h"
+#include "imaging/image_header.h"
 #include "imaging/sar_grid_metadata.h"
-#include "slam/errors.h"
-#include "slam/image_header.h"
-#include "slam/log.h"
 
 namespace uwbsar {
 namespace {

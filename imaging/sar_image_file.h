@@ -8,8 +8,8 @@
 #include <opencv2/core.hpp>
 #include <string>
 
+#include "core/limits_config.h"
 #include "imaging/image_grid.h"
-#include "slam/config.h"
 
 namespace uwbsar {
 

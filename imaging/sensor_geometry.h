@@ -1,8 +1,9 @@
 // Radar geometry in the robot frame and the bounds of what it images.
 #pragma once
 
-#include "slam/config.h"
-#include "slam/pose2.h"
+#include "core/pose2.h"
+#include "core/radar_config.h"
+#include "imaging/pulse_config.h"
 
 namespace uwbsar {
 

@@ -7,8 +7,8 @@
 #include <sstream>
 
 #include "backend/odometry_calibration_fit.h"
+#include "drivers/logs/tum_reader.h"
 #include "drivers/rosbag/robot_bag.h"
-#include "drivers/tum_reader.h"
 #include "imaging/image_io.h"
 #include "tools/commands.h"
 

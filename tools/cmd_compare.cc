@@ -6,9 +6,9 @@
 #include <iostream>
 #include <sstream>
 
-#include "backend/compare/map_comparison.h"
-#include "backend/compare/metrics_json.h"
-#include "pipeline/app_config.h"
+#include "eval/compare/map_comparison.h"
+#include "eval/compare/metrics_json.h"
+#include "slam/app_config.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

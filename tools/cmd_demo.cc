@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "pipeline/app_config.h"
-#include "pipeline/map_outputs.h"
-#include "pipeline/saved_session.h"
+#include "slam/app_config.h"
+#include "slam/map_outputs.h"
+#include "slam/saved_session.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

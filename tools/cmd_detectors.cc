@@ -10,15 +10,15 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
-#include "drivers/log_source.h"
+#include "core/errors.h"
+#include "core/message.h"
+#include "drivers/logs/log_source.h"
 #include "drivers/rosbag/robot_bag.h"
+#include "eval/image_match_report.h"
+#include "eval/region_study.h"
 #include "frontend/imaging_frontend.h"
-#include "frontend/place_recognition/region_study.h"
 #include "imaging/image_io.h"
-#include "pipeline/app_config.h"
-#include "pipeline/image_match_report.h"
-#include "slam/errors.h"
-#include "slam/message.h"
+#include "slam/app_config.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

@@ -3,9 +3,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "backend/compare/pcd_export.h"
-#include "backend/compare/sar_peaks.h"
-#include "pipeline/app_config.h"
+#include "eval/compare/pcd_export.h"
+#include "eval/compare/sar_peaks.h"
+#include "slam/app_config.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -17,7 +17,7 @@ bool HasTiffExtension(const std::string& path) {
   return ext == ".tif" || ext == ".tiff";
 }
 
-/// `<prefix>_float.tif` -> `<prefix>_grid.yaml` (pipeline/imaging_job.cc's naming).
+/// `<prefix>_float.tif` -> `<prefix>_grid.yaml` (slam/imaging_job.cc's naming).
 std::string DefaultGridYaml(const std::string& tiff) {
   const std::string stem = std::filesystem::path(tiff).stem().string();
   const std::string suffix = "_float";

@@ -3,10 +3,10 @@
 #include <cstdio>
 #include <iostream>
 
-#include "drivers/text_log.h"
-#include "pipeline/app_config_io.h"
-#include "pipeline/imaging_job.h"
-#include "slam/errors.h"
+#include "core/errors.h"
+#include "drivers/logs/text_log.h"
+#include "slam/app_config_io.h"
+#include "slam/imaging_job.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

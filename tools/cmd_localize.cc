@@ -1,12 +1,12 @@
 // `uwbsar localize BAG --map SESSION --out DIR`: localise a log in a saved map without
-// changing it (pipeline/localize_job.h).
+// changing it (slam/localize_job.h).
 #include <cstdio>
 
-#include "pipeline/app_config.h"
-#include "pipeline/localize_job.h"
-#include "pipeline/map_outputs.h"
-#include "pipeline/saved_session.h"
-#include "session/session_file.h"
+#include "slam/app_config.h"
+#include "slam/localize_job.h"
+#include "slam/map_outputs.h"
+#include "slam/saved_session.h"
+#include "slam/session/session_file.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

@@ -7,12 +7,12 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "frontend/place_recognition/loop_stats.h"
+#include "core/errors.h"
+#include "eval/image_loop_study.h"
+#include "eval/image_match_report.h"
+#include "eval/loop_stats.h"
 #include "imaging/image_io.h"
-#include "pipeline/app_config.h"
-#include "pipeline/image_loop_study.h"
-#include "pipeline/image_match_report.h"
-#include "slam/errors.h"
+#include "slam/app_config.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -102,7 +102,8 @@ void AddLoopsCommand(CLI::App& app, const GlobalOptions& globals) {
       const std::vector<DetectorKind> detectors = pipeline::ParseDetectorList(opts->detectors);
       if (!opts->out_dir.empty()) pipeline::EnsureDirectory(opts->out_dir);
       const pipeline::ImageLoopStudy study =
-          pipeline::RunImageLoopStudy(opts->images_dir, opts->resolution_m, detectors, config);
+          pipeline::RunImageLoopStudy(opts->images_dir, opts->resolution_m, detectors, config,
+                                      config.limits.max_map_image_pixels);
       if (!opts->out_dir.empty()) WriteStudy(study, opts->out_dir);
       m = study.matrix;
       json = pipeline::ImageLoopStudyJson(study);

@@ -2,11 +2,11 @@
 #include <cstdio>
 #include <optional>
 
-#include "drivers/tum_reader.h"
-#include "pipeline/app_config.h"
-#include "pipeline/map_outputs.h"
-#include "pipeline/session_capture.h"
-#include "session/session_file.h"
+#include "drivers/logs/tum_reader.h"
+#include "slam/app_config.h"
+#include "slam/map_outputs.h"
+#include "slam/session/session_file.h"
+#include "slam/session_capture.h"
 #include "tools/commands.h"
 #include "tools/map_resume.h"
 

@@ -6,11 +6,11 @@
 #include <iostream>
 #include <opencv2/imgproc.hpp>
 
+#include "core/errors.h"
+#include "eval/image_match_report.h"
 #include "frontend/place_recognition/image_match.h"
 #include "imaging/image_io.h"
-#include "pipeline/app_config.h"
-#include "pipeline/image_match_report.h"
-#include "slam/errors.h"
+#include "slam/app_config.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

@@ -1,13 +1,13 @@
 // `uwbsar merge SESSION_A SESSION_B --out DIR`: two sessions of the same building joined by
-// loops found between them (session/session_merge.h), written as one map.
+// loops found between them (slam/session/session_merge.h), written as one map.
 #include <cstdio>
 
-#include "pipeline/app_config.h"
-#include "pipeline/saved_session.h"
-#include "pipeline/session_outputs.h"
-#include "session/session_file.h"
-#include "session/session_merge.h"
-#include "slam/errors.h"
+#include "core/errors.h"
+#include "slam/app_config.h"
+#include "slam/saved_session.h"
+#include "slam/session/session_file.h"
+#include "slam/session/session_merge.h"
+#include "slam/session_outputs.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

@@ -11,7 +11,7 @@
 #include "backend/graph_plot.h"
 #include "backend/pose_graph.h"
 #include "imaging/image_io.h"
-#include "pipeline/app_config.h"
+#include "slam/app_config.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

@@ -1,9 +1,9 @@
 // `uwbsar run --config config/robot.yaml [--out DIR]`: live SLAM on the robot
-// (pipeline/live_runner.h). SIGINT/SIGTERM finish the run cleanly: drivers stop, the
+// (slam/live/live_runner.h). SIGINT/SIGTERM finish the run cleanly: drivers stop, the
 // graph is solved once more, final outputs are written, exit 0.
 // `--emulate` replaces the hardware by emulated devices on pseudo-terminals that play
 // a simulated depart-and-return run in the bundled seed_hall room or in --map
-// (drivers/live/sim_device_player.h); the run ends with it.
+// (drivers/emulators/sim_device_player.h); the run ends with it.
 #include <unistd.h>
 
 #include <csignal>
@@ -11,12 +11,12 @@
 #include <filesystem>
 #include <thread>
 
+#include "core/interrupt_cleanup.h"
+#include "drivers/emulators/sim_device_player.h"
 #include "drivers/live/host_clock.h"
-#include "drivers/live/sim_device_player.h"
 #include "drivers/sim/sim_stream.h"
-#include "pipeline/app_config.h"
-#include "pipeline/live_runner.h"
-#include "slam/interrupt_cleanup.h"
+#include "slam/app_config.h"
+#include "slam/live/live_runner.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -148,7 +148,7 @@ void PrintRunResult(const pipeline::LiveRunResult& result, const std::string& ou
 
 void Run(const RunOptions& opts, const GlobalOptions& globals) {
   Config config = LoadConfigFor(globals);
-  // SIGINT/SIGTERM finish the run cleanly (slam/interrupt_cleanup.h's watcher calls this;
+  // SIGINT/SIGTERM finish the run cleanly (core/interrupt_cleanup.h's watcher calls this;
   // the plain handler serves callers that did not install the watcher).
   SetInterruptHandler([] { g_stop = true; });
   std::signal(SIGINT, OnStopSignal);

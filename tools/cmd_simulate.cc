@@ -11,11 +11,11 @@
 #include <filesystem>
 #include <memory>
 
+#include "core/interrupt_cleanup.h"
 #include "drivers/sim/sim_bag_writer.h"
 #include "drivers/sim/sim_recorder.h"
 #include "drivers/sim/sim_stream.h"
-#include "pipeline/app_config_io.h"
-#include "slam/interrupt_cleanup.h"
+#include "slam/app_config_io.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

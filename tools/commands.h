@@ -7,8 +7,8 @@
 #include <memory>
 #include <string>
 
-#include "pipeline/app_config.h"
-#include "pipeline/output_folder.h"  // EnsureDirectory, CheckOutputFolder, CheckOutputFile
+#include "slam/app_config.h"
+#include "slam/output_folder.h"  // EnsureDirectory, CheckOutputFolder, CheckOutputFile
 
 namespace uwbsar::pipeline {
 struct MapOutputs;

@@ -3,7 +3,7 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "pipeline/app_config_io.h"
+#include "slam/app_config_io.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

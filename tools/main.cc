@@ -3,9 +3,9 @@
 #include <exception>
 #include <iostream>
 
-#include "slam/errors.h"
-#include "slam/interrupt_cleanup.h"
-#include "slam/log.h"
+#include "core/errors.h"
+#include "core/interrupt_cleanup.h"
+#include "core/log.h"
 #include "tools/commands.h"
 
 int main(int argc, char** argv) {
@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
   app.fallthrough();
   GlobalOptions globals;
   // A path that is not a regular file (a folder, /dev/zero) is bad input, exit 3, refused by the
-  // loader with one line (slam/bounded_file.h); only a path that does not exist is exit 2.
+  // loader with one line (core/bounded_file.h); only a path that does not exist is exit 2.
   app.add_option("--config", globals.config_path, "YAML configuration (default: built-in)")
       ->check(CLI::ExistingPath);
   app.add_flag("-q,--quiet", globals.quiet, "Only print errors");

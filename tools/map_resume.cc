@@ -2,13 +2,13 @@
 
 #include <cstdio>
 
-#include "pipeline/app_config.h"
-#include "pipeline/map_outputs.h"
-#include "pipeline/session_capture.h"
-#include "pipeline/session_outputs.h"
-#include "session/session_file.h"
-#include "session/session_merge.h"
-#include "slam/errors.h"
+#include "core/errors.h"
+#include "slam/app_config.h"
+#include "slam/map_outputs.h"
+#include "slam/session/session_file.h"
+#include "slam/session/session_merge.h"
+#include "slam/session_capture.h"
+#include "slam/session_outputs.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

@@ -1,6 +1,6 @@
 // `uwbsar map BAG --resume SESSION`: the new run mapped as usual, then joined to the saved
-// session as a new trajectory (session/session_merge.h) and the joined map written
-// (pipeline/session_outputs.h). A run that never connects is refused and nothing is written:
+// session as a new trajectory (slam/session/session_merge.h) and the joined map written
+// (slam/session_outputs.h). A run that never connects is refused and nothing is written:
 // the saved map is never replaced by a run that is not part of it.
 #pragma once
 
@@ -8,11 +8,11 @@
 #include <vector>
 
 #include "drivers/rosbag/bag_storage.h"
-#include "pipeline/app_config.h"
-#include "pipeline/map_job.h"
-#include "pipeline/map_outputs.h"
-#include "pipeline/saved_session.h"
-#include "session/session_data.h"
+#include "slam/app_config.h"
+#include "slam/map_job.h"
+#include "slam/map_outputs.h"
+#include "slam/saved_session.h"
+#include "slam/session/session_data.h"
 
 namespace uwbsar::tools {
 

@@ -3,7 +3,7 @@
 #include <string>
 #include <utility>
 
-#include "slam/config_require.h"
+#include "core/config_require.h"
 
 namespace uwbsar {
 

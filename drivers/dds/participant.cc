@@ -5,8 +5,8 @@
 #include <map>
 #include <mutex>
 
+#include "core/errors.h"
 #include "drivers/dds/dds_check.h"
-#include "slam/errors.h"
 
 namespace uwbsar::dds {
 namespace {

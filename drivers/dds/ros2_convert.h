@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "core/pose2.h"
+#include "core/types.h"
 #include "drivers/dds/ros2_types.h"
-#include "slam/occupancy_grid.h"
-#include "slam/pose2.h"
-#include "slam/types.h"
+#include "imaging/occupancy_grid.h"
 
 namespace uwbsar::dds {
 

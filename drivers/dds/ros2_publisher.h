@@ -13,11 +13,11 @@
 #include <utility>
 #include <vector>
 
+#include "core/pose2.h"
+#include "core/types.h"
 #include "drivers/dds/dds_config.h"
 #include "drivers/dds/participant.h"
-#include "slam/occupancy_grid.h"
-#include "slam/pose2.h"
-#include "slam/types.h"
+#include "imaging/occupancy_grid.h"
 
 namespace uwbsar::dds {
 

@@ -2,7 +2,7 @@
 
 #include <cctype>
 
-#include "slam/errors.h"
+#include "core/errors.h"
 
 namespace uwbsar::dds {
 

@@ -7,11 +7,11 @@
 #include <map>
 #include <utility>
 
+#include "core/errors.h"
 #include "drivers/dds/dds_check.h"
 #include "drivers/dds/ros2_convert.h"
 #include "drivers/dds/ros2_qos.h"
 #include "drivers/dds/ros2_types.h"
-#include "slam/errors.h"
 
 namespace uwbsar::dds {
 namespace {

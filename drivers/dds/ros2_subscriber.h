@@ -18,11 +18,11 @@
 #include <thread>
 #include <vector>
 
+#include "core/types.h"
 #include "drivers/dds/dds_config.h"
 #include "drivers/dds/dds_events.h"
 #include "drivers/dds/participant.h"
 #include "drivers/dds/publication_monitor.h"
-#include "slam/types.h"
 
 namespace uwbsar::dds {
 

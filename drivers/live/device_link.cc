@@ -4,8 +4,8 @@
 #include <chrono>
 #include <vector>
 
+#include "core/log.h"
 #include "drivers/live/thread_priority.h"
-#include "slam/log.h"
 
 namespace uwbsar::live {
 

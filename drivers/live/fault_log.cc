@@ -1,6 +1,6 @@
 #include "drivers/live/fault_log.h"
 
-#include "slam/log.h"
+#include "core/log.h"
 
 namespace uwbsar::live {
 

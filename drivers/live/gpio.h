@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "slam/errors.h"
+#include "core/errors.h"
 
 namespace uwbsar::live {
 

@@ -9,7 +9,7 @@
 #include <chrono>
 #include <mutex>
 
-#include "slam/types.h"
+#include "core/types.h"
 
 namespace uwbsar::live {
 

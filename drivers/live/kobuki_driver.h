@@ -17,7 +17,6 @@
 #include "drivers/live/kobuki_odometry.h"
 #include "drivers/live/live_config.h"
 #include "drivers/live/stream_clock.h"
-#include "slam/config.h"
 
 namespace uwbsar::live {
 

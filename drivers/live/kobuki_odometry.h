@@ -8,8 +8,8 @@
 
 #include <optional>
 
+#include "core/types.h"
 #include "drivers/live/kobuki_protocol.h"
-#include "slam/types.h"
 
 namespace uwbsar::live {
 

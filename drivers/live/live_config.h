@@ -1,6 +1,6 @@
 // Configuration of live mode on the robot (`uwbsar run`).
-// Part of the configuration (pipeline/app_config.h aggregates it); fields are read and
-// written by the generic loader in slam/config_io.h.
+// Part of the configuration (slam/app_config.h aggregates it); fields are read and
+// written by the generic loader in core/config_io.h.
 #pragma once
 
 #include <string>

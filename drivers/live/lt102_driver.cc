@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "slam/log.h"
+#include "core/log.h"
 
 namespace uwbsar::live {
 namespace {

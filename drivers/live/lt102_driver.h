@@ -42,11 +42,11 @@
 #include <string>
 #include <vector>
 
+#include "core/types.h"
 #include "drivers/live/device_link.h"
 #include "drivers/live/live_settings.h"
 #include "drivers/live/lt102_startup.h"
 #include "drivers/live/stream_clock.h"
-#include "slam/types.h"
 
 namespace uwbsar::live {
 

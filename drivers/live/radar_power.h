@@ -15,7 +15,6 @@
 
 #include "drivers/live/gpio.h"
 #include "drivers/live/live_config.h"
-#include "slam/config.h"
 
 namespace uwbsar::live {
 

@@ -19,7 +19,7 @@
 #include <cstdint>
 #include <deque>
 
-#include "slam/types.h"
+#include "core/types.h"
 
 namespace uwbsar::live {
 

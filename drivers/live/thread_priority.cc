@@ -6,7 +6,7 @@
 #include <atomic>
 #include <cstring>
 
-#include "slam/log.h"
+#include "core/log.h"
 
 namespace uwbsar::live {
 

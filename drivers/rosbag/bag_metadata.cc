@@ -7,8 +7,8 @@
 #include <limits>
 #include <sstream>
 
-#include "slam/bounded_file.h"
-#include "slam/errors.h"
+#include "core/bounded_file.h"
+#include "core/errors.h"
 
 namespace uwbsar::rosbag {
 namespace {

@@ -12,9 +12,9 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "core/errors.h"
+#include "core/interrupt_cleanup.h"
 #include "drivers/rosbag/bag_metadata.h"
-#include "slam/errors.h"
-#include "slam/interrupt_cleanup.h"
 
 namespace uwbsar::rosbag {
 namespace fs = std::filesystem;
@@ -28,7 +28,7 @@ std::string Lower(std::string s) {
 
 // Decompresses a rosbag2 file-compressed storage (`x.db3.zstd`) in one streaming pass to a
 // private temporary file in $TMPDIR, removed when the reader closes, on every error and on
-// Ctrl-C (slam/interrupt_cleanup.h). The output may not exceed `cap_bytes` (from the
+// Ctrl-C (core/interrupt_cleanup.h). The output may not exceed `cap_bytes` (from the
 // metadata's message count): a small file of zeros must not fill the disk. A failed write
 // names the temporary file and its cause (no space left on device), not the input.
 std::string DecompressFileToTemp(const std::string& path, std::uint64_t cap_bytes,

@@ -2,9 +2,9 @@
 // configured topics (robot_bag.h), in the bag's receive-time order.
 #pragma once
 
+#include "core/message.h"
 #include "drivers/rosbag/bag_reader.h"
 #include "drivers/rosbag/robot_bag.h"
-#include "slam/message.h"
 
 namespace uwbsar::rosbag {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "slam/types.h"
+#include "core/types.h"
 
 namespace uwbsar::rosbag {
 

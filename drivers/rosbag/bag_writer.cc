@@ -4,10 +4,10 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/errors.h"
+#include "core/log.h"
 #include "drivers/rosbag/bag_metadata.h"
 #include "drivers/rosbag/ros_codecs.h"
-#include "slam/errors.h"
-#include "slam/log.h"
 
 namespace uwbsar::rosbag {
 namespace fs = std::filesystem;

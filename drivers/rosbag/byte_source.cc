@@ -7,7 +7,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "slam/errors.h"
+#include "core/errors.h"
 
 namespace uwbsar::rosbag {
 namespace {

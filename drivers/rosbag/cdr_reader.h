@@ -12,7 +12,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "slam/errors.h"
+#include "core/errors.h"
 
 namespace uwbsar::rosbag {
 

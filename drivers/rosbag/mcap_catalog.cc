@@ -5,9 +5,9 @@
 #include <cstring>
 #include <limits>
 
+#include "core/errors.h"
+#include "core/log.h"
 #include "drivers/rosbag/crc32.h"
-#include "slam/errors.h"
-#include "slam/log.h"
 
 namespace uwbsar::rosbag::mcap {
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "slam/errors.h"
+#include "core/errors.h"
 
 namespace uwbsar::rosbag::mcap {
 namespace {

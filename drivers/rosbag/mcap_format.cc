@@ -8,7 +8,7 @@
 #include <cstring>
 #include <memory>
 
-#include "slam/errors.h"
+#include "core/errors.h"
 
 namespace uwbsar::rosbag::mcap {
 

@@ -5,12 +5,12 @@
 #include <limits>
 #include <queue>
 
+#include "core/errors.h"
+#include "core/log.h"
 #include "drivers/rosbag/mcap_catalog.h"
 #include "drivers/rosbag/mcap_data_scan.h"
 #include "drivers/rosbag/mcap_format.h"
 #include "drivers/rosbag/mcap_summary.h"
-#include "slam/errors.h"
-#include "slam/log.h"
 
 namespace uwbsar::rosbag {
 namespace {

@@ -17,10 +17,10 @@
 #include <limits>
 #include <map>
 
+#include "core/errors.h"
 #include "drivers/rosbag/bag_storage.h"
 #include "drivers/rosbag/crc32.h"
 #include "drivers/rosbag/mcap_format.h"
-#include "slam/errors.h"
 
 namespace uwbsar::rosbag {
 namespace {

@@ -1,9 +1,9 @@
 #include "drivers/rosbag/robot_bag.h"
 
+#include "core/errors.h"
+#include "core/log.h"
 #include "drivers/rosbag/bag_reader.h"
 #include "drivers/rosbag/ros_codecs.h"
-#include "slam/errors.h"
-#include "slam/log.h"
 
 namespace uwbsar::rosbag {
 namespace {
@@ -141,12 +141,14 @@ class MessageDispatcher {
 
 }  // namespace
 
-RobotBagOptions RobotBagOptionsFromConfig(const CoreConfig& config) {
+RobotBagOptions RobotBagOptionsFor(const std::vector<RadarConfig>& radars,
+                                   const std::string& odometry_topic,
+                                   const std::string& ground_truth_topic) {
   RobotBagOptions options;
   options.radar_topics.clear();
-  for (const RadarConfig& r : config.radars) options.radar_topics.push_back(r.topic);
-  options.odometry_topic = config.slam.odometry_topic;
-  options.ground_truth_topic = config.slam.ground_truth_topic;
+  for (const RadarConfig& r : radars) options.radar_topics.push_back(r.topic);
+  options.odometry_topic = odometry_topic;
+  options.ground_truth_topic = ground_truth_topic;
   return options;
 }
 

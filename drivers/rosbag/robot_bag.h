@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "core/radar_config.h"
+#include "core/types.h"
 #include "drivers/rosbag/bag_reader.h"
 #include "drivers/rosbag/ros_messages.h"
-#include "slam/config.h"
-#include "slam/types.h"
 
 namespace uwbsar::rosbag {
 
@@ -31,7 +31,15 @@ struct RobotBagOptions {
 /// Every topic from the configuration (radars[i].topic, slam.odometry_topic,
 /// slam.ground_truth_topic): the one place that maps configuration to bag topics, used
 /// by every command that reads bags (map, detectors, info --decode).
-RobotBagOptions RobotBagOptionsFromConfig(const CoreConfig& config);
+RobotBagOptions RobotBagOptionsFor(const std::vector<RadarConfig>& radars,
+                                   const std::string& odometry_topic,
+                                   const std::string& ground_truth_topic);
+/// The same from any configuration holding radars[] and slam.*.
+template <class Config>
+RobotBagOptions RobotBagOptionsFromConfig(const Config& config) {
+  return RobotBagOptionsFor(config.radars, config.slam.odometry_topic,
+                            config.slam.ground_truth_topic);
+}
 
 struct MessageContext {
   const std::string& topic;

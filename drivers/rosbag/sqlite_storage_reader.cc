@@ -7,10 +7,10 @@
 #include <set>
 #include <unordered_map>
 
+#include "core/errors.h"
+#include "core/log.h"
 #include "drivers/rosbag/bag_storage.h"
 #include "drivers/rosbag/sqlite_util.h"
-#include "slam/errors.h"
-#include "slam/log.h"
 
 namespace uwbsar::rosbag {
 namespace {

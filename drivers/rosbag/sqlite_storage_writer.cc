@@ -1,9 +1,9 @@
 // rosbag2 sqlite3 storage in the Humble layout (schema 3): what `ros2 bag` of Humble
 // writes and every later distro reads. Messages go into one open transaction that
 // Flush() commits, so a crash loses at most the messages since the last flush.
+#include "core/errors.h"
 #include "drivers/rosbag/bag_storage.h"
 #include "drivers/rosbag/sqlite_util.h"
-#include "slam/errors.h"
 
 namespace uwbsar::rosbag {
 namespace {

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "slam/errors.h"
+#include "core/errors.h"
 
 namespace uwbsar::rosbag {
 

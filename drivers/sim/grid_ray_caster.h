@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "slam/occupancy_grid.h"
-#include "slam/pose2.h"
+#include "core/pose2.h"
+#include "imaging/occupancy_grid.h"
 
 namespace uwbsar::sim {
 

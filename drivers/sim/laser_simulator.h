@@ -7,10 +7,9 @@
 #include <random>
 #include <vector>
 
+#include "core/types.h"
 #include "drivers/sim/grid_ray_caster.h"
 #include "drivers/sim/simulator_config.h"
-#include "slam/config.h"
-#include "slam/types.h"
 
 namespace uwbsar::sim {
 

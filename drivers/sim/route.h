@@ -9,11 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "core/errors.h"
+#include "core/pose2.h"
 #include "drivers/sim/simulator_config.h"
-#include "slam/config.h"
-#include "slam/errors.h"
-#include "slam/occupancy_grid.h"
-#include "slam/pose2.h"
+#include "imaging/occupancy_grid.h"
 
 namespace uwbsar::sim {
 

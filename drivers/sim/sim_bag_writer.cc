@@ -3,9 +3,9 @@
 #include <cmath>
 #include <fstream>
 
+#include "core/errors.h"
 #include "drivers/rosbag/bag_writer.h"
 #include "drivers/sim/sim_recorder.h"
-#include "slam/errors.h"
 
 namespace uwbsar::sim {
 

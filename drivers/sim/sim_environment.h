@@ -8,8 +8,7 @@
 #include <vector>
 
 #include "drivers/sim/simulator_config.h"
-#include "slam/config.h"
-#include "slam/occupancy_grid.h"
+#include "imaging/occupancy_grid.h"
 
 namespace uwbsar::sim {
 

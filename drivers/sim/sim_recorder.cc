@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "slam/errors.h"
+#include "core/errors.h"
 
 namespace uwbsar::sim {
 

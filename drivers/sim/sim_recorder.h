@@ -1,14 +1,14 @@
 // Consumers of a SimStream: collect it in memory, and write the files a
 // simulated run produces besides the bag: ground_truth.tum (TUM trajectory,
 // `t x y z qx qy qz qw`, seconds, readable by evo) and the project's plain text
-// log of odometry and radar scans (drivers/text_log.h).
+// log of odometry and radar scans (drivers/logs/text_log.h).
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "drivers/logs/text_log.h"
 #include "drivers/sim/sim_stream.h"
-#include "drivers/text_log.h"
 
 namespace uwbsar::sim {
 

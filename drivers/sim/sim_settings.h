@@ -1,14 +1,21 @@
 // What the simulator is given: the core sections it images with (pulse, radars, limits) and
-// simulator.*, its own section. Built from the whole file's struct (pipeline/app_config.h),
+// simulator.*, its own section. Built from the whole file's struct (slam/app_config.h),
 // or any struct with those members, without this folder knowing it.
 #pragma once
 
+#include <vector>
+
+#include "core/limits_config.h"
+#include "core/radar_config.h"
 #include "drivers/sim/simulator_config.h"
-#include "slam/config.h"
+#include "imaging/pulse_config.h"
 
 namespace uwbsar {
 
-struct SimSettings : CoreConfig {
+struct SimSettings {
+  PulseConfig pulse;
+  std::vector<RadarConfig> radars = DefaultRadars();
+  LimitsConfig limits;
   SimulatorConfig simulator;
 
   SimSettings() = default;
@@ -16,7 +23,10 @@ struct SimSettings : CoreConfig {
   /// callers hand their whole configuration, the simulator keeps its part).
   template <class WholeConfig>
   SimSettings(const WholeConfig& config)  // NOLINT(google-explicit-constructor)
-      : CoreConfig(config), simulator(config.simulator) {}
+      : pulse(config.pulse),
+        radars(config.radars),
+        limits(config.limits),
+        simulator(config.simulator) {}
 };
 
 }  // namespace uwbsar

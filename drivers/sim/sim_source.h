@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <optional>
 
+#include "core/message.h"
 #include "drivers/sim/sim_stream.h"
-#include "slam/message.h"
 
 namespace uwbsar::sim {
 

@@ -15,13 +15,13 @@
 #include <string>
 #include <vector>
 
+#include "core/types.h"
 #include "drivers/sim/laser_simulator.h"
 #include "drivers/sim/radar_simulator.h"
 #include "drivers/sim/sim_environment.h"
 #include "drivers/sim/sim_settings.h"
 #include "drivers/sim/trajectory.h"
 #include "drivers/sim/wheel_odometry.h"
-#include "slam/types.h"
 
 namespace uwbsar::sim {
 

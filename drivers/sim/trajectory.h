@@ -11,8 +11,7 @@
 
 #include "drivers/sim/route.h"
 #include "drivers/sim/simulator_config.h"
-#include "slam/config.h"
-#include "slam/occupancy_grid.h"
+#include "imaging/occupancy_grid.h"
 
 namespace uwbsar::sim {
 

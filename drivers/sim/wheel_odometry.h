@@ -11,10 +11,9 @@
 #include <cstdint>
 #include <random>
 
+#include "core/types.h"
 #include "drivers/sim/simulator_config.h"
 #include "drivers/sim/trajectory.h"
-#include "slam/config.h"
-#include "slam/types.h"
 
 namespace uwbsar::sim {
 

@@ -11,8 +11,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "slam/config.h"
-#include "slam/pose2.h"
+#include "core/pose2.h"
+#include "frontend/place_recognition/place_recognition_config.h"
 
 namespace uwbsar {
 

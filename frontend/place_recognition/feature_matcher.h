@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "frontend/place_recognition/features.h"
-#include "slam/config.h"
+#include "frontend/place_recognition/place_recognition_config.h"
 
 namespace uwbsar {
 

@@ -9,8 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "frontend/place_recognition/place_recognition_config.h"
+#include "imaging/enhance_config.h"
 #include "imaging/image_grid.h"
-#include "slam/config.h"
 
 namespace uwbsar {
 

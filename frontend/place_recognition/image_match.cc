@@ -46,7 +46,8 @@ CentredTransform AboutCentre(const Pose2& T_BA, const Point2& centre_a) {
 
 ImageFeatures ExtractImageFeatures(const SarImageFile& file,
                                    const std::vector<DetectorKind>& detectors,
-                                   const CoreConfig& config, double feature_resolution_m) {
+                                   const PlaceRecognizerConfig& config,
+                                   double feature_resolution_m) {
   const DetectorConfig& d = config.place_recognition.detectors;
   ImageFeatures out;
   out.source_resolution_m = file.grid.resolution_m;
@@ -73,15 +74,16 @@ ImageFeatures ExtractImageFeatures(const SarImageFile& file,
 }
 
 double ImageFeatureResolution(double resolution_a_m, double resolution_b_m,
-                              const CoreConfig& config) {
+                              const PlaceRecognizerConfig& config) {
   return std::max(
       {config.place_recognition.detectors.feature_resolution_m, resolution_a_m, resolution_b_m});
 }
 
-ImageMatch MatchImages(const ImageFeatures& a, const ImageFeatures& b, const CoreConfig& config) {
+ImageMatch MatchImages(const ImageFeatures& a, const ImageFeatures& b,
+                       const PlaceRecognizerConfig& config) {
   // Pixel thresholds at the feature resolution, as the place recognizer uses them.
-  const PlaceRecognitionConfig pr = AtFeatureResolution(
-      config.place_recognition, a.grid.resolution_m / config.imaging.pixel_size_m);
+  const PlaceRecognitionConfig pr =
+      AtFeatureResolution(config.place_recognition, a.grid.resolution_m / config.tile_pixel_m);
   ImageMatch out;
   for (const auto& [kind, features_a] : a.features) {
     const auto it = b.features.find(kind);

@@ -12,9 +12,9 @@
 #include "frontend/place_recognition/feature_matcher.h"
 #include "frontend/place_recognition/features.h"
 #include "frontend/place_recognition/loop_validator.h"
+#include "frontend/place_recognition/place_recognizer.h"
 #include "imaging/image_grid.h"
 #include "imaging/sar_image_file.h"
-#include "slam/config.h"
 
 namespace uwbsar {
 
@@ -31,7 +31,7 @@ struct ImageFeatures {
 /// The resolution two images are matched at: detectors.feature_resolution_m, or the
 /// coarser image's own pixel size when that is coarser (both images must share it).
 double ImageFeatureResolution(double resolution_a_m, double resolution_b_m,
-                              const CoreConfig& config);
+                              const PlaceRecognizerConfig& config);
 
 /// The feature image of an image file: enhanced input is used as it is (masked to its
 /// non-zero area, closed over small gaps, eroded by detectors.mask_erode_px); float input
@@ -39,7 +39,8 @@ double ImageFeatureResolution(double resolution_a_m, double resolution_b_m,
 /// `feature_resolution_m` (ImageFeatureResolution).
 ImageFeatures ExtractImageFeatures(const SarImageFile& file,
                                    const std::vector<DetectorKind>& detectors,
-                                   const CoreConfig& config, double feature_resolution_m);
+                                   const PlaceRecognizerConfig& config,
+                                   double feature_resolution_m);
 
 /// A transform in the `uwbsar match` convention: a scatterer at p in A is found at
 /// R(yaw) (p - c_A) + c_A + (x_m, y_m) in B, with c_A the centre of A.
@@ -62,6 +63,7 @@ struct ImageMatch {
 /// Matches A against B with every detector both have, then applies the AKAZE+ORB rule
 /// (reason "AKAZE and ORB were not both run" when either is missing). Both feature sets
 /// must come from ExtractImageFeatures with the same config.
-ImageMatch MatchImages(const ImageFeatures& a, const ImageFeatures& b, const CoreConfig& config);
+ImageMatch MatchImages(const ImageFeatures& a, const ImageFeatures& b,
+                       const PlaceRecognizerConfig& config);
 
 }  // namespace uwbsar

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "frontend/place_recognition/feature_matcher.h"
-#include "slam/config.h"
+#include "frontend/place_recognition/place_recognition_config.h"
 
 namespace uwbsar {
 

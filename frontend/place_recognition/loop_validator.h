@@ -9,11 +9,11 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "core/pose2.h"
 #include "frontend/place_recognition/feature_matcher.h"
 #include "frontend/place_recognition/loop_rule.h"
+#include "frontend/place_recognition/place_recognition_config.h"
 #include "imaging/image_grid.h"
-#include "slam/config.h"
-#include "slam/pose2.h"
 
 namespace uwbsar {
 

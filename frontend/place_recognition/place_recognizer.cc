@@ -54,10 +54,6 @@ double FeatureDownsampling(const DetectorConfig& detectors, double tile_pixel_m)
   return r > tile_pixel_m ? r / tile_pixel_m : 1.0;
 }
 
-double FeatureDownsampling(const CoreConfig& config) {
-  return FeatureDownsampling(config.place_recognition.detectors, config.imaging.pixel_size_m);
-}
-
 PlaceRecognitionConfig AtFeatureResolution(PlaceRecognitionConfig pr, double factor) {
   // The pixel thresholds are the paper's at the tile resolution: at a coarser feature
   // resolution they shrink in pixels so that they keep their size in metres.

@@ -11,12 +11,14 @@
 #include <utility>
 #include <vector>
 
+#include "core/radar_config.h"
 #include "frontend/keyframe.h"
 #include "frontend/place_recognition/candidate_search.h"
 #include "frontend/place_recognition/feature_matcher.h"
 #include "frontend/place_recognition/features.h"
 #include "frontend/place_recognition/loop_validator.h"
-#include "slam/config.h"
+#include "frontend/place_recognition/place_recognition_config.h"
+#include "imaging/enhance_config.h"
 
 namespace uwbsar {
 
@@ -40,8 +42,11 @@ struct KeyframeFeatures {
 /// one value derived from the tile pixel size (imaging.pixel_size_m) that place recognition
 /// uses. Computed once per configuration (PlaceRecognizerConfig) and handed down.
 double FeatureDownsampling(const DetectorConfig& detectors, double tile_pixel_m);
-/// The same, from a configuration's place_recognition.detectors and imaging.pixel_size_m.
-double FeatureDownsampling(const CoreConfig& config);
+/// The same from any configuration holding place_recognition.detectors and imaging.pixel_size_m.
+template <class Config>
+double FeatureDownsampling(const Config& config) {
+  return FeatureDownsampling(config.place_recognition.detectors, config.imaging.pixel_size_m);
+}
 
 /// What place recognition reads: its own section, the enhancement of the feature image, the
 /// feature downsampling derived from the tile pixel size, and where each radar looks (the
@@ -52,14 +57,18 @@ struct PlaceRecognizerConfig {
   EnhanceConfig enhance;
   double feature_downsampling = 1.0;  ///< tile pixels per feature pixel (FeatureDownsampling)
   std::vector<double> radar_boresight_yaw_deg;  ///< radars[*].boresight_yaw_deg, by sensor id
+  double tile_pixel_m = 0.005;  ///< imaging.pixel_size_m: the tile pixel the paper's pixel
+                                ///< thresholds are given at (image files are matched at it too)
 
   PlaceRecognizerConfig() = default;
-  /// Its sections of a configuration, with feature_downsampling derived from
+  /// Its sections of any configuration holding them, with feature_downsampling derived from
   /// imaging.pixel_size_m (implicit: callers hand the configuration they hold).
-  PlaceRecognizerConfig(const CoreConfig& config)  // NOLINT(google-explicit-constructor)
+  template <class Config>
+  PlaceRecognizerConfig(const Config& config)  // NOLINT(google-explicit-constructor)
       : place_recognition(config.place_recognition),
         enhance(config.enhance),
-        feature_downsampling(FeatureDownsampling(config)) {
+        feature_downsampling(FeatureDownsampling(config)),
+        tile_pixel_m(config.imaging.pixel_size_m) {
     for (const RadarConfig& r : config.radars)
       radar_boresight_yaw_deg.push_back(r.boresight_yaw_deg);
   }

@@ -14,8 +14,8 @@
 #pragma once
 
 #include "frontend/keyframe.h"
+#include "frontend/place_recognition/place_recognition_config.h"
 #include "frontend/place_recognition/place_recognizer.h"
-#include "slam/config.h"
 
 namespace uwbsar {
 

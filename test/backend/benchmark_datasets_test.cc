@@ -6,11 +6,11 @@
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 
-#include "backend/false_loops.h"
 #include "backend/g2o_io.h"
 #include "backend/graph_plot.h"
 #include "backend/pose_graph.h"
 #include "backend/trajectory_metrics.h"
+#include "eval/false_loops.h"
 #include "test/shared_data.h"
 
 namespace uwbsar {

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "slam/errors.h"
+#include "core/errors.h"
 
 namespace uwbsar {
 namespace {

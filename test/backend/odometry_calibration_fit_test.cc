@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "slam/errors.h"
+#include "core/errors.h"
 #include "test/backend/calibration_routes.h"
 
 namespace uwbsar {

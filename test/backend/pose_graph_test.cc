@@ -9,7 +9,7 @@
 #include "backend/g2o_io.h"
 #include "backend/odometry_calibration.h"
 #include "backend/trajectory_metrics.h"
-#include "slam/errors.h"
+#include "core/errors.h"
 #include "test/shared_data.h"
 
 namespace uwbsar {

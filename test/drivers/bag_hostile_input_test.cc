@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "core/errors.h"
 #include "drivers/rosbag/bag_info_text.h"
 #include "drivers/rosbag/bag_metadata.h"
 #include "drivers/rosbag/bag_reader.h"
-#include "slam/errors.h"
 #include "test/drivers/bag_test_util.h"
 
 namespace uwbsar::rosbag::testing {

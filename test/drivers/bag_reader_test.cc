@@ -9,10 +9,10 @@
 #include <fstream>
 #include <set>
 
+#include "core/errors.h"
 #include "drivers/rosbag/bag_info_text.h"
 #include "drivers/rosbag/robot_bag.h"
 #include "drivers/rosbag/sqlite_util.h"
-#include "slam/errors.h"
 #include "test/drivers/bag_test_util.h"
 
 namespace uwbsar::rosbag::testing {

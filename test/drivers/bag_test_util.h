@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "core/types.h"
 #include "drivers/rosbag/bag_writer.h"
 #include "drivers/rosbag/ros_messages.h"
-#include "slam/types.h"
 
 namespace uwbsar::rosbag::testing {
 

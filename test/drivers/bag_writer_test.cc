@@ -9,9 +9,9 @@
 
 #include <filesystem>
 
+#include "core/errors.h"
 #include "drivers/rosbag/bag_reader.h"
 #include "drivers/rosbag/ros_codecs.h"
-#include "slam/errors.h"
 #include "test/drivers/bag_test_util.h"
 
 namespace uwbsar::rosbag::testing {

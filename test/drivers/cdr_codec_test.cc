@@ -4,10 +4,10 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/errors.h"
 #include "drivers/rosbag/cdr_reader.h"
 #include "drivers/rosbag/cdr_writer.h"
 #include "drivers/rosbag/ros_codecs.h"
-#include "slam/errors.h"
 
 namespace uwbsar::rosbag {
 namespace {

@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "core/errors.h"
+#include "core/log.h"
 #include "drivers/rosbag/bag_storage.h"
 #include "drivers/rosbag/mcap_format.h"
 #include "drivers/rosbag/mcap_storage_reader.h"
-#include "slam/errors.h"
-#include "slam/log.h"
 #include "test/drivers/bag_test_util.h"
 
 namespace uwbsar::rosbag::testing {

@@ -31,7 +31,7 @@
 #include "frontend/imaging_frontend.h"
 #include "frontend/strip_renderer.h"
 #include "imaging/enhance.h"
-#include "pipeline/app_config.h"
+#include "slam/app_config.h"
 #include "test/drivers/sim_test_util.h"
 
 namespace uwbsar::sim {

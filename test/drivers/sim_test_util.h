@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-#include "slam/occupancy_grid.h"
+#include "imaging/occupancy_grid.h"
 #include "test/shared_data.h"
 
 namespace uwbsar::sim::testing {

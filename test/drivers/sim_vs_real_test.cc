@@ -33,7 +33,7 @@
 #include "frontend/strip_renderer.h"
 #include "imaging/enhance.h"
 #include "imaging/image_io.h"
-#include "pipeline/app_config_io.h"
+#include "slam/app_config_io.h"
 #include "test/drivers/sim_test_util.h"
 
 namespace uwbsar::sim {

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <limits>
 
-#include "drivers/synthetic_run.h"
-#include "pipeline/app_config.h"
+#include "drivers/sim/synthetic_run.h"
+#include "slam/app_config.h"
 
 namespace uwbsar {
 namespace {

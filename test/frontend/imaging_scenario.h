@@ -5,12 +5,12 @@
 #include <stdexcept>
 #include <vector>
 
-#include "drivers/synthetic_run.h"
-#include "frontend/psf_metrics.h"
+#include "drivers/sim/synthetic_run.h"
+#include "eval/psf_metrics.h"
 #include "frontend/strip_renderer.h"
 #include "imaging/enhance.h"
-#include "pipeline/app_config.h"
-#include "pipeline/imaging_job.h"
+#include "slam/app_config.h"
+#include "slam/imaging_job.h"
 
 namespace uwbsar::testing {
 

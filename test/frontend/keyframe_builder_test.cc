@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/app_config.h"
+#include "slam/app_config.h"
 
 namespace uwbsar {
 namespace {

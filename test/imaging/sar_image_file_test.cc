@@ -11,8 +11,8 @@
 #include <string>
 #include <utility>
 
+#include "core/errors.h"
 #include "imaging/image_io.h"
-#include "slam/errors.h"
 
 namespace uwbsar {
 namespace {

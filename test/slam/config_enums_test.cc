@@ -3,7 +3,7 @@
 // names; any other name is refused with the key and the allowed names.
 #include <gtest/gtest.h>
 
-#include "pipeline/app_config_io.h"
+#include "slam/app_config_io.h"
 
 namespace uwbsar {
 namespace {

@@ -3,7 +3,7 @@
 #include <array>
 #include <string>
 
-#include "pipeline/app_config_io.h"
+#include "slam/app_config_io.h"
 
 namespace uwbsar {
 namespace {

@@ -7,9 +7,9 @@
 #include <fstream>
 #include <string>
 
-#include "pipeline/app_config_io.h"
-#include "slam/bounded_file.h"
-#include "slam/yaml_file.h"
+#include "core/bounded_file.h"
+#include "core/yaml_file.h"
+#include "slam/app_config_io.h"
 
 namespace uwbsar {
 namespace {

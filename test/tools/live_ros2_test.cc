@@ -14,15 +14,15 @@
 #include <set>
 #include <thread>
 
+#include "drivers/logs/tum_reader.h"
 #include "drivers/rosbag/bag_reader.h"
-#include "drivers/tum_reader.h"
-#include "pipeline/app_config.h"
-#include "pipeline/live_runner.h"
-#include "pipeline/map_job.h"
-#include "slam/occupancy_grid.h"
+#include "imaging/occupancy_grid.h"
+#include "slam/app_config.h"
+#include "slam/live/live_runner.h"
+#include "slam/map_job.h"
 #include "test/drivers/dds/dds_test_util.h"
-#include "test/pipeline/live_test_util.h"
 #include "test/shared_data.h"
+#include "test/slam/live/live_test_util.h"
 
 namespace uwbsar::tools {
 namespace {

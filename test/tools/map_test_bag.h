@@ -11,8 +11,8 @@
 
 #include "drivers/rosbag/bag_writer.h"
 #include "drivers/rosbag/ros_codecs.h"
-#include "drivers/synthetic_run.h"
-#include "pipeline/app_config.h"
+#include "drivers/sim/synthetic_run.h"
+#include "slam/app_config.h"
 
 namespace uwbsar {
 namespace map_test {

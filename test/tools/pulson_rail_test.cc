@@ -12,10 +12,10 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
-#include "drivers/text_log.h"
+#include "drivers/logs/text_log.h"
 #include "imaging/enhance.h"
-#include "pipeline/app_config_io.h"
-#include "pipeline/imaging_job.h"
+#include "slam/app_config_io.h"
+#include "slam/imaging_job.h"
 #include "test/shared_data.h"
 
 namespace uwbsar {

@@ -13,8 +13,8 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "pipeline/app_config.h"
-#include "pipeline/image_loop_study.h"
+#include "eval/image_loop_study.h"
+#include "slam/app_config.h"
 #include "test/cli_runner.h"
 #include "test/shared_data.h"
 
@@ -37,8 +37,9 @@ std::string FreshDir(const std::string& name) {
 }
 
 const pipeline::ImageLoopStudy& Study() {
-  static const pipeline::ImageLoopStudy study = pipeline::RunImageLoopStudy(
-      RegionsDir(), 0.005, {DetectorKind::kAkaze, DetectorKind::kOrb}, Config{});
+  static const pipeline::ImageLoopStudy study =
+      pipeline::RunImageLoopStudy(RegionsDir(), 0.005, {DetectorKind::kAkaze, DetectorKind::kOrb},
+                                  Config{}, Config{}.limits.max_map_image_pixels);
   return study;
 }
 

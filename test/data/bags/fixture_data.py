@@ -1,6 +1,6 @@
 """The deterministic content of every bag fixture, shared by make_fixtures.py (which
 writes it with independent writers) and verify_bag.py (which checks a bag, ours
-included, with the `rosbags` reader). test/drivers/bag_fixture_data.h mirrors it in C++.
+included, with the `rosbags` reader). test/drivers/bag_test_util.h mirrors it in C++.
 
 Radar samples are multiples of 1/64 and positions multiples of 1/16, so float32 and
 float64 hold them exactly and every reader must return them bit for bit.

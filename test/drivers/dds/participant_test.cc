@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "core/errors.h"
 #include "drivers/dds/dds_check.h"
-#include "slam/errors.h"
 #include "test/drivers/dds/dds_test_util.h"
 
 namespace uwbsar::dds {

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "slam/errors.h"
+#include "core/errors.h"
 
 namespace uwbsar::dds {
 namespace {

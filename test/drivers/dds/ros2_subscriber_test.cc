@@ -9,11 +9,11 @@
 #include <cmath>
 #include <limits>
 
+#include "core/errors.h"
 #include "drivers/dds/dds_check.h"
 #include "drivers/dds/ros2_convert.h"
 #include "drivers/dds/ros2_qos.h"
 #include "drivers/dds/ros2_types.h"
-#include "slam/errors.h"
 #include "test/drivers/dds/dds_test_util.h"
 
 namespace uwbsar::dds {

@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <thread>
 
+#include "drivers/emulators/pty_device.h"
 #include "drivers/live/kobuki_driver.h"
-#include "drivers/live/pty_device.h"
 
 namespace uwbsar::live {
 namespace {

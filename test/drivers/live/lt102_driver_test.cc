@@ -13,7 +13,7 @@
 #include <mutex>
 
 #include "lt102_test_util.h"
-#include "pipeline/app_config.h"
+#include "slam/app_config.h"
 
 namespace uwbsar::live {
 namespace {

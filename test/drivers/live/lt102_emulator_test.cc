@@ -1,7 +1,7 @@
 // The LT102 emulator's `d` behaviour, driven by hand (no thread): the vendor behaviour
 // (answered at once with the latest frame, the same frame again when polled before the next
 // one, frames replaced unasked counted missed) and the optional hold-until-next-frame one.
-#include "drivers/live/lt102_emulator.h"
+#include "drivers/emulators/lt102_emulator.h"
 
 #include <gtest/gtest.h>
 

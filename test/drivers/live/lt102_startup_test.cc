@@ -12,7 +12,7 @@
 #include <cstring>
 
 #include "lt102_test_util.h"
-#include "pipeline/app_config.h"
+#include "slam/app_config.h"
 
 namespace uwbsar::live {
 namespace {

@@ -14,7 +14,7 @@
 #include <thread>
 #include <vector>
 
-#include "drivers/live/lt102_emulator.h"
+#include "drivers/emulators/lt102_emulator.h"
 #include "drivers/live/thread_priority.h"
 
 namespace uwbsar::live {

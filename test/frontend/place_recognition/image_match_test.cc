@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <opencv2/imgproc.hpp>
 
-#include "pipeline/app_config.h"
+#include "slam/app_config.h"
 
 namespace uwbsar {
 namespace {

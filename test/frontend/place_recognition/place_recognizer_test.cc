@@ -4,7 +4,7 @@
 
 #include <limits>
 
-#include "pipeline/app_config.h"
+#include "slam/app_config.h"
 #include "test/frontend/place_recognition/texture.h"
 
 namespace uwbsar {

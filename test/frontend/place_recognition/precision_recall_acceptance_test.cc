@@ -13,7 +13,7 @@
 
 #include "frontend/place_recognition/place_recognizer.h"
 #include "frontend/place_recognition/radar_match.h"
-#include "pipeline/app_config.h"
+#include "slam/app_config.h"
 #include "test/frontend/place_recognition/sim_run.h"
 #include "test/shared_data.h"
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
+#include "slam/config/system_config.h"
 #include "test/frontend/place_recognition/texture.h"
 
 namespace uwbsar {
@@ -105,7 +106,7 @@ Keyframe WayOut() {
 }
 
 TEST(RadarMatchTest, OppositeRevisitSeenOnlyByTheOtherRadarIsMatchedAcrossSides) {
-  CoreConfig config;
+  SystemConfig config;
   PlaceRecognizer pr(config);
   EXPECT_TRUE(pr.Process(WayOut()).attempts.empty());
   // The way back along -x, 0.4 m to the right of the way out: the right radar (looking +y
@@ -129,7 +130,7 @@ TEST(RadarMatchTest, OppositeRevisitSeenOnlyByTheOtherRadarIsMatchedAcrossSides)
   EXPECT_NEAR(r.loops[0].T_ij.yaw_rad, truth.yaw_rad, 0.01);
 
   // Without per-radar matching the combined tiles do not match: the pass is what finds it.
-  CoreConfig combined_only;
+  SystemConfig combined_only;
   combined_only.place_recognition.per_radar.enabled = false;
   PlaceRecognizer paper(combined_only);
   paper.Process(WayOut());
@@ -139,7 +140,7 @@ TEST(RadarMatchTest, OppositeRevisitSeenOnlyByTheOtherRadarIsMatchedAcrossSides)
 }
 
 TEST(RadarMatchTest, DifferentCorridorsAreNotMatched) {
-  CoreConfig config;
+  SystemConfig config;
   PlaceRecognizer pr(config);
   pr.Process(WayOut());
   // Other corridors (walls the way out never saw) at the same estimated place, driven the
@@ -159,7 +160,7 @@ TEST(RadarMatchTest, DifferentCorridorsAreNotMatched) {
 }
 
 TEST(RadarMatchTest, RadarsArePairedByTheirLookDirectionInTheWorld) {
-  CoreConfig config;
+  SystemConfig config;
   KeyframeFeatures out = ExtractKeyframeFeatures(WayOut(), config);
   ASSERT_TRUE(HasRadarFeatures(out));
   ASSERT_EQ(out.look_anchor_rad.size(), 2u);

@@ -8,10 +8,10 @@
 #include <random>
 #include <vector>
 
-#include "drivers/synthetic_run.h"
+#include "drivers/sim/synthetic_run.h"
 #include "frontend/imaging_frontend.h"
 #include "frontend/keyframe.h"
-#include "pipeline/app_config.h"
+#include "slam/app_config.h"
 
 namespace uwbsar::testing {
 

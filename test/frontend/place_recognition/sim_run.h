@@ -7,7 +7,7 @@
 
 #include "drivers/sim/sim_source.h"
 #include "frontend/imaging_frontend.h"
-#include "pipeline/app_config.h"
+#include "slam/app_config.h"
 #include "test/frontend/place_recognition/sar_scene.h"
 #include "test/shared_data.h"
 

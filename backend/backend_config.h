@@ -1,0 +1,128 @@
+// Settings of backend.*, declared beside the code that owns them (backend/pose_graph.h); the
+// application configuration (slam/config/system_config.h, slam/app_config.h) assembles the
+// sections, and core/config_io.h reads and writes any struct with a Visit(). config/default.yaml
+// documents every field; a test keeps the two in sync.
+#pragma once
+
+#include <array>
+#include <string>
+
+#include "core/named_enum.h"
+
+namespace uwbsar {
+
+/// backend.initialization: the first solve starts from the nodes' initial estimates
+/// (guess) or from a chordal relaxation (chordal).
+enum class GraphInitialization { kGuess, kChordal };
+template <>
+struct EnumNames<GraphInitialization> {
+  static constexpr std::pair<GraphInitialization, const char*> kNames[] = {
+      {GraphInitialization::kGuess, "guess"}, {GraphInitialization::kChordal, "chordal"}};
+};
+
+/// backend.robust_loss: the loss on loop edges while outliers are sought.
+enum class RobustLoss { kCauchy, kHuber, kNone };
+template <>
+struct EnumNames<RobustLoss> {
+  static constexpr std::pair<RobustLoss, const char*> kNames[] = {
+      {RobustLoss::kCauchy, "cauchy"}, {RobustLoss::kHuber, "huber"}, {RobustLoss::kNone, "none"}};
+};
+
+/// The largest calibration backend.calibration_*_mean accept (config validation), and the
+/// largest `uwbsar calibrate` reports: a base off by more than 20 % (distance or turns) or
+/// 0.1 rad per metre needs mending, not a calibration.
+constexpr double kMaxCalibrationScale = 0.2;
+constexpr double kMaxCalibrationHeadingDriftRadPerM = 0.1;
+constexpr double kMaxCalibrationRotation = 0.2;
+
+/// Pose-graph backend (Ceres): loop outlier handling, odometry weighting, solver settings.
+struct BackendConfig {
+  GraphInitialization initialization = GraphInitialization::kGuess;  ///< guess or chordal
+  RobustLoss robust_loss = RobustLoss::kCauchy;  ///< cauchy, huber or none (on loop edges)
+  double robust_loss_scale = 2.0;       ///< whitened residual norm (sigmas) where it turns robust
+  double loop_rejection_chi2 = 16.27;   ///< a loop whose chi2 at the solution exceeds this is
+                                        ///< rejected (16.27 = 99.9 % quantile, 3 DOF)
+  int max_rejection_rounds = 10;        ///< solve / reject / re-admit rounds per optimisation
+  int min_loop_support = 1;             ///< loops agreeing with fewer other loops nearby are
+                                        ///< held back and only admitted if the map solved
+                                        ///< without them confirms them; 0 disables
+  int loop_support_window = 10;         ///< nodes along the odometry chain that count as nearby
+  double unsupported_loop_chi2 = 32.5;  ///< a held-back loop is admitted when its chi2 against
+                                        ///< the map solved without it is at most this (twice
+                                        ///< loop_rejection_chi2: the map's own uncertainty
+                                        ///< between the ends counted as one more loop)
+  bool final_least_squares = true;      ///< last solve without loss on the accepted loops
+  double max_odometry_chi2 = 30.0;      ///< after a solve, an odometry edge above this chi2
+                                        ///< gets a loop spanning it rejected (0 = off;
+                                        ///< 30 = 1e-6 tail of chi2, 3 DOF)
+  double odometry_xy_information = 2500.0;    ///< x, y information of 1 m of odometry (1/m^2):
+                                              ///< sigma 2 cm per metre (wheel odometry, 1-2 %),
+                                              ///< divided by the edge's travelled distance
+  double odometry_yaw_information = 10000.0;  ///< yaw information of 1 m of odometry (1/rad^2):
+                                              ///< sigma 0.6 deg per metre
+  double odometry_min_distance_m = 0.1;       ///< shorter odometry edges weigh as this distance
+  bool odometry_calibration = true;  ///< estimate each trajectory's odometry intrinsics (distance
+                                     ///< scale, heading drift per metre, rotation scale) while
+                                     ///< loops constrain them (backend/odometry_calibration.h)
+  double calibration_scale_sigma = 0.02;  ///< prior sigma of the distance scale (fraction)
+  double calibration_heading_drift_sigma_rad_per_m = 0.005;  ///< prior sigma of the heading
+                                                             ///< drift per metre travelled
+  double calibration_rotation_sigma = 0.05;  ///< prior sigma of the rotation scale (fraction);
+                                             ///< wall edges tell it from the heading drift (set
+                                             ///< 0.001 without them: a ring cannot)
+  /// The base's measured odometry calibration, the prior's mean (all 0: uncalibrated). Nothing
+  /// on a tour observes the distance scale, so the map's scale is this one's.
+  double calibration_scale_mean = 0.0;  ///< distances are multiplied by (1 + this)
+  double calibration_heading_drift_mean_rad_per_m = 0.0;  ///< heading lost per metre
+  double calibration_rotation_mean = 0.0;                 ///< turns are multiplied by (1 + this)
+  int max_trial_solves = 2;  ///< loops still held back as unsupported, tried per Optimize() in a
+                             ///< solve of their own (lowest chi2 first, each once); 0 = off
+  double trial_loop_chi2 = 16.27;      ///< trial: the most the solution's chi2 (all edges and
+                                       ///< calibration priors) may grow by the loop
+  double loop_xy_information = 44.7;   ///< loop information when none is given (follow-on)
+  double loop_yaw_information = 44.7;  ///< loop yaw information when none is given (follow-on)
+  int max_iterations = 100;            ///< Ceres iterations per solve
+  double function_tolerance = 1e-10;   ///< Ceres convergence: relative change of the cost
+  int num_threads = 1;                 ///< Ceres threads (Jacobian evaluation)
+
+  template <class V>
+  void Visit(V& v) {
+    v("initialization", initialization);
+    v("robust_loss", robust_loss);
+    v("robust_loss_scale", robust_loss_scale);
+    v("loop_rejection_chi2", loop_rejection_chi2);
+    v("max_rejection_rounds", max_rejection_rounds);
+    v("min_loop_support", min_loop_support);
+    v("loop_support_window", loop_support_window);
+    v("unsupported_loop_chi2", unsupported_loop_chi2);
+    v("final_least_squares", final_least_squares);
+    v("max_odometry_chi2", max_odometry_chi2);
+    v("odometry_xy_information", odometry_xy_information);
+    v("odometry_yaw_information", odometry_yaw_information);
+    v("odometry_min_distance_m", odometry_min_distance_m);
+    v("odometry_calibration", odometry_calibration);
+    v("calibration_scale_sigma", calibration_scale_sigma);
+    v("calibration_heading_drift_sigma_rad_per_m", calibration_heading_drift_sigma_rad_per_m);
+    v("calibration_rotation_sigma", calibration_rotation_sigma);
+    v("calibration_scale_mean", calibration_scale_mean);
+    v("calibration_heading_drift_mean_rad_per_m", calibration_heading_drift_mean_rad_per_m);
+    v("calibration_rotation_mean", calibration_rotation_mean);
+    v("max_trial_solves", max_trial_solves);
+    v("trial_loop_chi2", trial_loop_chi2);
+    v("loop_xy_information", loop_xy_information);
+    v("loop_yaw_information", loop_yaw_information);
+    v("max_iterations", max_iterations);
+    v("function_tolerance", function_tolerance);
+    v("num_threads", num_threads);
+  }
+
+  /// The calibration means as [scale, heading drift, rotation] (backend/odometry_calibration.h).
+  std::array<double, 3> CalibrationMean() const {
+    return {calibration_scale_mean, calibration_heading_drift_mean_rad_per_m,
+            calibration_rotation_mean};
+  }
+};
+/// Semantic checks of backend.*; throws ConfigError naming the dotted key.
+void Validate(const BackendConfig& config, const std::string& source_name);
+
+}  // namespace uwbsar

@@ -1,0 +1,210 @@
+// YAML <-> configuration structs. Any struct with a Visit(V&) listing its fields can be
+// read and written; unknown keys and wrong types are errors that name the file, the line
+// and the dotted key. YAML is parsed here and nowhere else. Each section's struct and its
+// Validate() sit beside the code that owns them; the whole file's struct (slam/app_config.h)
+// and its loader (slam/app_config_io.h) assemble them.
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "core/errors.h"
+#include "core/named_enum.h"
+#include "core/yaml_document.h"
+
+namespace uwbsar {
+
+/// Bad configuration input (file, key, value). what() is a complete one-line message.
+class ConfigError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
+namespace config_yaml {
+
+template <class T, class = void>
+struct HasVisit : std::false_type {};
+template <class T>
+struct HasVisit<T, std::void_t<decltype(std::declval<T&>().Visit(std::declval<int&>()))>>
+    : std::true_type {};
+// Visit is a template, so probing it with int& only checks that the member exists.
+
+template <class T>
+struct IsVector : std::false_type {};
+template <class T>
+struct IsVector<std::vector<T>> : std::true_type {};
+
+inline std::string Where(const std::string& source, const YAML::Node& node) {
+  const YAML::Mark mark = node.Mark();
+  std::ostringstream out;
+  out << source;
+  if (mark.line >= 0) out << ":" << (mark.line + 1);
+  return out.str();
+}
+
+/// Reads a YAML mapping into a struct, recording which keys it knows.
+class Reader {
+ public:
+  Reader(const YAML::Node& node, std::string source, std::string prefix)
+      : node_(node), source_(std::move(source)), prefix_(std::move(prefix)) {}
+
+  template <class T>
+  void operator()(const char* key, T& value) {
+    known_.insert(key);
+    const YAML::Node child = node_[key];
+    if (child) Read(child, value, prefix_ + key);
+  }
+
+  /// Throws if the mapping holds a key that no field claimed.
+  void CheckUnknownKeys() const {
+    for (const auto& kv : node_) {
+      if (!kv.first.IsScalar()) {
+        throw ConfigError(Where(source_, kv.first) + ": a key in '" +
+                          (prefix_.empty() ? std::string("the top level")
+                                           : prefix_.substr(0, prefix_.size() - 1)) +
+                          "' is not a plain name (complex key)");
+      }
+      const std::string key = kv.first.Scalar();
+      if (!known_.count(key)) {
+        throw ConfigError(Where(source_, kv.first) + ": unknown key '" + prefix_ + key + "'");
+      }
+    }
+  }
+
+  template <class T>
+  void Read(const YAML::Node& node, T& value, const std::string& key) {
+    if constexpr (HasVisit<T>::value) {
+      if (!node.IsMap())
+        throw ConfigError(Where(source_, node) + ": '" + key + "' must be a mapping");
+      Reader nested(node, source_, key + ".");
+      value.Visit(nested);
+      nested.CheckUnknownKeys();
+    } else if constexpr (IsVector<T>::value) {
+      if (!node.IsSequence()) {
+        throw ConfigError(Where(source_, node) + ": '" + key + "' must be a list");
+      }
+      T items(node.size());
+      for (std::size_t i = 0; i < node.size(); ++i) {
+        Read(node[i], items[i], key + "[" + std::to_string(i) + "]");
+      }
+      value = std::move(items);
+    } else if constexpr (std::is_enum_v<T>) {
+      if (!node.IsScalar() || !EnumFromName(node.Scalar(), &value)) {
+        throw ConfigError(Where(source_, node) + ": '" + key + "' must be one of " +
+                          EnumNameList<T>() +
+                          (node.IsScalar() ? ", got '" + node.Scalar() + "'" : std::string()));
+      }
+    } else {
+      if (!node.IsScalar())
+        throw ConfigError(Where(source_, node) + ": '" + key + "' must be a value");
+      if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
+        if (HasLeadingZero(node.Scalar())) {
+          throw ConfigError(Where(source_, node) + ": '" + key + "' has value '" + node.Scalar() +
+                            "' with a leading zero (octal in YAML 1.1, decimal in 1.2): write "
+                            "it without the zero");
+        }
+      }
+      try {
+        value = node.as<T>();
+      } catch (const YAML::Exception&) {
+        throw ConfigError(Where(source_, node) + ": '" + key + "' has invalid value '" +
+                          node.Scalar() + "'");
+      }
+      if constexpr (std::is_floating_point_v<T>) {
+        if (!std::isfinite(value)) {
+          throw ConfigError(Where(source_, node) + ": '" + key + "' must be finite");
+        }
+      }
+    }
+  }
+
+ private:
+  const YAML::Node& node_;
+  std::string source_;
+  std::string prefix_;
+  std::set<std::string> known_;
+};
+
+/// Writes a struct as a YAML mapping.
+class Writer {
+ public:
+  explicit Writer(YAML::Emitter& out) : out_(out) {}
+
+  template <class T>
+  void operator()(const char* key, T& value) {
+    out_ << YAML::Key << key << YAML::Value;
+    Write(value);
+  }
+
+  template <class T>
+  void Write(T& value) {
+    if constexpr (HasVisit<T>::value) {
+      out_ << YAML::BeginMap;
+      value.Visit(*this);
+      out_ << YAML::EndMap;
+    } else if constexpr (IsVector<T>::value) {
+      out_ << YAML::BeginSeq;
+      for (auto& item : value) Write(item);
+      out_ << YAML::EndSeq;
+    } else if constexpr (std::is_enum_v<T>) {
+      out_ << EnumName(value);
+    } else {
+      out_ << value;
+    }
+  }
+
+ private:
+  YAML::Emitter& out_;
+};
+
+}  // namespace config_yaml
+
+/// Reads YAML text over the defaults of `T` (a struct with Visit): keys that are absent keep
+/// their default; an empty text means all defaults. No semantic checks. Throws ConfigError
+/// on syntax errors, duplicate keys, a second document (ParseYamlDocument), unknown keys,
+/// wrong types and numbers with a leading zero; `source_name` is used in messages.
+template <class T>
+T ReadConfigYaml(const std::string& yaml_text, const std::string& source_name) {
+  YAML::Node root;
+  try {
+    root = ParseYamlDocument(yaml_text, source_name);
+  } catch (const ConfigError&) {
+    throw;
+  } catch (const InputError& e) {
+    throw ConfigError(e.what());
+  }
+  T config;
+  if (root.IsNull()) return config;  // an empty file means all defaults
+  if (!root.IsMap()) throw ConfigError(source_name + ": the top level must be a mapping");
+  try {
+    config_yaml::Reader reader(root, source_name, "");
+    config.Visit(reader);
+    reader.CheckUnknownKeys();
+  } catch (const YAML::Exception& e) {
+    // A shape the reader did not foresee is still bad input naming the file and line.
+    throw ConfigError(source_name +
+                      (e.mark.line >= 0 ? ":" + std::to_string(e.mark.line + 1) : "") +
+                      ": unexpected YAML shape: " + e.msg);
+  }
+  return config;
+}
+
+/// The configuration (any struct with Visit) as YAML: every field, no comments, e.g. for
+/// run summaries.
+template <class T>
+std::string ConfigToYaml(const T& config) {
+  YAML::Emitter out;
+  config_yaml::Writer writer(out);
+  T copy = config;
+  writer.Write(copy);
+  return out.c_str();
+}
+
+}  // namespace uwbsar

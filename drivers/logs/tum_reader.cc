@@ -1,0 +1,45 @@
+#include "drivers/logs/tum_reader.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace uwbsar {
+
+std::vector<OdometrySample> ReadTum(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot open trajectory file");
+  std::vector<OdometrySample> out;
+  std::string line;
+  for (int line_no = 1; std::getline(in, line); ++line_no) {
+    const std::size_t hash = line.find('#');
+    if (hash != std::string::npos) line.resize(hash);
+    std::istringstream fields(line);
+    double v[8];
+    int n = 0;
+    while (n < 8 && fields >> v[n]) ++n;
+    if (n == 0 && fields.eof()) continue;  // blank line
+    std::string extra;
+    if (n != 8 || (fields >> extra)) {
+      throw InputError(path + ":" + std::to_string(line_no) +
+                       ": expected 8 numbers 't x y z qx qy qz qw'");
+    }
+    for (double x : v) {
+      if (!std::isfinite(x)) {
+        throw InputError(path + ":" + std::to_string(line_no) + ": non-finite value");
+      }
+    }
+    OdometrySample s;
+    s.stamp_ns = SecondsToNs(v[0]);
+    s.T_world_robot.x_m = v[1];
+    s.T_world_robot.y_m = v[2];
+    const double qx = v[4], qy = v[5], qz = v[6], qw = v[7];
+    s.T_world_robot.yaw_rad =
+        std::atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz));
+    out.push_back(s);
+  }
+  if (out.empty()) throw InputError(path + ": no poses in trajectory file");
+  return out;
+}
+
+}  // namespace uwbsar

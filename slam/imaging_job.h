@@ -1,0 +1,41 @@
+// Shared by `uwbsar image` and the imaging demo: run the frontend over a log,
+// render the whole-run strip in the world frame and write it in every form.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "drivers/sim/synthetic_run.h"
+#include "frontend/imaging_frontend.h"
+#include "frontend/strip_renderer.h"
+#include "slam/app_config.h"
+
+namespace uwbsar::pipeline {
+
+struct StripResult {
+  StripImage strip;
+  FrontendStats stats;
+  std::vector<ImagedScan> scans;
+  double seconds = 0.0;
+};
+
+/// Feeds scans and odometry in time order through an ImagingFrontend and renders the strip.
+/// Throws InputError ("nothing imaged: ...", naming no file: the caller prefixes its input)
+/// when there are no scans, every valid scan is all zero, or no scan could be imaged.
+StripResult ImageRun(const Config& config, const std::vector<OdometrySample>& odometry,
+                     const std::vector<RadarScan>& scans);
+
+/// Throws InputError when a whole-run image on `grid` (`what`: "the strip image", "the
+/// exact map") exceeds limits.max_image_pixels: checked before the image is allocated.
+void CheckWholeRunImage(const ImageGrid& grid, const LimitsConfig& limits, const std::string& what);
+
+/// Writes <prefix>_raw.png, _positive.png, _enhanced.png, (_logmag.png), _float.tif, _grid.yaml.
+std::vector<std::string> WriteStripOutputs(const std::string& dir, const std::string& prefix,
+                                           const StripImage& strip, const EnhanceConfig& enhance);
+
+/// The built-in imaging scene: a wall 1.5 m to the left along the path and point
+/// targets on both sides (metal poles).
+std::vector<Scatterer> DemoScatterers();
+std::vector<Point2> DemoPointTargets();
+
+}  // namespace uwbsar::pipeline

@@ -1,0 +1,162 @@
+#include "slam/localize_job.h"
+
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "backend/g2o_io.h"
+#include "core/errors.h"
+#include "drivers/rosbag/bag_reader.h"
+#include "drivers/rosbag/bag_source.h"
+#include "drivers/rosbag/robot_bag.h"
+#include "drivers/sim/sim_source.h"
+#include "frontend/imaging_frontend.h"
+#include "imaging/image_io.h"
+#include "slam/app_config.h"
+#include "slam/localize_pipeline.h"
+#include "slam/map_job.h"
+#include "slam/map_outputs.h"
+#include "slam/output_folder.h"
+
+namespace uwbsar::pipeline {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+}  // namespace
+
+std::vector<std::pair<TimestampNs, Pose2>> LocalizeRun::Trajectory(bool tracking_only) const {
+  std::vector<std::pair<TimestampNs, Pose2>> out;
+  if (first_fix < 0) return out;
+  std::size_t k = static_cast<std::size_t>(first_fix);
+  for (const OdometryEntry& e : odometry) {
+    while (k + 1 < keyframes.size() && keyframes[k + 1].stamp_ns <= e.stamp_ns) ++k;
+    const LocalizedKeyframe& kf = keyframes[k];
+    if (tracking_only && kf.status == LocalizeStatus::kLost) continue;
+    out.push_back({e.stamp_ns, kf.T_map_anchor * kf.T_odom_anchor.Inverse() * e.T_world_robot});
+  }
+  return out;
+}
+
+LocalizeRun LocalizeSource(const SessionData& map, const Config& config,
+                           const std::string& description, MessageSource& source) {
+  LocalizePipeline pipeline(map, config, description);
+  std::vector<OdometrySample> ground_truth;
+  // The feeding thread's time (imaging, hand-over, waiting for the keyframe thread when
+  // it falls behind and at the end), not the source's.
+  double busy_s = 0.0;
+  source.Run([&](const Message& m) {
+    if (m.kind == Message::Kind::kGroundTruth) ground_truth.push_back(m.odometry);
+    if (m.kind != Message::Kind::kRadarScan && m.kind != Message::Kind::kOdometry) return;
+    const auto t0 = Clock::now();
+    FeedScanOrOdometry(pipeline, m);
+    busy_s += std::chrono::duration<double>(Clock::now() - t0).count();
+  });
+  const auto t0 = Clock::now();
+  pipeline.Finish();
+  busy_s += std::chrono::duration<double>(Clock::now() - t0).count();
+  LocalizeRun run = pipeline.Result();
+  run.ground_truth = std::move(ground_truth);
+  run.processing_s = busy_s;
+  if (run.odometry.size() >= 2) {
+    run.log_duration_s = NsToSeconds(run.odometry.back().stamp_ns - run.odometry.front().stamp_ns);
+  }
+  if (run.keyframes.empty()) {
+    throw InputError(description + ": no keyframe could be imaged (odometry and radar topics?)");
+  }
+  return run;
+}
+
+LocalizeRun LocalizeBag(const SessionData& map, const Config& config, const std::string& bag) {
+  rosbag::BagReader reader(bag);
+  rosbag::BagSource source(reader, rosbag::RobotBagOptionsFromConfig(config));
+  return LocalizeSource(map, config, bag, source);
+}
+
+LocalizeRun LocalizeSimulation(const SessionData& map, const Config& config,
+                               const std::string& map_yaml, const std::string& route,
+                               std::uint64_t scene_seed, std::uint64_t seed,
+                               const Pose2& T_odom_world) {
+  const sim::SimScenario scenario = sim::MakeScenario(config, map_yaml, route, scene_seed);
+  sim::SimSource source(config, scenario, seed, T_odom_world);
+  const std::string description =
+      "simulated " + route + " in " + map_yaml + " (seed " + std::to_string(seed) + ")";
+  return LocalizeSource(map, config, description, source);
+}
+
+namespace {
+
+/// trajectory.tum, localize.csv and summary.json of `run` in `dir`; returns the summary.
+nlohmann::json WriteLocalizeFiles(const LocalizeRun& run, const std::string& out_dir) {
+  const auto trajectory = run.Trajectory(false);
+  std::vector<std::pair<double, Pose2>> tum;
+  for (const auto& [t, p] : trajectory) tum.push_back({NsToSeconds(t), p});
+  WriteTum(out_dir + "/trajectory.tum", tum);
+  std::ostringstream csv;
+  csv << "keyframe_id,stamp_s,path_m,status,x_m,y_m,yaw_deg,candidates,loops\n";
+  csv << std::fixed;
+  int tracking = 0, lost = 0, relocalised = 0;
+  for (const LocalizedKeyframe& k : run.keyframes) {
+    tracking += k.status == LocalizeStatus::kTracking;
+    lost += k.status == LocalizeStatus::kLost;
+    relocalised += k.status == LocalizeStatus::kRelocalised;
+    csv << k.id << "," << std::setprecision(6) << NsToSeconds(k.stamp_ns) << ","
+        << std::setprecision(3) << k.path_end_m << "," << LocalizeStatusName(k.status) << ",";
+    if (k.placed) {
+      csv << std::setprecision(4) << k.T_map_anchor.x_m << "," << k.T_map_anchor.y_m << ","
+          << std::setprecision(3) << k.T_map_anchor.yaw_rad * 180 / M_PI;
+    } else {
+      csv << ",,";
+    }
+    csv << "," << k.candidates << "," << k.loops << "\n";
+  }
+  WriteTextAtomic(out_dir + "/localize.csv", csv.str());
+  nlohmann::json s;
+  s["input"] = run.input;
+  s["processing_s"] = run.processing_s;
+  s["log_duration_s"] = run.log_duration_s;
+  s["real_time_factor"] = run.processing_s > 0 ? run.log_duration_s / run.processing_s : 0.0;
+  s["keyframes"] = {{"total", run.keyframes.size()},
+                    {"tracking", tracking},
+                    {"lost", lost},
+                    {"relocalised", relocalised}};
+  if (run.first_fix >= 0) {
+    s["first_fix"] = {{"keyframe_id", run.keyframes[run.first_fix].id},
+                      {"path_m", run.first_fix_path_m},
+                      {"time_s", run.first_fix_time_s}};
+  } else {
+    s["first_fix"] = nullptr;
+  }
+  // The map -> odom correction of the latest placed keyframe (what run publishes on /tf).
+  s["T_map_odom"] = nullptr;
+  for (auto k = run.keyframes.rbegin(); k != run.keyframes.rend(); ++k) {
+    if (!k->placed) continue;
+    const Pose2 T = k->T_map_anchor * k->T_odom_anchor.Inverse();
+    s["T_map_odom"] = {{"keyframe_id", k->id},
+                       {"x_m", T.x_m},
+                       {"y_m", T.y_m},
+                       {"yaw_deg", T.yaw_rad * 180 / M_PI}};
+    break;
+  }
+  if (!run.ground_truth.empty() && run.first_fix >= 0) {
+    const AteResult ate = TrajectoryError(run.Trajectory(true), run.ground_truth);
+    s["ate_tracking"] = {{"poses", ate.num_poses}, {"rmse_m", ate.rmse_m}, {"max_m", ate.max_m}};
+  }
+  WriteTextAtomic(out_dir + "/summary.json", s.dump(2) + "\n");
+  return s;
+}
+
+}  // namespace
+
+nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& out_dir) {
+  MapOutputStage stage(out_dir);
+  nlohmann::json summary;
+  stage.CommitWritten([&](const std::string& dir) {
+    summary = WriteLocalizeFiles(run, dir);
+    return std::vector<std::string>{"trajectory.tum", "localize.csv"};
+  });
+  return summary;
+}
+
+}  // namespace uwbsar::pipeline

@@ -1,0 +1,60 @@
+// `uwbsar localize BAG --map SESSION`: a log imaged keyframe by keyframe (the imaging
+// frontend only: no place recognition within the run, no map growth) and each keyframe
+// localised in the saved map (slam/localizer.h), imaging on the feeding thread and the
+// features and localisation on a keyframe thread (slam/localize_pipeline.h). Outputs:
+// trajectory.tum in the map frame (from the first fix on), localize.csv (status per
+// keyframe), summary.json (with the latest map -> odom correction).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "backend/trajectory_metrics.h"
+#include "core/message.h"
+#include "frontend/odometry_buffer.h"
+#include "slam/app_config.h"
+#include "slam/localizer.h"
+#include "slam/session/session_data.h"
+
+namespace uwbsar::pipeline {
+
+struct LocalizeRun {
+  std::string input;
+  std::vector<LocalizedKeyframe> keyframes;
+  std::vector<OdometryEntry> odometry;
+  std::vector<OdometrySample> ground_truth;
+  double processing_s = 0.0;  ///< imaging, features and localisation (not the log source)
+  double log_duration_s = 0.0;
+  int first_fix = -1;             ///< index into keyframes, -1 when never placed
+  double first_fix_path_m = 0.0;  ///< odometry path from the start to the first fix
+  double first_fix_time_s = 0.0;  ///< log time from the first odometry to the first fix
+
+  /// The odometry in the map frame, each sample corrected by the latest placed keyframe at
+  /// or before it (earliest placed one before that); `tracking_only` drops the samples
+  /// whose keyframe is lost. Empty when never placed.
+  std::vector<std::pair<TimestampNs, Pose2>> Trajectory(bool tracking_only) const;
+};
+
+/// Localises what `source` emits: scans and odometry through FeedScanOrOdometry, ground
+/// truth kept for the evaluation.
+LocalizeRun LocalizeSource(const SessionData& map, const Config& config,
+                           const std::string& description, MessageSource& source);
+/// A ROS 2 bag.
+LocalizeRun LocalizeBag(const SessionData& map, const Config& config, const std::string& bag);
+/// A simulated run (as MapSimulationInScene: the scene from scene_seed, odometry in its
+/// own frame T_odom_world).
+LocalizeRun LocalizeSimulation(const SessionData& map, const Config& config,
+                               const std::string& map_yaml, const std::string& route,
+                               std::uint64_t scene_seed, std::uint64_t seed,
+                               const Pose2& T_odom_world = {});
+
+/// trajectory.tum, localize.csv and summary.json (last) into out_dir, staged and committed as
+/// one set under out_dir's lock (slam/map_outputs.h MapOutputStage), replacing an earlier
+/// run's outputs; returns the summary. The commands refuse a map's folder first
+/// (slam/saved_session.h RefuseMapFolderForLocalize).
+nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& out_dir);
+
+}  // namespace uwbsar::pipeline

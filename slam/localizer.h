@@ -1,0 +1,82 @@
+// Localisation in a saved map (`uwbsar localize`). The map is fixed:
+// nothing is added to it. Each new keyframe (odometry pose, AKAZE/ORB features) is matched
+// against the map's keyframes: while the robot is not placed, against all of them (global
+// search) and it is placed once session.connect_min_loops validated loops agree on where
+// its odometry frame lies; while tracking, against the map keyframes near its estimate,
+// keeping only loops that agree with the estimate. A sliding window of the last
+// session.localize_window_keyframes keyframes (odometry edges between them, loop edges to
+// the fixed map keyframes) is optimised after each keyframe with loops. Without a loop for
+// session.localize_lost_after_m of path the robot is "lost" and global search resumes.
+#pragma once
+
+#include <deque>
+#include <string>
+#include <vector>
+
+#include "frontend/place_recognition/place_recognizer.h"
+#include "slam/session/session_data.h"
+#include "slam/session/session_settings.h"
+
+namespace uwbsar {
+
+enum class LocalizeStatus { kTracking, kLost, kRelocalised };
+/// "tracking", "lost" (not placed yet, or no loop for a while), "relocalised" (placed here).
+const char* LocalizeStatusName(LocalizeStatus status);
+
+struct LocalizedKeyframe {
+  int id = 0;
+  TimestampNs stamp_ns = 0;
+  double path_end_m = 0.0;
+  Pose2 T_odom_anchor;
+  Pose2 T_map_anchor;   ///< estimate (valid once placed)
+  bool placed = false;  ///< the robot had been placed when this keyframe was decided
+  LocalizeStatus status = LocalizeStatus::kLost;
+  int candidates = 0;
+  int loops = 0;  ///< validated loops into the map used for this keyframe
+};
+
+class Localizer {
+ public:
+  /// `map` must outlive the localizer.
+  Localizer(const SessionData& map, const SessionSettings& config);
+
+  /// One new keyframe: its features (grid, centre) and odometry anchor pose, its stamp and
+  /// the odometry path at its end. Returns what was decided for it.
+  const LocalizedKeyframe& Add(const KeyframeFeatures& features, const Pose2& T_odom_anchor,
+                               TimestampNs stamp_ns, double path_end_m);
+
+  const std::vector<LocalizedKeyframe>& keyframes() const { return keyframes_; }
+  bool placed() const { return placed_; }
+  /// The current map <- odometry correction (identity before the first fix).
+  const Pose2& T_map_odom() const { return T_map_odom_; }
+
+ private:
+  struct Loop {
+    int map_id = 0;
+    int keyframe_index = 0;  ///< into keyframes_
+    Pose2 T_ij;
+    Eigen::Matrix3d information;
+    Pose2 T_map_odom;  ///< where this loop puts the odometry frame
+  };
+  /// The validated loops of a new keyframe (keyframes_[index] once added) with the map:
+  /// candidates are every map keyframe (`global`) or those near the current estimate;
+  /// `candidates` counts the pairs matched.
+  std::vector<Loop> MatchMap(const KeyframeFeatures& features, const Pose2& T_odom_anchor,
+                             int index, bool global, int* candidates) const;
+  /// (Re-)placement: keeps `found` among the recent unplaced loops; when enough of them agree,
+  /// sets T_map_odom_ and returns the agreeing loops, else none. Sets out->status.
+  std::vector<Loop> Place(const std::vector<Loop>& found, LocalizedKeyframe* out);
+  void SolveWindow();
+
+  const SessionData& map_;
+  SessionSettings config_;
+  PlaceRecognitionConfig pr_;
+  std::vector<LocalizedKeyframe> keyframes_;
+  std::deque<Loop> window_loops_;  ///< loops of the keyframes in the window
+  std::vector<Loop> unplaced_;     ///< validated loops while not placed (recent ones)
+  bool placed_ = false;
+  Pose2 T_map_odom_;
+  double path_at_last_loop_m_ = 0.0;
+};
+
+}  // namespace uwbsar

@@ -1,0 +1,147 @@
+// MapOutputStage: the staging folder of `uwbsar map` outputs (map_outputs.h), its
+// creation before the work under the output folder's lock, the completion of a commit a dead
+// process left (core/commit_journal.h), the removal of staging folders left by dead
+// processes, and removal on Ctrl-C. Commit, which writes the outputs, is in map_outputs.cc.
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+
+#include "core/commit_journal.h"
+#include "core/errors.h"
+#include "slam/map_outputs.h"
+#include "slam/output_folder.h"
+
+namespace uwbsar::pipeline {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr const char* kStagePrefix = ".uwbsar-partial-";
+
+/// Removes the staging folders in `out_dir` whose process is gone (an interrupted run's).
+void RemoveStaleStagingFolders(const std::string& out_dir) {
+  std::error_code ec;
+  for (fs::directory_iterator it(out_dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(kStagePrefix, 0) != 0) continue;
+    const std::string digits = name.substr(std::strlen(kStagePrefix));
+    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos ||
+        digits.size() > 9) {
+      continue;
+    }
+    const pid_t pid = static_cast<pid_t>(std::stol(digits));
+    if (pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH) continue;
+    std::error_code rm;
+    fs::remove_all(it->path(), rm);
+  }
+}
+
+/// trajectory_<digits>.tum: one run of a joined session (slam/session_outputs.h).
+bool IsRunTrajectoryName(const std::string& name) {
+  const std::string prefix = "trajectory_", suffix = ".tum";
+  if (name.size() <= prefix.size() + suffix.size() || name.rfind(prefix, 0) != 0 ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
+    return false;
+  }
+  const std::string digits =
+      name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  return digits.find_first_not_of("0123456789") == std::string::npos;
+}
+
+/// Output names that exist in `out_dir` as folders: found before the work, not after it.
+void RefuseFolderOutputs(const std::string& out_dir) {
+  std::error_code ec;
+  for (const std::string& name : AllMapOutputNames()) {
+    const fs::path path = fs::path(out_dir) / name;
+    if (fs::is_directory(fs::symlink_status(path, ec))) {
+      throw InputError(path.string() + ": output file is a folder");
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> EarlierOutputsNotIn(const std::string& out_dir,
+                                             const std::vector<std::string>& names) {
+  auto written = [&names](const std::string& name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+  };
+  std::vector<std::string> earlier;
+  std::error_code ec;
+  for (const std::string& name : AllMapOutputNames()) {
+    // A saved map is replaced by a commit that writes one, never removed by one that does not
+    // (the commands refuse such a folder first: RefuseToReplaceSavedMap).
+    if (name == "session.uwbsar") continue;
+    if (!written(name) && fs::exists(fs::symlink_status(fs::path(out_dir) / name, ec))) {
+      earlier.push_back(name);
+    }
+  }
+  for (fs::directory_iterator it(out_dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (IsRunTrajectoryName(name) && !written(name)) earlier.push_back(name);
+  }
+  return earlier;
+}
+
+const std::vector<std::string>& AllMapOutputNames() {
+  static const std::vector<std::string> names = {"trajectory.tum",
+                                                 "odometry.tum",
+                                                 "graph.g2o",
+                                                 "loops.csv",
+                                                 "map_float.tif",
+                                                 "map_grid.yaml",
+                                                 "map.png",
+                                                 "map.yaml",
+                                                 "map.pgm",
+                                                 "report.html",
+                                                 "ground_truth.tum",
+                                                 "map_exact_float.tif",
+                                                 "map_exact_grid.yaml",
+                                                 "map_exact.png",
+                                                 "session.uwbsar",
+                                                 "localize.csv",
+                                                 "live.json",
+                                                 "summary.json"};
+  return names;
+}
+
+MapOutputStage::MapOutputStage(const std::string& out_dir)
+    : out_dir_(out_dir), lock_(LockOutputFolder(out_dir)) {
+  RefuseFolderOutputs(out_dir);
+  stage_ = (fs::path(out_dir) / (std::string(kStagePrefix) + std::to_string(::getpid()))).string();
+  guard_ = std::make_unique<RemoveOnInterrupt>(stage_);
+  std::error_code ec;
+  fs::remove_all(stage_, ec);
+  if (!fs::create_directory(stage_, ec)) {
+    throw InputError(out_dir + ": cannot write into the output folder: " + ec.message());
+  }
+}
+
+MapOutputStage::~MapOutputStage() {
+  std::error_code ec;
+  fs::remove_all(stage_, ec);
+}
+
+FolderLock LockOutputFolder(const std::string& out_dir) {
+  EnsureDirectory(out_dir);  // InputError naming DIR when it is not a writable folder
+  FolderLock lock(out_dir, FolderLock::Mode::kExclusive);
+  RecoverInterruptedCommit(out_dir);  // a commit a dead process began is completed first
+  RemoveStaleStagingFolders(out_dir);
+  return lock;
+}
+
+MapOutputs WriteMapOutputs(const MapRun& run, const std::string& out_dir,
+                           const MapOutputOptions& options) {
+  MapOutputStage stage(out_dir);
+  return stage.Commit(run, options);
+}
+
+MapOutputs WriteMapOutputs(const MapState& state, const std::string& out_dir) {
+  MapOutputStage stage(out_dir);
+  return stage.Commit(state);
+}
+
+}  // namespace uwbsar::pipeline

@@ -1,0 +1,377 @@
+#include "slam/map_outputs.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "backend/g2o_io.h"
+#include "backend/global_map.h"
+#include "backend/occupancy_io.h"
+#include "core/commit_journal.h"
+#include "core/errors.h"
+#include "frontend/strip_renderer.h"
+#include "imaging/enhance.h"
+#include "imaging/image_io.h"
+#include "slam/app_config.h"
+#include "slam/imaging_job.h"
+#include "slam/map_report.h"
+#include "slam/report_html.h"
+
+namespace uwbsar::pipeline {
+namespace fs = std::filesystem;
+namespace {
+
+std::vector<std::pair<double, Pose2>> InSeconds(
+    const std::vector<std::pair<TimestampNs, Pose2>>& trajectory) {
+  std::vector<std::pair<double, Pose2>> out;
+  out.reserve(trajectory.size());
+  for (const auto& [t, p] : trajectory) out.push_back({NsToSeconds(t), p});
+  return out;
+}
+
+/// map.png: the mean detected map, clipped at its 99.5th percentile, colour-mapped,
+/// with the optimised trajectory (white), odometry (grey) and accepted loops (cyan).
+cv::Mat RenderMapPng(const cv::Mat& map, const cv::Mat& observed, const ImageGrid& grid,
+                     const SlamSnapshot& slam,
+                     const std::vector<std::pair<TimestampNs, Pose2>>& traj,
+                     const std::string& colormap) {
+  std::vector<float> values;
+  for (int r = 0; r < map.rows; ++r) {
+    for (int c = 0; c < map.cols; ++c) {
+      if (observed.at<unsigned char>(r, c)) values.push_back(map.at<float>(r, c));
+    }
+  }
+  float top = 1.0f;
+  if (!values.empty()) {
+    const std::size_t k = static_cast<std::size_t>(0.995 * static_cast<double>(values.size() - 1));
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
+    top = std::max(values[k], 1e-12f);
+  }
+  cv::Mat gray;
+  map.convertTo(gray, CV_8U, 255.0 / top);
+  cv::Mat png = Colorize(gray, colormap);
+  png.setTo(cv::Scalar(40, 40, 40), ~observed);
+  auto pixel = [&](const Pose2& p) {
+    return cv::Point(static_cast<int>(std::lround(grid.XToCol(p.x_m))),
+                     static_cast<int>(std::lround(grid.YToRow(p.y_m))));
+  };
+  const auto& odom = slam.odometry;
+  for (std::size_t i = 1; i < odom.size(); ++i) {
+    cv::line(png, pixel(odom[i - 1].T_world_robot), pixel(odom[i].T_world_robot),
+             cv::Scalar(150, 150, 150), 1, cv::LINE_AA);
+  }
+  for (std::size_t i = 1; i < traj.size(); ++i) {
+    cv::line(png, pixel(traj[i - 1].second), pixel(traj[i].second), cv::Scalar(255, 255, 255), 2,
+             cv::LINE_AA);
+  }
+  const auto& poses = slam.poses;
+  for (const LoopRecord& loop : slam.loops) {
+    if (!loop.accepted()) continue;
+    cv::line(png, pixel(poses.at(loop.match_id)), pixel(poses.at(loop.query_id)),
+             cv::Scalar(255, 255, 0), 1, cv::LINE_AA);
+  }
+  return png;
+}
+
+std::string LoopsCsv(const SlamSnapshot& slam) {
+  std::ostringstream csv;
+  csv << "query_id,match_id,ratio_akaze,good_akaze,scale_akaze,ratio_orb,good_orb,scale_orb,"
+         "x_m,y_m,yaw_deg,validator,reason,backend,chi2\n";
+  for (const LoopRecord& l : slam.loops) {
+    const Pose2& T = l.validation.constraint.T_ij;
+    std::string reason = l.validation.reason;
+    for (char& c : reason) {
+      if (c == ',' || c == '\n') c = ';';
+    }
+    csv << l.query_id << "," << l.match_id << "," << l.akaze.ratio_matches << ","
+        << l.akaze.good_matches << "," << Fixed(l.akaze.scale, 4) << "," << l.orb.ratio_matches
+        << "," << l.orb.good_matches << "," << Fixed(l.orb.scale, 4) << ","
+        << (l.validation.accepted ? Fixed(T.x_m, 4) : "") << ","
+        << (l.validation.accepted ? Fixed(T.y_m, 4) : "") << ","
+        << (l.validation.accepted ? Fixed(T.yaw_rad * 180.0 / M_PI, 3) : "") << ","
+        << (l.validation.accepted ? "accepted" : "rejected") << "," << reason << ","
+        << (l.validation.accepted ? (l.rejected_by_backend ? "rejected" : "accepted") : "") << ","
+        << (l.edge_index >= 0 ? Fixed(l.chi2, 3) : "") << "\n";
+  }
+  return csv.str();
+}
+
+nlohmann::json AteJson(const AteResult& a) {
+  return {{"poses", a.num_poses},
+          {"rmse_m", a.rmse_m},
+          {"mean_m", a.mean_m},
+          {"max_m", a.max_m},
+          {"yaw_rmse_deg", a.yaw_rmse_rad * 180.0 / M_PI}};
+}
+
+std::string ReadFileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+MapState CaptureMapState(const MapRun& run) {
+  MapState state;
+  state.slam = run.slam->Capture();
+  state.input = run.input;
+  state.processing_s = run.processing_s;
+  state.log_duration_s = run.log_duration_s();
+  state.last_stamp_ns = run.last_stamp_ns;
+  state.ground_truth = run.ground_truth;
+  return state;
+}
+
+MapOutputs MapOutputStage::Commit(const MapRun& run, const MapOutputOptions& options) {
+  return CommitState(CaptureMapState(run), options.exact ? &run : nullptr);
+}
+
+MapOutputs MapOutputStage::Commit(const MapState& state) { return CommitState(state, nullptr); }
+
+namespace {
+
+/// trajectory.tum, odometry.tum, graph.g2o, loops.csv and, with ground truth,
+/// ground_truth.tum and the ATEs in `result`. Appends the names written to `names` (but
+/// ground_truth.tum, which CommitState lists after report.html, as `files` always had it).
+MapTrajectories WriteTrajectories(const MapState& run, const fs::path& stage, MapOutputs* result,
+                                  std::vector<std::string>* names) {
+  const SlamSnapshot& slam = run.slam;
+  auto staged = [&](const char* name) { return (stage / name).string(); };
+  MapTrajectories traj;
+  traj.slam = slam.CorrectedTrajectory();
+  for (const OdometryEntry& e : slam.odometry)
+    traj.odometry.push_back({e.stamp_ns, e.T_world_robot});
+  WriteTum(staged("trajectory.tum"), InSeconds(traj.slam));
+  WriteTum(staged("odometry.tum"), InSeconds(traj.odometry));
+  WriteTextAtomic(staged("graph.g2o"), G2oText(slam.poses, slam.edges, slam.fixed_ids));
+  WriteTextAtomic(staged("loops.csv"), LoopsCsv(slam));
+  names->insert(names->end(), {"trajectory.tum", "odometry.tum", "graph.g2o", "loops.csv"});
+  if (!run.ground_truth.empty()) {
+    for (const OdometrySample& g : run.ground_truth) {
+      traj.ground_truth.push_back({g.stamp_ns, g.T_world_robot});
+    }
+    WriteTum(staged("ground_truth.tum"), InSeconds(traj.ground_truth));
+    result->ate = TrajectoryError(traj.slam, run.ground_truth);
+    result->odometry_ate = TrajectoryError(traj.odometry, run.ground_truth);
+  }
+  return traj;
+}
+
+/// The global map's extent and size, for summary.json.
+struct MapExtent {
+  ImageGrid grid;
+  std::size_t blocks = 0;
+  std::size_t memory_bytes = 0;
+};
+
+/// The global map from the optimised keyframes: map_float.tif, map_grid.yaml, map.png, and
+/// its occupancy grid map.yaml + map.pgm.
+MapExtent WriteMapAndOccupancy(const MapState& run, const StampedPoses& trajectory,
+                               const fs::path& stage, std::vector<std::string>* names) {
+  const SlamSnapshot& slam = run.slam;
+  const Config& config = *slam.config;
+  auto staged = [&](const char* name) { return (stage / name).string(); };
+  GlobalMap global(config.slam.map_resolution_m);
+  for (const TileSnapshot& k : slam.tiles) {
+    global.AddTile(k.detected, k.detected_grid, slam.poses.at(k.id));
+  }
+  // A keyframe placed kilometres away (a wild odometry jump) must not allocate gigabytes.
+  if (!(global.RenderPixels() <= config.limits.max_image_pixels)) {
+    std::ostringstream what;
+    what << run.input << ": the map of its keyframes is " << global.RenderPixels() << " pixels at "
+         << config.slam.map_resolution_m << " m, more than limits.max_image_pixels ("
+         << config.limits.max_image_pixels << "); refused before allocation";
+    throw InputError(what.str());
+  }
+  MapExtent extent;
+  cv::Mat observed;
+  const cv::Mat map = global.Render(&extent.grid, &observed);
+  WriteFloatTiff(staged("map_float.tif"), map);
+  WriteTextAtomic(staged("map_grid.yaml"),
+                  GridYaml(extent.grid, "map_float.tif and map.png", "map_float.tif"));
+  WriteImageAtomic(staged("map.png"), RenderMapPng(map, observed, extent.grid, slam, trajectory,
+                                                   config.enhance.colormap));
+  const OccupancyGrid occupancy =
+      MapToOccupancy(map, observed, extent.grid, config.slam.occupancy_resolution_m,
+                     config.slam.occupied_fraction, config.slam.occupancy_reference_percentile);
+  WriteOccupancyGrid(staged("map.yaml"), "map.pgm", occupancy);
+  names->insert(names->end(), {"map_float.tif", "map_grid.yaml", "map.png", "map.yaml", "map.pgm"});
+  extent.blocks = global.num_blocks();
+  extent.memory_bytes = global.memory_bytes();
+  return extent;
+}
+
+/// The content of summary.json (`ate`, `odometry_ate` from `outputs`).
+nlohmann::json SummaryJson(const MapState& run, const MapOutputs& outputs,
+                           const MapExtent& extent) {
+  const SlamSnapshot& slam = run.slam;
+  const FrontendStats& fs_stats = slam.frontend_stats;
+  const LoopCounts counts = CountLoops(slam);
+  nlohmann::json s;
+  s["input"] = run.input;
+  s["log_duration_s"] = run.log_duration_s;
+  s["processing_s"] = run.processing_s;
+  s["real_time_factor"] = run.processing_s > 0 ? run.log_duration_s / run.processing_s : 0.0;
+  s["peak_memory_mib"] = PeakMemoryMiB();
+  s["keyframes"] = slam.tiles.size();
+  s["path_length_m"] = slam.odometry.empty() ? 0.0 : slam.odometry.back().path_m;
+  s["loops"] = {{"candidates", slam.loops.size()},
+                {"validated", counts.validated},
+                {"accepted", counts.accepted},
+                {"rejected_by_backend", counts.backend_rejected}};
+  s["scans"] = {{"received", fs_stats.scans_received},
+                {"imaged", fs_stats.scans_imaged},
+                {"gated", fs_stats.scans_gated},
+                {"rejected", fs_stats.scans_rejected()},
+                {"rejected_wrong_length", fs_stats.scans_rejected_length},
+                {"rejected_non_finite", fs_stats.scans_rejected_nonfinite},
+                {"rejected_no_odometry",
+                 fs_stats.scans_rejected_no_odometry + fs_stats.scans_rejected_stale}};
+  s["odometry"] = {
+      {"received", fs_stats.odometry_received},
+      {"jumps_corrected", fs_stats.odometry_jumps_corrected},
+      {"rejected", fs_stats.odometry_rejected_out_of_order + fs_stats.odometry_rejected_nonfinite +
+                       fs_stats.odometry_rejected_implausible},
+      {"rejected_implausible", fs_stats.odometry_rejected_implausible}};
+  const StageTimes& t = slam.times;
+  s["time_s"] = {{"imaging", t.imaging_s},
+                 {"features", t.features_s},
+                 {"matching", t.matching_s},
+                 {"optimization", t.optimization_s},
+                 {"total", run.processing_s}};
+  const OptimizeResult& opt = slam.last_optimization;
+  s["optimization"] = {{"converged", opt.converged},
+                       {"termination", opt.termination},
+                       {"iterations", opt.iterations},
+                       {"final_cost", opt.final_cost}};
+  s["map"] = {{"resolution_m", extent.grid.resolution_m},
+              {"rows", extent.grid.rows},
+              {"cols", extent.grid.cols},
+              {"blocks", extent.blocks},
+              {"memory_mib", static_cast<double>(extent.memory_bytes) / 1048576.0}};
+  if (outputs.ate.num_poses > 0) {
+    s["ate"] = AteJson(outputs.ate);
+    s["odometry_ate"] = AteJson(outputs.odometry_ate);
+  }
+  return s;
+}
+
+/// Commits `names` (and summary.json, last) from `stage` into `out_dir` as one set
+/// (core/commit_journal.h), removing the outputs of an earlier run this run does not write (a
+/// committed folder holds one run's files). Appends the final paths to `files`.
+void CommitStagedOutputs(const fs::path& stage, const std::string& out_dir,
+                         std::vector<std::string> names, std::vector<std::string>* files) {
+  names.push_back("summary.json");
+  CommitPlan plan;
+  plan.stage_name = stage.filename().string();
+  plan.publish = names;
+  plan.remove = EarlierOutputsNotIn(out_dir, names);
+  CommitFolder(out_dir, plan);
+  for (const std::string& name : names) files->push_back((fs::path(out_dir) / name).string());
+}
+
+}  // namespace
+
+MapOutputs MapOutputStage::CommitState(const MapState& run, const MapRun* exact_from) {
+  MapOutputs result;
+  const fs::path stage = stage_;
+  std::vector<std::string> names;
+  const MapTrajectories trajectories = WriteTrajectories(run, stage, &result, &names);
+  const MapExtent extent = WriteMapAndOccupancy(run, trajectories.slam, stage, &names);
+  result.summary = SummaryJson(run, result, extent);
+  // report.html is built from the staged files, so it shows exactly what was written.
+  WriteTextAtomic((stage / "report.html").string(),
+                  RenderReportHtml(BuildMapReport(run, result, trajectories,
+                                                  ReadFileBytes((stage / "map.png").string()))));
+  names.push_back("report.html");
+  // ground_truth.tum is listed here so that MapOutputs::files keeps its order.
+  if (!run.ground_truth.empty()) names.push_back("ground_truth.tum");
+  if (exact_from != nullptr) {
+    for (const std::string& f : WriteExactMap(*exact_from, stage.string())) {
+      names.push_back(fs::path(f).filename().string());
+    }
+  }
+  if (extra_outputs_) {
+    for (const std::string& name : extra_outputs_(stage.string())) names.push_back(name);
+  }
+  WriteTextAtomic((stage / "summary.json").string(), result.summary.dump(2) + "\n");
+  CommitStagedOutputs(stage, out_dir_, names, &result.files);
+  return result;
+}
+
+std::vector<std::string> MapOutputStage::CommitWritten(const ExtraOutputs& write) {
+  std::vector<std::string> names = write(stage_);
+  names.erase(std::remove(names.begin(), names.end(), "summary.json"), names.end());
+  if (!fs::exists(fs::path(stage_) / "summary.json")) {
+    throw std::logic_error("CommitWritten: the writer wrote no summary.json");
+  }
+  std::vector<std::string> files;
+  CommitStagedOutputs(stage_, out_dir_, names, &files);
+  return files;
+}
+
+std::vector<std::string> WriteExactMap(const MapRun& run, const std::string& out_dir) {
+  const SlamSystem& slam = *run.slam;
+  const Config& config = slam.config();
+  // Every imaged scan once (consecutive tiles share the scans of their common metre).
+  std::vector<ImagedScan> scans;
+  std::vector<Pose2> corrected;
+  TimestampNs last_stamp = std::numeric_limits<TimestampNs>::min();
+  for (const KeyframeRecord& k : slam.keyframes()) {
+    for (const ImagedScan& s : k.keyframe.scans) {
+      if (!s.profile) {
+        throw std::logic_error(
+            "the exact map needs the scans' range profiles: map with "
+            "slam.keep_scan_profiles: true");
+      }
+      if (s.stamp_ns < last_stamp ||
+          (s.stamp_ns == last_stamp && !scans.empty() && s.sensor_id <= scans.back().sensor_id)) {
+        continue;
+      }
+      last_stamp = s.stamp_ns;
+      scans.push_back(s);
+      corrected.push_back(slam.CorrectionAt(s.stamp_ns) * s.T_world_robot);
+    }
+  }
+  const ImageGrid grid =
+      WorldGridCovering(corrected, slam.sensors(), 0.1, config.imaging.pixel_size_m);
+  CheckWholeRunImage(grid, config.limits, "the exact map");
+  const StripImage exact = RenderScans(
+      scans, slam.sensors(), grid, config.imaging.coherent(), config.imaging.num_threads,
+      [&](const ImagedScan& s) { return corrected[&s - scans.data()]; });
+  const std::string base = out_dir + "/map_exact";
+  WriteFloatTiff(base + "_float.tif", exact.image);
+  WriteTextAtomic(base + "_grid.yaml",
+                  GridYaml(grid, "map_exact_float.tif and map_exact.png", "map_exact_float.tif"));
+  WriteImageAtomic(base + ".png",
+                   Colorize(Enhance8U(exact.image, config.enhance), config.enhance.colormap));
+  return {base + "_float.tif", base + "_grid.yaml", base + ".png"};
+}
+
+std::string GridYaml(const ImageGrid& grid, const std::string& what, const std::string& image,
+                     const std::string& frame) {
+  std::ostringstream yaml;
+  yaml.precision(12);
+  yaml << "# Pixel geometry of " << what << ": column = +x, row = -y (" << frame << " frame)\n"
+       << "image: " << image << "  # the float map this file describes (uwbsar compare reads it)\n"
+       << "x0_m: " << grid.x0_m << "  # x of the centre of column 0\n"
+       << "y0_m: " << grid.y0_m << "  # y of the centre of row 0 (top row)\n"
+       << "resolution_m: " << grid.resolution_m << "\nrows: " << grid.rows
+       << "\ncols: " << grid.cols << "\n";
+  return yaml.str();
+}
+
+}  // namespace uwbsar::pipeline

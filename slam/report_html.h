@@ -1,0 +1,43 @@
+// report.html: one self-contained page (images inlined as base64, plots as
+// inline SVG, no scripts, no external resources) that a person opens in a
+// browser to judge a mapping run: the map, the trajectory against ground
+// truth, the loop table and the timing breakdown.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/pose2.h"
+
+namespace uwbsar::pipeline {
+
+struct ReportTable {
+  std::string title;
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+};
+
+struct ReportTrajectory {
+  std::string label;
+  std::string colour;  ///< CSS colour
+  std::vector<Point2> points;
+};
+
+struct RunReport {
+  std::string title;
+  std::vector<std::pair<std::string, std::string>> summary;  ///< key figures, in order
+  std::vector<std::pair<std::string, std::string>> images;   ///< caption, PNG file bytes
+  std::vector<ReportTrajectory> trajectories;
+  std::vector<std::pair<Point2, Point2>> loop_segments;  ///< accepted loops, drawn
+  std::vector<ReportTable> tables;
+};
+
+/// Renders the report as HTML text.
+std::string RenderReportHtml(const RunReport& report);
+/// Standard base64 (RFC 4648) of `bytes`.
+std::string Base64(const std::string& bytes);
+/// Escapes &, <, >, " for HTML text and attributes.
+std::string HtmlEscape(const std::string& text);
+
+}  // namespace uwbsar::pipeline

@@ -1,0 +1,71 @@
+#include "slam/session/session_data.h"
+
+#include <algorithm>
+
+namespace uwbsar {
+
+const SessionKeyframe* SessionData::Find(int id) const {
+  for (const SessionKeyframe& k : keyframes) {
+    if (k.id == id) return &k;
+  }
+  return nullptr;
+}
+
+int SessionData::MaxKeyframeId() const {
+  int m = -1;
+  for (const SessionKeyframe& k : keyframes) m = std::max(m, k.id);
+  return m;
+}
+
+int SessionData::MaxTrajectoryId() const {
+  int m = -1;
+  for (const SessionTrajectory& t : trajectories) m = std::max(m, t.id);
+  for (const SessionKeyframe& k : keyframes) m = std::max(m, k.trajectory);
+  return m;
+}
+
+std::map<int, Pose2> SessionData::Poses() const {
+  std::map<int, Pose2> out;
+  for (const SessionKeyframe& k : keyframes) out[k.id] = k.T_map_anchor;
+  return out;
+}
+
+SessionData WithDenseIds(const SessionData& s) {
+  SessionData out = s;
+  std::map<int, int> keyframe, trajectory;
+  for (SessionTrajectory& t : out.trajectories) {
+    const int id = static_cast<int>(trajectory.size());
+    trajectory.emplace(t.id, id);
+    t.id = id;
+  }
+  const auto trajectory_of = [&](int id) {
+    const auto it = trajectory.find(id);
+    if (it != trajectory.end()) return it->second;
+    const int dense = static_cast<int>(trajectory.size());
+    return trajectory[id] = dense;
+  };
+  for (SessionKeyframe& k : out.keyframes) {
+    const int id = static_cast<int>(keyframe.size());
+    keyframe.emplace(k.id, id);
+    k.id = k.features.id = id;
+    k.trajectory = trajectory_of(k.trajectory);
+  }
+  // References to keyframes the session lacks (never in a session that was read) keep theirs.
+  const auto keyframe_of = [&](int id) {
+    const auto it = keyframe.find(id);
+    return it != keyframe.end() ? it->second : id;
+  };
+  for (SessionEdge& e : out.edges) {
+    e.edge.from_id = keyframe_of(e.edge.from_id);
+    e.edge.to_id = keyframe_of(e.edge.to_id);
+    if (e.edge.trajectory >= 0) e.edge.trajectory = trajectory_of(e.edge.trajectory);
+  }
+  for (SessionLoop& l : out.loops) {
+    l.query_id = keyframe_of(l.query_id);
+    l.match_id = keyframe_of(l.match_id);
+  }
+  for (SessionOdometry& o : out.odometry) o.trajectory = trajectory_of(o.trajectory);
+  return out;
+}
+
+}  // namespace uwbsar

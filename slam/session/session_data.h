@@ -1,0 +1,98 @@
+// What a saved session holds (README "Session file"): every keyframe with its
+// poses, its detected tile (what the global map is made of) and its AKAZE/ORB features
+// (what place recognition matches), the pose graph's edges with their information, the
+// loop records, the odometry of each trajectory and the configuration it was made with.
+// A session may hold several trajectories (runs) in one map frame: `uwbsar map --resume`
+// and `uwbsar merge` add one.
+#pragma once
+
+#include <map>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "backend/pose_graph.h"
+#include "core/pose2.h"
+#include "core/types.h"
+#include "frontend/place_recognition/place_recognizer.h"
+#include "imaging/image_grid.h"
+
+namespace uwbsar {
+
+/// Bumped whenever a table or column changes meaning; readers refuse versions they do not know.
+/// 2: edges keep their odometry calibration fields (trajectory, path_m, turn_rad), so that a
+/// resumed or merged graph calibrates each run's odometry as its own run did; 1 still reads.
+/// 3: trajectories keep their recording's fingerprint; 1 and 2 still read (fingerprint "").
+constexpr int kSessionFormatVersion = 3;
+
+struct SessionKeyframe {
+  int id = 0;          ///< unique in the session (graph node id)
+  int trajectory = 0;  ///< which run it belongs to (SessionTrajectory::id)
+  TimestampNs stamp_ns = 0;
+  Pose2 T_odom_anchor;  ///< the tile frame in its run's odometry frame
+  Pose2 T_odom_robot;   ///< the robot at stamp_ns, same frame
+  Pose2 T_map_anchor;   ///< optimised pose of the tile frame in the session's map frame
+  double path_begin_m = 0.0, path_end_m = 0.0;  ///< its run's odometry path
+  bool fixed = false;                           ///< held constant (the gauge)
+  cv::Mat detected;                             ///< CV_32FC1 detected tile, map resolution
+  ImageGrid detected_grid;                      ///< its geometry in the anchor frame
+  KeyframeFeatures features;  ///< AKAZE + ORB at the feature resolution (own grid)
+};
+
+struct SessionLoop {
+  int query_id = 0;  ///< the newer keyframe (j)
+  int match_id = 0;  ///< the older keyframe (i)
+  bool validated = false;
+  bool accepted = false;  ///< validated and kept by the backend
+  Pose2 T_ij;             ///< pose of j in i (validated loops)
+  double chi2 = 0.0;
+  int akaze_good = 0, orb_good = 0;
+  std::string reason;
+};
+
+struct SessionOdometry {
+  int trajectory = 0;
+  TimestampNs stamp_ns = 0;
+  Pose2 T_odom_robot;
+  double path_m = 0.0;
+};
+
+struct SessionTrajectory {
+  int id = 0;
+  std::string input;  ///< what was mapped (bag path or simulation description)
+  /// Identity of the recording it was mapped from (RunFingerprint: storage id, first and last
+  /// stamps, message count), so that joining the same recording twice is refused; "" in
+  /// sessions written before format version 3.
+  std::string fingerprint;
+};
+
+struct SessionEdge {
+  PoseGraphEdge edge;
+  bool rejected = false;  ///< loops the backend rejected at the last solve
+};
+
+struct SessionData {
+  int format_version = kSessionFormatVersion;
+  std::string config_yaml;  ///< the whole configuration it was made with
+  std::string fingerprint;  ///< ConfigFingerprint of that configuration
+  /// The file it was read from (errors about what it implies name it); "" for a run captured
+  /// in memory. A join keeps the saved session's.
+  std::string source;
+  std::vector<SessionTrajectory> trajectories;
+  std::vector<SessionKeyframe> keyframes;  ///< by trajectory, then in time
+  std::vector<SessionEdge> edges;
+  std::vector<SessionLoop> loops;
+  std::vector<SessionOdometry> odometry;  ///< by trajectory, then in time
+
+  const SessionKeyframe* Find(int id) const;
+  int MaxKeyframeId() const;    ///< -1 when empty
+  int MaxTrajectoryId() const;  ///< -1 when empty
+  /// Optimised T_map_anchor by keyframe id.
+  std::map<int, Pose2> Poses() const;
+};
+
+/// `s` with dense ids: keyframes 0..n-1 in their order, trajectories 0..m-1 in theirs, and
+/// every reference (edges, loops, odometry, features) renumbered with them.
+SessionData WithDenseIds(const SessionData& s);
+
+}  // namespace uwbsar

@@ -1,0 +1,247 @@
+#include "slam/session/session_merge.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <map>
+
+#include "frontend/place_recognition/feature_matcher.h"
+#include "frontend/place_recognition/loop_validator.h"
+
+namespace uwbsar {
+namespace {
+
+struct Hypothesis {
+  int a_id = 0, b_id = 0;  ///< b_id in the merged numbering
+  Pose2 T_ij;
+  Eigen::Matrix3d information;
+  Pose2 T_mapA_mapB;  ///< where the loop puts the new session's frame
+};
+
+bool Agree(const Pose2& x, const Pose2& y, const SessionConfig& c) {
+  const Pose2 d = Between(x, y);
+  return std::hypot(d.x_m, d.y_m) <= c.connect_agree_m &&
+         std::abs(NormalizeAngle(d.yaw_rad)) <= c.connect_agree_deg * M_PI / 180.0;
+}
+
+Point2 Centre(const SessionKeyframe& k, const Pose2& T_map_anchor) {
+  return T_map_anchor * k.features.centre_anchor;
+}
+
+/// b renumbered: keyframe ids + id_offset, trajectories + trajectory_offset, nothing fixed.
+SessionData Renumbered(const SessionData& b, int id_offset, int trajectory_offset) {
+  SessionData out = b;
+  for (SessionTrajectory& t : out.trajectories) t.id += trajectory_offset;
+  for (SessionKeyframe& k : out.keyframes) {
+    k.id += id_offset;
+    k.features.id = k.id;
+    k.trajectory += trajectory_offset;
+    k.fixed = false;
+  }
+  for (SessionEdge& e : out.edges) {
+    e.edge.from_id += id_offset;
+    e.edge.to_id += id_offset;
+    if (e.edge.trajectory >= 0) e.edge.trajectory += trajectory_offset;
+  }
+  for (SessionLoop& l : out.loops) {
+    l.query_id += id_offset;
+    l.match_id += id_offset;
+  }
+  for (SessionOdometry& o : out.odometry) o.trajectory += trajectory_offset;
+  return out;
+}
+
+/// The saved map's keyframes a new keyframe `kb` is matched against: all of them until
+/// the new session is placed, then those within session.search_radius_m of where it lies.
+std::vector<const SessionKeyframe*> MergeCandidates(const SessionData& a, const SessionKeyframe& kb,
+                                                    const MergeReport& r, const SessionConfig& sc) {
+  std::vector<const SessionKeyframe*> candidates;
+  if (!r.connected) {
+    for (const SessionKeyframe& ka : a.keyframes) candidates.push_back(&ka);
+  } else {
+    const Point2 p = Centre(kb, r.T_mapA_mapB * kb.T_map_anchor);
+    for (const SessionKeyframe& ka : a.keyframes) {
+      const Point2 q = Centre(ka, ka.T_map_anchor);
+      if (std::hypot(p.x_m - q.x_m, p.y_m - q.y_m) <= sc.search_radius_m) {
+        candidates.push_back(&ka);
+      }
+    }
+  }
+  return candidates;
+}
+
+/// Matches every keyframe of `b` (renumbered) against `a` in b's order. Until enough
+/// validated loops agree on where b lies (session.connect_min_loops), they are kept in
+/// `before`; then the agreeing ones and every later loop go into the graph (returned), and
+/// `r` records the connection.
+std::vector<Hypothesis> FindMergeLoops(const SessionData& a, const SessionData& b,
+                                       const SessionSettings& config, MergeReport* report,
+                                       std::vector<Hypothesis>* before) {
+  MergeReport& r = *report;
+  const SessionConfig& sc = config.session;
+  const PlaceRecognitionConfig pr =
+      AtFeatureResolution(config.place_recognition, FeatureDownsampling(config));
+  // Path of each new trajectory at its start, so that connect_path_m counts from there.
+  std::map<int, double> path_origin;
+  for (const SessionOdometry& o : b.odometry) path_origin.emplace(o.trajectory, o.path_m);
+
+  std::vector<Hypothesis> loops;  // the loops that go into the graph
+  for (const SessionKeyframe& kb : b.keyframes) {
+    for (const SessionKeyframe* ka : MergeCandidates(a, kb, r, sc)) {
+      ++r.candidates;
+      const MatchResult akaze = MatchFeatures(ka->features.akaze, kb.features.akaze, pr.matching);
+      const MatchResult orb = MatchFeatures(ka->features.orb, kb.features.orb, pr.matching);
+      const LoopValidation v = ValidateLoop(ka->id, ka->features.grid, kb.id, kb.features.grid,
+                                            akaze, orb, pr.validation);
+      if (!v.accepted) continue;
+      ++r.validated;
+      Hypothesis h;
+      h.a_id = ka->id;
+      h.b_id = kb.id;
+      h.T_ij = v.constraint.T_ij;
+      h.information = v.constraint.information;
+      h.T_mapA_mapB = ka->T_map_anchor * h.T_ij * kb.T_map_anchor.Inverse();
+      if (r.connected) {
+        loops.push_back(h);
+        continue;
+      }
+      before->push_back(h);
+      std::vector<Hypothesis> agreeing;
+      for (const Hypothesis& o : *before) {
+        if (Agree(o.T_mapA_mapB, h.T_mapA_mapB, sc)) agreeing.push_back(o);
+      }
+      if (static_cast<int>(agreeing.size()) >= std::max(1, sc.connect_min_loops)) {
+        r.connected = true;
+        r.T_mapA_mapB = h.T_mapA_mapB;
+        r.connect_keyframe_id = kb.id;
+        r.connect_path_m = kb.path_end_m - path_origin[kb.trajectory];
+        loops.insert(loops.end(), agreeing.begin(), agreeing.end());
+        r.dropped = static_cast<int>(before->size() - agreeing.size());
+      }
+    }
+  }
+  return loops;
+}
+
+/// One graph: the saved map keeps its gauge (its fixed keyframes, else its first; every
+/// keyframe with `freeze_saved_map`); the new session starts where it was placed; both
+/// sessions' kept edges and the new loops (ShareLoopInformationPerKeyframe). Returns the new
+/// loops' edge indices.
+std::vector<int> BuildJointGraph(const SessionData& a, const SessionData& b,
+                                 const Pose2& T_mapA_mapB, const std::vector<Hypothesis>& loops,
+                                 bool freeze_saved_map, PoseGraph* graph) {
+  bool any_fixed = false;
+  for (const SessionKeyframe& k : a.keyframes) {
+    graph->AddNode(k.id, k.T_map_anchor, false);
+    if (k.fixed || freeze_saved_map) graph->FixNode(k.id), any_fixed = true;
+  }
+  if (!any_fixed && !a.keyframes.empty()) graph->FixNode(a.keyframes.front().id);
+  for (const SessionKeyframe& k : b.keyframes) {
+    graph->AddNode(k.id, T_mapA_mapB * k.T_map_anchor, false);
+  }
+  for (const SessionData* s : {&a, &b}) {
+    for (const SessionEdge& e : s->edges) {
+      if (e.rejected) continue;
+      graph->AddEdge(e.edge);
+    }
+  }
+  std::vector<PoseGraphEdge> between;
+  for (const Hypothesis& h : loops) {
+    PoseGraphEdge e;
+    e.from_id = h.a_id;
+    e.to_id = h.b_id;
+    e.T_from_to = h.T_ij;
+    e.information = h.information;
+    e.kind = EdgeKind::kLoop;
+    between.push_back(e);
+  }
+  ShareLoopInformationPerKeyframe(&between);
+  std::vector<int> new_edges;
+  for (const PoseGraphEdge& e : between) new_edges.push_back(graph->AddEdge(e));
+  return new_edges;
+}
+
+/// `out` (a copy of the saved map) joined with `b` as `graph` solved it: every keyframe at
+/// its solved pose, the graph's edges, b's loops and the new ones (with their verdicts).
+void StoreJoined(const PoseGraph& graph, const SessionData& b, const std::vector<Hypothesis>& loops,
+                 const std::vector<int>& new_edges, MergeReport* r, SessionData* out) {
+  const std::map<int, Pose2> poses = graph.GetPoses();
+  const std::vector<PoseGraphEdge> edges = graph.Edges();
+  const std::vector<EdgeReport> reports = graph.EdgeReports();
+  out->keyframes.insert(out->keyframes.end(), b.keyframes.begin(), b.keyframes.end());
+  for (SessionKeyframe& k : out->keyframes) {
+    k.T_map_anchor = poses.at(k.id);
+    k.features.T_world_anchor = k.T_map_anchor;
+  }
+  out->edges.clear();
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    out->edges.push_back({edges[i], reports[i].rejected});
+  out->loops.insert(out->loops.end(), b.loops.begin(), b.loops.end());
+  for (std::size_t i = 0; i < loops.size(); ++i) {
+    SessionLoop l;
+    l.query_id = loops[i].b_id;
+    l.match_id = loops[i].a_id;
+    l.validated = true;
+    l.accepted = !reports[new_edges[i]].rejected;
+    l.T_ij = loops[i].T_ij;
+    l.chi2 = reports[new_edges[i]].chi2;
+    l.reason = "between sessions";
+    r->loop_edges_rejected += !l.accepted;
+    out->loops.push_back(l);
+  }
+  out->odometry.insert(out->odometry.end(), b.odometry.begin(), b.odometry.end());
+}
+
+}  // namespace
+
+void ShareLoopInformationPerKeyframe(std::vector<PoseGraphEdge>* loops) {
+  std::map<int, int> loops_of_keyframe;
+  for (const PoseGraphEdge& e : *loops) ++loops_of_keyframe[e.to_id];
+  for (PoseGraphEdge& e : *loops) e.information /= loops_of_keyframe.at(e.to_id);
+}
+
+SessionData MergeSessions(const SessionData& a_in, const SessionData& b_in,
+                          const SessionSettings& config, MergeReport* report) {
+  MergeReport& r = *report;
+  r = MergeReport{};
+  // Ids offset past the saved map's never wrap: when the joined ids would pass kMaxJoinedId
+  // (ids read from a file may be anything up to INT_MAX), both sessions are renumbered densely
+  // first.
+  const auto joined_max = [](const SessionData& x, const SessionData& y, bool keyframes) {
+    const auto max_id = [keyframes](const SessionData& s) {
+      return static_cast<std::int64_t>(keyframes ? s.MaxKeyframeId() : s.MaxTrajectoryId());
+    };
+    return max_id(x) + 1 + std::max<std::int64_t>(max_id(y), 0);
+  };
+  const bool dense =
+      joined_max(a_in, b_in, true) > kMaxJoinedId || joined_max(a_in, b_in, false) > kMaxJoinedId;
+  const SessionData a_dense = dense ? WithDenseIds(a_in) : SessionData();
+  const SessionData& a = dense ? a_dense : a_in;
+  r.renumbered = dense;
+  r.id_offset = a.MaxKeyframeId() + 1;
+  r.trajectory_offset = a.MaxTrajectoryId() + 1;
+  const SessionData b =
+      Renumbered(dense ? WithDenseIds(b_in) : b_in, r.id_offset, r.trajectory_offset);
+  std::vector<Hypothesis> before;  // validated loops before placement
+  const std::vector<Hypothesis> loops = FindMergeLoops(a, b, config, &r, &before);
+
+  SessionData out = a;
+  out.trajectories.insert(out.trajectories.end(), b.trajectories.begin(), b.trajectories.end());
+  if (!r.connected) {
+    r.reason = before.empty() ? "no loop connects the sessions (" + std::to_string(r.candidates) +
+                                    " keyframe pairs matched)"
+                              : std::to_string(before.size()) +
+                                    " loops between the sessions, fewer than "
+                                    "session.connect_min_loops agree on where the run lies";
+    return out;
+  }
+  PoseGraph graph(config.backend);
+  const std::vector<int> new_edges =
+      BuildJointGraph(a, b, r.T_mapA_mapB, loops, config.session.freeze_saved_map, &graph);
+  r.optimization = graph.Optimize();
+  r.loop_edges = static_cast<int>(loops.size());
+  StoreJoined(graph, b, loops, new_edges, &r, &out);
+  return out;
+}
+
+}  // namespace uwbsar

@@ -1,0 +1,67 @@
+#include "slam/session_capture.h"
+
+#include <stdexcept>
+
+#include "slam/app_config_io.h"
+#include "slam/config/config_fingerprint.h"
+
+namespace uwbsar::pipeline {
+
+SessionData CaptureSession(const MapRun& run) {
+  const SlamSystem& slam = *run.slam;
+  SessionData d;
+  d.config_yaml = ConfigToYaml(slam.config());
+  d.fingerprint = ConfigFingerprint(slam.config());
+  // A run without a recording's identity (a simulation, a live run) is identified by what it
+  // is and when it began.
+  d.trajectories.push_back({0, run.input,
+                            !run.fingerprint.empty()
+                                ? run.fingerprint
+                                : "run " + run.input + " " + std::to_string(run.first_stamp_ns)});
+  const std::map<int, Pose2> poses = slam.KeyframePoses();
+  const std::vector<int> fixed = slam.graph().FixedNodes();
+  for (const KeyframeRecord& r : slam.keyframes()) {
+    const Keyframe& k = r.keyframe;
+    const KeyframeFeatures* f = slam.recognizer().Find(k.id);
+    if (f == nullptr) throw std::logic_error("keyframe without features: " + std::to_string(k.id));
+    SessionKeyframe s;
+    s.id = k.id;
+    s.trajectory = 0;
+    s.stamp_ns = k.stamp_ns;
+    s.T_odom_anchor = k.T_world_anchor;
+    s.T_odom_robot = k.T_world_robot;
+    s.T_map_anchor = poses.at(k.id);
+    s.path_begin_m = k.path_begin_m;
+    s.path_end_m = k.path_end_m;
+    s.fixed = std::find(fixed.begin(), fixed.end(), k.id) != fixed.end();
+    s.detected = r.detected;
+    s.detected_grid = r.detected_grid;
+    s.features = *f;
+    s.features.T_world_anchor = s.T_map_anchor;
+    d.keyframes.push_back(std::move(s));
+  }
+  const std::vector<PoseGraphEdge> edges = slam.graph().Edges();
+  const std::vector<EdgeReport> reports = slam.graph().EdgeReports();
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    d.edges.push_back({edges[i], i < reports.size() && reports[i].rejected});
+  }
+  for (const LoopRecord& l : slam.loops()) {
+    SessionLoop s;
+    s.query_id = l.query_id;
+    s.match_id = l.match_id;
+    s.validated = l.validation.accepted;
+    s.accepted = l.accepted();
+    s.T_ij = l.validation.constraint.T_ij;
+    s.chi2 = l.chi2;
+    s.akaze_good = l.akaze.good_matches;
+    s.orb_good = l.orb.good_matches;
+    s.reason = l.validation.reason;
+    d.loops.push_back(std::move(s));
+  }
+  for (const OdometryEntry& e : slam.odometry()) {
+    d.odometry.push_back({0, e.stamp_ns, e.T_world_robot, e.path_m});
+  }
+  return d;
+}
+
+}  // namespace uwbsar::pipeline

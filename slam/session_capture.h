@@ -1,0 +1,14 @@
+// A finished (or locked) SlamSystem as a session (slam/session/session_data.h): what
+// `uwbsar map` saves as session.uwbsar. The run is trajectory 0 of the session.
+#pragma once
+
+#include "slam/map_job.h"
+#include "slam/session/session_data.h"
+
+namespace uwbsar::pipeline {
+
+/// The session of one mapped run. Reads the SLAM state: call after Finish(), or hold
+/// run.slam->LockState(). Throws std::logic_error when a keyframe has no features.
+SessionData CaptureSession(const MapRun& run);
+
+}  // namespace uwbsar::pipeline

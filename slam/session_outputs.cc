@@ -1,0 +1,294 @@
+#include "slam/session_outputs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+
+#include "backend/g2o_io.h"
+#include "backend/global_map.h"
+#include "backend/occupancy_io.h"
+#include "imaging/enhance.h"
+#include "imaging/image_io.h"
+#include "slam/app_config.h"
+#include "slam/map_job.h"
+#include "slam/output_folder.h"
+#include "slam/report_html.h"
+#include "slam/session/session_file.h"
+#include "slam/session/session_merge.h"
+#include "slam/session_mosaic.h"
+#include "slam/slam_snapshot.h"
+
+namespace uwbsar::pipeline {
+namespace {
+
+/// One colour per run (BGR for map.png, CSS for report.html): white, orange, green, magenta.
+const cv::Scalar kBgr[] = {{255, 255, 255}, {0, 140, 255}, {80, 220, 80}, {255, 80, 255}};
+const char* kCss[] = {"#264653", "#e76f51", "#2a9d8f", "#9b5de5"};
+
+std::string Fixed(double v, int digits) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(digits) << v;
+  return out.str();
+}
+
+std::vector<int> TrajectoryIds(const SessionData& s) {
+  std::vector<int> ids;
+  for (const SessionKeyframe& k : s.keyframes) {
+    if (std::find(ids.begin(), ids.end(), k.trajectory) == ids.end()) ids.push_back(k.trajectory);
+  }
+  return ids;
+}
+
+std::string ReadBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void Pair(const std::vector<std::pair<TimestampNs, Pose2>>& est,
+          const std::vector<OdometrySample>& ref, std::vector<Pose2>* e, std::vector<Pose2>* g) {
+  std::vector<OdometrySample> sorted = ref;
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const auto& a, const auto& b) { return a.stamp_ns < b.stamp_ns; });
+  const TimestampNs max_dt = SecondsToNs(0.01);
+  for (const auto& [t, p] : est) {
+    auto it =
+        std::lower_bound(sorted.begin(), sorted.end(), t,
+                         [](const OdometrySample& s, TimestampNs x) { return s.stamp_ns < x; });
+    const OdometrySample* best = nullptr;
+    TimestampNs best_dt = max_dt + 1;
+    for (auto c : {it, it == sorted.begin() ? it : it - 1}) {
+      if (c == sorted.end()) continue;
+      const TimestampNs dt = std::llabs(c->stamp_ns - t);
+      if (dt < best_dt) best_dt = dt, best = &*c;
+    }
+    if (best == nullptr) continue;
+    e->push_back(p);
+    g->push_back(best->T_world_robot);
+  }
+}
+
+nlohmann::json AteJson(const AteResult& a) {
+  return {{"poses", a.num_poses}, {"rmse_m", a.rmse_m}, {"max_m", a.max_m}};
+}
+
+/// Output paths in `dir`, each recorded in `files` (in the order written) as it is handed out.
+struct OutputPaths {
+  std::string dir;
+  std::vector<std::string>* files;
+  std::string operator()(const std::string& name) const {
+    files->push_back(dir + "/" + name);
+    return dir + "/" + name;
+  }
+};
+
+cv::Point Pixel(const ImageGrid& grid, const Pose2& p) {
+  return cv::Point(static_cast<int>(std::lround(grid.XToCol(p.x_m))),
+                   static_cast<int>(std::lround(grid.YToRow(p.y_m))));
+}
+
+/// The mosaic for map.png: scaled so that the 99.5th percentile of the observed pixels is
+/// white, coloured, unobserved pixels dark grey.
+cv::Mat MosaicPng(const cv::Mat& map, const cv::Mat& observed, const std::string& colormap) {
+  std::vector<float> values;
+  for (int r = 0; r < map.rows; ++r)
+    for (int c = 0; c < map.cols; ++c)
+      if (observed.at<unsigned char>(r, c)) values.push_back(map.at<float>(r, c));
+  float top = 1.0f;
+  if (!values.empty()) {
+    const auto k = static_cast<std::ptrdiff_t>(0.995 * static_cast<double>(values.size() - 1));
+    std::nth_element(values.begin(), values.begin() + k, values.end());
+    top = std::max(values[static_cast<std::size_t>(k)], 1e-12f);
+  }
+  cv::Mat gray;
+  map.convertTo(gray, CV_8U, 255.0 / top);
+  cv::Mat png = Colorize(gray, colormap);
+  png.setTo(cv::Scalar(40, 40, 40), ~observed);
+  return png;
+}
+
+/// Run `id` (the n-th): its trajectory drawn on `png` and into `report` in the run's
+/// colour, trajectory_<id>.tum written, ATE against its ground truth if any. Returns the
+/// run's entry of summary.json.
+nlohmann::json WriteRun(const SessionData& session, int id, std::size_t n, const ImageGrid& grid,
+                        const std::map<int, std::vector<OdometrySample>>& ground_truth,
+                        const OutputPaths& path, cv::Mat* png, RunReport* report) {
+  const auto traj = CorrectedTrajectory(session, id);
+  for (std::size_t i = 1; i < traj.size(); ++i) {
+    cv::line(*png, Pixel(grid, traj[i - 1].second), Pixel(grid, traj[i].second), kBgr[n % 4], 2,
+             cv::LINE_AA);
+  }
+  std::vector<std::pair<double, Pose2>> tum;
+  std::vector<Point2> points;
+  for (std::size_t i = 0; i < traj.size(); ++i) {
+    tum.push_back({NsToSeconds(traj[i].first), traj[i].second});
+    if (i % 5 == 0) points.push_back({traj[i].second.x_m, traj[i].second.y_m});
+  }
+  const std::string name = "trajectory_" + std::to_string(id) + ".tum";
+  WriteTum(path(name), tum);
+  std::string input;
+  for (const SessionTrajectory& t : session.trajectories)
+    if (t.id == id) input = t.input;
+  int keyframes = 0;
+  for (const SessionKeyframe& k : session.keyframes) keyframes += k.trajectory == id;
+  nlohmann::json rj = {{"id", id}, {"input", input}, {"keyframes", keyframes}, {"tum", name}};
+  report->trajectories.push_back({"run " + std::to_string(id), kCss[n % 4], points});
+  auto gt = ground_truth.find(id);
+  if (gt != ground_truth.end()) {
+    const AteResult ate = TrajectoryError(traj, gt->second);
+    rj["ate"] = AteJson(ate);
+    report->summary.push_back({"ATE RMSE run " + std::to_string(id) + " (own alignment)",
+                               Fixed(ate.rmse_m * 100, 2) + " cm"});
+  }
+  return rj;
+}
+
+/// The accepted loops between placed keyframes, drawn cyan on `png` and into `report`;
+/// returns their number.
+int DrawAcceptedLoops(const SessionData& session, const std::map<int, Pose2>& poses,
+                      const ImageGrid& grid, cv::Mat* png, RunReport* report) {
+  int accepted = 0;
+  for (const SessionLoop& l : session.loops) {
+    if (!l.accepted || !poses.count(l.match_id) || !poses.count(l.query_id)) continue;
+    ++accepted;
+    const Pose2& a = poses.at(l.match_id);
+    const Pose2& b = poses.at(l.query_id);
+    cv::line(*png, Pixel(grid, a), Pixel(grid, b), cv::Scalar(255, 255, 0), 1, cv::LINE_AA);
+    report->loop_segments.push_back({{a.x_m, a.y_m}, {b.x_m, b.y_m}});
+  }
+  return accepted;
+}
+
+}  // namespace
+
+std::vector<std::pair<TimestampNs, Pose2>> CorrectedTrajectory(const SessionData& session,
+                                                               int trajectory) {
+  std::vector<const SessionKeyframe*> run;
+  for (const SessionKeyframe& k : session.keyframes) {
+    if (k.trajectory == trajectory) run.push_back(&k);
+  }
+  std::stable_sort(run.begin(), run.end(), [](const SessionKeyframe* a, const SessionKeyframe* b) {
+    return a->stamp_ns < b->stamp_ns;
+  });
+  std::vector<std::pair<TimestampNs, Pose2>> out;
+  for (const SessionOdometry& o : session.odometry) {
+    if (o.trajectory != trajectory) continue;
+    const Pose2 correction = InterpolatedCorrection(
+        run.size(), [&](std::size_t i) { return run[i]->stamp_ns; },
+        [&](std::size_t i) -> const Pose2& { return run[i]->T_odom_anchor; },
+        [&](std::size_t i) { return run[i]->T_map_anchor; }, o.stamp_ns);
+    out.push_back({o.stamp_ns, correction * o.T_odom_robot});
+  }
+  return out;
+}
+
+nlohmann::json MergeReportJson(const MergeReport& r) {
+  nlohmann::json j = {{"connected", r.connected},   {"keyframe_pairs_matched", r.candidates},
+                      {"validated", r.validated},   {"dropped_before_placement", r.dropped},
+                      {"loop_edges", r.loop_edges}, {"loop_edges_rejected", r.loop_edges_rejected}};
+  if (r.connected) {
+    j["connect_keyframe_id"] = r.connect_keyframe_id;
+    j["connect_path_m"] = r.connect_path_m;
+    j["placement"] = {{"x_m", r.T_mapA_mapB.x_m},
+                      {"y_m", r.T_mapA_mapB.y_m},
+                      {"yaw_deg", r.T_mapA_mapB.yaw_rad * 180.0 / M_PI}};
+  } else {
+    j["reason"] = r.reason;
+  }
+  return j;
+}
+
+AteResult CommonFrameError(const SessionData& session,
+                           const std::map<int, std::vector<OdometrySample>>& ground_truth) {
+  std::vector<Pose2> est, ref;
+  for (const auto& [id, gt] : ground_truth) Pair(CorrectedTrajectory(session, id), gt, &est, &ref);
+  if (est.size() < 2) return AteResult{};
+  return ComputeAte(est, ref);
+}
+
+SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& config,
+                                   const std::string& out_dir,
+                                   const std::map<int, std::vector<OdometrySample>>& ground_truth,
+                                   const nlohmann::json& extra, const std::string& title) {
+  EnsureDirectory(out_dir);
+  SessionOutputs result;
+  const OutputPaths path{out_dir, &result.files};
+  const std::map<int, Pose2> poses = session.Poses();
+  ImageGrid grid;
+  cv::Mat observed;
+  const cv::Mat map = RenderSessionMosaic(session, config, &grid, &observed);
+  WriteFloatTiff(path("map_float.tif"), map);
+  WriteTextAtomic(path("map_grid.yaml"),
+                  GridYaml(grid, "map_float.tif and map.png", "map_float.tif", "map"));
+
+  // map.png: the mosaic, each run's corrected trajectory in its colour, accepted loops cyan.
+  cv::Mat png = MosaicPng(map, observed, config.enhance.colormap);
+  RunReport report;
+  report.title = title;
+  const std::vector<int> runs = TrajectoryIds(session);
+  nlohmann::json runs_json = nlohmann::json::array();
+  for (std::size_t n = 0; n < runs.size(); ++n) {
+    runs_json.push_back(WriteRun(session, runs[n], n, grid, ground_truth, path, &png, &report));
+  }
+  const int accepted = DrawAcceptedLoops(session, poses, grid, &png, &report);
+  WriteImageAtomic(path("map.png"), png);
+  const OccupancyGrid occupancy =
+      MapToOccupancy(map, observed, grid, config.slam.occupancy_resolution_m,
+                     config.slam.occupied_fraction, config.slam.occupancy_reference_percentile);
+  WriteOccupancyGrid(path("map.yaml"), "map.pgm", occupancy);
+  result.files.push_back(out_dir + "/map.pgm");
+  std::vector<PoseGraphEdge> edges;
+  std::vector<int> fixed;
+  for (const SessionEdge& e : session.edges) edges.push_back(e.edge);
+  for (const SessionKeyframe& k : session.keyframes)
+    if (k.fixed) fixed.push_back(k.id);
+  WriteTextAtomic(path("graph.g2o"), G2oText(poses, edges, fixed));
+  WriteSession(path(kSessionFileName), session);
+
+  nlohmann::json& s = result.summary;
+  s = extra;
+  s["keyframes"] = session.keyframes.size();
+  s["loops_accepted"] = accepted;
+  s["runs"] = runs_json;
+  if (ground_truth.size() >= 2) {
+    const AteResult common = CommonFrameError(session, ground_truth);
+    s["ate_common"] = AteJson(common);
+    report.summary.push_back(
+        {"ATE RMSE, all runs in one frame", Fixed(common.rmse_m * 100, 2) + " cm"});
+  }
+  report.summary.insert(report.summary.begin(),
+                        {{"runs", std::to_string(runs.size())},
+                         {"keyframes", std::to_string(session.keyframes.size())},
+                         {"loops accepted", std::to_string(accepted)}});
+  report.images.push_back(
+      {"SAR map with each run's trajectory (white, orange, green, magenta) and "
+       "accepted loops (cyan)",
+       ReadBytes(out_dir + "/map.png")});
+  WriteTextAtomic(path("report.html"), RenderReportHtml(report));
+  WriteTextAtomic(path("summary.json"), s.dump(2) + "\n");
+  return result;
+}
+
+SessionOutputs CommitSessionOutputs(MapOutputStage* stage, const SessionData& session,
+                                    const Config& config,
+                                    const std::map<int, std::vector<OdometrySample>>& ground_truth,
+                                    const nlohmann::json& extra, const std::string& title) {
+  SessionOutputs out;
+  out.files = stage->CommitWritten([&](const std::string& dir) {
+    out = WriteSessionOutputs(session, config, dir, ground_truth, extra, title);
+    std::vector<std::string> names;
+    for (const std::string& f : out.files) {
+      names.push_back(std::filesystem::path(f).filename().string());
+    }
+    return names;
+  });
+  return out;
+}
+
+}  // namespace uwbsar::pipeline

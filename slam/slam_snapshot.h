@@ -1,0 +1,114 @@
+// SlamSnapshot: a copy of what SlamSystem's outputs are made from (keyframe poses and
+// tiles, loop records, graph edges, odometry, counters), taken under LockState() in time
+// linear in the keyframes, loops and odometry samples (plain copies: no rendering, no
+// I/O). The tiles' detected images are shared, not copied: SlamSystem never writes a
+// tile after the keyframe is stored, so the snapshot may read them without the lock.
+// A live snapshot writer takes one under the lock, releases it and then renders and
+// writes from the copy while the keyframe thread goes on.
+#pragma once
+
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "backend/pose_graph.h"
+#include "core/pose2.h"
+#include "core/types.h"
+#include "frontend/imaging_frontend.h"
+#include "frontend/odometry_buffer.h"
+#include "frontend/place_recognition/place_recognizer.h"
+#include "slam/app_config.h"
+
+namespace uwbsar::pipeline {
+
+/// Every candidate pair that was matched, with the outcome.
+struct LoopRecord {
+  int query_id = 0;     ///< the new keyframe (j)
+  int match_id = 0;     ///< the earlier keyframe (i)
+  bool guided = false;  ///< a pair of the guided pass around a validated loop
+
+  /// Matched radar by radar (frontend/place_recognition/radar_match.h).
+  bool by_radar = false;
+  MatchResult akaze;
+  MatchResult orb;
+  LoopValidation validation;
+  int edge_index = -1;  ///< pose-graph edge, when the validator accepted it
+  bool rejected_by_backend = false;
+  double chi2 = 0.0;  ///< of the edge at the final solution
+  bool accepted() const { return validation.accepted && !rejected_by_backend; }
+};
+
+/// One keyframe as the outputs need it.
+struct TileSnapshot {
+  int id = 0;
+  TimestampNs stamp_ns = 0;
+  Pose2 T_world_anchor;  ///< odometry pose of the tile frame
+  cv::Mat detected;      ///< shared, read-only (see above)
+  ImageGrid detected_grid;
+  bool has_scans = false;  ///< first/last_scan_ns are valid
+  TimestampNs first_scan_ns = 0, last_scan_ns = 0;
+};
+
+/// Seconds spent per stage (wall clock; imaging on the feeding thread, the rest on
+/// the keyframe thread when there is one).
+struct StageTimes {
+  double imaging_s = 0.0;       ///< gating, range compression, back-projection
+  double features_s = 0.0;      ///< feature images and AKAZE + ORB detection
+  double matching_s = 0.0;      ///< candidate search, matching and validation
+  double optimization_s = 0.0;  ///< pose-graph solves
+};
+
+/// The correction T_world_corrected * T_world_odom^-1 at a time, interpolated between the
+/// keyframes around it; `stamp(i)`, `anchor(i)` and `pose(i)` (the optimised anchor) of
+/// keyframe i of `n`, in time order. Shared by SlamSystem and SlamSnapshot.
+template <class Stamp, class Anchor, class Optimised>
+Pose2 InterpolatedCorrection(std::size_t n, const Stamp& stamp, const Anchor& anchor,
+                             const Optimised& pose, TimestampNs stamp_ns) {
+  if (n == 0) return Pose2{};
+  auto correction = [&](std::size_t i) { return pose(i) * anchor(i).Inverse(); };
+  std::size_t lo = 0, hi = n;  // first keyframe with stamp >= stamp_ns
+  while (lo < hi) {
+    const std::size_t mid = (lo + hi) / 2;
+    if (stamp(mid) < stamp_ns) {
+      lo = mid + 1;
+    } else {
+      hi = mid;
+    }
+  }
+  if (lo == 0) return correction(0);
+  if (lo == n) return correction(n - 1);
+  const std::size_t i = lo;
+  const TimestampNs t0 = stamp(i - 1), t1 = stamp(i);
+  const double t =
+      t1 > t0 ? static_cast<double>(stamp_ns - t0) / static_cast<double>(t1 - t0) : 0.0;
+  // Interpolate the two corrections as rotations about the earlier anchor, not about the
+  // world origin: a correction's translation depends on its pivot, and with a pivot far
+  // away (a map frame 1e6 m from the robot) the linear blend of translations would move
+  // the samples between keyframes by metres. About a nearby pivot the result does not
+  // depend on where the world origin is.
+  const Pose2& a = anchor(i - 1);
+  const Pose2 to_pivot{-a.x_m, -a.y_m, 0.0}, from_pivot{a.x_m, a.y_m, 0.0};
+  const Pose2 blend = Interpolate(to_pivot * correction(i - 1) * from_pivot,
+                                  to_pivot * correction(i) * from_pivot, t);
+  return from_pivot * blend * to_pivot;
+}
+
+struct SlamSnapshot {
+  const Config* config = nullptr;  ///< the SlamSystem's (lives as long as it does)
+  std::vector<SensorGeometry> sensors;
+  std::vector<TileSnapshot> tiles;  ///< keyframes in order
+  std::map<int, Pose2> poses;       ///< optimised T_world_anchor by keyframe id
+  std::vector<PoseGraphEdge> edges;
+  std::vector<int> fixed_ids;
+  std::vector<LoopRecord> loops;
+  std::vector<OdometryEntry> odometry;
+  FrontendStats frontend_stats;
+  StageTimes times;
+  OptimizeResult last_optimization;
+
+  /// As SlamSystem::CorrectionAt / CorrectedTrajectory, from the copy.
+  Pose2 CorrectionAt(TimestampNs stamp_ns) const;
+  std::vector<std::pair<TimestampNs, Pose2>> CorrectedTrajectory() const;
+};
+
+}  // namespace uwbsar::pipeline

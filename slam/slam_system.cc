@@ -1,0 +1,302 @@
+#include "slam/slam_system.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "backend/odometry_calibration.h"
+#include "core/errors.h"
+#include "core/log.h"
+#include "imaging/enhance.h"
+#include "slam/app_config.h"
+
+namespace uwbsar::pipeline {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// The detected tile (the paper's positive image, or the magnitude, blurred) at
+/// the map resolution: what the mosaic is made of.
+void MakeDetected(const Keyframe& k, const Config& config, cv::Mat* detected, ImageGrid* grid) {
+  const cv::Mat full = EnhancedFloat(k.image, config.enhance);
+  const double factor = config.slam.map_resolution_m / k.grid.resolution_m;
+  *grid = k.grid;
+  if (factor <= 1.0 + 1e-9) {
+    *detected = full;
+    return;
+  }
+  const int cols = std::max(1, static_cast<int>(std::lround(k.grid.cols / factor)));
+  const int rows = std::max(1, static_cast<int>(std::lround(k.grid.rows / factor)));
+  cv::resize(full, *detected, cv::Size(cols, rows), 0, 0, cv::INTER_AREA);
+  *grid = k.grid.Resized(cols, rows);
+}
+
+}  // namespace
+
+SlamSystem::SlamSystem(const Config& config)
+    : config_(config),
+      frontend_(std::make_unique<ImagingFrontend>(ImagingFrontendConfig(config))),
+      graph_(std::make_unique<PoseGraph>(config.backend)),
+      recognizer_(std::make_unique<PlaceRecognizer>(PlaceRecognizerConfig(config))),
+      wall_edges_(config.place_recognition.wall_profiles),
+      worker_(config.slam.keyframe_thread, config.slam.keyframe_queue_size,
+              [this](Work&& work) { Process(std::move(work)); }) {
+  frontend_->SetOdometryObserver(
+      [this](const OdometryEntry& e) { pending_odometry_.push_back(e); });
+}
+
+SlamSystem::~SlamSystem() = default;
+
+void SlamSystem::AddOdometry(const OdometrySample& sample) {
+  worker_.RethrowError();
+  const auto start = Clock::now();
+  frontend_->AddOdometry(sample);
+  PublishFeedingState(SecondsSince(start));
+  HandOver(false);
+}
+
+void SlamSystem::AddScan(const RadarScan& scan) {
+  worker_.RethrowError();
+  const auto start = Clock::now();
+  frontend_->AddScan(scan);
+  PublishFeedingState(SecondsSince(start));
+  HandOver(false);
+}
+
+void SlamSystem::Finish() {
+  worker_.RethrowError();
+  const auto start = Clock::now();
+  frontend_->Finish();
+  PublishFeedingState(SecondsSince(start));
+  HandOver(true);
+  WaitIdle();
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  if (graph_->NumNodes() > 0) Optimize();
+  // Final state of every loop edge.
+  const std::vector<EdgeReport> reports = graph_->EdgeReports();
+  for (LoopRecord& loop : loops_) {
+    if (loop.edge_index < 0 || loop.edge_index >= static_cast<int>(reports.size())) continue;
+    loop.rejected_by_backend = reports[loop.edge_index].rejected;
+    loop.chi2 = reports[loop.edge_index].chi2;
+  }
+}
+
+void SlamSystem::WaitIdle() { worker_.Drain(); }
+
+FrontendStats SlamSystem::frontend_stats() const {
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  return frontend_stats_;
+}
+
+StageTimes SlamSystem::times() const {
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  StageTimes t = keyframe_times_;
+  t.imaging_s = imaging_s_;
+  return t;
+}
+
+void SlamSystem::PublishFeedingState(double imaging_s) {
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  imaging_s_ += imaging_s;
+  frontend_stats_ = frontend_->stats();
+}
+
+void SlamSystem::HandOver(bool force) {
+  // Odometry alone is handed over in batches, so that readers of odometry() see the
+  // trajectory grow between keyframes without a queue item per sample.
+  constexpr std::size_t kOdometryBatch = 64;
+  Work work;
+  work.keyframes = frontend_->TakeKeyframes();
+  if (work.keyframes.empty() && pending_odometry_.size() < kOdometryBatch &&
+      !(force && !pending_odometry_.empty())) {
+    return;
+  }
+  work.odometry.swap(pending_odometry_);
+  const int num_keyframes = static_cast<int>(work.keyframes.size());
+  worker_.Push(std::move(work), num_keyframes);
+}
+
+void SlamSystem::Process(Work&& work) {
+  {
+    const auto lock = LockForKeyframeWork();
+    odometry_.insert(odometry_.end(), work.odometry.begin(), work.odometry.end());
+  }
+  for (Keyframe& k : work.keyframes) AddKeyframe(std::move(k));
+}
+
+void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
+  const Pose2 estimate = AddGraphNode(keyframe);
+  // The long part, without the lock: only this thread uses the recognizer.
+  const PlaceRecognitionResult found = recognizer_->Process(keyframe, estimate);
+  const auto start = Clock::now();
+  KeyframeRecord record;
+  MakeDetected(keyframe, config_, &record.detected, &record.detected_grid);
+  const std::vector<PoseGraphEdge> walls =
+      wall_edges_.Add(keyframe, record.detected, record.detected_grid);
+  if (!config_.slam.keep_tile_images) keyframe.image.release();
+  keyframe.sensor_tiles.clear();           // per-radar images: only their features are kept
+  if (!config_.slam.keep_scan_profiles) {  // the poses stay: they place the scans in time
+    for (ImagedScan& s : keyframe.scans) s.profile.reset();
+  }
+  const double detected_s = SecondsSince(start);
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    keyframe_times_.features_s += found.features_ms * 1e-3 + detected_s;
+    keyframe_times_.matching_s += found.matching_ms * 1e-3;
+  }
+  const auto lock = LockForKeyframeWork();
+  for (const LoopAttempt& attempt : found.attempts) AddLoop(attempt, keyframe.id);
+  // Wall edges wait for the next solve a loop asks for (or Finish): solving for them alone
+  // would take the place of the solve right after a ring closure, which the keyframes after it
+  // need to find their own loops (their search radius is smallest then).
+  for (const PoseGraphEdge& wall : walls) graph_->AddEdge(wall);
+  record.keyframe = std::move(keyframe);
+  keyframes_.push_back(std::move(record));
+  ++keyframes_since_solve_;
+  const int every = config_.slam.optimize_every_keyframes;
+  if (graph_dirty_ && every > 0 && keyframes_since_solve_ >= every) Optimize();
+}
+
+Pose2 SlamSystem::AddGraphNode(const Keyframe& keyframe) {
+  const auto lock = LockForKeyframeWork();
+  if (keyframes_.empty()) {
+    graph_->AddNode(keyframe.id, keyframe.T_world_anchor, false);
+    graph_->FixNode(keyframe.id);
+    return keyframe.T_world_anchor;
+  }
+  const Keyframe& prev = keyframes_.back().keyframe;
+  const Pose2 T_prev_this = Between(prev.T_world_anchor, keyframe.T_world_anchor);
+  // Anchors keep the world orientation (the step's yaw is 0): the odometry calibration
+  // needs the robot's own path and turn between the two tiles' middles.
+  const double path_m = std::max(0.0, 0.5 * (keyframe.path_begin_m + keyframe.path_end_m) -
+                                          0.5 * (prev.path_begin_m + prev.path_end_m));
+  const double turn_rad =
+      NormalizeAngle(keyframe.T_world_robot.yaw_rad - prev.T_world_robot.yaw_rad);
+  // The node starts on the corrected trajectory: the previous keyframe's estimate composed
+  // with the odometry between the two, corrected by the base's calibration where one is given
+  // (all zero, the default, leaves the step exactly as measured).
+  const Pose2 estimate =
+      graph_->GetPose(prev.id) * (config_.backend.odometry_calibration
+                                      ? CorrectedOdometryStep(config_.backend.CalibrationMean(),
+                                                              T_prev_this, {path_m, turn_rad})
+                                      : T_prev_this);
+  graph_->AddNode(keyframe.id, estimate, /*reseed_from_odometry=*/false);
+  graph_->AddOdometryEdge(prev.id, keyframe.id, T_prev_this, /*trajectory=*/0, path_m, turn_rad);
+  return estimate;
+}
+
+void SlamSystem::AddLoop(const LoopAttempt& attempt, int keyframe_id) {
+  LoopRecord loop;
+  loop.query_id = attempt.query_id >= 0 ? attempt.query_id : keyframe_id;
+  loop.match_id = attempt.candidate_id;
+  loop.guided = attempt.guided;
+  loop.by_radar = attempt.by_radar;
+  loop.akaze = attempt.akaze;
+  loop.orb = attempt.orb;
+  loop.validation = attempt.validation;
+  for (MatchResult* m : {&loop.akaze, &loop.orb}) {  // only the decision is kept
+    m->matches.clear();
+    m->inlier.clear();
+    m->inliers_a.clear();
+    m->inliers_b.clear();
+  }
+  if (loop.validation.accepted) {
+    PoseGraphEdge edge;
+    edge.from_id = attempt.candidate_id;
+    edge.to_id = loop.query_id;
+    edge.T_from_to = loop.validation.constraint.T_ij;
+    edge.information = loop.validation.constraint.information;
+    edge.kind = EdgeKind::kLoop;
+    try {
+      loop.edge_index = graph_->AddEdge(edge);
+      graph_dirty_ = true;
+    } catch (const InputError& e) {
+      loop.validation.accepted = false;
+      loop.validation.reason = std::string("backend refused the edge: ") + e.what();
+    }
+  }
+  loops_.push_back(std::move(loop));
+}
+
+void SlamSystem::Optimize() {
+  const auto start = Clock::now();
+  last_optimization_ = graph_->Optimize();
+  for (const auto& [id, pose] : graph_->GetPoses()) recognizer_->UpdatePose(id, pose);
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    keyframe_times_.optimization_s += SecondsSince(start);
+  }
+  graph_dirty_ = false;
+  keyframes_since_solve_ = 0;
+}
+
+std::map<int, Pose2> SlamSystem::KeyframePoses() const { return graph_->GetPoses(); }
+
+Pose2 SlamSystem::CorrectionAt(TimestampNs stamp_ns) const {
+  return InterpolatedCorrection(
+      keyframes_.size(), [&](std::size_t i) { return keyframes_[i].keyframe.stamp_ns; },
+      [&](std::size_t i) -> const Pose2& { return keyframes_[i].keyframe.T_world_anchor; },
+      [&](std::size_t i) { return graph_->GetPose(keyframes_[i].keyframe.id); }, stamp_ns);
+}
+
+std::unique_lock<std::mutex> SlamSystem::LockForKeyframeWork() {
+  std::unique_lock<std::mutex> lock(state_mutex_, std::try_to_lock);
+  if (lock.owns_lock()) return lock;
+  const auto start = Clock::now();
+  lock.lock();
+  const double waited_s = SecondsSince(start);
+  std::lock_guard<std::mutex> stats(stats_mutex_);  // lock order: state, then stats
+  keyframe_lock_wait_max_s_ = std::max(keyframe_lock_wait_max_s_, waited_s);
+  return lock;
+}
+
+double SlamSystem::keyframe_lock_wait_max_s() const {
+  std::lock_guard<std::mutex> stats(stats_mutex_);
+  return keyframe_lock_wait_max_s_;
+}
+
+SlamSnapshot SlamSystem::Capture() const {
+  SlamSnapshot s;
+  s.config = &config_;
+  s.sensors = frontend_->sensors();  // fixed at construction
+  s.tiles.reserve(keyframes_.size());
+  for (const KeyframeRecord& k : keyframes_) {
+    TileSnapshot t;
+    t.id = k.keyframe.id;
+    t.stamp_ns = k.keyframe.stamp_ns;
+    t.T_world_anchor = k.keyframe.T_world_anchor;
+    t.detected = k.detected;  // shared: never written after the keyframe is stored
+    t.detected_grid = k.detected_grid;
+    for (const ImagedScan& scan : k.keyframe.scans) {
+      t.first_scan_ns = t.has_scans ? std::min(t.first_scan_ns, scan.stamp_ns) : scan.stamp_ns;
+      t.last_scan_ns = t.has_scans ? std::max(t.last_scan_ns, scan.stamp_ns) : scan.stamp_ns;
+      t.has_scans = true;
+    }
+    s.tiles.push_back(std::move(t));
+  }
+  s.poses = graph_->GetPoses();
+  s.edges = graph_->Edges();
+  s.fixed_ids = graph_->FixedNodes();
+  s.loops = loops_;
+  s.odometry = odometry_;
+  s.frontend_stats = frontend_stats();
+  s.times = times();
+  s.last_optimization = last_optimization_;
+  return s;
+}
+
+std::vector<std::pair<TimestampNs, Pose2>> SlamSystem::CorrectedTrajectory() const {
+  std::vector<std::pair<TimestampNs, Pose2>> out;
+  out.reserve(odometry_.size());
+  for (const OdometryEntry& e : odometry_) {
+    out.push_back({e.stamp_ns, CorrectionAt(e.stamp_ns) * e.T_world_robot});
+  }
+  return out;
+}
+
+}  // namespace uwbsar::pipeline

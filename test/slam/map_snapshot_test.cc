@@ -1,0 +1,98 @@
+// A live snapshot copies the SLAM state under the lock and writes it
+// after releasing it. The copy must be complete and independent: the outputs written
+// later from the copy, while SLAM has moved on, equal those written the old way (from the
+// SlamSystem itself, lock held throughout) at the moment of the copy.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "drivers/sim/synthetic_run.h"
+#include "slam/app_config.h"
+#include "slam/map_outputs.h"
+
+namespace uwbsar::tools {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+/// summary.json without the process-wide peak memory (it may grow between the writes).
+nlohmann::json SummaryWithoutMemory(const fs::path& dir) {
+  nlohmann::json j = nlohmann::json::parse(Bytes(dir / "summary.json"));
+  j.erase("peak_memory_mib");
+  return j;
+}
+
+struct SimFeed {
+  SyntheticRun run;
+  std::size_t odom = 0, scan = 0;
+  /// Feeds messages in time order until `until` scans were fed.
+  void To(pipeline::SlamSystem& slam, std::size_t until) {
+    while (scan < until && scan < run.scans.size()) {
+      while (odom < run.odometry.size() &&
+             run.odometry[odom].stamp_ns <= run.scans[scan].stamp_ns) {
+        slam.AddOdometry(run.odometry[odom++]);
+      }
+      slam.AddScan(run.scans[scan++]);
+    }
+    if (until >= run.scans.size()) {
+      while (odom < run.odometry.size()) slam.AddOdometry(run.odometry[odom++]);
+    }
+  }
+};
+
+TEST(MapSnapshotTest, OutputsFromTheCopyEqualThoseWrittenUnderTheLockAtThatMoment) {
+  Config config;
+  config.slam.keyframe_thread = true;
+  SyntheticPath path;
+  path.turn_radius_m = 1.5;
+  path.length_m = 12.0;  // more than one lap: the second lap may close loops
+  path.speed_mps = 0.5;
+  std::vector<Scatterer> scene = WallScatterers({-3, -3}, {3, -3}, 0.02, 0.05);
+  for (int i = 0; i < 12; ++i) scene.push_back({{-2.5 + 0.45 * i, i % 2 ? 2.6 : -0.3}, 1.0});
+  SimFeed feed{SimulateRun(config, path, scene, EchoModel{}, 5)};
+
+  pipeline::MapRun run;
+  run.input = "synthetic circle";
+  run.slam = std::make_shared<pipeline::SlamSystem>(config);
+  feed.To(*run.slam, feed.run.scans.size() / 2);
+  run.slam->WaitIdle();
+
+  const fs::path dir = fs::temp_directory_path() / "uwbsar_map_snapshot_test";
+  fs::remove_all(dir);
+  pipeline::MapState state;
+  {
+    const auto lock = run.slam->LockState();
+    ASSERT_GE(run.slam->keyframes().size(), 3u);
+    state = pipeline::CaptureMapState(run);
+    pipeline::WriteMapOutputs(run,
+                              (dir / "old_way").string());  // the old snapshot: all under the lock
+  }
+  // SLAM moves on: more keyframes, new solves, more odometry.
+  feed.To(*run.slam, feed.run.scans.size());
+  run.slam->Finish();
+  ASSERT_GT(run.slam->keyframes().size(), state.slam.tiles.size());
+  pipeline::WriteMapOutputs(state, (dir / "copy").string());
+  pipeline::WriteMapOutputs(run, (dir / "final").string());
+
+  for (const char* f : {"trajectory.tum", "odometry.tum", "graph.g2o", "loops.csv", "map_float.tif",
+                        "map_grid.yaml", "map.png", "map.pgm", "map.yaml"}) {
+    const std::string old_way = Bytes(dir / "old_way" / f);
+    EXPECT_FALSE(old_way.empty()) << f;
+    EXPECT_TRUE(old_way == Bytes(dir / "copy" / f)) << f << ": the copy's output differs";
+  }
+  EXPECT_EQ(SummaryWithoutMemory(dir / "old_way"), SummaryWithoutMemory(dir / "copy"));
+  // The test can fail: the final state wrote different files.
+  EXPECT_FALSE(Bytes(dir / "old_way" / "odometry.tum") == Bytes(dir / "final" / "odometry.tum"));
+  EXPECT_NE(SummaryWithoutMemory(dir / "old_way"), SummaryWithoutMemory(dir / "final"));
+}
+
+}  // namespace
+}  // namespace uwbsar::tools
