@@ -7,7 +7,7 @@ tracked file) for tokens that look like repository paths: a top-level folder
 of the project followed by at least one path component, e.g. `slam/slam_system.h`,
 `drivers/live/`, `config/maps/office/README.md`. Each must exist, relative to the repository
 root. Tokens with placeholders (`*`, `<`, `{`, `$`, `...`) are patterns, not paths, and are
-skipped, as are paths under the folders the project writes at run time (build*, out/, .venv).
+skipped, as are paths a command is told to write (after `--out`, `-o` or `>`).
 
 Usage: check_paths.py [ROOT]   (ROOT defaults to the repository holding this script).
 Exit 0 when every named path exists, 1 with one line per missing path ("file:line: path").
@@ -31,6 +31,8 @@ TEXT_NAMES = ("Makefile", "CMakeLists.txt", "run")
 PATH_RE = re.compile(
     r"(?<![A-Za-z0-9_./-])((?:%s)/[A-Za-z0-9_./-]*)" % "|".join(re.escape(t) for t in TOP))
 PLACEHOLDER = re.compile(r"[*<>{}$]|\.\.\.")
+# A path a command is told to write (`--out config/calibration.yaml`) need not exist yet.
+OUTPUT_FLAG = re.compile(r"(?:--out|-o|>)\s*$")
 
 
 def tracked_files(root):
@@ -68,7 +70,7 @@ def check(root):
             for line_no, line in enumerate(f, 1):
                 for m in PATH_RE.finditer(line):
                     name = candidate(m.group(1))
-                    if name is None:
+                    if name is None or OUTPUT_FLAG.search(line[:m.start()]):
                         continue
                     full = os.path.join(root, name)
                     # A module named without its suffix (`backend/pose_graph`) is its .h/.cc.
