@@ -7,6 +7,7 @@
 
 #include "core/errors.h"
 #include "drivers/logs/log_source.h"
+#include "drivers/logs/text_log.h"
 #include "imaging/enhance.h"
 #include "imaging/image_io.h"
 #include "slam/app_config.h"
@@ -28,6 +29,28 @@ void CheckImaged(const FrontendStats& s) {
 }
 
 }  // namespace
+
+ImagingInput ReadImagingLog(const std::string& path) {
+  TextLog log = ReadTextLog(path);
+  // An empty log used to give a 1 x 1 strip and exit 0.
+  if (log.scans.empty()) {
+    throw InputError(path + ": no scans (no 'scan' records): nothing to image");
+  }
+  if (log.odometry.empty()) {
+    throw InputError(path + ": no odometry ('odom' records): scans cannot be placed");
+  }
+  return {std::move(log.odometry), std::move(log.scans)};
+}
+
+ImagingInput SyntheticImagingRun(const Config& config, const std::string& scene) {
+  if (scene != "straight" && scene != "arc") {
+    throw InputError("unknown synthetic scene '" + scene + "' (straight or arc)");
+  }
+  SyntheticPath path;
+  if (scene == "arc") path.turn_radius_m = 4.0;
+  SyntheticRun run = SimulateRun(config, path, DemoScatterers(), EchoModel{}, 1);
+  return {std::move(run.odometry), std::move(run.scans)};
+}
 
 StripResult ImageRun(const Config& config, const std::vector<OdometrySample>& odometry,
                      const std::vector<RadarScan>& scans) {

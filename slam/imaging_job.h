@@ -1,5 +1,6 @@
-// Shared by `uwbsar image` and the imaging demo: run the frontend over a log,
-// render the whole-run strip in the world frame and write it in every form.
+// Shared by `uwbsar image` and the imaging demo: read a text log or simulate a built-in
+// scene, run the frontend over it, render the whole-run strip in the world frame and write
+// it in every form.
 #pragma once
 
 #include <string>
@@ -18,6 +19,21 @@ struct StripResult {
   std::vector<ImagedScan> scans;
   double seconds = 0.0;
 };
+
+/// The odometry and radar scans of a whole run to image.
+struct ImagingInput {
+  std::vector<OdometrySample> odometry;
+  std::vector<RadarScan> scans;
+};
+
+/// A text log's records (drivers/logs/text_log.h). Throws InputError naming the log on a
+/// malformed record, and when it holds no scans (nothing to image) or no odometry (the
+/// scans cannot be placed).
+ImagingInput ReadImagingLog(const std::string& path);
+
+/// A built-in synthetic run past DemoScatterers (seed 1, EchoModel defaults): `scene`
+/// "straight" (SyntheticPath's defaults) or "arc" (the same path on a 4 m turn radius).
+ImagingInput SyntheticImagingRun(const Config& config, const std::string& scene);
 
 /// Feeds scans and odometry in time order through an ImagingFrontend and renders the strip.
 /// Throws InputError ("nothing imaged: ...", naming no file: the caller prefixes its input)

@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "core/errors.h"
+#include "drivers/logs/tum_reader.h"
 #include "drivers/rosbag/bag_reader.h"
 #include "drivers/rosbag/bag_source.h"
 #include "drivers/rosbag/robot_bag.h"
@@ -209,6 +210,10 @@ AteResult TrajectoryError(const std::vector<std::pair<TimestampNs, Pose2>>& esti
   }
   if (est_poses.size() < 2) return AteResult{};
   return ComputeAte(est_poses, ref_poses);
+}
+
+std::vector<OdometrySample> ReadGroundTruthFile(const std::string& tum_path) {
+  return ReadTum(tum_path);
 }
 
 double PeakMemoryMiB() {

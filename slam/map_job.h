@@ -67,6 +67,12 @@ MapRun MapSimulation(const Config& config, const std::string& map_yaml, const st
 /// Checks that the run produced a map; throws InputError with the reason if not.
 void CheckMappable(const MapRun& run);
 
+/// The ground truth of a run given as a file (`--ground-truth` of `uwbsar map` and
+/// `calibrate`), which takes the place of the bag's slam.ground_truth_topic: a TUM trajectory
+/// (drivers/logs/tum_reader.h), planar poses with their stamps in file order. Throws
+/// InputError naming the file and line on a malformed line or an empty file.
+std::vector<OdometrySample> ReadGroundTruthFile(const std::string& tum_path);
+
 /// Trajectory error of `estimate` against `reference`: poses paired by nearest stamp
 /// within `max_dt_s` (as evo does), then ATE after SE(2) alignment. num_poses = 0 when
 /// fewer than two pairs.

@@ -6,9 +6,8 @@
 #include <iostream>
 #include <sstream>
 
-#include "eval/compare/map_comparison.h"
-#include "eval/compare/metrics_json.h"
 #include "slam/app_config.h"
+#include "slam/compare_job.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -89,19 +88,15 @@ void RunCompare(const CompareOptions& opts, const GlobalOptions& globals) {
   pipeline::CheckOutputFolder(opts.out_dir);  // before the work, creating nothing
   if (opts.tolerance_cells >= 0) config.compare.tolerance_cells = opts.tolerance_cells;
   const AlignRequest request = MakeAlignRequest(opts, config);
-  // Everything is computed before the output folder is touched: bad input leaves nothing.
-  const ComparisonReport report =
-      CompareMapFiles(opts.sar, opts.lidar, request, config.compare,
-                      SarOccupancyRuleOf(config.slam), config.limits.max_map_image_pixels);
-  pipeline::EnsureDirectory(opts.out_dir);
-  const auto files = WriteComparisonOutputs(report, opts.out_dir, config.compare);
+  const pipeline::CompareJobResult result =
+      pipeline::RunCompareJob(config, opts.sar, opts.lidar, request, opts.out_dir);
   if (opts.json) {
-    std::cout << ComparisonToJson(report) << "\n";
+    std::cout << result.json << "\n";
     return;
   }
   if (globals.quiet) return;
-  for (const std::string& line : ComparisonSummaryLines(report)) std::printf("%s\n", line.c_str());
-  for (const std::string& f : files) std::printf("wrote %s\n", f.c_str());
+  for (const std::string& line : result.summary_lines) std::printf("%s\n", line.c_str());
+  for (const std::string& f : result.files) std::printf("wrote %s\n", f.c_str());
 }
 
 }  // namespace

@@ -4,7 +4,6 @@
 #include <iostream>
 
 #include "core/errors.h"
-#include "drivers/logs/text_log.h"
 #include "slam/app_config_io.h"
 #include "slam/imaging_job.h"
 #include "tools/commands.h"
@@ -37,31 +36,17 @@ void AddImageCommand(CLI::App& app, const GlobalOptions& globals) {
       config.imaging.pixel_size_m = opts->resolution_m;
       ValidateConfig(config, "--resolution");  // the sizes it implies, before any work
     }
-    std::vector<OdometrySample> odometry;
-    std::vector<RadarScan> scans;
+    pipeline::ImagingInput input;
     if (!opts->log_path.empty()) {
-      TextLog log = ReadTextLog(opts->log_path);
-      // An empty log used to give a 1 x 1 strip and exit 0.
-      if (log.scans.empty()) {
-        throw InputError(opts->log_path + ": no scans (no 'scan' records): nothing to image");
-      }
-      if (log.odometry.empty()) {
-        throw InputError(opts->log_path + ": no odometry ('odom' records): scans cannot be placed");
-      }
-      odometry = std::move(log.odometry);
-      scans = std::move(log.scans);
+      input = pipeline::ReadImagingLog(opts->log_path);
     } else if (!opts->synthetic.empty()) {
-      SyntheticPath path;
-      if (opts->synthetic == "arc") path.turn_radius_m = 4.0;
-      SyntheticRun run = SimulateRun(config, path, pipeline::DemoScatterers(), EchoModel{}, 1);
-      odometry = std::move(run.odometry);
-      scans = std::move(run.scans);
+      input = pipeline::SyntheticImagingRun(config, opts->synthetic);
     } else {
       throw CLI::RequiredError("--log or --synthetic");
     }
     pipeline::StripResult result;
     try {
-      result = pipeline::ImageRun(config, odometry, scans);
+      result = pipeline::ImageRun(config, input.odometry, input.scans);
     } catch (const InputError& e) {  // nothing imaged: name the input
       throw InputError(
           (opts->log_path.empty() ? "--synthetic " + opts->synthetic : opts->log_path) + ": " +

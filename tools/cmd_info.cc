@@ -1,12 +1,9 @@
 // `uwbsar info BAG`: what is in a ROS 2 bag (directory, .db3 or .mcap), laid out like
 // `ros2 bag info`; --decode also decodes every message of the known types and reports
-// what the SLAM pipeline would receive.
-#include <cstdio>
+// what the SLAM pipeline would receive (slam/info_job.h).
 #include <iostream>
 
-#include "drivers/rosbag/bag_info_text.h"
-#include "drivers/rosbag/bag_reader.h"
-#include "drivers/rosbag/robot_bag.h"
+#include "slam/info_job.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -23,24 +20,9 @@ void AddInfoCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_flag("--decode", opts->decode,
                 "Also decode every message (checks the whole bag; uses the --config topics)");
   cmd->callback([opts, &globals] {
-    const rosbag::BagReader reader(opts->bag);
-    std::cout << rosbag::FormatBagInfo(reader.Info());
+    std::cout << pipeline::BagInfoText(opts->bag);
     if (!opts->decode) return;
-    const auto options = rosbag::RobotBagOptionsFromConfig(LoadConfigFor(globals));
-    rosbag::RobotBagVisitor ignore;
-    const rosbag::RobotBagStats s = rosbag::ReadRobotBag(opts->bag, options, ignore);
-    std::printf(
-        "Decoded:           %llu messages: %llu radar scans, %llu odometry, %llu ground "
-        "truth, %llu laser scans, %llu tf, %llu skipped\n",
-        static_cast<unsigned long long>(s.messages), static_cast<unsigned long long>(s.radar_scans),
-        static_cast<unsigned long long>(s.odometry),
-        static_cast<unsigned long long>(s.ground_truth),
-        static_cast<unsigned long long>(s.laser_scans), static_cast<unsigned long long>(s.tf),
-        static_cast<unsigned long long>(s.skipped));
-    for (const auto& [type, n] : s.skipped_by_type) {
-      std::printf("Skipped type:      %s (%llu)\n", type.c_str(),
-                  static_cast<unsigned long long>(n));
-    }
+    std::cout << pipeline::BagDecodeText(opts->bag, LoadConfigFor(globals));
   });
 }
 

@@ -1,18 +1,14 @@
 // `uwbsar loops`: the D x R loop matrix of the paper's AKAZE+ORB rule, either re-evaluated
 // on recorded per-pair statistics (`--from-stats STATS.csv`, e.g. the stats.csv that
 // `uwbsar detectors` writes, to tune thresholds without images) or measured on a folder of
-// region images D<i>, R<j> (`--images DIR`, through the same matching as `uwbsar match`).
+// region images D<i>, R<j> (`--images DIR`, through the same matching as `uwbsar match`);
+// slam/image_match_job.h.
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "core/errors.h"
-#include "eval/image_loop_study.h"
-#include "eval/image_match_report.h"
-#include "eval/loop_stats.h"
-#include "imaging/image_io.h"
 #include "slam/app_config.h"
+#include "slam/image_match_job.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -37,20 +33,6 @@ void PrintReasons(const LoopMatrix& m) {
       }
     }
   }
-}
-
-nlohmann::json MatrixJson(const LoopMatrix& m) {
-  return {{"loops", m.loops}, {"d", m.d_ids}, {"r", m.r_ids}};
-}
-
-void WriteStudy(const pipeline::ImageLoopStudy& study, const std::string& out_dir) {
-  pipeline::EnsureDirectory(out_dir);
-  const std::filesystem::path dir(out_dir);
-  WriteTextAtomic((dir / "pairs.csv").string(), pipeline::PairsCsv(study));
-  WriteTextAtomic((dir / "pairs.md").string(), pipeline::PairsMarkdown(study));
-  WriteTextAtomic((dir / "loops.json").string(),
-                  pipeline::ImageLoopStudyJson(study).dump(2) + "\n");
-  WriteImageAtomic((dir / "matrix.png").string(), pipeline::DrawLoopMatrix(study));
 }
 
 }  // namespace
@@ -92,22 +74,13 @@ void AddLoopsCommand(CLI::App& app, const GlobalOptions& globals) {
       throw CLI::ValidationError("--out", "needs --images");
     }
     const Config config = LoadConfigFor(globals);
-    LoopMatrix m;
-    nlohmann::json json;
-    if (!opts->stats_path.empty()) {
-      m = EvaluateLoopMatrix(ReadPairStatsFile(opts->stats_path),
-                             config.place_recognition.validation);
-      json = MatrixJson(m);
-    } else {
-      const std::vector<DetectorKind> detectors = pipeline::ParseDetectorList(opts->detectors);
-      if (!opts->out_dir.empty()) pipeline::EnsureDirectory(opts->out_dir);
-      const pipeline::ImageLoopStudy study =
-          pipeline::RunImageLoopStudy(opts->images_dir, opts->resolution_m, detectors, config,
-                                      config.limits.max_map_image_pixels);
-      if (!opts->out_dir.empty()) WriteStudy(study, opts->out_dir);
-      m = study.matrix;
-      json = pipeline::ImageLoopStudyJson(study);
-    }
+    const pipeline::LoopMatrixJobResult result =
+        !opts->stats_path.empty()
+            ? pipeline::LoopMatrixFromStats(config, opts->stats_path)
+            : pipeline::LoopMatrixFromImages(config, opts->images_dir, opts->resolution_m,
+                                             opts->detectors, opts->out_dir);
+    const LoopMatrix& m = result.matrix;
+    const nlohmann::json& json = result.json;
     if (opts->json) {
       std::cout << json.dump() << "\n";
     } else {

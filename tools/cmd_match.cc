@@ -1,36 +1,16 @@
 // `uwbsar match A B`: two SAR images (from uwbsar or another tool) matched as place
 // recognition matches two keyframe tiles, with the AKAZE+ORB rule and the fused metric
-// transform. A rejection is an outcome (exit 0); bad input exits 3 with one line.
+// transform (slam/image_match_job.h). A rejection is an outcome (exit 0); bad input exits 3
+// with one line.
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
-#include <opencv2/imgproc.hpp>
 
-#include "core/errors.h"
-#include "eval/image_match_report.h"
-#include "frontend/place_recognition/image_match.h"
-#include "imaging/image_io.h"
 #include "slam/app_config.h"
+#include "slam/image_match_job.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
 namespace {
-
-constexpr double kMaxExtentRatio = 4.0;  ///< larger differences in metric size are refused
-
-void CheckComparable(const SarImageFile& a, const SarImageFile& b) {
-  const double wa = a.grid.width_m(), wb = b.grid.width_m();
-  const double ha = a.grid.height_m(), hb = b.grid.height_m();
-  if (std::max(wa, wb) > kMaxExtentRatio * std::min(wa, wb) ||
-      std::max(ha, hb) > kMaxExtentRatio * std::min(ha, hb)) {
-    char buf[256];
-    std::snprintf(buf, sizeof(buf),
-                  "%s is %.2f m x %.2f m but %s is %.2f m x %.2f m: sizes differ by more than "
-                  "%.0fx (check --resolution)",
-                  a.path.c_str(), wa, ha, b.path.c_str(), wb, hb, kMaxExtentRatio);
-    throw InputError(buf);
-  }
-}
 
 void PrintText(const ImageMatch& m) {
   for (const auto& [kind, r] : m.matches) {
@@ -54,9 +34,7 @@ void PrintText(const ImageMatch& m) {
 }  // namespace
 
 void AddMatchCommand(CLI::App& app, const GlobalOptions& globals) {
-  struct Options {
-    std::string a, b, out_dir, detectors = "akaze,orb";
-    double resolution_m = 0.005;
+  struct Options : pipeline::ImageMatchJobOptions {
     bool json = false;
   };
   auto opts = std::make_shared<Options>();
@@ -82,27 +60,12 @@ void AddMatchCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--out", opts->out_dir, "Also write match.png (good matches) and match.json");
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
-    const std::vector<DetectorKind> detectors = pipeline::ParseDetectorList(opts->detectors);
-    if (!opts->out_dir.empty()) pipeline::EnsureDirectory(opts->out_dir);
-    const double max_pixels = config.limits.max_map_image_pixels;
-    const SarImageFile a = ReadSarImageFile(opts->a, opts->resolution_m, max_pixels);
-    const SarImageFile b = ReadSarImageFile(opts->b, opts->resolution_m, max_pixels);
-    CheckComparable(a, b);
-    const double feature_m =
-        ImageFeatureResolution(a.grid.resolution_m, b.grid.resolution_m, config);
-    const ImageFeatures fa = ExtractImageFeatures(a, detectors, config, feature_m);
-    const ImageFeatures fb = ExtractImageFeatures(b, detectors, config, feature_m);
-    const ImageMatch m = MatchImages(fa, fb, config);
-    const nlohmann::json json = pipeline::ImageMatchJson(m);
-    if (!opts->out_dir.empty()) {
-      const std::filesystem::path dir(opts->out_dir);
-      WriteImageAtomic((dir / "match.png").string(), pipeline::DrawImageMatch(fa, fb, m));
-      WriteTextAtomic((dir / "match.json").string(), json.dump(2) + "\n");
-    }
+    const pipeline::ImageMatchJobResult result = pipeline::RunImageMatchJob(config, *opts);
+    const nlohmann::json& json = result.json;
     if (opts->json) {
       std::cout << json.dump() << "\n";
     } else if (!globals.quiet) {
-      PrintText(m);
+      PrintText(result.match);
     }
   });
 }

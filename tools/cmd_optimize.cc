@@ -1,17 +1,14 @@
 // `uwbsar optimize IN.g2o --out OUT.g2o [--json]`: solves a pose graph file with the
 // backend (robust loss, loop rejection, support gate; backend.* configuration) and
-// prints iterations, costs, solve time, termination and the rejected loops.
-#include <cmath>
+// prints iterations, costs, solve time, termination and the rejected loops
+// (slam/optimize_job.h).
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
+#include <stdexcept>
 
-#include "backend/g2o_io.h"
-#include "backend/graph_plot.h"
-#include "backend/pose_graph.h"
-#include "imaging/image_io.h"
 #include "slam/app_config.h"
+#include "slam/optimize_job.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -38,35 +35,6 @@ void AddOptimizeOptions(CLI::App* cmd, OptimizeOptions* opts) {
   cmd->add_flag("--skip-bad-lines", opts->skip_bad_lines,
                 "Skip (and report) bad lines instead of failing");
   cmd->add_flag("--drop-rejected", opts->drop_rejected, "Leave rejected loops out of --out");
-}
-
-/// Why the solve must not be written (not converged, cost or poses not finite); empty if
-/// it may: such a result would look like a map.
-std::string SolveFailure(const OptimizeResult& r, const PoseGraph& graph) {
-  std::string failure;
-  if (!r.converged) failure = "the solver did not converge: " + r.termination;
-  if (failure.empty() && !std::isfinite(r.final_cost)) {
-    failure = "the final cost is not finite (" + std::to_string(r.final_cost) + ")";
-  }
-  for (const auto& [id, pose] : graph.GetPoses()) {
-    if (failure.empty() &&
-        !(std::isfinite(pose.x_m) && std::isfinite(pose.y_m) && std::isfinite(pose.yaw_rad))) {
-      failure = "the solution is not finite (vertex " + std::to_string(id) + ")";
-    }
-  }
-  return failure;
-}
-
-void WriteOptimizeOutputs(const OptimizeOptions& opts, const PoseGraph& graph) {
-  if (!opts.out.empty()) WriteG2o(opts.out, graph, opts.drop_rejected);
-  if (!opts.tum.empty()) {
-    std::vector<std::pair<double, Pose2>> trajectory;
-    for (const auto& [id, pose] : graph.GetPoses()) trajectory.push_back({id, pose});
-    WriteTum(opts.tum, trajectory);
-  }
-  if (!opts.png.empty()) {
-    WriteImageAtomic(opts.png, PlotPoseGraph(graph.GetPoses(), graph.Edges(), graph.EdgeReports()));
-  }
 }
 
 void PrintOptimizeJson(const std::string& input, const OptimizeResult& r,
@@ -111,30 +79,28 @@ void PrintOptimizeText(const OptimizeResult& r, const std::string& out) {
 
 void Optimize(const OptimizeOptions& opts, const GlobalOptions& globals) {
   Config config = LoadConfigFor(globals);
-  for (const std::string* out : {&opts.out, &opts.tum, &opts.png}) {
-    if (!out->empty()) pipeline::CheckOutputFile(*out);  // before the work
-  }
   if (!opts.init.empty()) EnumFromName(opts.init, &config.backend.initialization);  // checked
-  G2oReadOptions read;
-  read.skip_bad_lines = opts.skip_bad_lines;
-  const G2oGraph file = ReadG2o(opts.in, read);
-  if (!globals.quiet) {
-    for (const std::string& s : file.skipped) std::cerr << "uwbsar: skipped " << s << "\n";
-  }
-  PoseGraph graph(config.backend);
-  LoadIntoPoseGraph(file, &graph);
-  const OptimizeResult r = graph.Optimize();
-  const std::string failure = SolveFailure(r, graph);
-  if (!failure.empty()) {
+  pipeline::OptimizeJobOptions options;
+  options.input = opts.in;
+  options.out_g2o = opts.out;
+  options.out_tum = opts.tum;
+  options.out_png = opts.png;
+  options.skip_bad_lines = opts.skip_bad_lines;
+  options.drop_rejected = opts.drop_rejected;
+  const pipeline::OptimizeJobResult job =
+      pipeline::RunOptimizeJob(config, options, [&globals](const std::string& s) {
+        if (!globals.quiet) std::cerr << "uwbsar: skipped " << s << "\n";
+      });
+  const OptimizeResult& r = job.result;
+  if (!job.failure.empty()) {
     if (!opts.json && !globals.quiet) {
       std::printf("termination: %s\ncost: %.6g -> %.6g\n", r.termination.c_str(), r.initial_cost,
                   r.final_cost);
     }
-    throw std::runtime_error(failure + "; no output written");
+    throw std::runtime_error(job.failure + "; no output written");
   }
-  WriteOptimizeOutputs(opts, graph);
   if (opts.json) {
-    PrintOptimizeJson(opts.in, r, file.skipped);
+    PrintOptimizeJson(opts.in, r, job.skipped_lines);
   } else if (!globals.quiet) {
     PrintOptimizeText(r, opts.out);
   }

@@ -3,19 +3,15 @@
 // graph is solved once more, final outputs are written, exit 0.
 // `--emulate` replaces the hardware by emulated devices on pseudo-terminals that play
 // a simulated depart-and-return run in the bundled seed_hall room or in --map
-// (drivers/emulators/sim_device_player.h); the run ends with it.
-#include <unistd.h>
-
+// (slam/live/live_emulation.h); the run ends with it.
+#include <atomic>
 #include <csignal>
 #include <cstdio>
-#include <filesystem>
-#include <thread>
+#include <optional>
 
 #include "core/interrupt_cleanup.h"
-#include "drivers/emulators/sim_device_player.h"
-#include "drivers/live/host_clock.h"
-#include "drivers/sim/sim_stream.h"
 #include "slam/app_config.h"
+#include "slam/live/live_emulation.h"
 #include "slam/live/live_runner.h"
 #include "tools/commands.h"
 
@@ -72,49 +68,6 @@ void AddRunOptions(CLI::App* cmd, RunOptions* opts) {
                 "otherwise)");
 }
 
-/// The emulated devices of --emulate and the thread that stops the run when they end.
-/// Members in this order: destroyed watcher first, player last.
-struct Emulation {
-  std::unique_ptr<live::SimDevicePlayer> player;
-  std::unique_ptr<live::HostClock> truth_clock;
-  std::thread watcher;
-};
-
-/// Points the live config at emulated devices on pseudo-terminals in <out>/dev and
-/// starts them playing a simulated depart-and-return run.
-void StartEmulation(const RunOptions& opts, Config* config, pipeline::LiveRunOptions* options,
-                    Emulation* emulation) {
-  pipeline::EnsureDirectory(opts.out_dir);
-  const std::string dev_dir = (std::filesystem::path(opts.out_dir) / "dev").string();
-  pipeline::EnsureDirectory(dev_dir);
-  config->live.radar_devices.clear();
-  for (std::size_t i = 0; i < config->radars.size(); ++i) {
-    config->live.radar_devices.push_back(dev_dir + "/radar" + std::to_string(i));
-  }
-  config->live.kobuki_device = dev_dir + "/kobuki";
-  config->live.gpio_chip.clear();
-  config->live.radar_power_lines.clear();
-  config->live.radar_reset_lines.clear();
-  config->live.status_led_line = -1;
-  options->time_scale = opts.speed;
-  live::ConfigureLiveForEmulation(config->simulator, opts.speed, &config->live);
-  const sim::SimScenario scenario = sim::MakeScenario(
-      *config, opts.map_path.empty() ? BundledMap() : opts.map_path, "depart-return", opts.seed);
-  // Ground truth on a clock started with the run's: the same timeline within microseconds.
-  emulation->truth_clock = std::make_unique<live::HostClock>(opts.speed);
-  emulation->player = std::make_unique<live::SimDevicePlayer>(
-      *config, scenario, opts.seed, config->live.radar_devices, config->live.kobuki_device,
-      opts.speed, live::EmulatorFaults{}, [c = emulation->truth_clock.get()] { return c->Now(); },
-      opts.duration_s);
-  options->ground_truth = [p = emulation->player.get()] { return p->ground_truth(); };
-  emulation->player->Start();
-  emulation->watcher = std::thread([p = emulation->player.get()] {
-    while (!p->done() && !g_stop) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));  // let the tail arrive
-    g_stop = true;
-  });
-}
-
 void PrintRunResult(const pipeline::LiveRunResult& result, const std::string& out_dir) {
   std::printf(
       "live run: %lld scans, %lld odometry, %lld recorded messages, %lld dropped from "
@@ -166,11 +119,17 @@ void Run(const RunOptions& opts, const GlobalOptions& globals) {
   options.overwrite = opts.overwrite;
   // Locked and checked before any emulated device is made inside it.
   const FolderLock out_lock = pipeline::LockLiveOutputFolder(options);
-  Emulation emulation;
-  if (opts.emulate) StartEmulation(opts, &config, &options, &emulation);
+  std::optional<pipeline::LiveEmulation> emulation;
+  if (opts.emulate) {
+    pipeline::EmulationOptions emulation_options;
+    emulation_options.map_yaml = opts.map_path.empty() ? BundledMap() : opts.map_path;
+    emulation_options.seed = opts.seed;
+    emulation_options.speed = opts.speed;
+    emulation_options.duration_s = opts.duration_s;
+    emulation.emplace(emulation_options, &config, &options, &g_stop);
+  }
   pipeline::LiveRunResult result = pipeline::RunLive(config, std::move(options));
-  if (emulation.watcher.joinable()) emulation.watcher.join();
-  if (emulation.player) emulation.player->Stop();
+  if (emulation) emulation->Finish();
   if (!globals.quiet) PrintRunResult(result, opts.out_dir);
 }
 

@@ -4,18 +4,14 @@
 //                           radars[].topic, wheel odometry, ground truth, optional laser
 //   BAG/ground_truth.tum    true poses (TUM: t x y z qx qy qz qw) at ground_truth_rate_hz
 // and, with --text-log FILE, the odometry and scans as a plain text log too.
-// Reproducible: the same configuration, map, route and seed give the same bytes.
-#include <chrono>
+// Reproducible: the same configuration, map, route and seed give the same bytes
+// (slam/simulate_job.h).
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 
-#include "core/interrupt_cleanup.h"
-#include "drivers/sim/sim_bag_writer.h"
-#include "drivers/sim/sim_recorder.h"
-#include "drivers/sim/sim_stream.h"
-#include "slam/app_config_io.h"
+#include "slam/app_config.h"
+#include "slam/simulate_job.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -36,49 +32,20 @@ struct SimulateOptions {
 void RunSimulate(const SimulateOptions& o, const GlobalOptions& globals) {
   Config config = LoadConfigFor(globals);
   if (o.laser) config.simulator.laser.enabled = true;
-  const std::vector<PointTargetConfig> targets =
-      o.targets_path.empty() ? std::vector<PointTargetConfig>{} : LoadPointTargets(o.targets_path);
-  // Every output is checked before the work: the bag folder's parent is writable and
-  // neither the bag nor an interrupted attempt (BAG.partial) is in the way.
-  namespace fs = std::filesystem;
-  const std::string bag_dir = fs::path(o.out_dir).lexically_normal().string();
-  const std::string partial =
-      (bag_dir.back() == '/' ? bag_dir.substr(0, bag_dir.size() - 1) : bag_dir) + ".partial";
-  std::error_code ec;
-  if (fs::exists(bag_dir, ec)) throw InputError(bag_dir + ": exists already, not overwriting");
-  if (fs::exists(partial, ec)) {
-    throw InputError(partial + ": exists (an interrupted recording?); remove it first");
-  }
-  const std::string parent = fs::path(partial).parent_path().string();
-  pipeline::CheckOutputFolder(parent.empty() ? "." : parent);
-  if (!o.text_log_path.empty()) pipeline::CheckOutputFile(o.text_log_path);
-  const auto start = std::chrono::steady_clock::now();
-  const std::uint64_t scene_seed = o.scene_seed.empty() ? o.seed : std::stoull(o.scene_seed);
-  const sim::SimScenario scenario =
-      sim::MakeScenario(config, o.map_path, o.route, scene_seed, targets);
-  sim::SimStream stream(config, scenario, o.seed);
-  sim::SimBagSummary summary;
-  {
-    const RemoveOnInterrupt guard(partial);  // Ctrl-C leaves no BAG.partial behind
-    try {
-      summary =
-          sim::WriteSimBag(&stream, config, o.out_dir, o.storage, o.out_dir + "/ground_truth.tum");
-    } catch (...) {
-      // A failed simulation (disk full) leaves nothing that blocks a retry (neither existed
-      // before: checked above).
-      fs::remove_all(partial, ec);
-      fs::remove_all(bag_dir, ec);
-      throw;
-    }
-  }
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!o.text_log_path.empty()) {
-    sim::SimStream again(config, scenario, o.seed);  // same seed: the same messages
-    WriteTextLog(o.text_log_path, sim::ToTextLog(sim::RecordStream(&again)));
-  }
+  pipeline::SimulateJobOptions options;
+  options.map_yaml = o.map_path;
+  options.route = o.route;
+  options.bag_dir = o.out_dir;
+  options.storage = o.storage;
+  options.targets_path = o.targets_path;
+  options.text_log = o.text_log_path;
+  options.seed = o.seed;
+  options.scene_seed = o.scene_seed.empty() ? o.seed : std::stoull(o.scene_seed);
+  const pipeline::SimulateJobResult result = pipeline::RunSimulateJob(config, options);
   if (globals.quiet) return;
-  const double length = scenario.trajectory.length_m();
+  const sim::SimBagSummary& summary = result.summary;
+  const double length = result.route_length_m;
+  const double seconds = result.seconds;
   const Pose2& odom = summary.last_odometry.T_world_robot;
   const Pose2& truth = summary.last_ground_truth.T_world_robot;
   std::printf(
@@ -86,7 +53,7 @@ void RunSimulate(const SimulateOptions& o, const GlobalOptions& globals) {
       "truth, %lld laser scans\n"
       "took %.2f s (%.3f s per metre); odometry at the end is off by %.3f m and %.2f deg\n"
       "wrote %s (%s) and %s/ground_truth.tum%s%s\n",
-      scenario.route.name.c_str(), length, scenario.trajectory.duration_s(), summary.radar_scans,
+      result.route_name.c_str(), length, result.route_duration_s, summary.radar_scans,
       summary.odometry, summary.ground_truth, summary.laser_scans, seconds,
       length > 0 ? seconds / length : 0.0, Distance(odom, truth),
       NormalizeAngle(odom.yaw_rad - truth.yaw_rad) * 180.0 / M_PI, o.out_dir.c_str(),

@@ -7,7 +7,6 @@
 #include <string>
 #include <vector>
 
-#include "drivers/rosbag/bag_storage.h"
 #include "slam/app_config.h"
 #include "slam/map_job.h"
 #include "slam/map_outputs.h"

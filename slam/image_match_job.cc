@@ -1,0 +1,84 @@
+#include "slam/image_match_job.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <opencv2/imgproc.hpp>
+
+#include "core/errors.h"
+#include "eval/image_loop_study.h"
+#include "eval/image_match_report.h"
+#include "imaging/image_io.h"
+#include "slam/output_folder.h"
+
+namespace uwbsar::pipeline {
+namespace {
+
+constexpr double kMaxExtentRatio = 4.0;  ///< larger differences in metric size are refused
+
+void CheckComparable(const SarImageFile& a, const SarImageFile& b) {
+  const double wa = a.grid.width_m(), wb = b.grid.width_m();
+  const double ha = a.grid.height_m(), hb = b.grid.height_m();
+  if (std::max(wa, wb) > kMaxExtentRatio * std::min(wa, wb) ||
+      std::max(ha, hb) > kMaxExtentRatio * std::min(ha, hb)) {
+    char buf[256];
+    std::snprintf(buf, sizeof(buf),
+                  "%s is %.2f m x %.2f m but %s is %.2f m x %.2f m: sizes differ by more than "
+                  "%.0fx (check --resolution)",
+                  a.path.c_str(), wa, ha, b.path.c_str(), wb, hb, kMaxExtentRatio);
+    throw InputError(buf);
+  }
+}
+
+void WriteStudy(const ImageLoopStudy& study, const std::string& out_dir) {
+  EnsureDirectory(out_dir);
+  const std::filesystem::path dir(out_dir);
+  WriteTextAtomic((dir / "pairs.csv").string(), PairsCsv(study));
+  WriteTextAtomic((dir / "pairs.md").string(), PairsMarkdown(study));
+  WriteTextAtomic((dir / "loops.json").string(), ImageLoopStudyJson(study).dump(2) + "\n");
+  WriteImageAtomic((dir / "matrix.png").string(), DrawLoopMatrix(study));
+}
+
+}  // namespace
+
+ImageMatchJobResult RunImageMatchJob(const Config& config, const ImageMatchJobOptions& o) {
+  const std::vector<DetectorKind> detectors = ParseDetectorList(o.detectors);
+  if (!o.out_dir.empty()) EnsureDirectory(o.out_dir);
+  const double max_pixels = config.limits.max_map_image_pixels;
+  const SarImageFile a = ReadSarImageFile(o.a, o.resolution_m, max_pixels);
+  const SarImageFile b = ReadSarImageFile(o.b, o.resolution_m, max_pixels);
+  CheckComparable(a, b);
+  const double feature_m = ImageFeatureResolution(a.grid.resolution_m, b.grid.resolution_m, config);
+  const ImageFeatures fa = ExtractImageFeatures(a, detectors, config, feature_m);
+  const ImageFeatures fb = ExtractImageFeatures(b, detectors, config, feature_m);
+  ImageMatchJobResult result;
+  result.match = MatchImages(fa, fb, config);
+  result.json = ImageMatchJson(result.match);
+  if (!o.out_dir.empty()) {
+    const std::filesystem::path dir(o.out_dir);
+    WriteImageAtomic((dir / "match.png").string(), DrawImageMatch(fa, fb, result.match));
+    WriteTextAtomic((dir / "match.json").string(), result.json.dump(2) + "\n");
+  }
+  return result;
+}
+
+LoopMatrixJobResult LoopMatrixFromStats(const Config& config, const std::string& stats_csv) {
+  LoopMatrixJobResult result;
+  result.matrix =
+      EvaluateLoopMatrix(ReadPairStatsFile(stats_csv), config.place_recognition.validation);
+  const LoopMatrix& m = result.matrix;
+  result.json = {{"loops", m.loops}, {"d", m.d_ids}, {"r", m.r_ids}};
+  return result;
+}
+
+LoopMatrixJobResult LoopMatrixFromImages(const Config& config, const std::string& images_dir,
+                                         double resolution_m, const std::string& detectors,
+                                         const std::string& out_dir) {
+  const std::vector<DetectorKind> kinds = ParseDetectorList(detectors);
+  if (!out_dir.empty()) EnsureDirectory(out_dir);
+  const ImageLoopStudy study = RunImageLoopStudy(images_dir, resolution_m, kinds, config,
+                                                 config.limits.max_map_image_pixels);
+  if (!out_dir.empty()) WriteStudy(study, out_dir);
+  return {study.matrix, ImageLoopStudyJson(study)};
+}
+
+}  // namespace uwbsar::pipeline
