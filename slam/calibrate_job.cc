@@ -110,8 +110,8 @@ CalibrateJobResult RunCalibrateJob(const Config& config, const CalibrateJobOptio
                                  ? options.bag + " (" + config.slam.ground_truth_topic + ")"
                                  : options.ground_truth_tum;
   CalibrateJobResult result;
-  result.fit = FitOdometryCalibration(streams.odometry, streams.ground_truth, config.backend,
-                                      fit_options);
+  result.fit =
+      FitOdometryCalibration(streams.odometry, streams.ground_truth, config.backend, fit_options);
   result.yaml = CalibrationYaml(result.fit);
   if (!options.out_yaml.empty()) WriteTextAtomic(options.out_yaml, result.yaml);
   return result;

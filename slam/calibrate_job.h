@@ -12,10 +12,10 @@
 namespace uwbsar::pipeline {
 
 struct CalibrateJobOptions {
-  std::string bag;              ///< the run: bag directory, .db3 or .mcap
-  std::string ground_truth_tum; ///< the true poses; empty: the bag's slam.ground_truth_topic
-  std::string out_yaml;         ///< write the calibration here; empty: not written
-  double segment_m = 0.5;       ///< odometry path per fitted segment
+  std::string bag;               ///< the run: bag directory, .db3 or .mcap
+  std::string ground_truth_tum;  ///< the true poses; empty: the bag's slam.ground_truth_topic
+  std::string out_yaml;          ///< write the calibration here; empty: not written
+  double segment_m = 0.5;        ///< odometry path per fitted segment
 };
 
 struct CalibrateJobResult {

@@ -44,7 +44,6 @@ struct PcdExportResult {
 /// of a map_server map (`grid_yaml` unused). Maps larger than limits.max_map_image_pixels are
 /// refused before decoding. The caller checks `out_pcd` before (CheckOutputFile).
 PcdExportResult ExportPcdJob(const Config& config, const std::string& map,
-                             const std::string& grid_yaml, const std::string& out_pcd,
-                             bool binary);
+                             const std::string& grid_yaml, const std::string& out_pcd, bool binary);
 
 }  // namespace uwbsar::pipeline

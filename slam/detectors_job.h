@@ -16,12 +16,12 @@
 namespace uwbsar::pipeline {
 
 struct DetectorsJobOptions {
-  std::string bag;                       ///< ROS 2 bag (directory, .db3 or .mcap)
+  std::string bag;  ///< ROS 2 bag (directory, .db3 or .mcap)
   std::string out_dir = "out/detectors";
-  std::string detectors;                 ///< comma-separated subset; empty: all built
-  std::vector<double> regions;           ///< empty, or region length and step in metres
-  double split_path_m = 0.0;             ///< where the returning pass starts; 0: where it turns
-  bool no_images = false;                ///< do not write match images (matches/)
+  std::string detectors;        ///< comma-separated subset; empty: all built
+  std::vector<double> regions;  ///< empty, or region length and step in metres
+  double split_path_m = 0.0;    ///< where the returning pass starts; 0: where it turns
+  bool no_images = false;       ///< do not write match images (matches/)
 };
 
 struct DetectorsJobResult {

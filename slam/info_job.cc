@@ -29,15 +29,14 @@ std::string BagDecodeText(const std::string& bag, const Config& config) {
   const rosbag::RobotBagStats s =
       rosbag::ReadRobotBag(bag, rosbag::RobotBagOptionsFromConfig(config), ignore);
   char line[512];
-  std::snprintf(line, sizeof(line),
-                "Decoded:           %llu messages: %llu radar scans, %llu odometry, %llu ground "
-                "truth, %llu laser scans, %llu tf, %llu skipped\n",
-                static_cast<unsigned long long>(s.messages),
-                static_cast<unsigned long long>(s.radar_scans),
-                static_cast<unsigned long long>(s.odometry),
-                static_cast<unsigned long long>(s.ground_truth),
-                static_cast<unsigned long long>(s.laser_scans),
-                static_cast<unsigned long long>(s.tf), static_cast<unsigned long long>(s.skipped));
+  std::snprintf(
+      line, sizeof(line),
+      "Decoded:           %llu messages: %llu radar scans, %llu odometry, %llu ground "
+      "truth, %llu laser scans, %llu tf, %llu skipped\n",
+      static_cast<unsigned long long>(s.messages), static_cast<unsigned long long>(s.radar_scans),
+      static_cast<unsigned long long>(s.odometry), static_cast<unsigned long long>(s.ground_truth),
+      static_cast<unsigned long long>(s.laser_scans), static_cast<unsigned long long>(s.tf),
+      static_cast<unsigned long long>(s.skipped));
   std::string text = line;
   for (const auto& [type, n] : s.skipped_by_type) {
     text += Format("Skipped type:      %s (%llu)\n", type, static_cast<unsigned long long>(n));

@@ -14,10 +14,10 @@
 namespace uwbsar::pipeline {
 
 struct OptimizeJobOptions {
-  std::string input;      ///< the g2o file (VERTEX_SE2, EDGE_SE2, FIX)
-  std::string out_g2o;    ///< the optimised graph (g2o); empty: not written
-  std::string out_tum;    ///< the optimised trajectory (TUM, time = vertex id); empty: not written
-  std::string out_png;    ///< a picture of the optimised graph; empty: not written
+  std::string input;    ///< the g2o file (VERTEX_SE2, EDGE_SE2, FIX)
+  std::string out_g2o;  ///< the optimised graph (g2o); empty: not written
+  std::string out_tum;  ///< the optimised trajectory (TUM, time = vertex id); empty: not written
+  std::string out_png;  ///< a picture of the optimised graph; empty: not written
   bool skip_bad_lines = false;  ///< skip (and report) bad lines instead of failing
   bool drop_rejected = false;   ///< leave rejected loops out of out_g2o
 };

@@ -14,12 +14,12 @@
 namespace uwbsar::pipeline {
 
 struct SimulateJobOptions {
-  std::string map_yaml;                ///< the map_server map to drive in
-  std::string route = "depart-return"; ///< built-in route name or waypoints file
-  std::string bag_dir;                 ///< the bag folder to create (must not exist)
-  std::string storage = "sqlite3";     ///< sqlite3 or mcap
-  std::string targets_path;  ///< extra point targets (LoadPointTargets); empty: none
-  std::string text_log;      ///< also write odometry and scans as a text log here; empty: not
+  std::string map_yaml;                 ///< the map_server map to drive in
+  std::string route = "depart-return";  ///< built-in route name or waypoints file
+  std::string bag_dir;                  ///< the bag folder to create (must not exist)
+  std::string storage = "sqlite3";      ///< sqlite3 or mcap
+  std::string targets_path;             ///< extra point targets (LoadPointTargets); empty: none
+  std::string text_log;          ///< also write odometry and scans as a text log here; empty: not
   std::uint64_t seed = 1;        ///< the run's noise and odometry errors
   std::uint64_t scene_seed = 1;  ///< the scene's scatterers (slam/scene_simulation.h)
 };

@@ -65,7 +65,9 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
     // output folder locked and its staging folder created, the saved session read (an
     // incompatible one, or one that holds this recording already, is refused first).
     std::vector<OdometrySample> ground_truth;
-    if (!opts->ground_truth.empty()) ground_truth = pipeline::ReadGroundTruthFile(opts->ground_truth);
+    if (!opts->ground_truth.empty()) {
+      ground_truth = pipeline::ReadGroundTruthFile(opts->ground_truth);
+    }
     pipeline::MapOutputStage stage(opts->out_dir);
     std::optional<pipeline::SavedSession> saved;
     const std::string fingerprint = pipeline::BagFingerprint(opts->bag);  // opens the bag

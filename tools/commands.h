@@ -1,6 +1,7 @@
 // The `uwbsar` subcommands. Each Add*Command registers one subcommand on the
 // app; its callback throws on failure and main() maps exceptions to exit codes.
-// Tools stay thin: they parse flags, call the libraries and write files.
+// Tools stay thin: they parse flags, call a job of slam/ (or slam/live) and print what it
+// returns; they include slam/ and core/ headers only (cmake/check_layering.py).
 #pragma once
 
 #include <CLI/CLI.hpp>

@@ -1,0 +1,57 @@
+// The configuration file `uwbsar calibrate` writes: the fit's backend keys through the
+// configuration writer, loadable by --config, and nothing else.
+#include "slam/calibrate_job.h"
+
+#include <gtest/gtest.h>
+
+#include "slam/app_config_io.h"
+
+namespace uwbsar::pipeline {
+namespace {
+
+CalibrationFit SomeFit(bool scale_observed) {
+  CalibrationFit fit;
+  fit.calibration[kCalibScale] = -0.00497512;
+  fit.calibration[kCalibHeadingDrift] = 0.0011;
+  fit.calibration[kCalibRotation] = 0.0123456789;
+  fit.sigma = {0.0004, 0.0002, 0.003};
+  fit.observed = {scale_observed, false, true};
+  fit.segments = 24;
+  fit.path_m = 14.75;
+  return fit;
+}
+
+TEST(CalibrateJobTest, CalibrationYamlIsTheFitsBackendKeysInTheFilesOrder) {
+  EXPECT_EQ(CalibrationYaml(SomeFit(true)),
+            "# uwbsar calibrate: 24 segments, 14.75 m\n"
+            "backend:\n"
+            "  calibration_scale_sigma: 0.0012\n"
+            "  calibration_scale_mean: -0.00497512\n"
+            "  calibration_heading_drift_mean_rad_per_m: 0.0011\n"
+            "  calibration_rotation_mean: 0.0123457\n");
+}
+
+TEST(CalibrateJobTest, CalibrationYamlLoadsAsTheFitAndDefaultsElsewhere) {
+  for (const bool observed : {true, false}) {
+    const std::string yaml = CalibrationYaml(SomeFit(observed));
+    Config loaded = LoadConfigFromString(yaml, "calibration.yaml");
+    EXPECT_DOUBLE_EQ(loaded.backend.calibration_scale_mean, -0.00497512);
+    EXPECT_DOUBLE_EQ(loaded.backend.calibration_heading_drift_mean_rad_per_m, 0.0011);
+    EXPECT_DOUBLE_EQ(loaded.backend.calibration_rotation_mean, 0.0123457);
+    // The scale's sigma: 3 x the fit's, at least 0.001; the configured one when unobserved.
+    EXPECT_DOUBLE_EQ(loaded.backend.calibration_scale_sigma,
+                     observed ? 0.0012 : BackendConfig{}.calibration_scale_sigma);
+    EXPECT_EQ(yaml.find("calibration_scale_sigma") != std::string::npos, observed) << yaml;
+    // Nothing else: every other key keeps its default.
+    const BackendConfig defaults;
+    loaded.backend.calibration_scale_mean = defaults.calibration_scale_mean;
+    loaded.backend.calibration_heading_drift_mean_rad_per_m =
+        defaults.calibration_heading_drift_mean_rad_per_m;
+    loaded.backend.calibration_rotation_mean = defaults.calibration_rotation_mean;
+    loaded.backend.calibration_scale_sigma = defaults.calibration_scale_sigma;
+    EXPECT_EQ(ConfigToYaml(loaded), ConfigToYaml(Config{}));
+  }
+}
+
+}  // namespace
+}  // namespace uwbsar::pipeline
