@@ -52,7 +52,7 @@ struct Outputs {
 void WriteTable3(const RegionStudy& s, const RegionStudyOptions& options, double px_m, Outputs* o) {
   o->t3_csv << "detector,loop,keypoints_d,keypoints_r,ratio_matches,good_matches,good_pct,"
                "detect_ms,match_ms,scale,tx_mm,ty_mm,rot_deg\n";
-  o->t3_md << "| Desc. | pipeline::Loop | #Keypts D, R | %Good matches | Matching time (ms) | "
+  o->t3_md << "| Desc. | Loop | #Keypts D, R | %Good matches | Matching time (ms) | "
               "scale, tx (mm), "
               "ty (mm), rot (deg) |\n|---|---|---|---|---|---|\n";
   for (DetectorKind kind : options.detectors) {
