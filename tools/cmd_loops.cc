@@ -95,9 +95,8 @@ void AddLoopsCommand(CLI::App& app, const GlobalOptions& globals) {
     LoopMatrix m;
     nlohmann::json json;
     if (!opts->stats_path.empty()) {
-      m = EvaluateLoopMatrix(
-          ReadPairStatsFile(opts->stats_path, config.place_recognition.validation.detectors),
-          config.place_recognition.validation);
+      m = EvaluateLoopMatrix(ReadPairStatsFile(opts->stats_path),
+                             config.place_recognition.validation);
       json = MatrixJson(m);
     } else {
       const std::vector<DetectorKind> detectors = pipeline::ParseDetectorList(opts->detectors);
