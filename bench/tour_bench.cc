@@ -81,7 +81,8 @@ void BM_Tour(benchmark::State& state) {
           if (!l.validation.accepted) continue;
           std::printf("  loop %d -> %d%s%s: akaze %d orb %d, backend %s chi2 %.2f\n", l.match_id,
                       l.query_id, l.guided ? " guided" : "", l.by_radar ? " by radar" : "",
-                      l.akaze.good_matches, l.orb.good_matches,
+                      l.Match(DetectorKind::kAkaze).good_matches,
+                      l.Match(DetectorKind::kOrb).good_matches,
                       l.rejected_by_backend ? "rejected" : "accepted", l.chi2);
         }
       }

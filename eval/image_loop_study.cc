@@ -94,7 +94,7 @@ std::vector<std::vector<std::string>> Rows(const ImageLoopStudy& study) {
   std::vector<std::vector<std::string>> rows;
   for (const ImagePairResult& p : study.pairs) {
     std::vector<std::string> row = {std::to_string(p.d), std::to_string(p.r)};
-    for (DetectorKind kind : {DetectorKind::kAkaze, DetectorKind::kOrb}) {
+    for (DetectorKind kind : study.rule_detectors) {
       for (std::string& c : DetectorCells(p.match, kind)) row.push_back(std::move(c));
     }
     const bool ok = p.match.accepted();
@@ -108,13 +108,18 @@ std::vector<std::vector<std::string>> Rows(const ImageLoopStudy& study) {
   return rows;
 }
 
-const std::vector<std::string>& Header() {
-  static const std::vector<std::string> h = {
-      "d",         "r",         "good_akaze",    "scale_akaze",
-      "x_akaze_m", "y_akaze_m", "yaw_akaze_deg", "good_orb",
-      "scale_orb", "x_orb_m",   "y_orb_m",       "yaw_orb_deg",
-      "x_m",       "y_m",       "yaw_deg",       "decision",
-      "reason"};
+/// d, r, five columns per detector of the pair (good_akaze, scale_akaze, x_akaze_m, ...), then
+/// the fused transform and the decision.
+std::vector<std::string> Header(const ImageLoopStudy& study) {
+  std::vector<std::string> h = {"d", "r"};
+  for (DetectorKind kind : study.rule_detectors) {
+    const std::string n = DetectorColumnName(kind);
+    for (const std::string& c :
+         {"good_" + n, "scale_" + n, "x_" + n + "_m", "y_" + n + "_m", "yaw_" + n + "_deg"}) {
+      h.push_back(c);
+    }
+  }
+  for (const char* c : {"x_m", "y_m", "yaw_deg", "decision", "reason"}) h.push_back(c);
   return h;
 }
 
@@ -124,6 +129,7 @@ ImageLoopStudy RunImageLoopStudy(const std::string& dir, double resolution_m,
                                  const std::vector<DetectorKind>& detectors,
                                  const PlaceRecognizerConfig& config, double max_image_pixels) {
   ImageLoopStudy study;
+  study.rule_detectors = config.place_recognition.validation.detectors;
   FindRegionImages(dir, &study);
   const double max_pixels = max_image_pixels;
   const auto d_images = ReadAll(study.d_files, resolution_m, max_pixels);
@@ -176,7 +182,7 @@ nlohmann::json ImageLoopStudyJson(const ImageLoopStudy& study) {
 
 std::string PairsCsv(const ImageLoopStudy& study) {
   std::ostringstream out;
-  const auto& h = Header();
+  const std::vector<std::string> h = Header(study);
   for (std::size_t i = 0; i < h.size(); ++i) out << (i ? "," : "") << h[i];
   out << "\n";
   for (std::vector<std::string> row : Rows(study)) {
@@ -190,9 +196,12 @@ std::string PairsCsv(const ImageLoopStudy& study) {
 
 std::string PairsMarkdown(const ImageLoopStudy& study) {
   std::ostringstream out;
-  out << "| D | R | AKAZE good | scale | x (m) | y (m) | yaw (deg) | ORB good | scale | x (m) | "
-         "y (m) | yaw (deg) | fused x (m) | y (m) | yaw (deg) | decision | reason |\n|";
-  for (std::size_t i = 0; i < Header().size(); ++i) out << "---|";
+  out << "| D | R |";
+  for (DetectorKind kind : study.rule_detectors) {
+    out << " " << DetectorName(kind) << " good | scale | x (m) | y (m) | yaw (deg) |";
+  }
+  out << " fused x (m) | y (m) | yaw (deg) | decision | reason |\n|";
+  for (std::size_t i = 0; i < Header(study).size(); ++i) out << "---|";
   out << "\n";
   for (std::vector<std::string> row : Rows(study)) {
     std::string& reason = row.back();

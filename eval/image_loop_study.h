@@ -25,6 +25,8 @@ struct ImageLoopStudy {
   std::map<int, std::string> r_files;
   std::vector<ImagePairResult> pairs;  ///< d-major
   LoopMatrix matrix;                   ///< accepted = the full validation (rule + geometry)
+  std::vector<DetectorKind> rule_detectors = PaperDetectorPair();  ///< validation.detectors:
+                                                                   ///< the columns of the tables
 };
 
 /// The D<i> / R<j> images of `dir` (.png, .pgm, .tif, .tiff; any case; one file per name),

@@ -59,15 +59,20 @@ int ParseInt(const std::string& text, const Cursor& at, const std::string& colum
 
 }  // namespace
 
-const std::vector<std::string>& PairStatsColumns() {
-  static const std::vector<std::string> kColumns = {
-      "d",           "r",           "n_akaze",       "scale_akaze",
-      "tx_akaze_px", "ty_akaze_px", "rot_akaze_deg", "n_orb",
-      "scale_orb",   "tx_orb_px",   "ty_orb_px",     "rot_orb_deg"};
-  return kColumns;
+std::vector<std::string> PairStatsColumns(const std::vector<DetectorKind>& detectors) {
+  std::vector<std::string> columns = {"d", "r"};
+  for (DetectorKind kind : detectors) {
+    const std::string n = DetectorColumnName(kind);
+    for (const std::string& c :
+         {"n_" + n, "scale_" + n, "tx_" + n + "_px", "ty_" + n + "_px", "rot_" + n + "_deg"}) {
+      columns.push_back(c);
+    }
+  }
+  return columns;
 }
 
-std::vector<PairStats> ParsePairStats(const std::string& csv_text, const std::string& source) {
+std::vector<PairStats> ParsePairStats(const std::string& csv_text, const std::string& source,
+                                      const std::vector<DetectorKind>& detectors) {
   std::stringstream in(csv_text);
   std::string line;
   int line_no = 0;
@@ -80,7 +85,7 @@ std::vector<PairStats> ParsePairStats(const std::string& csv_text, const std::st
     const std::vector<std::string> fields = SplitCsv(line);
     if (column.empty()) {
       for (std::size_t k = 0; k < fields.size(); ++k) column[fields[k]] = k;
-      for (const std::string& name : PairStatsColumns()) {
+      for (const std::string& name : PairStatsColumns(detectors)) {
         if (!column.count(name)) {
           throw InputError(source + ":" + std::to_string(line_no) + ": header lacks column '" +
                            name + "'");
@@ -113,8 +118,7 @@ std::vector<PairStats> ParsePairStats(const std::string& csv_text, const std::st
     PairStats p;
     p.d = ParseInt(field("d"), at, "d");
     p.r = ParseInt(field("r"), at, "r");
-    p.akaze = detector("akaze");
-    p.orb = detector("orb");
+    for (DetectorKind kind : detectors) p.detectors[kind] = detector(DetectorColumnName(kind));
     if (!seen.insert({p.d, p.r}).second) {
       throw InputError(at.Where("d") + ": pair (" + std::to_string(p.d) + ", " +
                        std::to_string(p.r) + ") is listed twice");
@@ -125,15 +129,16 @@ std::vector<PairStats> ParsePairStats(const std::string& csv_text, const std::st
   return out;
 }
 
-std::vector<PairStats> ReadPairStatsFile(const std::string& path) {
+std::vector<PairStats> ReadPairStatsFile(const std::string& path,
+                                         const std::vector<DetectorKind>& detectors) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open statistics file");
   std::stringstream text;
   text << in.rdbuf();
-  return ParsePairStats(text.str(), path);
+  return ParsePairStats(text.str(), path, detectors);
 }
 
-std::string PairStatsRow(const PairStats& p) {
+std::string PairStatsRow(const PairStats& p, const std::vector<DetectorKind>& detectors) {
   auto det = [](const DetectorStats& s) {
     char buf[160];
     if (!s.has_transform) {
@@ -144,7 +149,9 @@ std::string PairStatsRow(const PairStats& p) {
     }
     return std::string(buf);
   };
-  return std::to_string(p.d) + "," + std::to_string(p.r) + "," + det(p.akaze) + "," + det(p.orb);
+  std::string row = std::to_string(p.d) + "," + std::to_string(p.r);
+  for (DetectorKind kind : detectors) row += "," + det(Of(p.detectors, kind, DetectorStats()));
+  return row;
 }
 
 LoopMatrix EvaluateLoopMatrix(const std::vector<PairStats>& stats,
@@ -163,7 +170,9 @@ LoopMatrix EvaluateLoopMatrix(const std::vector<PairStats>& stats,
     return static_cast<std::size_t>(std::lower_bound(ids.begin(), ids.end(), v) - ids.begin());
   };
   for (const PairStats& p : stats) {
-    const LoopDecision d = ApplyLoopRule(p.akaze, p.orb, config);
+    const DetectorStats none;
+    const LoopDecision d = ApplyLoopRule(Of(p.detectors, config.detectors[0], none),
+                                         Of(p.detectors, config.detectors[1], none), config);
     const std::size_t i = index(m.d_ids, p.d), j = index(m.r_ids, p.r);
     m.loops[i][j] = d.accepted ? 1 : 0;
     m.reasons[i][j] = d.reason;

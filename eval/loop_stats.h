@@ -1,7 +1,7 @@
 // Recorded per-pair match statistics (one CSV row per region or keyframe pair) and
 // the loop matrix the paper's rule gives on them, so thresholds can be tuned on
 // logged figures without images (`uwbsar loops --from-stats`). Columns, any order,
-// extra columns ignored:
+// extra columns ignored, for the validation pair (the paper's: akaze, orb):
 //   d,r,n_akaze,scale_akaze,tx_akaze_px,ty_akaze_px,rot_akaze_deg,
 //     n_orb,scale_orb,tx_orb_px,ty_orb_px,rot_orb_deg
 // A transform field that is empty or "-" means the detector found no transform.
@@ -16,22 +16,26 @@
 namespace uwbsar {
 
 struct PairStats {
-  int d = 0;  ///< departing region / older keyframe index
-  int r = 0;  ///< returning region / newer keyframe index
-  DetectorStats akaze;
-  DetectorStats orb;
+  int d = 0;                             ///< departing region / older keyframe index
+  int r = 0;                             ///< returning region / newer keyframe index
+  DetectorMap<DetectorStats> detectors;  ///< the pair's two detectors
 };
 
-/// The column names, in the canonical order.
-const std::vector<std::string>& PairStatsColumns();
+/// The column names, in the canonical order, for the detector pair `detectors`.
+std::vector<std::string> PairStatsColumns(
+    const std::vector<DetectorKind>& detectors = PaperDetectorPair());
 
-/// Parses the CSV text; throws InputError naming `source`, the line and the column on
-/// malformed numbers, missing columns or duplicate (d, r) pairs.
-std::vector<PairStats> ParsePairStats(const std::string& csv_text, const std::string& source);
-std::vector<PairStats> ReadPairStatsFile(const std::string& path);
+/// Parses the CSV text (columns of `detectors`); throws InputError naming `source`, the line
+/// and the column on malformed numbers, missing columns or duplicate (d, r) pairs.
+std::vector<PairStats> ParsePairStats(
+    const std::string& csv_text, const std::string& source,
+    const std::vector<DetectorKind>& detectors = PaperDetectorPair());
+std::vector<PairStats> ReadPairStatsFile(
+    const std::string& path, const std::vector<DetectorKind>& detectors = PaperDetectorPair());
 
 /// One CSV row (canonical order) for `stats`, without a newline.
-std::string PairStatsRow(const PairStats& stats);
+std::string PairStatsRow(const PairStats& stats,
+                         const std::vector<DetectorKind>& detectors = PaperDetectorPair());
 
 struct LoopMatrix {
   std::vector<int> d_ids;                         ///< sorted distinct d values (rows)
@@ -40,6 +44,7 @@ struct LoopMatrix {
   std::vector<std::vector<std::string>> reasons;  ///< "" when accepted or not listed
 };
 
+/// The rule on config.detectors' figures of each pair.
 LoopMatrix EvaluateLoopMatrix(const std::vector<PairStats>& stats,
                               const LoopValidationConfig& config);
 

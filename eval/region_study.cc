@@ -125,6 +125,7 @@ RegionStudy RunRegionStudy(const std::vector<ImagedScan>& depart,
 
   CutRegions(depart, config, options, &study);
   const PlaceRecognitionConfig& pr = config.place_recognition;
+  study.stats_detectors = pr.validation.detectors;
   for (const StudyRegion& d : study.d_regions) {
     for (const StudyRegion& r : study.r_regions) {
       RegionPair pair;
@@ -133,20 +134,18 @@ RegionStudy RunRegionStudy(const std::vector<ImagedScan>& depart,
       for (DetectorKind kind : options.detectors) {
         pair.matches[kind] = MatchFeatures(d.features.at(kind), r.features.at(kind), pr.matching);
       }
-      const bool both =
-          pair.matches.count(DetectorKind::kAkaze) && pair.matches.count(DetectorKind::kOrb);
-      if (both) {
+      const std::vector<DetectorKind>& rule = pr.validation.detectors;
+      if (pair.matches.count(rule[0]) && pair.matches.count(rule[1])) {
         pair.validation =
-            ValidateLoop(d.index, d.grid, r.index, r.grid, pair.matches.at(DetectorKind::kAkaze),
-                         pair.matches.at(DetectorKind::kOrb), pr.validation);
+            ValidateLoop(d.index, d.grid, r.index, r.grid, pair.matches, pr.validation);
       } else {
-        pair.validation.reason = "AKAZE and ORB were not both run";
+        pair.validation.reason = std::string(DetectorName(rule[0])) + " and " +
+                                 DetectorName(rule[1]) + " were not both run";
       }
       PairStats stats;
       stats.d = d.index;
       stats.r = r.index;
-      stats.akaze = StatsFor(pair, DetectorKind::kAkaze);
-      stats.orb = StatsFor(pair, DetectorKind::kOrb);
+      for (DetectorKind kind : rule) stats.detectors[kind] = StatsFor(pair, kind);
       study.stats.push_back(stats);
       study.pairs.push_back(std::move(pair));
     }

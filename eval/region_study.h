@@ -69,7 +69,8 @@ struct RegionStudy {
   std::vector<StudyRegion> d_regions;
   std::vector<StudyRegion> r_regions;
   std::vector<RegionPair> pairs;  ///< every (d, r), d-major
-  std::vector<PairStats> stats;   ///< AKAZE/ORB statistics per pair (loops --from-stats)
+  std::vector<PairStats> stats;  ///< the validation pair's statistics per pair (loops --from-stats)
+  std::vector<DetectorKind> stats_detectors;  ///< that pair (validation.detectors)
 
   const RegionPair* Find(int d, int r) const;
 };

@@ -90,10 +90,13 @@ std::vector<Localizer::Loop> Localizer::MatchMap(const KeyframeFeatures& feature
       if (std::hypot(q.x_m - centre.x_m, q.y_m - centre.y_m) > sc.search_radius_m) continue;
     }
     ++*candidates;
-    const MatchResult akaze = MatchFeatures(m.features.akaze, features.akaze, pr_.matching);
-    const MatchResult orb = MatchFeatures(m.features.orb, features.orb, pr_.matching);
+    DetectorMap<MatchResult> matches;
+    for (DetectorKind kind : pr_.validation.detectors) {
+      matches[kind] =
+          MatchFeatures(m.features.Features(kind), features.Features(kind), pr_.matching);
+    }
     const LoopValidation v =
-        ValidateLoop(m.id, m.features.grid, features.id, features.grid, akaze, orb, pr_.validation);
+        ValidateLoop(m.id, m.features.grid, features.id, features.grid, matches, pr_.validation);
     if (!v.accepted) continue;
     Loop l;
     l.map_id = m.id;

@@ -86,18 +86,27 @@ cv::Mat RenderMapPng(const cv::Mat& map, const cv::Mat& observed, const ImageGri
 
 std::string LoopsCsv(const SlamSnapshot& slam) {
   std::ostringstream csv;
-  csv << "query_id,match_id,ratio_akaze,good_akaze,scale_akaze,ratio_orb,good_orb,scale_orb,"
-         "x_m,y_m,yaw_deg,validator,reason,backend,chi2\n";
+  // Three columns per detector of the validation pair, named after it (the paper's pair:
+  // ratio_akaze,good_akaze,scale_akaze,ratio_orb,good_orb,scale_orb).
+  const std::vector<DetectorKind> detectors = slam.LoopDetectors();
+  csv << "query_id,match_id,";
+  for (DetectorKind d : detectors) {
+    const std::string n = DetectorColumnName(d);
+    csv << "ratio_" << n << ",good_" << n << ",scale_" << n << ",";
+  }
+  csv << "x_m,y_m,yaw_deg,validator,reason,backend,chi2\n";
   for (const LoopRecord& l : slam.loops) {
     const Pose2& T = l.validation.constraint.T_ij;
     std::string reason = l.validation.reason;
     for (char& c : reason) {
       if (c == ',' || c == '\n') c = ';';
     }
-    csv << l.query_id << "," << l.match_id << "," << l.akaze.ratio_matches << ","
-        << l.akaze.good_matches << "," << Fixed(l.akaze.scale, 4) << "," << l.orb.ratio_matches
-        << "," << l.orb.good_matches << "," << Fixed(l.orb.scale, 4) << ","
-        << (l.validation.accepted ? Fixed(T.x_m, 4) : "") << ","
+    csv << l.query_id << "," << l.match_id << ",";
+    for (DetectorKind d : detectors) {
+      const MatchResult& m = l.Match(d);
+      csv << m.ratio_matches << "," << m.good_matches << "," << Fixed(m.scale, 4) << ",";
+    }
+    csv << (l.validation.accepted ? Fixed(T.x_m, 4) : "") << ","
         << (l.validation.accepted ? Fixed(T.y_m, 4) : "") << ","
         << (l.validation.accepted ? Fixed(T.yaw_rad * 180.0 / M_PI, 3) : "") << ","
         << (l.validation.accepted ? "accepted" : "rejected") << "," << reason << ","

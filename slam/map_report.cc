@@ -57,19 +57,24 @@ ReportTable TimingTable(const MapState& run) {
 }
 
 ReportTable LoopTable(const SlamSnapshot& slam) {
-  ReportTable loops{"Loop candidates",
-                    {"query", "match", "AKAZE good", "ORB good", "x (m)", "y (m)", "yaw (deg)",
-                     "validator", "backend", "reason"},
-                    {}};
+  const std::vector<DetectorKind> detectors = slam.LoopDetectors();
+  ReportTable loops{"Loop candidates", {"query", "match"}, {}};
+  for (DetectorKind d : detectors) loops.header.push_back(std::string(DetectorName(d)) + " good");
+  for (const char* c : {"x (m)", "y (m)", "yaw (deg)", "validator", "backend", "reason"})
+    loops.header.push_back(c);
   for (const LoopRecord& l : slam.loops) {
     const Pose2& T = l.validation.constraint.T_ij;
     const bool v = l.validation.accepted;
-    loops.rows.push_back({std::to_string(l.query_id), std::to_string(l.match_id),
-                          std::to_string(l.akaze.good_matches), std::to_string(l.orb.good_matches),
-                          v ? Fixed(T.x_m, 3) : "", v ? Fixed(T.y_m, 3) : "",
-                          v ? Fixed(T.yaw_rad * 180 / M_PI, 2) : "", v ? "accepted" : "rejected",
-                          v ? (l.rejected_by_backend ? "rejected" : "accepted") : "",
-                          l.validation.reason});
+    std::vector<std::string> row = {std::to_string(l.query_id), std::to_string(l.match_id)};
+    for (DetectorKind d : detectors) row.push_back(std::to_string(l.Match(d).good_matches));
+    for (std::string cell :
+         {v ? Fixed(T.x_m, 3) : "", v ? Fixed(T.y_m, 3) : "",
+          v ? Fixed(T.yaw_rad * 180 / M_PI, 2) : "", std::string(v ? "accepted" : "rejected"),
+          std::string(v ? (l.rejected_by_backend ? "rejected" : "accepted") : ""),
+          l.validation.reason}) {
+      row.push_back(std::move(cell));
+    }
+    loops.rows.push_back(std::move(row));
   }
   return loops;
 }

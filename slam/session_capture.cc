@@ -53,8 +53,7 @@ SessionData CaptureSession(const MapRun& run) {
     s.accepted = l.accepted();
     s.T_ij = l.validation.constraint.T_ij;
     s.chi2 = l.chi2;
-    s.akaze_good = l.akaze.good_matches;
-    s.orb_good = l.orb.good_matches;
+    for (const auto& [kind, m] : l.matches) s.good_matches[kind] = m.good_matches;
     s.reason = l.validation.reason;
     d.loops.push_back(std::move(s));
   }

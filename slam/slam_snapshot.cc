@@ -2,6 +2,16 @@
 
 namespace uwbsar::pipeline {
 
+const MatchResult& LoopRecord::Match(DetectorKind kind) const {
+  static const MatchResult kNotMatched;
+  return Of(matches, kind, kNotMatched);
+}
+
+std::vector<DetectorKind> SlamSnapshot::LoopDetectors() const {
+  return config != nullptr ? config->place_recognition.validation.detectors
+                           : LoopValidationConfig().detectors;
+}
+
 Pose2 SlamSnapshot::CorrectionAt(TimestampNs stamp_ns) const {
   return InterpolatedCorrection(
       tiles.size(), [&](std::size_t i) { return tiles[i].stamp_ns; },

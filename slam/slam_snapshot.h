@@ -29,13 +29,14 @@ struct LoopRecord {
 
   /// Matched radar by radar (frontend/place_recognition/radar_match.h).
   bool by_radar = false;
-  MatchResult akaze;
-  MatchResult orb;
+  DetectorMap<MatchResult> matches;  ///< per detector of the validation pair (decision only)
   LoopValidation validation;
   int edge_index = -1;  ///< pose-graph edge, when the validator accepted it
   bool rejected_by_backend = false;
   double chi2 = 0.0;  ///< of the edge at the final solution
   bool accepted() const { return validation.accepted && !rejected_by_backend; }
+  /// The match of `kind` (an empty result when that detector was not run).
+  const MatchResult& Match(DetectorKind kind) const;
 };
 
 /// One keyframe as the outputs need it.
@@ -106,6 +107,9 @@ struct SlamSnapshot {
   StageTimes times;
   OptimizeResult last_optimization;
 
+  /// The detectors the loops were validated with (place_recognition.validation.detectors;
+  /// the default pair without a configuration).
+  std::vector<DetectorKind> LoopDetectors() const;
   /// As SlamSystem::CorrectionAt / CorrectedTrajectory, from the copy.
   Pose2 CorrectionAt(TimestampNs stamp_ns) const;
   std::vector<std::pair<TimestampNs, Pose2>> CorrectedTrajectory() const;

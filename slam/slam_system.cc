@@ -196,14 +196,13 @@ void SlamSystem::AddLoop(const LoopAttempt& attempt, int keyframe_id) {
   loop.match_id = attempt.candidate_id;
   loop.guided = attempt.guided;
   loop.by_radar = attempt.by_radar;
-  loop.akaze = attempt.akaze;
-  loop.orb = attempt.orb;
+  loop.matches = attempt.matches;
   loop.validation = attempt.validation;
-  for (MatchResult* m : {&loop.akaze, &loop.orb}) {  // only the decision is kept
-    m->matches.clear();
-    m->inlier.clear();
-    m->inliers_a.clear();
-    m->inliers_b.clear();
+  for (auto& [kind, m] : loop.matches) {  // only the decision is kept
+    m.matches.clear();
+    m.inlier.clear();
+    m.inliers_a.clear();
+    m.inliers_b.clear();
   }
   if (loop.validation.accepted) {
     PoseGraphEdge edge;

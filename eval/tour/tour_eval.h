@@ -30,7 +30,7 @@ struct TourEvaluation {
   double odometry_ate_m = 0.0;
   int keyframes = 0;
   int candidates = 0;  ///< matched pairs
-  int validated = 0;   ///< passed the AKAZE+ORB rule
+  int validated = 0;   ///< passed the rule of the validation pair (AKAZE+ORB)
   int accepted = 0;    ///< validated and kept by the backend
   int false_validated = 0;
   int false_accepted = 0;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -16,53 +15,6 @@
 #endif
 
 namespace uwbsar {
-
-const char* DetectorName(DetectorKind kind) {
-  switch (kind) {
-    case DetectorKind::kSift:
-      return "SIFT";
-    case DetectorKind::kSurf:
-      return "SURF";
-    case DetectorKind::kBrisk:
-      return "BRISK";
-    case DetectorKind::kAkaze:
-      return "AKAZE";
-    case DetectorKind::kOrb:
-      return "ORB";
-  }
-  return "?";
-}
-
-bool ParseDetector(const std::string& name, DetectorKind* kind) {
-  std::string upper = name;
-  for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  for (DetectorKind k : {DetectorKind::kSift, DetectorKind::kSurf, DetectorKind::kBrisk,
-                         DetectorKind::kAkaze, DetectorKind::kOrb}) {
-    if (upper == DetectorName(k)) {
-      *kind = k;
-      return true;
-    }
-  }
-  return false;
-}
-
-bool DetectorAvailable(DetectorKind kind) {
-#ifdef UWBSAR_WITH_SURF
-  (void)kind;
-  return true;
-#else
-  return kind != DetectorKind::kSurf;
-#endif
-}
-
-std::vector<DetectorKind> AvailableDetectors() {
-  std::vector<DetectorKind> out;
-  for (DetectorKind k : {DetectorKind::kSift, DetectorKind::kSurf, DetectorKind::kBrisk,
-                         DetectorKind::kAkaze, DetectorKind::kOrb}) {
-    if (DetectorAvailable(k)) out.push_back(k);
-  }
-  return out;
-}
 
 cv::Ptr<cv::Feature2D> CreateDetector(DetectorKind kind, const DetectorConfig& c) {
   switch (kind) {

@@ -9,22 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "frontend/place_recognition/detector_kind.h"
 #include "frontend/place_recognition/place_recognition_config.h"
 #include "imaging/enhance_config.h"
 #include "imaging/image_grid.h"
 
 namespace uwbsar {
-
-enum class DetectorKind { kSift, kSurf, kBrisk, kAkaze, kOrb };
-
-/// "SIFT", "SURF", "BRISK", "AKAZE", "ORB".
-const char* DetectorName(DetectorKind kind);
-/// Case-insensitive; false for an unknown name.
-bool ParseDetector(const std::string& name, DetectorKind* kind);
-/// False for SURF when the project was built without UWBSAR_WITH_SURF.
-bool DetectorAvailable(DetectorKind kind);
-/// The paper's order (SIFT, SURF, BRISK, AKAZE, ORB), only those available.
-std::vector<DetectorKind> AvailableDetectors();
 
 /// The detector with the configured (paper) settings.
 cv::Ptr<cv::Feature2D> CreateDetector(DetectorKind kind, const DetectorConfig& config);

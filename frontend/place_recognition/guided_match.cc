@@ -79,16 +79,17 @@ LoopAttempt GuidedAttempt(const GuidedPair& pair, const PlaceRecognitionConfig& 
   attempt.candidate_id = o.id;
   attempt.query_id = q.id;
   attempt.guided = true;
-  attempt.akaze =
-      MatchFeatures(o.akaze, q.akaze, pr.matching,
-                    NearPrediction(o.akaze, o.grid, q.akaze, q.grid, pair.T_oq_predicted,
-                                   pr.guided.max_offset_m, pr.matching.ratio));
-  attempt.orb = MatchFeatures(o.orb, q.orb, pr.matching,
-                              NearPrediction(o.orb, o.grid, q.orb, q.grid, pair.T_oq_predicted,
-                                             pr.guided.max_offset_m, pr.matching.ratio));
+  for (DetectorKind kind : pr.validation.detectors) {
+    const FeatureSet& fo = o.Features(kind);
+    const FeatureSet& fq = q.Features(kind);
+    attempt.matches[kind] =
+        MatchFeatures(fo, fq, pr.matching,
+                      NearPrediction(fo, o.grid, fq, q.grid, pair.T_oq_predicted,
+                                     pr.guided.max_offset_m, pr.matching.ratio));
+  }
   LoopValidationConfig rule = pr.validation;
   rule.min_good_matches = pr.guided.min_good_matches;
-  attempt.validation = ValidateLoop(o.id, o.grid, q.id, q.grid, attempt.akaze, attempt.orb, rule);
+  attempt.validation = ValidateLoop(o.id, o.grid, q.id, q.grid, attempt.matches, rule);
   if (!attempt.validation.accepted) return attempt;
   const Pose2& T = attempt.validation.constraint.T_ij;
   const Pose2& P = pair.T_oq_predicted;

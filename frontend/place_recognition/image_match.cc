@@ -93,14 +93,14 @@ ImageMatch MatchImages(const ImageFeatures& a, const ImageFeatures& b,
     if (m.has_transform) out.detector_transforms[kind] = DetectorTransform(a, b, m);
     out.matches[kind] = std::move(m);
   }
-  const auto akaze = out.matches.find(DetectorKind::kAkaze);
-  const auto orb = out.matches.find(DetectorKind::kOrb);
-  if (akaze == out.matches.end() || orb == out.matches.end()) {
-    out.validation.reason = "AKAZE and ORB were not both run";
+  const std::vector<DetectorKind>& pair = pr.validation.detectors;
+  if (!out.matches.count(pair[0]) || !out.matches.count(pair[1])) {
+    out.validation.reason =
+        std::string(DetectorName(pair[0])) + " and " + DetectorName(pair[1]) + " were not both run";
     return out;
   }
   // i = B, j = A: the constraint is the pose of A's frame in B's frame.
-  out.validation = ValidateLoop(2, b.grid, 1, a.grid, akaze->second, orb->second, pr.validation);
+  out.validation = ValidateLoop(2, b.grid, 1, a.grid, out.matches, pr.validation);
   if (out.validation.accepted)
     out.transform = AboutCentre(out.validation.constraint.T_ij, a.centre);
   return out;

@@ -1,9 +1,10 @@
 // Matching two SAR images as place recognition matches two keyframe tiles (`uwbsar match`,
 // `uwbsar loops --images`): the same feature image (enhanced, masked to the measured area,
 // averaged down to detectors.feature_resolution_m), the same detectors, kNN + ratio test +
-// RANSAC, the paper's AKAZE+ORB rule with the pixel thresholds kept at their metric size,
-// and the same exact metric transform (loop_validator.h). Images from other tools enter
-// as 8/16-bit enhanced images; float images as uwbsar writes them are enhanced here.
+// RANSAC, the paper's rule on the configured detector pair (AKAZE+ORB) with the pixel thresholds
+// kept at their metric size, and the same exact metric transform (loop_validator.h). Images from
+// other tools enter as 8/16-bit enhanced images; float images as uwbsar writes them are enhanced
+// here.
 #pragma once
 
 #include <map>
@@ -55,14 +56,14 @@ CentredTransform AboutCentre(const Pose2& T_BA, const Point2& centre_a);
 struct ImageMatch {
   std::map<DetectorKind, MatchResult> matches;  ///< pixels of A (query) mapped into B (train)
   std::map<DetectorKind, CentredTransform> detector_transforms;  ///< per detector with a fit
-  LoopValidation validation;   ///< the AKAZE+ORB rule; constraint.T_ij = T_BA when accepted
+  LoopValidation validation;   ///< the pair's rule; constraint.T_ij = T_BA when accepted
   CentredTransform transform;  ///< the fused transform, valid when accepted
   bool accepted() const { return validation.accepted; }
 };
 
-/// Matches A against B with every detector both have, then applies the AKAZE+ORB rule
-/// (reason "AKAZE and ORB were not both run" when either is missing). Both feature sets
-/// must come from ExtractImageFeatures with the same config.
+/// Matches A against B with every detector both have, then applies the rule to the pair of
+/// validation.detectors (reason "AKAZE and ORB were not both run" when either is missing). Both
+/// feature sets must come from ExtractImageFeatures with the same config.
 ImageMatch MatchImages(const ImageFeatures& a, const ImageFeatures& b,
                        const PlaceRecognizerConfig& config);
 

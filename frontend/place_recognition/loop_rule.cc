@@ -1,5 +1,6 @@
 #include "frontend/place_recognition/loop_rule.h"
 
+#include <cassert>
 #include <cmath>
 #include <cstdio>
 
@@ -52,33 +53,36 @@ DetectorStats StatsOf(const MatchResult& m) {
   return s;
 }
 
-LoopDecision ApplyLoopRule(const DetectorStats& akaze, const DetectorStats& orb,
+LoopDecision ApplyLoopRule(const DetectorStats& first, const DetectorStats& second,
                            const LoopValidationConfig& c) {
+  assert(c.detectors.size() == 2);
+  const std::string name_a = DetectorName(c.detectors[0]);
+  const std::string name_b = DetectorName(c.detectors[1]);
+  const std::string pair = name_a + " and " + name_b + " disagree: ";
   LoopDecision d;
-  d.reason = CheckDetector("AKAZE", akaze, c);
-  if (d.reason.empty()) d.reason = CheckDetector("ORB", orb, c);
+  d.reason = CheckDetector(name_a.c_str(), first, c);
+  if (d.reason.empty()) d.reason = CheckDetector(name_b.c_str(), second, c);
   if (!d.reason.empty()) return d;
-  const double dtx = std::abs(akaze.tx_px - orb.tx_px);
-  const double dty = std::abs(akaze.ty_px - orb.ty_px);
-  const double drot = WrapDegrees(orb.rotation_deg - akaze.rotation_deg);
+  const double dtx = std::abs(first.tx_px - second.tx_px);
+  const double dty = std::abs(first.ty_px - second.ty_px);
+  const double drot = WrapDegrees(second.rotation_deg - first.rotation_deg);
   if (dtx > c.max_tx_difference_px) {
-    d.reason =
-        Format("AKAZE and ORB disagree: |dtx| %.1f px > %.1f px", dtx, c.max_tx_difference_px);
+    d.reason = pair + Format("|dtx| %.1f px > %.1f px", dtx, c.max_tx_difference_px);
   } else if (dty > c.max_ty_difference_px) {
-    d.reason =
-        Format("AKAZE and ORB disagree: |dty| %.1f px > %.1f px", dty, c.max_ty_difference_px);
+    d.reason = pair + Format("|dty| %.1f px > %.1f px", dty, c.max_ty_difference_px);
   } else if (std::abs(drot) > c.max_rotation_difference_deg) {
-    d.reason = Format("AKAZE and ORB disagree: |drot| %.1f deg > %.1f deg", std::abs(drot),
-                      c.max_rotation_difference_deg);
+    d.reason =
+        pair + Format("|drot| %.1f deg > %.1f deg", std::abs(drot), c.max_rotation_difference_deg);
   }
   if (!d.reason.empty()) return d;
   // Paper: T = (n_a T_a + n_o T_o) / (n_a + n_o) over (tx, ty, rot); the rotation is
-  // averaged as an offset from AKAZE's so that +179 and -179 deg fuse to 180, not 0.
-  const double na = akaze.good_matches, no = orb.good_matches;
-  const double wo = no / (na + no);
-  d.tx_px = (na * akaze.tx_px + no * orb.tx_px) / (na + no);
-  d.ty_px = (na * akaze.ty_px + no * orb.ty_px) / (na + no);
-  d.rotation_deg = WrapDegrees(akaze.rotation_deg + wo * drot);
+  // averaged as an offset from the first detector's so that +179 and -179 deg fuse to 180,
+  // not 0.
+  const double na = first.good_matches, nb = second.good_matches;
+  const double wb = nb / (na + nb);
+  d.tx_px = (na * first.tx_px + nb * second.tx_px) / (na + nb);
+  d.ty_px = (na * first.ty_px + nb * second.ty_px) / (na + nb);
+  d.rotation_deg = WrapDegrees(first.rotation_deg + wb * drot);
   d.accepted = true;
   return d;
 }

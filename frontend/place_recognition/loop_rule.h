@@ -1,8 +1,8 @@
 // The paper's loop-closure rule ("Identifying Loop Closures while Exploring") on
 // per-detector match statistics only, so that it can be re-run on logged figures
-// (`uwbsar loops --from-stats`): both AKAZE and ORB need more than N good matches,
-// scales in [min, max], and their tx, ty and rotation must agree; the fused
-// transform is the good-match-weighted mean of the two.
+// (`uwbsar loops --from-stats`): both detectors of the configured pair (validation.detectors,
+// the paper's AKAZE and ORB) need more than N good matches, scales in [min, max], and their
+// tx, ty and rotation must agree; the fused transform is the good-match-weighted mean of the two.
 #pragma once
 
 #include <string>
@@ -32,7 +32,9 @@ struct LoopDecision {
   double rotation_deg = 0.0;
 };
 
-LoopDecision ApplyLoopRule(const DetectorStats& akaze, const DetectorStats& orb,
+/// `first` and `second` are the figures of config.detectors[0] and [1] (whose names the
+/// reasons give).
+LoopDecision ApplyLoopRule(const DetectorStats& first, const DetectorStats& second,
                            const LoopValidationConfig& config);
 
 /// Wraps degrees to [-180, 180).

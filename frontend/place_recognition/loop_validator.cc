@@ -1,6 +1,8 @@
 #include "frontend/place_recognition/loop_validator.h"
 
 #include <Eigen/LU>
+#include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -12,16 +14,16 @@ Point2 ToMetric(const ImageGrid& g, const cv::Point2d& p) { return g.PixelToMetr
 
 /// The smaller principal standard deviation of both detectors' inliers in image b, in pixels:
 /// small when the inliers lie nearly on a line, which leaves the pose unfixed along it.
-double InlierSpreadPx(const MatchResult& akaze, const MatchResult& orb) {
+double InlierSpreadPx(const MatchResult& first, const MatchResult& second) {
   Eigen::Vector2d mean_px = Eigen::Vector2d::Zero();
   double n = 0.0;
-  for (const MatchResult* m : {&akaze, &orb}) {
+  for (const MatchResult* m : {&first, &second}) {
     for (const cv::Point2d& p : m->inliers_b) mean_px += Eigen::Vector2d(p.x, p.y);
     n += static_cast<double>(m->inliers_b.size());
   }
   mean_px /= n;
   Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-  for (const MatchResult* m : {&akaze, &orb}) {
+  for (const MatchResult* m : {&first, &second}) {
     for (const cv::Point2d& p : m->inliers_b) {
       const Eigen::Vector2d d = Eigen::Vector2d(p.x, p.y) - mean_px;
       scatter += d * d.transpose();
@@ -104,16 +106,27 @@ Pose2 PixelToMetricTransform(const ImageGrid& grid_a, const ImageGrid& grid_b, d
   return {origin.x_m, origin.y_m, NormalizeAngle(-rot)};
 }
 
+int MinGoodMatches(const LoopConstraint& loop) {
+  if (loop.good_matches.empty()) return 0;
+  int n = loop.good_matches.begin()->second;
+  for (const auto& [kind, good] : loop.good_matches) n = std::min(n, good);
+  return n;
+}
+
 LoopValidation ValidateLoop(int id_i, const ImageGrid& grid_i, int id_j, const ImageGrid& grid_j,
-                            const MatchResult& akaze, const MatchResult& orb,
+                            const DetectorMap<MatchResult>& matches,
                             const LoopValidationConfig& config) {
+  assert(config.detectors.size() == 2);
+  static const MatchResult kNotMatched;
+  const MatchResult& first = Of(matches, config.detectors[0], kNotMatched);
+  const MatchResult& second = Of(matches, config.detectors[1], kNotMatched);
   LoopValidation v;
-  v.decision = ApplyLoopRule(StatsOf(akaze), StatsOf(orb), config);
+  v.decision = ApplyLoopRule(StatsOf(first), StatsOf(second), config);
   if (!v.decision.accepted) {
     v.reason = v.decision.reason;
     return v;
   }
-  v.inlier_spread_px = InlierSpreadPx(akaze, orb);
+  v.inlier_spread_px = InlierSpreadPx(first, second);
   if (!(v.inlier_spread_px >= config.min_inlier_spread_px)) {
     char buf[128];
     std::snprintf(buf, sizeof(buf), "degenerate: inliers nearly collinear (spread %.1f px < %.1f)",
@@ -123,7 +136,7 @@ LoopValidation ValidateLoop(int id_i, const ImageGrid& grid_i, int id_j, const I
   }
   // All inliers of both detectors, in metres in the two anchor frames.
   std::vector<Point2> qi, qj;
-  for (const MatchResult* m : {&akaze, &orb}) {
+  for (const MatchResult* m : {&first, &second}) {
     for (std::size_t k = 0; k < m->inliers_a.size(); ++k) {
       qi.push_back(ToMetric(grid_i, m->inliers_a[k]));
       qj.push_back(ToMetric(grid_j, m->inliers_b[k]));
@@ -145,8 +158,8 @@ LoopValidation ValidateLoop(int id_i, const ImageGrid& grid_i, int id_j, const I
   lc.j = id_j;
   lc.T_ij = {fit.t.x(), fit.t.y(), yaw};
   lc.information = 0.5 * (information + information.transpose());
-  lc.good_matches_akaze = akaze.good_matches;
-  lc.good_matches_orb = orb.good_matches;
+  lc.good_matches = {{config.detectors[0], first.good_matches},
+                     {config.detectors[1], second.good_matches}};
   lc.residual_rms_m = std::sqrt(fit.sum_sq / n);
   if (!lc.information.allFinite() || !std::isfinite(lc.T_ij.x_m) || !std::isfinite(lc.T_ij.y_m) ||
       !std::isfinite(lc.T_ij.yaw_rad)) {
@@ -155,6 +168,15 @@ LoopValidation ValidateLoop(int id_i, const ImageGrid& grid_i, int id_j, const I
   }
   v.accepted = true;
   return v;
+}
+
+LoopValidation ValidateLoop(int id_i, const ImageGrid& grid_i, int id_j, const ImageGrid& grid_j,
+                            const MatchResult& first, const MatchResult& second,
+                            const LoopValidationConfig& config) {
+  assert(config.detectors.size() == 2);
+  const DetectorMap<MatchResult> matches = {{config.detectors[0], first},
+                                            {config.detectors[1], second}};
+  return ValidateLoop(id_i, grid_i, id_j, grid_j, matches, config);
 }
 
 }  // namespace uwbsar

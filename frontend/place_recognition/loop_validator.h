@@ -1,15 +1,16 @@
 // From two detectors' matches between keyframe tiles i (a) and j (b) to a metric
-// loop constraint: the paper's AKAZE+ORB rule (loop_rule.h), a geometry check
-// (collinear inliers cannot fix a pose), the fused transform converted exactly from
-// pixels to the tiles' anchor frames, and an information matrix derived from the
-// match: the Fisher information of a rigid fit to all inliers with the measured
-// residual spread, plus configured floors on the standard deviations.
+// loop constraint: the paper's rule on the configured pair (loop_rule.h; AKAZE+ORB), a geometry
+// check (collinear inliers cannot fix a pose), the fused transform converted exactly from pixels to
+// the tiles' anchor frames, and an information matrix derived from the match: the Fisher
+// information of a rigid fit to all inliers with the measured residual spread, plus configured
+// floors on the standard deviations.
 #pragma once
 
 #include <Eigen/Core>
 #include <string>
 
 #include "core/pose2.h"
+#include "frontend/place_recognition/detector_kind.h"
 #include "frontend/place_recognition/feature_matcher.h"
 #include "frontend/place_recognition/loop_rule.h"
 #include "frontend/place_recognition/place_recognition_config.h"
@@ -25,9 +26,8 @@ struct LoopConstraint {
   int j = 0;
   Pose2 T_ij;
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
-  int good_matches_akaze = 0;
-  int good_matches_orb = 0;
-  double residual_rms_m = 0.0;  ///< of all inliers under T_ij
+  DetectorMap<int> good_matches;  ///< of the validation pair's two detectors
+  double residual_rms_m = 0.0;    ///< of all inliers under T_ij
 };
 
 struct LoopValidation {
@@ -43,8 +43,17 @@ struct LoopValidation {
 Pose2 PixelToMetricTransform(const ImageGrid& grid_a, const ImageGrid& grid_b, double tx_px,
                              double ty_px, double rotation_deg);
 
+/// The smaller of the pair's good-match counts (0 when none were kept).
+int MinGoodMatches(const LoopConstraint& loop);
+
+/// Validates the matches of config.detectors (a detector missing from `matches` counts as
+/// not matched).
 LoopValidation ValidateLoop(int id_i, const ImageGrid& grid_i, int id_j, const ImageGrid& grid_j,
-                            const MatchResult& akaze, const MatchResult& orb,
+                            const DetectorMap<MatchResult>& matches,
+                            const LoopValidationConfig& config);
+/// The same with the matches of config.detectors[0] and [1], in that order.
+LoopValidation ValidateLoop(int id_i, const ImageGrid& grid_i, int id_j, const ImageGrid& grid_j,
+                            const MatchResult& first, const MatchResult& second,
                             const LoopValidationConfig& config);
 
 }  // namespace uwbsar

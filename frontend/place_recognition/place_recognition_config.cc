@@ -43,6 +43,14 @@ void ValidateMatching(const FeatureMatchConfig& m, const std::string& src, const
 
 void ValidateLoopValidation(const LoopValidationConfig& v, const std::string& src,
                             const std::string& k) {
+  Require(v.detectors.size() == 2, src, k + "validation.detectors",
+          "must name exactly two detectors (the paper's: [akaze, orb])");
+  Require(v.detectors[0] != v.detectors[1], src, k + "validation.detectors",
+          "must name two different detectors");
+  for (DetectorKind d : v.detectors) {
+    Require(DetectorAvailable(d), src, k + "validation.detectors",
+            std::string(DetectorName(d)) + " is not available in this build");
+  }
   Require(v.min_good_matches >= 2, src, k + "validation.min_good_matches", "must be >= 2");
   Require(v.min_scale > 0 && v.min_scale <= 1, src, k + "validation.min_scale",
           "must be in (0, 1]");

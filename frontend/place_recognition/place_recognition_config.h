@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "frontend/place_recognition/detector_kind.h"
 #include "frontend/place_recognition/radar_match_config.h"
 #include "frontend/wall_profile_config.h"
 
@@ -72,15 +73,18 @@ struct FeatureMatchConfig {
   }
 };
 
-/// The paper's AKAZE+ORB loop validation ("Identifying Loop Closures while Exploring")
-/// and the uncertainty given to accepted loops.
+/// The paper's loop validation ("Identifying Loop Closures while Exploring") on a pair of
+/// detectors, AKAZE+ORB by default, and the uncertainty given to accepted loops.
 struct LoopValidationConfig {
+  /// The two detectors whose transforms must agree (the paper's AKAZE and ORB); only their
+  /// features are computed, matched and stored. The first one's rotation anchors the fusion.
+  std::vector<DetectorKind> detectors = PaperDetectorPair();
   int min_good_matches = 10;           ///< both detectors need more good matches than this (paper)
   double min_scale = 0.85;             ///< both scales must lie in [min_scale, max_scale] (paper)
   double max_scale = 1.15;             ///< ...
-  double max_tx_difference_px = 10.0;  ///< |tx_akaze - tx_orb| limit (paper)
-  double max_ty_difference_px = 10.0;  ///< |ty_akaze - ty_orb| limit (paper)
-  double max_rotation_difference_deg = 10.0;  ///< |rot_akaze - rot_orb| limit (paper)
+  double max_tx_difference_px = 10.0;  ///< |tx_a - tx_b| limit of the pair (paper)
+  double max_ty_difference_px = 10.0;  ///< |ty_a - ty_b| limit of the pair (paper)
+  double max_rotation_difference_deg = 10.0;  ///< |rot_a - rot_b| limit of the pair (paper)
   double min_inlier_spread_px = 5.0;          ///< the inliers' smaller principal standard deviation
                                       ///< must exceed this (collinear matches are degenerate)
   double min_residual_px = 1.0;    ///< floor of the per-feature position noise used for the
@@ -92,6 +96,7 @@ struct LoopValidationConfig {
 
   template <class V>
   void Visit(V& v) {
+    v("detectors", detectors);
     v("min_good_matches", min_good_matches);
     v("min_scale", min_scale);
     v("max_scale", max_scale);

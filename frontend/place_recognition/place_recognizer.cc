@@ -15,7 +15,22 @@ double MsSince(std::chrono::steady_clock::time_point start) {
       .count();
 }
 
+const FeatureSet kNoFeatures;
+
 }  // namespace
+
+const FeatureSet& KeyframeFeatures::Features(DetectorKind kind) const {
+  return Of(by_detector, kind, kNoFeatures);
+}
+
+const FeatureSet& KeyframeFeatures::RadarFeatures(DetectorKind kind) const {
+  return Of(radar_by_detector, kind, kNoFeatures);
+}
+
+const MatchResult& LoopAttempt::Match(DetectorKind kind) const {
+  static const MatchResult kNotMatched;
+  return Of(matches, kind, kNotMatched);
+}
 
 KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe,
                                          const PlaceRecognizerConfig& config) {
@@ -28,8 +43,8 @@ KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe,
   const FeatureImage image =
       DownsampleFeatureImage(MakeFeatureImage(keyframe.image, config.enhance, d.mask_erode_px),
                              config.feature_downsampling, d.white_percentile, &k.grid);
-  k.akaze = ComputeFeatures(image, DetectorKind::kAkaze, d);
-  k.orb = ComputeFeatures(image, DetectorKind::kOrb, d);
+  for (DetectorKind kind : config.place_recognition.validation.detectors)
+    k.by_detector[kind] = ComputeFeatures(image, kind, d);
   if (config.place_recognition.per_radar.enabled) ExtractRadarFeatures(keyframe, config, &k);
   // Where the robot drove while imaging the tile: a better "position" of the tile than
   // the anchor, which sits at its first scan.
@@ -117,12 +132,14 @@ PlaceRecognitionResult PlaceRecognizer::Process(KeyframeFeatures features, doubl
     const KeyframeFeatures& old = *database_.at(id);
     LoopAttempt attempt;
     attempt.candidate_id = id;
-    attempt.akaze = MatchFeatures(old.akaze, features.akaze, pr.matching);
-    attempt.orb = MatchFeatures(old.orb, features.orb, pr.matching);
-    attempt.validation = ValidateLoop(old.id, old.grid, features.id, features.grid, attempt.akaze,
-                                      attempt.orb, pr.validation);
-    if (!attempt.validation.accepted && pr.per_radar.enabled && HasRadarFeatures(old) &&
-        HasRadarFeatures(features)) {
+    for (DetectorKind kind : pr.validation.detectors) {
+      attempt.matches[kind] =
+          MatchFeatures(old.Features(kind), features.Features(kind), pr.matching);
+    }
+    attempt.validation =
+        ValidateLoop(old.id, old.grid, features.id, features.grid, attempt.matches, pr.validation);
+    if (!attempt.validation.accepted && pr.per_radar.enabled && HasRadarFeatures(old, pr) &&
+        HasRadarFeatures(features, pr)) {
       LoopAttempt by_radar = MatchByRadar(old, features, pr);
       if (by_radar.validation.accepted) attempt = std::move(by_radar);
     }
@@ -149,10 +166,7 @@ void PlaceRecognizer::GuidedPass(const KeyframeFeatures& features, PlaceRecognit
   if (!result->loops.empty()) {
     const LoopConstraint* best = &result->loops.front();
     for (const LoopConstraint& l : result->loops) {
-      if (std::min(l.good_matches_akaze, l.good_matches_orb) >
-          std::min(best->good_matches_akaze, best->good_matches_orb)) {
-        best = &l;
-      }
+      if (MinGoodMatches(l) > MinGoodMatches(*best)) best = &l;
     }
     last_loop_ = *best;
     have_last_loop_ = true;

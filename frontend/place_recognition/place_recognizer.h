@@ -1,7 +1,8 @@
-// Loop-closure detection for a stream of keyframes: each new keyframe's AKAZE and
-// ORB features are computed once and cached; candidates come from the spatial
-// index (candidate_search.h); each candidate pair is matched with both detectors,
-// validated by the paper's rule (loop_validator.h) and, when accepted, becomes a
+// Loop-closure detection for a stream of keyframes: each new keyframe's features of the
+// detectors the validation rule names (validation.detectors, the paper's AKAZE and ORB) are
+// computed once and cached; candidates come from the spatial index (candidate_search.h); each
+// candidate pair is matched with both detectors, validated by the paper's rule
+// (loop_validator.h) and, when accepted, becomes a
 // metric LoopConstraint. Every attempt is reported with its reason.
 #pragma once
 
@@ -26,16 +27,19 @@ namespace uwbsar {
 struct KeyframeFeatures {
   int id = 0;
   ImageGrid grid;
-  FeatureSet akaze;
-  FeatureSet orb;
+  DetectorMap<FeatureSet> by_detector;  ///< the validation pair's detectors
   Point2 centre_anchor;  ///< mean robot position of the tile's scans, in the anchor frame
   double path_begin_m = 0.0;
   Pose2 T_world_anchor;  ///< latest estimate (odometry, or optimised via UpdatePose)
   /// Per-radar features (radar_match.h; empty without sensor tiles): every radar's keypoints
   /// in pixels of `grid`, class_id = sensor id.
-  FeatureSet akaze_radar;
-  FeatureSet orb_radar;
+  DetectorMap<FeatureSet> radar_by_detector;
   std::vector<double> look_anchor_rad;  ///< per sensor id: boresight at mid-tile, anchor frame
+
+  /// The features of `kind` (an empty set when they were not computed, e.g. a saved session
+  /// made with other detectors: nothing matches it).
+  const FeatureSet& Features(DetectorKind kind) const;
+  const FeatureSet& RadarFeatures(DetectorKind kind) const;
 };
 
 /// Tile pixels per feature pixel (detectors.feature_resolution_m / `tile_pixel_m`, >= 1): the
@@ -74,12 +78,12 @@ struct PlaceRecognizerConfig {
   }
 };
 
-/// `pr` with its pixel thresholds (RANSAC, AKAZE/ORB agreement, inlier spread, residual
+/// `pr` with its pixel thresholds (RANSAC, the detector pair's agreement, inlier spread, residual
 /// floor), which are the paper's at the tile resolution, divided by `factor` (feature pixel
 /// size / tile pixel size) so that they keep their size in metres.
 PlaceRecognitionConfig AtFeatureResolution(PlaceRecognitionConfig pr, double factor);
 
-/// Computes a keyframe's cached features (AKAZE and ORB) from its tile, at
+/// Computes a keyframe's cached features (the detectors of validation.detectors) from its tile, at
 /// detectors.feature_resolution_m (`grid` is then the downsampled tile's grid).
 KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe,
                                          const PlaceRecognizerConfig& config);
@@ -93,9 +97,11 @@ struct LoopAttempt {
   /// when a radar was paired with another one.
   bool by_radar = false;
   bool cross_side = false;
-  MatchResult akaze;
-  MatchResult orb;
+  DetectorMap<MatchResult> matches;  ///< per detector of the validation pair
   LoopValidation validation;
+
+  /// The match of `kind` (an empty result when that detector was not run).
+  const MatchResult& Match(DetectorKind kind) const;
 };
 
 struct PlaceRecognitionResult {

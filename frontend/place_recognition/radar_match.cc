@@ -60,8 +60,9 @@ void ExtractRadarFeatures(const Keyframe& keyframe, const PlaceRecognizerConfig&
   const DetectorConfig& d = config.place_recognition.detectors;
   DetectorConfig per_radar = d;
   per_radar.max_keypoints = config.place_recognition.per_radar.max_keypoints;
-  k->akaze_radar = FeatureSet();
-  k->orb_radar = FeatureSet();
+  const std::vector<DetectorKind>& detectors = config.place_recognition.validation.detectors;
+  k->radar_by_detector.clear();
+  for (DetectorKind kind : detectors) k->radar_by_detector[kind] = FeatureSet();
   const std::vector<double>& boresight_deg = config.radar_boresight_yaw_deg;
   k->look_anchor_rad.assign(boresight_deg.size(), 0.0);
   // The robot's heading at the middle of the tile, in the anchor frame (which has the
@@ -78,16 +79,17 @@ void ExtractRadarFeatures(const Keyframe& keyframe, const PlaceRecognizerConfig&
     const FeatureImage image =
         DownsampleFeatureImage(MakeFeatureImage(st.image, config.enhance, d.mask_erode_px),
                                config.feature_downsampling, d.white_percentile, &grid);
-    Append(ComputeFeatures(image, DetectorKind::kAkaze, per_radar), grid, k->grid, st.sensor_id,
-           &k->akaze_radar);
-    Append(ComputeFeatures(image, DetectorKind::kOrb, per_radar), grid, k->grid, st.sensor_id,
-           &k->orb_radar);
+    for (DetectorKind kind : detectors) {
+      Append(ComputeFeatures(image, kind, per_radar), grid, k->grid, st.sensor_id,
+             &k->radar_by_detector[kind]);
+    }
   }
 }
 
-bool HasRadarFeatures(const KeyframeFeatures& k) {
+bool HasRadarFeatures(const KeyframeFeatures& k, const PlaceRecognitionConfig& pr) {
+  const FeatureSet& counted = k.RadarFeatures(pr.validation.detectors.back());
   int radars = 0;
-  for (int n : CountPerSensor(k.orb_radar, k.look_anchor_rad.size())) radars += n >= 2;
+  for (int n : CountPerSensor(counted, k.look_anchor_rad.size())) radars += n >= 2;
   return radars >= 2;
 }
 
@@ -113,12 +115,12 @@ LoopAttempt MatchByRadar(const KeyframeFeatures& i, const KeyframeFeatures& j,
     attempt.validation.reason = "per radar: no radars look the same way";
     return attempt;
   }
-  attempt.akaze = MatchFeatures(i.akaze_radar, j.akaze_radar, pr.matching,
-                                PairMask(i.akaze_radar, j.akaze_radar, paired));
-  attempt.orb = MatchFeatures(i.orb_radar, j.orb_radar, pr.matching,
-                              PairMask(i.orb_radar, j.orb_radar, paired));
-  attempt.validation =
-      ValidateLoop(i.id, i.grid, j.id, j.grid, attempt.akaze, attempt.orb, pr.validation);
+  for (DetectorKind kind : pr.validation.detectors) {
+    const FeatureSet& fi = i.RadarFeatures(kind);
+    const FeatureSet& fj = j.RadarFeatures(kind);
+    attempt.matches[kind] = MatchFeatures(fi, fj, pr.matching, PairMask(fi, fj, paired));
+  }
+  attempt.validation = ValidateLoop(i.id, i.grid, j.id, j.grid, attempt.matches, pr.validation);
   if (!attempt.validation.accepted)
     attempt.validation.reason = "per radar: " + attempt.validation.reason;
   return attempt;

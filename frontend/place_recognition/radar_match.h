@@ -19,14 +19,15 @@
 
 namespace uwbsar {
 
-/// Fills k's per-radar features (akaze_radar, orb_radar, look_anchor_rad) from the keyframe's
-/// sensor tiles; k.grid must already be the whole tile's feature grid. Leaves them empty when
-/// the keyframe has no sensor tiles.
+/// Fills k's per-radar features (radar_by_detector for validation.detectors, look_anchor_rad) from
+/// the keyframe's sensor tiles; k.grid must already be the whole tile's feature grid. Leaves them
+/// empty when the keyframe has no sensor tiles.
 void ExtractRadarFeatures(const Keyframe& keyframe, const PlaceRecognizerConfig& config,
                           KeyframeFeatures* k);
 
-/// True when k has per-radar features of at least two radars.
-bool HasRadarFeatures(const KeyframeFeatures& k);
+/// True when k has per-radar features of at least two radars (counted on the second detector of
+/// pr.validation.detectors).
+bool HasRadarFeatures(const KeyframeFeatures& k, const PlaceRecognitionConfig& pr);
 
 /// Matches query j's per-radar features against candidate i's (radar pairs as above, from
 /// the current T_world_anchor estimates) and validates the pair with `pr` (at feature

@@ -1,5 +1,5 @@
 // What a saved session holds (README "Session file"): every keyframe with its
-// poses, its detected tile (what the global map is made of) and its AKAZE/ORB features
+// poses, its detected tile (what the global map is made of) and its features per detector
 // (what place recognition matches), the pose graph's edges with their information, the
 // loop records, the odometry of each trajectory and the configuration it was made with.
 // A session may hold several trajectories (runs) in one map frame: `uwbsar map --resume`
@@ -23,7 +23,9 @@ namespace uwbsar {
 /// 2: edges keep their odometry calibration fields (trajectory, path_m, turn_rad), so that a
 /// resumed or merged graph calibrates each run's odometry as its own run did; 1 still reads.
 /// 3: trajectories keep their recording's fingerprint; 1 and 2 still read (fingerprint "").
-constexpr int kSessionFormatVersion = 3;
+/// 4: loops keep their good-match counts per detector (loop_matches table) instead of the
+/// akaze_good and orb_good columns, which versions 1 to 3 still read as AKAZE and ORB counts.
+constexpr int kSessionFormatVersion = 4;
 
 struct SessionKeyframe {
   int id = 0;          ///< unique in the session (graph node id)
@@ -36,7 +38,9 @@ struct SessionKeyframe {
   bool fixed = false;                           ///< held constant (the gauge)
   cv::Mat detected;                             ///< CV_32FC1 detected tile, map resolution
   ImageGrid detected_grid;                      ///< its geometry in the anchor frame
-  KeyframeFeatures features;  ///< AKAZE + ORB at the feature resolution (own grid)
+  KeyframeFeatures features;  ///< per detector (validation.detectors when it was made; AKAZE
+                              ///< and ORB in every session before them) at the feature
+                              ///< resolution (own grid)
 };
 
 struct SessionLoop {
@@ -46,7 +50,7 @@ struct SessionLoop {
   bool accepted = false;  ///< validated and kept by the backend
   Pose2 T_ij;             ///< pose of j in i (validated loops)
   double chi2 = 0.0;
-  int akaze_good = 0, orb_good = 0;
+  DetectorMap<int> good_matches;  ///< per detector of the validation pair
   std::string reason;
 };
 

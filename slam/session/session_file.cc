@@ -9,6 +9,7 @@
 #include "core/errors.h"
 #include "slam/config/config_fingerprint.h"
 #include "slam/session/blob_codec.h"
+#include "slam/session/session_loops.h"
 #include "slam/session/session_reader.h"
 #include "slam/session/sqlite_db.h"
 
@@ -41,10 +42,6 @@ CREATE TABLE edges (
   idx INTEGER PRIMARY KEY, from_id INTEGER NOT NULL, to_id INTEGER NOT NULL, kind TEXT NOT NULL,
   x_m REAL, y_m REAL, yaw_rad REAL, information BLOB NOT NULL, rejected INTEGER NOT NULL,
   trajectory INTEGER NOT NULL, path_m REAL, turn_rad REAL);
-CREATE TABLE loops (
-  query_id INTEGER NOT NULL, match_id INTEGER NOT NULL, validated INTEGER NOT NULL,
-  accepted INTEGER NOT NULL, x_m REAL, y_m REAL, yaw_rad REAL, chi2 REAL,
-  akaze_good INTEGER, orb_good INTEGER, reason TEXT);
 CREATE TABLE odometry (
   trajectory INTEGER NOT NULL, stamp_ns INTEGER NOT NULL, x_m REAL, y_m REAL, yaw_rad REAL,
   path_m REAL);
@@ -93,7 +90,7 @@ void WriteTrajectories(SqliteDb& db, const SessionData& d) {
   }
 }
 
-/// The keyframes table and each keyframe's AKAZE and ORB rows of the features table.
+/// The keyframes table and each keyframe's rows of the features table, one per detector.
 void WriteKeyframes(SqliteDb& db, const SessionData& d) {
   SqliteStatement s(db,
                     "INSERT INTO keyframes VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
@@ -125,8 +122,8 @@ void WriteKeyframes(SqliteDb& db, const SessionData& d) {
     s.Bind(i++, k.features.centre_anchor.x_m);
     s.Bind(i++, k.features.centre_anchor.y_m);
     s.Run();
-    WriteFeatures(f, k.id, "AKAZE", k.features.akaze);
-    WriteFeatures(f, k.id, "ORB", k.features.orb);
+    for (const auto& [kind, features] : k.features.by_detector)
+      WriteFeatures(f, k.id, DetectorName(kind), features);
   }
 }
 
@@ -151,25 +148,6 @@ void WriteEdges(SqliteDb& db, const SessionData& d) {
   }
 }
 
-/// The loops table.
-void WriteLoops(SqliteDb& db, const SessionData& d) {
-  SqliteStatement s(db, "INSERT INTO loops VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-  for (const SessionLoop& l : d.loops) {
-    s.Bind(1, l.query_id);
-    s.Bind(2, l.match_id);
-    s.Bind(3, l.validated ? 1 : 0);
-    s.Bind(4, l.accepted ? 1 : 0);
-    s.Bind(5, l.T_ij.x_m);
-    s.Bind(6, l.T_ij.y_m);
-    s.Bind(7, l.T_ij.yaw_rad);
-    s.Bind(8, l.chi2);
-    s.Bind(9, l.akaze_good);
-    s.Bind(10, l.orb_good);
-    s.Bind(11, l.reason);
-    s.Run();
-  }
-}
-
 /// The odometry table.
 void WriteOdometry(SqliteDb& db, const SessionData& d) {
   SqliteStatement s(db, "INSERT INTO odometry VALUES (?, ?, ?, ?, ?, ?)");
@@ -187,12 +165,13 @@ void WriteOdometry(SqliteDb& db, const SessionData& d) {
 void WriteAll(SqliteDb& db, const SessionData& d) {
   db.Exec("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF;");
   db.Exec(kSchema);
+  db.Exec(session::kLoopTablesSchema);
   db.Exec("BEGIN");
   WriteMeta(db, d);
   WriteTrajectories(db, d);
   WriteKeyframes(db, d);
   WriteEdges(db, d);
-  WriteLoops(db, d);
+  session::WriteLoopTables(db, d);
   WriteOdometry(db, d);
   db.Exec("COMMIT");
 }
@@ -249,8 +228,10 @@ SessionData ReadSession(const std::string& path, const SystemConfig* config) {
   if (Meta(db, "format") != kFormatName) throw InputError(path + ": not a uwbsar session");
   const std::string version = Meta(db, "format_version");
   // Version 1 lacks the edges' calibration columns (its odometry edges are then solved
-  // uncalibrated, as they were), versions 1 and 2 the trajectories' fingerprints ("").
-  if (version != "1" && version != "2" && version != std::to_string(kSessionFormatVersion)) {
+  // uncalibrated, as they were), versions 1 and 2 the trajectories' fingerprints (""), versions
+  // 1 to 3 the loop_matches table (their loops' akaze_good and orb_good columns stand for it).
+  if (version != "1" && version != "2" && version != "3" &&
+      version != std::to_string(kSessionFormatVersion)) {
     throw InputError(path + ": session format version " + version.substr(0, 40) +
                      ", this uwbsar reads 1 to " + std::to_string(kSessionFormatVersion));
   }
@@ -263,6 +244,21 @@ SessionData ReadSession(const std::string& path, const SystemConfig* config) {
     if (!diff.empty()) throw InputError(path + ": incompatible configuration: " + diff);
   }
   session::ReadSessionTables(db, config != nullptr ? config->limits : LimitsConfig(), &d);
+  if (config != nullptr && !d.keyframes.empty()) {
+    // Place recognition matches the saved features of the configured pair: a session made
+    // with other detectors has nothing to match them against.
+    const DetectorMap<FeatureSet>& saved = d.keyframes.front().features.by_detector;
+    for (DetectorKind kind : config->place_recognition.validation.detectors) {
+      if (saved.count(kind)) continue;
+      std::string held;
+      for (const auto& [k, f] : saved)
+        held += (held.empty() ? "" : ", ") + std::string(DetectorName(k));
+      throw InputError(path +
+                       ": incompatible configuration: place_recognition.validation.detectors "
+                       "names " +
+                       DetectorName(kind) + ", the session holds features of " + held);
+    }
+  }
   return d;
 }
 

@@ -89,10 +89,13 @@ std::vector<Hypothesis> FindMergeLoops(const SessionData& a, const SessionData& 
   for (const SessionKeyframe& kb : b.keyframes) {
     for (const SessionKeyframe* ka : MergeCandidates(a, kb, r, sc)) {
       ++r.candidates;
-      const MatchResult akaze = MatchFeatures(ka->features.akaze, kb.features.akaze, pr.matching);
-      const MatchResult orb = MatchFeatures(ka->features.orb, kb.features.orb, pr.matching);
-      const LoopValidation v = ValidateLoop(ka->id, ka->features.grid, kb.id, kb.features.grid,
-                                            akaze, orb, pr.validation);
+      DetectorMap<MatchResult> matches;
+      for (DetectorKind kind : pr.validation.detectors) {
+        matches[kind] =
+            MatchFeatures(ka->features.Features(kind), kb.features.Features(kind), pr.matching);
+      }
+      const LoopValidation v =
+          ValidateLoop(ka->id, ka->features.grid, kb.id, kb.features.grid, matches, pr.validation);
       if (!v.accepted) continue;
       ++r.validated;
       Hypothesis h;

@@ -12,6 +12,7 @@
 
 #include "core/errors.h"
 #include "slam/session/blob_codec.h"
+#include "slam/session/session_loops.h"
 #include "slam/session/table_reader.h"
 
 namespace uwbsar::session {
@@ -108,6 +109,14 @@ SessionKeyframe ReadKeyframeRow(const TableReader& t, const SessionData& d,
   return k;
 }
 
+/// "AKAZE, ORB": the detectors of `k`'s features ("no features" when none).
+std::string DetectorList(const KeyframeFeatures& k) {
+  std::string out;
+  for (const auto& [kind, f] : k.by_detector)
+    out += (out.empty() ? "" : ", ") + std::string(DetectorName(kind));
+  return out.empty() ? "no features" : "features of " + out;
+}
+
 /// One row of the features table (its keypoints and descriptors within `limits`).
 FeatureSet ReadFeatureRow(const TableReader& t, DetectorKind kind, const LimitsConfig& limits) {
   FeatureSet f;
@@ -138,12 +147,12 @@ FeatureSet ReadFeatureRow(const TableReader& t, DetectorKind kind, const LimitsC
   return f;
 }
 
-/// The features table: the AKAZE and ORB rows of each keyframe of `d` (every keyframe needs
-/// both; rows of other keyframes or detectors are refused).
+/// The features table: one row per keyframe of `d` and detector; every keyframe needs rows of
+/// the same detectors (those the session was made with; AKAZE and ORB before
+/// validation.detectors), and rows of other keyframes are refused.
 void ReadFeatures(SqliteDb& db, const LimitsConfig& limits, SessionData* d) {
   std::map<int, SessionKeyframe*> by_id;
   for (SessionKeyframe& k : d->keyframes) by_id[k.id] = &k;
-  std::set<std::pair<int, DetectorKind>> seen;
   TableReader t(db, "features",
                 {"keyframe_id", "detector", "norm_type", "keypoints", "descriptors"});
   while (t.Next()) {
@@ -152,23 +161,21 @@ void ReadFeatures(SqliteDb& db, const LimitsConfig& limits, SessionData* d) {
     if (it == by_id.end()) t.Refuse("keyframe_id", std::to_string(id) + " is not a keyframe");
     const std::string name = t.Text("detector");
     DetectorKind kind = DetectorKind::kAkaze;
-    if (name == "AKAZE") {
-      kind = DetectorKind::kAkaze;
-    } else if (name == "ORB") {
-      kind = DetectorKind::kOrb;
-    } else {
-      t.Refuse("detector", "'" + name.substr(0, 40) + "' is not AKAZE or ORB");
-    }
-    if (!seen.insert({id, kind}).second) {
+    if (!ParseDetector(name, &kind))
+      t.Refuse("detector", "'" + name.substr(0, 40) + "' is not a detector");
+    DetectorMap<FeatureSet>& sets = it->second->features.by_detector;
+    if (sets.count(kind)) {
       t.Refuse("detector", name + " of keyframe " + std::to_string(id) + " appears twice");
     }
-    (kind == DetectorKind::kAkaze ? it->second->features.akaze : it->second->features.orb) =
-        ReadFeatureRow(t, kind, limits);
+    sets[kind] = ReadFeatureRow(t, kind, limits);
   }
   for (const SessionKeyframe& k : d->keyframes) {
-    if (!seen.count({k.id, DetectorKind::kAkaze}) || !seen.count({k.id, DetectorKind::kOrb})) {
-      throw InputError(db.path() + ": features: keyframe " + std::to_string(k.id) +
-                       " has no AKAZE or no ORB row");
+    const SessionKeyframe& first = d->keyframes.front();
+    if (k.features.by_detector.empty() ||
+        DetectorList(k.features) != DetectorList(first.features)) {
+      throw InputError(db.path() + ": features: keyframe " + std::to_string(k.id) + " has " +
+                       DetectorList(k.features) + ", keyframe " + std::to_string(first.id) + " " +
+                       DetectorList(first.features));
     }
   }
 }
@@ -214,13 +221,6 @@ void ReadKeyframes(SqliteDb& db, const LimitsConfig& limits, SessionData* d) {
                             std::tie(b.trajectory, b.stamp_ns, b.id);
                    });
   ReadFeatures(db, limits, d);
-}
-
-/// A keyframe column: an id of the keyframes table.
-int KeyframeRef(const TableReader& t, const std::string& column, const std::set<int>& keyframes) {
-  const int id = t.Id(column);
-  if (!keyframes.count(id)) t.Refuse(column, std::to_string(id) + " is not a keyframe");
-  return id;
 }
 
 /// 9 doubles, row-major: finite, symmetric and positive definite (as the pose graph needs).
@@ -287,30 +287,6 @@ void ReadEdges(SqliteDb& db, SessionData* d) {
   for (const auto& [idx, e] : edges) d->edges.push_back(e);
 }
 
-/// The loops table.
-void ReadLoops(SqliteDb& db, SessionData* d) {
-  TableReader t(db, "loops",
-                {"query_id", "match_id", "validated", "accepted", "x_m", "y_m", "yaw_rad", "chi2",
-                 "akaze_good", "orb_good", "reason"});
-  std::set<int> keyframes;
-  for (const SessionKeyframe& k : d->keyframes) keyframes.insert(k.id);
-  while (t.Next()) {
-    SessionLoop l;
-    l.query_id = KeyframeRef(t, "query_id", keyframes);
-    l.match_id = KeyframeRef(t, "match_id", keyframes);
-    l.validated = t.Flag("validated");
-    l.accepted = t.Flag("accepted");
-    if (l.accepted && !l.validated) t.Refuse("accepted", "is 1 for a loop not validated");
-    l.T_ij = ReadPose(t, "");
-    // NULL (a NaN chi2: never solved) reads as NaN; else finite and >= 0.
-    l.chi2 = t.RealOrNaN("chi2", 0.0, std::numeric_limits<double>::max());
-    l.akaze_good = static_cast<int>(t.Integer("akaze_good", 0, INT_MAX));
-    l.orb_good = static_cast<int>(t.Integer("orb_good", 0, INT_MAX));
-    l.reason = t.Text("reason", /*required=*/false);
-    d->loops.push_back(l);
-  }
-}
-
 /// The odometry table, by trajectory and time.
 void ReadOdometry(SqliteDb& db, SessionData* d) {
   TableReader t(db, "odometry", {"trajectory", "stamp_ns", "x_m", "y_m", "yaw_rad", "path_m"});
@@ -330,11 +306,17 @@ void ReadOdometry(SqliteDb& db, SessionData* d) {
 
 }  // namespace
 
+int KeyframeRef(const TableReader& t, const std::string& column, const std::set<int>& keyframes) {
+  const int id = t.Id(column);
+  if (!keyframes.count(id)) t.Refuse(column, std::to_string(id) + " is not a keyframe");
+  return id;
+}
+
 void ReadSessionTables(SqliteDb& db, const LimitsConfig& limits, SessionData* d) {
   ReadTrajectories(db, d);
   ReadKeyframes(db, limits, d);
   ReadEdges(db, d);
-  ReadLoops(db, d);
+  ReadLoopTables(db, d);
   ReadOdometry(db, d);
 }
 

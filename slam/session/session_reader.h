@@ -4,9 +4,13 @@
 // to keyframes), and the sizes blobs declare checked against `limits` before allocation.
 #pragma once
 
+#include <set>
+#include <string>
+
 #include "core/limits_config.h"
 #include "slam/session/session_data.h"
 #include "slam/session/sqlite_db.h"
+#include "slam/session/table_reader.h"
 
 namespace uwbsar::session {
 
@@ -20,5 +24,8 @@ constexpr double kMaxResolutionM = 10.0;
 /// Reads the trajectories, keyframes (with features), edges, loops and odometry of `db`, whose
 /// d->format_version is already set, into `d`. Throws InputError, one line naming the file.
 void ReadSessionTables(SqliteDb& db, const LimitsConfig& limits, SessionData* d);
+
+/// The value of a keyframe column of `t`: an id of `keyframes` (else refused, naming the row).
+int KeyframeRef(const TableReader& t, const std::string& column, const std::set<int>& keyframes);
 
 }  // namespace uwbsar::session

@@ -20,7 +20,7 @@ TEST(LoopStatsTest, PaperLikeStatsGiveTheDiagonalLoopMatrix) {
                           "2,1,3,-,-,-,-,8,0.05,28,826,7.11\n";
   const std::vector<PairStats> stats = ParsePairStats(csv, "s.csv");
   ASSERT_EQ(stats.size(), 4u);
-  EXPECT_FALSE(stats[3].akaze.has_transform);
+  EXPECT_FALSE(stats[3].detectors.at(DetectorKind::kAkaze).has_transform);
   const LoopMatrix m = EvaluateLoopMatrix(stats, LoopValidationConfig{});
   EXPECT_EQ(m.d_ids, (std::vector<int>{1, 2}));
   EXPECT_EQ(m.r_ids, (std::vector<int>{1, 2}));
@@ -41,15 +41,15 @@ TEST(LoopStatsTest, RowsRoundTripThroughTheWriter) {
   PairStats p;
   p.d = 3;
   p.r = 4;
-  p.akaze = {12, true, 1.01, 2.5, -3.25, 0.5};
-  p.orb.good_matches = 2;  // no transform
+  p.detectors[DetectorKind::kAkaze] = {12, true, 1.01, 2.5, -3.25, 0.5};
+  p.detectors[DetectorKind::kOrb].good_matches = 2;  // no transform
   const std::vector<PairStats> back =
       ParsePairStats(std::string(kHeader) + PairStatsRow(p) + "\n", "s");
   ASSERT_EQ(back.size(), 1u);
   EXPECT_EQ(back[0].d, 3);
-  EXPECT_DOUBLE_EQ(back[0].akaze.ty_px, -3.25);
-  EXPECT_FALSE(back[0].orb.has_transform);
-  EXPECT_EQ(back[0].orb.good_matches, 2);
+  EXPECT_DOUBLE_EQ(back[0].detectors.at(DetectorKind::kAkaze).ty_px, -3.25);
+  EXPECT_FALSE(back[0].detectors.at(DetectorKind::kOrb).has_transform);
+  EXPECT_EQ(back[0].detectors.at(DetectorKind::kOrb).good_matches, 2);
 }
 
 TEST(LoopStatsTest, ColumnsMayComeInAnyOrderWithExtras) {
@@ -61,7 +61,7 @@ TEST(LoopStatsTest, ColumnsMayComeInAnyOrderWithExtras) {
   ASSERT_EQ(s.size(), 1u);
   EXPECT_EQ(s[0].d, 1);
   EXPECT_EQ(s[0].r, 2);
-  EXPECT_EQ(s[0].akaze.good_matches, 40);
+  EXPECT_EQ(s[0].detectors.at(DetectorKind::kAkaze).good_matches, 40);
 }
 
 void ExpectInputError(const std::string& csv, const std::string& fragment) {

@@ -82,9 +82,9 @@ TEST(OfficeRunTest, SeveralLoopsNoFalseLoopAndAteWithinTenCentimetres) {
       worst_accepted_m = std::max(worst_accepted_m, err_m);
     }
     std::printf("loop %d -> %d: akaze %d orb %d, error %.1f mm %.2f deg, backend %s chi2 %.2f%s\n",
-                l.match_id, l.query_id, l.akaze.good_matches, l.orb.good_matches, err_m * 1e3,
-                err_deg, l.rejected_by_backend ? "rejected" : "accepted", l.chi2,
-                is_false ? "  FALSE" : "");
+                l.match_id, l.query_id, l.Match(DetectorKind::kAkaze).good_matches,
+                l.Match(DetectorKind::kOrb).good_matches, err_m * 1e3, err_deg,
+                l.rejected_by_backend ? "rejected" : "accepted", l.chi2, is_false ? "  FALSE" : "");
   }
   const double log_s = run.log_duration_s();
   const pipeline::StageTimes& t = run.slam->times();

@@ -49,7 +49,8 @@ TEST(SlamSystemTest, SeedLabDepartReturnBeatsOdometryByThreeTimes) {
     const double err = std::hypot(T.x_m - truth.x_m, T.y_m - truth.y_m);
     worst_loop_m = std::max(worst_loop_m, err);
     std::printf("loop %d -> %d: akaze %d orb %d, error %.1f mm %.2f deg, backend %s chi2 %.2f\n",
-                l.match_id, l.query_id, l.akaze.good_matches, l.orb.good_matches, err * 1e3,
+                l.match_id, l.query_id, l.Match(DetectorKind::kAkaze).good_matches,
+                l.Match(DetectorKind::kOrb).good_matches, err * 1e3,
                 NormalizeAngle(T.yaw_rad - truth.yaw_rad) * 180 / M_PI,
                 l.rejected_by_backend ? "rejected" : "accepted", l.chi2);
   }

@@ -88,8 +88,8 @@ TEST(LoopValidatorTest, AcceptedLoopRecoversTheTransformWithAMatchDerivedInforma
   EXPECT_NEAR(lc.T_ij.x_m, T_ij.x_m, 0.003);
   EXPECT_NEAR(lc.T_ij.y_m, T_ij.y_m, 0.003);
   EXPECT_NEAR(lc.T_ij.yaw_rad, T_ij.yaw_rad, 0.002);
-  EXPECT_EQ(lc.good_matches_akaze, 60);
-  EXPECT_EQ(lc.good_matches_orb, 40);
+  EXPECT_EQ(lc.good_matches.at(DetectorKind::kAkaze), 60);
+  EXPECT_EQ(lc.good_matches.at(DetectorKind::kOrb), 40);
   // Symmetric positive definite, and no tighter than the configured floors.
   EXPECT_TRUE(lc.information.isApprox(lc.information.transpose()));
   const Eigen::Vector3d eig =

@@ -76,7 +76,7 @@ TEST(PlaceRecognizerTest, FindsTheRevisitWithTheExactMetricTransform) {
   EXPECT_GT(lc.information(0, 0), 0.0);
   EXPECT_GT(r.features_ms, 0.0);
   ASSERT_NE(pr.Find(1), nullptr);
-  EXPECT_GT(pr.Find(1)->akaze.size(), 10);
+  EXPECT_GT(pr.Find(1)->Features(DetectorKind::kAkaze).size(), 10);
 }
 
 TEST(PlaceRecognizerTest, FarPriorFindsNothingButTheNoPriorModeDoes) {

@@ -84,11 +84,15 @@ Scores Evaluate(const Config& config, const std::vector<Keyframe>& keyframes,
                                       m[DetectorKind::kOrb], pr.validation));
       const KeyframeFeatures& fa = cached[i];
       const KeyframeFeatures& fb = cached[j];
-      LoopValidation v = ValidateLoop(
-          fa.id, fa.grid, fb.id, fb.grid, MatchFeatures(fa.akaze, fb.akaze, at_features.matching),
-          MatchFeatures(fa.orb, fb.orb, at_features.matching), at_features.validation);
+      LoopValidation v =
+          ValidateLoop(fa.id, fa.grid, fb.id, fb.grid,
+                       MatchFeatures(fa.Features(DetectorKind::kAkaze),
+                                     fb.Features(DetectorKind::kAkaze), at_features.matching),
+                       MatchFeatures(fa.Features(DetectorKind::kOrb),
+                                     fb.Features(DetectorKind::kOrb), at_features.matching),
+                       at_features.validation);
       score("PR", v);
-      if (!v.accepted && HasRadarFeatures(fa) && HasRadarFeatures(fb)) {
+      if (!v.accepted && HasRadarFeatures(fa, at_features) && HasRadarFeatures(fb, at_features)) {
         v = MatchByRadar(fa, fb, at_features).validation;
       }
       score("PR+radar", v);

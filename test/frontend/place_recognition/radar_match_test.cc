@@ -162,12 +162,13 @@ TEST(RadarMatchTest, DifferentCorridorsAreNotMatched) {
 TEST(RadarMatchTest, RadarsArePairedByTheirLookDirectionInTheWorld) {
   SystemConfig config;
   KeyframeFeatures out = ExtractKeyframeFeatures(WayOut(), config);
-  ASSERT_TRUE(HasRadarFeatures(out));
+  ASSERT_TRUE(HasRadarFeatures(out, PlaceRecognitionConfig()));
   ASSERT_EQ(out.look_anchor_rad.size(), 2u);
   EXPECT_NEAR(out.look_anchor_rad[kLeft], M_PI / 2, 1e-9);
   EXPECT_NEAR(out.look_anchor_rad[kRight], -M_PI / 2, 1e-9);
   // Every keypoint lies on its radar's side of the path, in pixels of the whole tile.
-  for (const FeatureSet* f : {&out.akaze_radar, &out.orb_radar}) {
+  for (const FeatureSet* f :
+       {&out.RadarFeatures(DetectorKind::kAkaze), &out.RadarFeatures(DetectorKind::kOrb)}) {
     EXPECT_GT(f->size(), 20);
     EXPECT_EQ(f->descriptors.rows, f->size());
     for (const cv::KeyPoint& kp : f->keypoints) {

@@ -47,8 +47,10 @@ std::vector<std::pair<int, int>> NonMarginalDifferences(const pipeline::SlamSyst
     for (const pipeline::LoopRecord& l : pair.first->loops()) {
       if (!l.accepted() || other.count({l.match_id, l.query_id})) continue;
       std::printf("A: loop %d-%d only in one run (good matches AKAZE %d, ORB %d)\n", l.match_id,
-                  l.query_id, l.akaze.good_matches, l.orb.good_matches);
-      if (std::min(l.akaze.good_matches, l.orb.good_matches) > marginal) {
+                  l.query_id, l.Match(DetectorKind::kAkaze).good_matches,
+                  l.Match(DetectorKind::kOrb).good_matches);
+      if (std::min(l.Match(DetectorKind::kAkaze).good_matches,
+                   l.Match(DetectorKind::kOrb).good_matches) > marginal) {
         out.push_back({l.match_id, l.query_id});
       }
     }

@@ -20,6 +20,7 @@
 #include "slam/session_capture.h"
 #include "test/shared_data.h"
 #include "test/slam/session/session_test_util.h"
+#include "test/slam/session/version3_loops.h"
 
 namespace uwbsar {
 namespace {
@@ -108,8 +109,9 @@ TEST_F(SessionFileTest, RoundTripKeepsPosesTilesFeaturesAndEdges) {
     EXPECT_EQ(x.detected_grid.rows, y.detected_grid.rows);
     EXPECT_EQ(x.features.grid.cols, y.features.grid.cols);
     EXPECT_EQ(x.features.centre_anchor.x_m, y.features.centre_anchor.x_m);
-    ExpectSameFeatures(x.features.akaze, y.features.akaze);
-    ExpectSameFeatures(x.features.orb, y.features.orb);
+    ASSERT_EQ(x.features.by_detector.size(), y.features.by_detector.size());
+    for (const auto& [kind, f] : x.features.by_detector)
+      ExpectSameFeatures(f, y.features.Features(kind));
   }
   ASSERT_EQ(loaded.edges.size(), a.edges.size());
   int calibrated = 0;  // odometry edges that carry their trajectory (what the round trip keeps)
@@ -131,6 +133,10 @@ TEST_F(SessionFileTest, RoundTripKeepsPosesTilesFeaturesAndEdges) {
     }
   }
   ASSERT_EQ(loaded.loops.size(), a.loops.size());
+  for (std::size_t i = 0; i < a.loops.size(); ++i) {
+    EXPECT_EQ(loaded.loops[i].good_matches, a.loops[i].good_matches);
+    EXPECT_EQ(loaded.loops[i].reason, a.loops[i].reason);
+  }
   EXPECT_EQ(loaded.odometry.size(), a.odometry.size());
   EXPECT_EQ(loaded.config_yaml, a.config_yaml);
   const double bytes = static_cast<double>(fs::file_size(Path()));
@@ -178,13 +184,14 @@ TEST_F(SessionFileTest, ForeignDamagedAndOtherVersionFilesAreRefused) {
   sqlite3_close(db);
   EXPECT_NE(ErrorOf([&] { ReadSession(future); }).find("format version 99"), std::string::npos);
 
-  // Version 1 had no calibration columns on its edges: it reads, its edges uncalibrated.
+  // Version 1 had no calibration columns on its edges: it reads, its edges uncalibrated
+  // (and, as versions up to 3, its loops' good-match counts in akaze_good and orb_good).
   const std::string version1 = *dir_ + "/version1.uwbsar";
   fs::copy_file(Path(), version1);
   ASSERT_EQ(sqlite3_open(version1.c_str(), &db), SQLITE_OK);
   for (const char* sql :
-       {"ALTER TABLE edges DROP COLUMN trajectory", "ALTER TABLE edges DROP COLUMN path_m",
-        "ALTER TABLE edges DROP COLUMN turn_rad",
+       {testing::kLoopsToVersion3Sql, "ALTER TABLE edges DROP COLUMN trajectory",
+        "ALTER TABLE edges DROP COLUMN path_m", "ALTER TABLE edges DROP COLUMN turn_rad",
         "UPDATE meta SET value = '1' WHERE key = 'format_version'"}) {
     ASSERT_EQ(sqlite3_exec(db, sql, nullptr, nullptr, nullptr), SQLITE_OK) << sql;
   }

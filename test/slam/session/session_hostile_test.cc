@@ -25,6 +25,7 @@
 #include "slam/session_mosaic.h"
 #include "test/slam/session/session_test_util.h"
 #include "test/slam/session/tiny_session.h"
+#include "test/slam/session/version3_loops.h"
 
 namespace uwbsar {
 namespace {
@@ -262,7 +263,8 @@ TEST_F(SessionHostileTest, MapExtentBeyondMaxImagePixelsIsRefusedNamingTheFile) 
 
 TEST_F(SessionHostileTest, Version2FilesReadWithoutFingerprintsAndVersion3KeepsThem) {
   EXPECT_EQ(ReadSession(path_).trajectories.at(0).fingerprint, saved_.trajectories[0].fingerprint);
-  Sql("ALTER TABLE trajectories DROP COLUMN fingerprint; "
+  Sql(std::string(testing::kLoopsToVersion3Sql) +
+      "ALTER TABLE trajectories DROP COLUMN fingerprint; "
       "UPDATE meta SET value = '2' WHERE key = 'format_version'");
   const SessionData old = ReadSession(path_);
   EXPECT_EQ(old.format_version, 2);

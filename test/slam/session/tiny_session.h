@@ -54,8 +54,8 @@ inline SessionData TinySession() {
     s.features.grid = s.detected_grid;
     s.features.grid.resolution_m = 0.1;
     s.features.grid.rows = s.features.grid.cols = 4;
-    s.features.akaze = TinyFeatures(DetectorKind::kAkaze, 61, k);
-    s.features.orb = TinyFeatures(DetectorKind::kOrb, 32, k);
+    s.features.by_detector[DetectorKind::kAkaze] = TinyFeatures(DetectorKind::kAkaze, 61, k);
+    s.features.by_detector[DetectorKind::kOrb] = TinyFeatures(DetectorKind::kOrb, 32, k);
     s.features.centre_anchor = {0.1, -0.1};
     s.features.path_begin_m = s.path_begin_m;
     s.features.T_world_anchor = s.T_map_anchor;
@@ -84,8 +84,7 @@ inline SessionData TinySession() {
   l.validated = l.accepted = true;
   l.T_ij = loop.edge.T_from_to;
   l.chi2 = 0.25;
-  l.akaze_good = 12;
-  l.orb_good = 9;
+  l.good_matches = {{DetectorKind::kAkaze, 12}, {DetectorKind::kOrb, 9}};
   l.reason = "accepted";
   d.loops.push_back(l);
   for (int i = 0; i < 5; ++i) {
