@@ -117,12 +117,13 @@ void WriteTable4(const RegionStudy& s, double px_m, Outputs* o) {
 
 /// The per-pair statistics, and the loop matrix and list of the AKAZE+ORB rule.
 void WriteStatsAndLoops(const RegionStudy& s, Outputs* o) {
-  o->stats << [] {
+  o->stats << [&s] {
     std::string h;
-    for (const std::string& c : PairStatsColumns()) h += (h.empty() ? "" : ",") + c;
+    for (const std::string& c : PairStatsColumns(s.stats_detectors))
+      h += (h.empty() ? "" : ",") + c;
     return h;
   }() << "\n";
-  for (const PairStats& p : s.stats) o->stats << PairStatsRow(p) << "\n";
+  for (const PairStats& p : s.stats) o->stats << PairStatsRow(p, s.stats_detectors) << "\n";
   o->loops_csv << "d,r,accepted,x_m,y_m,yaw_deg,reason\n";
   o->loops_md << "| D \\ R |";
   for (const StudyRegion& r : s.r_regions) o->loops_md << " R" << r.index << " |";

@@ -41,7 +41,9 @@ void WriteStudy(const ImageLoopStudy& study, const std::string& out_dir) {
 }  // namespace
 
 ImageMatchJobResult RunImageMatchJob(const Config& config, const ImageMatchJobOptions& o) {
-  const std::vector<DetectorKind> detectors = ParseDetectorList(o.detectors);
+  const std::vector<DetectorKind> detectors = o.detectors.empty()
+                                                  ? config.place_recognition.validation.detectors
+                                                  : ParseDetectorList(o.detectors);
   if (!o.out_dir.empty()) EnsureDirectory(o.out_dir);
   const double max_pixels = config.limits.max_map_image_pixels;
   const SarImageFile a = ReadSarImageFile(o.a, o.resolution_m, max_pixels);
@@ -63,8 +65,9 @@ ImageMatchJobResult RunImageMatchJob(const Config& config, const ImageMatchJobOp
 
 LoopMatrixJobResult LoopMatrixFromStats(const Config& config, const std::string& stats_csv) {
   LoopMatrixJobResult result;
-  result.matrix =
-      EvaluateLoopMatrix(ReadPairStatsFile(stats_csv), config.place_recognition.validation);
+  result.matrix = EvaluateLoopMatrix(
+      ReadPairStatsFile(stats_csv, config.place_recognition.validation.detectors),
+      config.place_recognition.validation);
   const LoopMatrix& m = result.matrix;
   result.json = {{"loops", m.loops}, {"d", m.d_ids}, {"r", m.r_ids}};
   return result;
@@ -73,7 +76,9 @@ LoopMatrixJobResult LoopMatrixFromStats(const Config& config, const std::string&
 LoopMatrixJobResult LoopMatrixFromImages(const Config& config, const std::string& images_dir,
                                          double resolution_m, const std::string& detectors,
                                          const std::string& out_dir) {
-  const std::vector<DetectorKind> kinds = ParseDetectorList(detectors);
+  const std::vector<DetectorKind> kinds = detectors.empty()
+                                              ? config.place_recognition.validation.detectors
+                                              : ParseDetectorList(detectors);
   if (!out_dir.empty()) EnsureDirectory(out_dir);
   const ImageLoopStudy study = RunImageLoopStudy(images_dir, resolution_m, kinds, config,
                                                  config.limits.max_map_image_pixels);

@@ -15,10 +15,11 @@
 namespace uwbsar::pipeline {
 
 struct ImageMatchJobOptions {
-  std::string a, b;                     ///< the images: PNG/PGM, float TIFF, or a grid YAML
-  double resolution_m = 0.005;          ///< metres per pixel when no grid YAML describes one
-  std::string detectors = "akaze,orb";  ///< comma-separated (ParseDetectorList)
-  std::string out_dir;  ///< also write match.png and match.json here; empty: not written
+  std::string a, b;             ///< the images: PNG/PGM, float TIFF, or a grid YAML
+  double resolution_m = 0.005;  ///< metres per pixel when no grid YAML describes one
+  std::string detectors;        ///< comma-separated (ParseDetectorList); "": the loop rule's pair
+                                ///< (place_recognition.validation.detectors)
+  std::string out_dir;          ///< also write match.png and match.json here; empty: not written
 };
 
 struct ImageMatchJobResult {

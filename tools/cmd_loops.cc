@@ -39,7 +39,7 @@ void PrintReasons(const LoopMatrix& m) {
 
 void AddLoopsCommand(CLI::App& app, const GlobalOptions& globals) {
   struct Options {
-    std::string stats_path, images_dir, out_dir, detectors = "akaze,orb";
+    std::string stats_path, images_dir, out_dir, detectors;
     double resolution_m = 0.005;
     bool json = false;
     bool reasons = false;
@@ -58,8 +58,9 @@ void AddLoopsCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--resolution", opts->resolution_m,
                   "--images: metres per pixel when no grid YAML describes an image")
       ->capture_default_str();
-  cmd->add_option("--detectors", opts->detectors, "--images: comma-separated detectors")
-      ->capture_default_str();
+  cmd->add_option("--detectors", opts->detectors,
+                  "--images: comma-separated detectors (default: the loop rule's pair, "
+                  "place_recognition.validation.detectors)");
   cmd->add_option("--out", opts->out_dir,
                   "--images: write pairs.csv, pairs.md, loops.json and matrix.png here");
   cmd->add_flag("--json", opts->json,

@@ -53,9 +53,8 @@ void AddMatchCommand(CLI::App& app, const GlobalOptions& globals) {
                   "Metres per pixel when no grid YAML describes an image")
       ->capture_default_str();
   cmd->add_option("--detectors", opts->detectors,
-                  "Comma-separated detectors (akaze,orb are needed for the loop rule; also "
-                  "sift,surf,brisk)")
-      ->capture_default_str();
+                  "Comma-separated detectors (default: the loop rule's pair, "
+                  "place_recognition.validation.detectors; also sift,surf,brisk,akaze,orb)");
   cmd->add_flag("--json", opts->json, "Print the result as one JSON document");
   cmd->add_option("--out", opts->out_dir, "Also write match.png (good matches) and match.json");
   cmd->callback([opts, &globals] {
