@@ -24,7 +24,7 @@
 namespace uwbsar::live {
 namespace {
 
-constexpr int kFakeSamples = 700;      // not radars[].num_samples (1000): the start-up's count
+constexpr int kFakeSamples = 700;       // not radars[].num_samples (1000): the start-up's count
 constexpr double kFakeRangeMinM = 0.3;  // not radars[].range_offset_m (0)
 
 /// What the fakes were created with, for the test to check.
@@ -90,7 +90,8 @@ class FakeRadar : public RadarDevice {
       scan.stamp_ns = args_.clock ? args_.clock() : 0;
       scan.samples.resize(kFakeSamples);
       for (int k = 0; k < kFakeSamples; ++k) {
-        scan.samples[k] = 0.01f * static_cast<float>(std::sin(0.37 * k + 0.05 * static_cast<double>(frame)));
+        scan.samples[k] =
+            0.01f * static_cast<float>(std::sin(0.37 * k + 0.05 * static_cast<double>(frame)));
       }
       ++frame;
       args_.sink(std::move(scan));
