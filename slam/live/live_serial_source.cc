@@ -36,7 +36,7 @@ class SerialSource : public LiveSource {
                        " devices for " + std::to_string(config.radars.size()) +
                        " radars: give one serial device per radars[] entry");
     }
-    live::RequireRadarModel(lc_.radar_model);
+    live::RequireRadarModel(lc_.radar_model);  // ConfigError naming the registered ones
     // GPIO first: a missing chip or line stops the run before anything moves.
     std::unique_ptr<live::GpioChip> chip =
         options.gpio ? std::move(options.gpio) : live::OpenConfiguredChip(lc_);
