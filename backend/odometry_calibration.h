@@ -50,6 +50,15 @@ inline OdometryTravel TravelOf(const Pose2& T_a_b) {
   return {std::hypot(T_a_b.x_m, T_a_b.y_m), T_a_b.yaw_rad};
 }
 
+/// The travel of a step: `path_m` and `turn_rad` where given (path_m >= 0, turn_rad finite),
+/// else TravelOf(T_a_b)'s.
+inline OdometryTravel TravelOf(const Pose2& T_a_b, double path_m, double turn_rad) {
+  OdometryTravel travel = TravelOf(T_a_b);
+  if (path_m >= 0) travel.path_m = path_m;
+  if (std::isfinite(turn_rad)) travel.turn_rad = turn_rad;
+  return travel;
+}
+
 /// T_c of the file comment, generic over Ceres jets. `corrected` is (x_m, y_m, yaw_rad).
 template <typename T>
 void CorrectOdometryStep(const T* calibration, const Pose2& measured, const OdometryTravel& travel,

@@ -153,9 +153,7 @@ void PoseGraph::InsertPending(std::vector<PendingNode> nodes, const std::vector<
     if (se->edge.kind == EdgeKind::kOdometry && se->edge.trajectory >= 0 &&
         config_.odometry_calibration) {
       se->calibration = CalibrationFor(se->edge.trajectory);
-      se->travel = TravelOf(se->edge.T_from_to);
-      if (se->edge.path_m >= 0) se->travel.path_m = se->edge.path_m;
-      if (std::isfinite(se->edge.turn_rad)) se->travel.turn_rad = se->edge.turn_rad;
+      se->travel = TravelOf(se->edge.T_from_to, se->edge.path_m, se->edge.turn_rad);
       node_trajectory_[se->edge.from_id] = se->edge.trajectory;
       node_trajectory_[se->edge.to_id] = se->edge.trajectory;
     }

@@ -149,6 +149,17 @@ class PoseGraph {
                       double path_m = -1.0,
                       double turn_rad = std::numeric_limits<double>::quiet_NaN());
 
+  /// The next node of an odometry chain: adds node `to_id` and the odometry edge
+  /// AddOdometryEdge(from_id, to_id, ...) with the same arguments. The node starts on the
+  /// corrected trajectory: the estimate of `from_id` composed with T_from_to, corrected by
+  /// the base's calibration mean (BackendConfig::CalibrationMean, backend/odometry_calibration.h)
+  /// when odometry_calibration is on and `trajectory` >= 0 (all zero, the default mean,
+  /// leaves the step exactly as measured). Returns that estimate. Throws as AddNode and
+  /// AddOdometryEdge, and std::out_of_range on an unknown `from_id` (graph unchanged).
+  Pose2 AddOdometryNode(int from_id, int to_id, const Pose2& T_from_to, int trajectory = 0,
+                        double path_m = -1.0,
+                        double turn_rad = std::numeric_limits<double>::quiet_NaN());
+
   /// A loop edge with the configured default information.
   int AddLoopEdge(int from_id, int to_id, const Pose2& T_from_to);
 
@@ -197,7 +208,7 @@ class PoseGraph {
   void ConsistencyRounds(OptimizeResult* result);  ///< backend/odometry_consistency.h
   bool AdmitConfirmedLoops();  ///< admits held-back loops that the estimate confirms
   void ChordalStart();
-  // backend/pose_graph_calibration.cc
+  // backend/pose_graph_calibration.cc (also AddOdometryNode)
   CalibrationBlock* CalibrationFor(int trajectory);
   void UpdateCalibrationFreedom();  ///< free a block while an accepted loop touches its nodes
   double TotalChi2() const;         ///< accepted edges and the free blocks' priors

@@ -1,5 +1,6 @@
-// PoseGraph's odometry calibration blocks and the trial solve of held-back loops
-// (see backend/pose_graph.h, steps 4b and the calibration paragraph).
+// PoseGraph's odometry calibration: a new node's estimate on the corrected odometry
+// (AddOdometryNode), the calibration blocks, and the trial solve of held-back loops (see
+// backend/pose_graph.h, steps 4b and the calibration paragraph).
 #include <ceres/problem.h>
 
 #include <algorithm>
@@ -8,10 +9,23 @@
 #include <utility>
 #include <vector>
 
+#include "backend/odometry_calibration.h"
 #include "backend/pose_graph.h"
 #include "backend/pose_graph_solver.h"
 
 namespace uwbsar {
+
+Pose2 PoseGraph::AddOdometryNode(int from_id, int to_id, const Pose2& T_from_to, int trajectory,
+                                 double path_m, double turn_rad) {
+  const Pose2 step = config_.odometry_calibration && trajectory >= 0
+                         ? CorrectedOdometryStep(config_.CalibrationMean(), T_from_to,
+                                                 TravelOf(T_from_to, path_m, turn_rad))
+                         : T_from_to;
+  const Pose2 estimate = GetPose(from_id) * step;
+  AddNode(to_id, estimate, /*reseed_from_odometry=*/false);
+  AddOdometryEdge(from_id, to_id, T_from_to, trajectory, path_m, turn_rad);
+  return estimate;
+}
 
 PoseGraph::CalibrationBlock* PoseGraph::CalibrationFor(int trajectory) {
   auto it = calibrations_.find(trajectory);

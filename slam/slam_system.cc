@@ -5,7 +5,6 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
-#include "backend/odometry_calibration.h"
 #include "core/errors.h"
 #include "core/log.h"
 #include "imaging/enhance.h"
@@ -177,17 +176,9 @@ Pose2 SlamSystem::AddGraphNode(const Keyframe& keyframe) {
                                           0.5 * (prev.path_begin_m + prev.path_end_m));
   const double turn_rad =
       NormalizeAngle(keyframe.T_world_robot.yaw_rad - prev.T_world_robot.yaw_rad);
-  // The node starts on the corrected trajectory: the previous keyframe's estimate composed
-  // with the odometry between the two, corrected by the base's calibration where one is given
-  // (all zero, the default, leaves the step exactly as measured).
-  const Pose2 estimate =
-      graph_->GetPose(prev.id) * (config_.backend.odometry_calibration
-                                      ? CorrectedOdometryStep(config_.backend.CalibrationMean(),
-                                                              T_prev_this, {path_m, turn_rad})
-                                      : T_prev_this);
-  graph_->AddNode(keyframe.id, estimate, /*reseed_from_odometry=*/false);
-  graph_->AddOdometryEdge(prev.id, keyframe.id, T_prev_this, /*trajectory=*/0, path_m, turn_rad);
-  return estimate;
+  // The node starts on the corrected trajectory (the backend applies the base's calibration).
+  return graph_->AddOdometryNode(prev.id, keyframe.id, T_prev_this, /*trajectory=*/0, path_m,
+                                 turn_rad);
 }
 
 void SlamSystem::AddLoop(const LoopAttempt& attempt, int keyframe_id) {

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/config_require.h"
+#include "drivers/live/radar_driver_factory.h"
 
 namespace uwbsar {
 
@@ -11,6 +12,12 @@ using config_validation::Require;
 
 void Validate(const LiveConfig& l, const std::string& src) {
   const std::string k = "live.";
+  if (!live::IsRadarModel(l.radar_model)) {
+    std::string known;
+    for (const std::string& m : live::RadarModels()) known += (known.empty() ? "" : ", ") + m;
+    Require(false, src, k + "radar_model",
+            "is '" + l.radar_model + "', not a known radar model (" + known + ")");
+  }
   for (std::size_t i = 0; i < l.radar_devices.size(); ++i) {
     Require(!l.radar_devices[i].empty(), src, k + "radar_devices[" + std::to_string(i) + "]",
             "must not be empty");

@@ -47,6 +47,9 @@ struct Lt102Config {
 /// recording. Device paths and GPIO lines are the robot's; config/robot.yaml is the
 /// paper's robot.
 struct LiveConfig {
+  /// The radars' model: which driver runs each of them (drivers/live/radar_driver_factory.h
+  /// lists the registered models; "lt102": the LT102 over serial, live.lt102.*)
+  std::string radar_model = "lt102";
   std::vector<std::string> radar_devices = {
       "/dev/ttyACM0", "/dev/ttyACM1"};           ///< serial
                                                  ///< device of radars[i] (one per radar)
@@ -89,6 +92,7 @@ struct LiveConfig {
 
   template <class V>
   void Visit(V& v) {
+    v("radar_model", radar_model);
     v("radar_devices", radar_devices);
     v("radar_baud", radar_baud);
     v("kobuki_device", kobuki_device);

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <thread>
+#include <variant>
 
 #include "core/errors.h"
 #include "core/log.h"
@@ -23,6 +24,41 @@
 
 namespace uwbsar::pipeline {
 namespace {
+
+nlohmann::json StatValueJson(const live::RadarStatValue& value) {
+  return std::visit([](const auto& v) { return nlohmann::json(v); }, value);
+}
+
+/// One radar of live.json: the generic counts, then the model's own ("group.key" nested).
+nlohmann::json RadarJson(const live::RadarStats& s) {
+  nlohmann::json radar = {
+      {"startups", s.startups},
+      {"startup_failures", s.startup_failures},
+      {"config_errors", s.config_errors},
+      {"frame_rate_fps", s.setup.frame_rate_fps},
+      {"frame_rate_requested_fps", s.setup.frame_rate_requested_fps},
+      {"frames_delivered", s.frames_delivered},
+      {"frames_repeated", s.frames_repeated},
+      {"frames_missed", s.frames_missed},
+      {"frames_lost", s.frames_lost},
+      {"stamp_reanchors", s.stamp_reanchors},
+      {"invalid_frames", s.invalid_frames},
+      {"configured", s.configured},
+      {"setup", s.configured ? s.setup.description : std::string()},
+      {"range_min_m", s.setup.range_min_m},
+      {"range_max_m", s.setup.range_max_m},
+      {"samples_per_scan", s.setup.samples_per_scan},
+  };
+  for (const auto& [key, value] : s.extra) {
+    const std::size_t dot = key.find('.');
+    if (dot == std::string::npos) {
+      radar[key] = StatValueJson(value);
+    } else {
+      radar[key.substr(0, dot)][key.substr(dot + 1)] = StatValueJson(value);
+    }
+  }
+  return radar;
+}
 
 void WriteLiveJson(const LiveRunResult& result, const std::string& source,
                    const std::string& out_dir) {
@@ -46,39 +82,7 @@ void WriteLiveJson(const LiveRunResult& result, const std::string& source,
   live["mode"] = result.localized ? "localize" : "map";
   if (result.localized) live["localize"] = result.localize_summary;
   nlohmann::json radars = nlohmann::json::object();
-  for (const auto& [name, s] : result.radars) {
-    radars[name] = {
-        {"startups", s.startups},
-        {"startup_failures", s.startup_failures},
-        {"config_errors", s.config_errors},
-        {"frame_rate_fps", s.setup.frame_rate_fps},
-        {"frame_rate_requested_fps", s.setup.frame_rate_requested_fps},
-        {"frame_requests", s.requests},
-        {"frame_answers", s.answers},
-        {"requests_per_s",
-         s.acquiring_s > 0 ? static_cast<double>(s.requests) / s.acquiring_s : 0.0},
-        {"frames_delivered", s.frames_delivered},
-        {"frames_repeated", s.frames_repeated},
-        {"frames_missed", s.frames_missed},
-        {"frames_lost", s.lost},
-        {"late_answers", s.late_answers},
-        {"stamp_reanchors", s.stamp_reanchors},
-        {"unanswered_at_stop", s.unanswered_at_stop},
-        {"invalid_frames", s.invalid_frames},
-        {"request_to_answer_ms",
-         {{"p50", s.answer_p50_ms}, {"p99", s.answer_p99_ms}, {"max", s.answer_max_ms}}},
-        {"command_requests", s.exchange.requests},
-        {"wrong_answers", s.exchange.wrong_answers},
-        {"missing_answers", s.exchange.missing_answers},
-        {"retries", s.exchange.retries},
-        {"stops_sent", s.stops},
-        {"configured", s.configured},
-        {"setup", s.configured ? s.setup.Describe() : std::string()},
-        {"range_min_m", s.setup.range_min_m},
-        {"range_max_m", s.setup.range_max_m},
-        {"samples_per_scan", s.setup.samples_per_scan},
-    };
-  }
+  for (const auto& [name, s] : result.radars) radars[name] = RadarJson(s);
   live["radars"] = radars;
   WriteTextAtomic((std::filesystem::path(out_dir) / "live.json").string(), live.dump(2) + "\n");
 }
@@ -161,10 +165,9 @@ LiveRunResult FinishRun(const LiveRunOptions& options, const live::FaultLog& fau
       char line[320];
       std::snprintf(line, sizeof(line),
                     "%s: %lld frames at %d frames/s, %lld repeated answers dropped, %lld frames "
-                    "missed, %lld requests lost; %.1f requests/s",
+                    "missed, %lld frames lost",
                     name.c_str(), s.frames_delivered, s.setup.frame_rate_fps, s.frames_repeated,
-                    s.frames_missed, s.lost,
-                    s.acquiring_s > 0 ? static_cast<double>(s.requests) / s.acquiring_s : 0.0);
+                    s.frames_missed, s.frames_lost);
       Log(LogLevel::kInfo, line);
     }
   }

@@ -1,9 +1,9 @@
-// `uwbsar run`: SLAM live on the robot. A source (slam/live/live_source.h: the serial
-// drivers of two LT102 radars and the Kobuki base, stamping every message on the host
-// clock; or a ROS 2 robot over DDS, keeping the publisher's stamps) hands messages from
-// its own threads to a dispatcher (slam/live/live_recorder.h), which passes each to the
-// recorder (a ROS 2 bag, unbounded queue: nothing is ever dropped from the recording,
-// made durable at least every live.recording_flush_period_s) and to the SLAM feeding
+// `uwbsar run`: SLAM live on the robot. A source (slam/live/live_source.h: the drivers of
+// the radars (live.radar_model: two LT102 on serial by default) and of the Kobuki base,
+// stamping every message on the host clock; or a ROS 2 robot over DDS, keeping the publisher's
+// stamps) hands messages from its own threads to a dispatcher (slam/live/live_recorder.h), which
+// passes each to the recorder (a ROS 2 bag, unbounded queue: nothing is ever dropped from the
+// recording, made durable at least every live.recording_flush_period_s) and to the SLAM feeding
 // thread through a bounded queue (when SLAM falls behind the oldest waiting messages are
 // dropped from processing and counted). The feeding thread (slam/live/live_processor.h) runs
 // the same SlamSystem as `uwbsar map` and measures each scan's latency from arrival to
@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "drivers/live/gpio.h"
-#include "drivers/live/lt102_driver.h"
+#include "drivers/live/radar_device.h"
 #include "slam/app_config.h"
 #include "slam/localize_job.h"
 #include "slam/map_job.h"
@@ -75,9 +75,10 @@ struct LiveRunResult {
   double snapshot_lock_max_s = 0.0;
   double keyframe_lock_wait_max_s = 0.0;
   std::map<std::string, long long> faults;
-  /// Serial: each radar's LT102 link (start-up, polled `d` requests vs answers, p99
-  /// request-to-answer time, what the radar reported), by name ("radar left").
-  std::vector<std::pair<std::string, live::Lt102Stats>> radars;
+  /// Serial: each radar's counts (start-ups, frames delivered, repeated, missed, lost, the
+  /// echoed range; then the model's own, e.g. the LT102's `d` requests and request-to-answer
+  /// times), by name ("radar left").
+  std::vector<std::pair<std::string, live::RadarStats>> radars;
 };
 
 /// Locks options.out_dir for this process (slam/map_outputs.h LockOutputFolder) and

@@ -1,6 +1,7 @@
-// The robot's own devices as a live source: LT102 radars and the Kobuki base on
-// reconnecting serial links, radar power and reset through GPIO. Each device's messages are
-// stamped by its driver's StreamClock (drivers/live/stream_clock.h: the radar's acquisition
+// The robot's own devices as a live source: radars of live.radar_model, created through the
+// factory (drivers/live/radar_driver_factory.h; the LT102 on reconnecting serial links), the
+// Kobuki base on a reconnecting serial link, radar power and reset through GPIO. Each device's
+// messages are stamped by its driver (drivers/live/stream_clock.h: the radar's acquisition
 // grid, the base's millisecond counter), not at arrival, and put back in stamp order within
 // live.reorder_window_s, so SLAM and the recording see them in the order `uwbsar map` reads
 // the recording, whatever the scheduler did to the reading threads.
@@ -11,7 +12,7 @@
 #include "core/errors.h"
 #include "drivers/live/device_link.h"
 #include "drivers/live/kobuki_driver.h"
-#include "drivers/live/lt102_driver.h"
+#include "drivers/live/radar_driver_factory.h"
 #include "drivers/live/radar_power.h"
 #include "slam/app_config.h"
 #include "slam/live/live_source.h"
@@ -35,6 +36,7 @@ class SerialSource : public LiveSource {
                        " devices for " + std::to_string(config.radars.size()) +
                        " radars: give one serial device per radars[] entry");
     }
+    live::RequireRadarModel(lc_.radar_model);  // ConfigError naming the registered ones
     // GPIO first: a missing chip or line stops the run before anything moves.
     std::unique_ptr<live::GpioChip> chip =
         options.gpio ? std::move(options.gpio) : live::OpenConfiguredChip(lc_);
@@ -50,30 +52,32 @@ class SerialSource : public LiveSource {
     policy.power_cycle_after_failures = lc_.power_cycle_after_failures;
     policy.realtime_priority = lc_.driver_priority;
     for (std::size_t i = 0; i < config.radars.size(); ++i) {
-      const std::string name = "radar " + config.radars[i].name;
-      radar_names_.push_back(name);
-      radars_.push_back(std::make_unique<live::Lt102Driver>(
-          name, static_cast<int>(i), config, faults,
-          [this](RadarScan&& scan) {
-            LiveMessage m;
-            m.kind = Message::Kind::kRadarScan;
-            m.stamp_ns = scan.stamp_ns;
-            m.scan = std::move(scan);
-            order_.Push(m.stamp_ns, SteadyNs(), std::move(m));
-          },
-          [dispatcher](const std::string& event) { dispatcher->Event(event); },
-          [clock] { return clock->Now(); }, clock->scale()));
-      // Scans wait for the odometry (as over DDS): a radar is polled once the base's first
+      live::RadarDeviceArgs args;
+      args.name = "radar " + config.radars[i].name;
+      args.sensor_id = static_cast<int>(i);
+      args.device = lc_.radar_devices[i];
+      args.link = policy;
+      args.link.baud = lc_.radar_baud;
+      args.settings = config;
+      args.faults = faults;
+      args.sink = [this](RadarScan&& scan) {
+        LiveMessage m;
+        m.kind = Message::Kind::kRadarScan;
+        m.stamp_ns = scan.stamp_ns;
+        m.scan = std::move(scan);
+        order_.Push(m.stamp_ns, SteadyNs(), std::move(m));
+      };
+      args.events = [dispatcher](const std::string& event) { dispatcher->Event(event); };
+      args.clock = [clock] { return clock->Now(); };
+      args.clock_scale = clock->scale();
+      // Scans wait for the odometry (as over DDS): a radar acquires once the base's first
       // sample went out, so no scan is stamped before the first pose and dropped.
-      radars_.back()->set_acquisition_gate([this] { return odometry_started_.load(); });
-      live::LinkPolicy p = policy;
-      p.baud = lc_.radar_baud;
-      std::function<void()> cycle;
+      args.acquisition_gate = [this] { return odometry_started_.load(); };
       if (power_->can_power_cycle(static_cast<int>(i))) {
-        cycle = [power = power_.get(), i] { power->PowerCycle(static_cast<int>(i)); };
+        args.power_cycle = [power = power_.get(), i] { power->PowerCycle(static_cast<int>(i)); };
       }
-      links_.push_back(std::make_unique<live::DeviceLink>(name, lc_.radar_devices[i], p,
-                                                          radars_.back().get(), faults, cycle));
+      radar_names_.push_back(args.name);
+      radars_.push_back(live::CreateRadar(lc_.radar_model, args));
     }
     kobuki_ = std::make_unique<live::KobukiDriver>(
         lc_, faults, [clock] { return clock->Now(); },
@@ -88,12 +92,13 @@ class SerialSource : public LiveSource {
         });
     live::LinkPolicy p = policy;
     p.baud = lc_.kobuki_baud;
-    links_.push_back(
-        std::make_unique<live::DeviceLink>("kobuki", lc_.kobuki_device, p, kobuki_.get(), faults));
+    kobuki_link_ =
+        std::make_unique<live::DeviceLink>("kobuki", lc_.kobuki_device, p, kobuki_.get(), faults);
   }
 
   void Start() override {
-    for (auto& link : links_) link->Start();
+    for (auto& radar : radars_) radar->Start();
+    kobuki_link_->Start();
   }
 
   // Odometry stalls, clock steps, status LED (on while every link is up).
@@ -115,22 +120,25 @@ class SerialSource : public LiveSource {
       stalled_ = false;
     }
     const bool all_up =
-        std::all_of(links_.begin(), links_.end(), [](const auto& l) { return l->connected(); });
+        kobuki_link_->connected() &&
+        std::all_of(radars_.begin(), radars_.end(), [](const auto& r) { return r->connected(); });
     if (all_up != led_) {
       power_->SetStatusLed(all_up);
       led_ = all_up;
     }
   }
 
-  // Every radar's first start-up (all wait in parallel, up to live.lt102.startup_wait_s in
-  // all): its echoed range sets the range of sample 0 and the sample count imaging uses.
+  // Every radar's first start-up (all wait in parallel, up to the longest of their
+  // startup_wait() in all, live.lt102.startup_wait_s for the LT102): its echoed range sets the
+  // range of sample 0 and the sample count imaging uses.
   void ConfigureImaging(Config* config) override {
-    const auto end =
-        std::chrono::steady_clock::now() + std::chrono::duration<double>(lc_.lt102.startup_wait_s);
+    double wait_s = 0.0;
+    for (const auto& radar : radars_) wait_s = std::max(wait_s, radar->startup_wait().wait_s);
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(wait_s);
     for (std::size_t i = 0; i < radars_.size(); ++i) {
       const double left_s = std::max(
           0.0, std::chrono::duration<double>(end - std::chrono::steady_clock::now()).count());
-      live::Lt102Setup setup;
+      live::RadarSetup setup;
       std::string error;
       RadarConfig& radar = config->radars[i];
       if (radars_[i]->WaitConfigured(left_s, &setup, &error)) {
@@ -143,20 +151,23 @@ class SerialSource : public LiveSource {
         throw InputError(error);
       } else {
         faults_->Report(radar_names_[i] + ": not configured before SLAM started",
-                        "no start-up within live.lt102.startup_wait_s; imaging uses "
-                        "radars[].range_offset_m and num_samples");
+                        "no start-up within " + radars_[i]->startup_wait().key +
+                            "; imaging uses radars[].range_offset_m and num_samples");
       }
     }
   }
 
   void Stop() override {
-    for (auto& link : links_) link->RequestStop();  // the radars' `o` exchanges run together
-    for (auto& link : links_) link->Stop();
+    // The radars' stop exchanges (the LT102's `o`) run together.
+    for (auto& radar : radars_) radar->RequestStop();
+    kobuki_link_->RequestStop();
+    for (auto& radar : radars_) radar->Stop();
+    kobuki_link_->Stop();
     order_.Flush();
   }
 
-  std::vector<std::pair<std::string, live::Lt102Stats>> radar_stats() const override {
-    std::vector<std::pair<std::string, live::Lt102Stats>> out;
+  std::vector<std::pair<std::string, live::RadarStats>> radar_stats() const override {
+    std::vector<std::pair<std::string, live::RadarStats>> out;
     for (std::size_t i = 0; i < radars_.size(); ++i) {
       out.emplace_back(radar_names_[i], radars_[i]->stats());
     }
@@ -190,14 +201,15 @@ class SerialSource : public LiveSource {
   Dispatcher* dispatcher_;
   live::FaultLog* faults_;
   live::HostClock* clock_;
-  std::unique_ptr<live::RadarPower> power_;
-  std::vector<std::unique_ptr<live::Lt102Driver>> radars_;
-  std::vector<std::string> radar_names_;
-  std::unique_ptr<live::KobukiDriver> kobuki_;
-  std::vector<std::unique_ptr<live::DeviceLink>> links_;
+  // What the devices' threads use, declared before the devices, which stop first.
   StampOrderBuffer<LiveMessage> order_;
   std::atomic<long long> last_odometry_ns_{0};
   std::atomic<bool> odometry_started_{false};
+  std::unique_ptr<live::RadarPower> power_;
+  std::vector<std::unique_ptr<live::RadarDevice>> radars_;  // each with its own link
+  std::vector<std::string> radar_names_;
+  std::unique_ptr<live::KobukiDriver> kobuki_;
+  std::unique_ptr<live::DeviceLink> kobuki_link_;
   bool stalled_ = false, led_ = false;
 };
 

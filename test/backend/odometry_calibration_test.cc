@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include "backend/pose_graph.h"
 #include "backend/se2_edge_cost.h"
@@ -171,6 +172,46 @@ TEST(OdometryCalibrationTest, WithLoopsAGivenScaleHoldsAndTheRestIsEstimated) {
               ate_uncalibrated_m * 100);
   EXPECT_LT(ate_m, 0.005);
   EXPECT_GT(ate_uncalibrated_m, 2 * ate_m);
+}
+
+// AddOdometryNode predicts the new node on the odometry corrected by the base's calibration
+// mean, with the path and turn given (keyframe anchors keep the world orientation), and adds
+// the same odometry edge as AddOdometryEdge; switched off, the step is taken as measured.
+TEST(OdometryCalibrationTest, AnOdometryNodeStartsOnTheCorrectedStepWithItsEdge) {
+  BackendConfig config;
+  config.calibration_scale_mean = -0.01;
+  config.calibration_heading_drift_mean_rad_per_m = 0.004;
+  config.calibration_rotation_mean = 0.03;
+  const Pose2 origin{2.0, -1.0, 0.3}, step{1.0, 0.2, 0.0};
+  const double path_m = 1.1, turn_rad = 0.25;
+  PoseGraph g(config);
+  g.AddNode(0, origin);
+  const Pose2 estimate = g.AddOdometryNode(0, 1, step, 0, path_m, turn_rad);
+  const Pose2 expected =
+      origin * CorrectedOdometryStep(config.CalibrationMean(), step, {path_m, turn_rad});
+  EXPECT_EQ(estimate.x_m, expected.x_m);
+  EXPECT_EQ(estimate.y_m, expected.y_m);
+  EXPECT_EQ(estimate.yaw_rad, expected.yaw_rad);
+  EXPECT_GT(std::hypot(estimate.x_m - (origin * step).x_m, estimate.y_m - (origin * step).y_m),
+            1e-3);
+  EXPECT_EQ(g.GetPose(1).x_m, expected.x_m);
+  PoseGraph reference(config);
+  reference.AddNode(0, origin);
+  reference.AddNode(1, expected, false);
+  reference.AddOdometryEdge(0, 1, step, 0, path_m, turn_rad);
+  ASSERT_EQ(g.Edges().size(), 1u);
+  EXPECT_EQ(g.Edges()[0].path_m, path_m);
+  EXPECT_EQ(g.Edges()[0].turn_rad, turn_rad);
+  EXPECT_EQ(g.Edges()[0].information, reference.Edges()[0].information);
+
+  config.odometry_calibration = false;
+  PoseGraph plain(config);
+  plain.AddNode(0, origin);
+  const Pose2 measured = plain.AddOdometryNode(0, 1, step, 0, path_m, turn_rad);
+  EXPECT_EQ(measured.x_m, (origin * step).x_m);
+  EXPECT_EQ(measured.yaw_rad, (origin * step).yaw_rad);
+  EXPECT_THROW(plain.AddOdometryNode(7, 8, step), std::out_of_range);
+  EXPECT_FALSE(plain.HasNode(8));
 }
 
 TEST(OdometryCalibrationTest, ThePriorIsCentredOnItsMean) {

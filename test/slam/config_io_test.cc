@@ -157,6 +157,14 @@ TEST(ConfigIoTest, ASecondDocumentIsRefusedNamingItsLine) {
   EXPECT_EQ(RefusalOf("---\nimaging:\n  mode: paper\n...\n"), "");
 }
 
+// live.radar_model picks the radars' driver from the registry: a model nobody registered is
+// refused naming the key and the models there are.
+TEST(ConfigIoTest, AnUnknownRadarModelIsRefusedNamingTheKnownModels) {
+  EXPECT_EQ(RefusalOf("live:\n  radar_model: lt103\n"),
+            "x.yaml: 'live.radar_model' is 'lt103', not a known radar model (lt102)");
+  EXPECT_EQ(RefusalOf("live:\n  radar_model: lt102\n"), "");
+}
+
 // `010` is 8 in YAML 1.1 (yaml-cpp) and 10 in YAML 1.2: refused rather than guessed.
 TEST(ConfigIoTest, ANumberWithALeadingZeroIsRefusedNamingTheKey) {
   const std::string msg = RefusalOf("imaging:\n  num_threads: 010\n");

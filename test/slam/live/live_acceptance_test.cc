@@ -86,13 +86,14 @@ TEST(LiveAcceptanceTest, A_B_RealTimeRunMatchesOfflineMappingAndReportsLatency) 
     std::printf(
         "A: %s polled at %d frames/s: %lld requests (%.1f/s), %lld answers, %lld frames, %lld "
         "repeated (dropped), %lld missed, %lld lost; request-to-answer p50 %.2f ms, p99 %.2f ms\n",
-        name.c_str(), s.setup.frame_rate_fps, s.requests,
-        s.acquiring_s > 0 ? static_cast<double>(s.requests) / s.acquiring_s : 0.0, s.answers,
-        s.frames_delivered, s.frames_repeated, s.frames_missed, s.lost, s.answer_p50_ms,
-        s.answer_p99_ms);
+        name.c_str(), s.setup.frame_rate_fps, RadarCount(s, "frame_requests"),
+        RadarCount<double>(s, "requests_per_s"), RadarCount(s, "frame_answers"), s.frames_delivered,
+        s.frames_repeated, s.frames_missed, s.frames_lost,
+        RadarCount<double>(s, "request_to_answer_ms.p50"),
+        RadarCount<double>(s, "request_to_answer_ms.p99"));
     repeated += s.frames_repeated;
     delivered += s.frames_delivered;
-    lost += s.lost;
+    lost += s.frames_lost;
   }
   std::printf(
       "A: emulator acquired %lld frames, answered %lld, repeated %lld, missed %lld, %lld "

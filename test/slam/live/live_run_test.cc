@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <string>
 
 #include "live_test_util.h"
 #include "slam/app_config.h"
@@ -104,12 +106,13 @@ TEST(LiveRunTest, Lt102FaultsAreCountedAndEveryScanThatArrivedIsRecorded) {
   long long answers = 0, invalid = 0, repeated = 0;
   for (const auto& [name, s] : r.radars) {
     std::printf("%s: %lld requests, %lld answers, %lld lost, %lld invalid; CRC %s\n", name.c_str(),
-                s.requests, s.answers, s.lost, s.invalid_frames, s.setup.crc ? "on" : "off");
-    EXPECT_TRUE(s.setup.crc);
-    EXPECT_EQ(s.lost, 3);
+                RadarCount(s, "frame_requests"), RadarCount(s, "frame_answers"), s.frames_lost,
+                s.invalid_frames, Lt102Crc(s) ? "on" : "off");
+    EXPECT_TRUE(Lt102Crc(s));
+    EXPECT_EQ(s.frames_lost, 3);
     EXPECT_EQ(s.startups, 1);
     EXPECT_GT(s.invalid_frames, 0);
-    answers += s.answers + s.late_answers;
+    answers += RadarCount(s, "frame_answers") + RadarCount(s, "late_answers");
     invalid += s.invalid_frames;
     repeated += s.frames_repeated;
   }
@@ -188,20 +191,23 @@ TEST_P(LivePollingTest, EachFrameOnceAtTheRadarsFrameRate) {
   std::ifstream in(live.out_dir + "/live.json");
   const nlohmann::json j = nlohmann::json::parse(in);
   for (const auto& [name, s] : r.radars) {
-    const double polls_per_s = static_cast<double>(s.requests) / s.acquiring_s;
+    const double polls_per_s = RadarCount<double>(s, "requests_per_s");
     std::printf(
         "%s%s, %s at %d frames/s (%d asked), CRC %s: %lld requests (%.1f/s), %lld answers, "
         "%lld frames, %lld repeated, %lld missed, %lld lost; request-to-answer p50 %.2f ms, p99 "
         "%.2f ms\n",
         c.name, loaded ? " (under load)" : "", name.c_str(), s.setup.frame_rate_fps,
-        s.setup.frame_rate_requested_fps, s.setup.crc ? "on" : "off", s.requests, polls_per_s,
-        s.answers, s.frames_delivered, s.frames_repeated, s.frames_missed, s.lost, s.answer_p50_ms,
-        s.answer_p99_ms);
+        s.setup.frame_rate_requested_fps, Lt102Crc(s) ? "on" : "off",
+        RadarCount(s, "frame_requests"), polls_per_s, RadarCount(s, "frame_answers"),
+        s.frames_delivered, s.frames_repeated, s.frames_missed, s.frames_lost,
+        RadarCount<double>(s, "request_to_answer_ms.p50"),
+        RadarCount<double>(s, "request_to_answer_ms.p99"));
     EXPECT_EQ(s.setup.frame_rate_fps, c.radar_fps);
     EXPECT_EQ(s.setup.frame_rate_requested_fps, 100);
-    EXPECT_EQ(s.setup.crc, c.crc);
-    EXPECT_EQ(s.lost, 0);
-    EXPECT_EQ(s.requests, s.answers + s.unanswered_at_stop);
+    EXPECT_EQ(Lt102Crc(s), c.crc);
+    EXPECT_EQ(s.frames_lost, 0);
+    EXPECT_EQ(RadarCount(s, "frame_requests"),
+              RadarCount(s, "frame_answers") + RadarCount(s, "unanswered_at_stop"));
     EXPECT_NEAR(polls_per_s, c.radar_fps, 0.1 * c.radar_fps);
     EXPECT_LE(static_cast<double>(s.frames_missed),
               (loaded ? 0.03 : 0.01) * static_cast<double>(s.frames_delivered) + 1);
@@ -209,6 +215,40 @@ TEST_P(LivePollingTest, EachFrameOnceAtTheRadarsFrameRate) {
     EXPECT_EQ(jr["frames_repeated"].get<long long>(), s.frames_repeated);
     EXPECT_EQ(jr["frames_missed"].get<long long>(), s.frames_missed);
     EXPECT_EQ(jr["frames_delivered"].get<long long>(), s.frames_delivered);
+    EXPECT_EQ(jr["frame_requests"].get<long long>(), RadarCount(s, "frame_requests"));
+    EXPECT_EQ(jr["request_to_answer_ms"]["p99"].get<double>(),
+              RadarCount<double>(s, "request_to_answer_ms.p99"));
+    // An LT102's keys in live.json, as before the radar seam (generic counts + its own).
+    std::set<std::string> keys;
+    for (const auto& item : jr.items()) keys.insert(item.key());
+    EXPECT_EQ(keys, (std::set<std::string>{"startups",
+                                           "startup_failures",
+                                           "config_errors",
+                                           "frame_rate_fps",
+                                           "frame_rate_requested_fps",
+                                           "frame_requests",
+                                           "frame_answers",
+                                           "requests_per_s",
+                                           "frames_delivered",
+                                           "frames_repeated",
+                                           "frames_missed",
+                                           "frames_lost",
+                                           "late_answers",
+                                           "stamp_reanchors",
+                                           "unanswered_at_stop",
+                                           "invalid_frames",
+                                           "request_to_answer_ms",
+                                           "command_requests",
+                                           "wrong_answers",
+                                           "missing_answers",
+                                           "retries",
+                                           "stops_sent",
+                                           "configured",
+                                           "setup",
+                                           "range_min_m",
+                                           "range_max_m",
+                                           "samples_per_scan"}));
+    EXPECT_EQ(jr["request_to_answer_ms"].size(), 3u);
     delivered += s.frames_delivered;
     repeated += s.frames_repeated;
     missed += s.frames_missed;

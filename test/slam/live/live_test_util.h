@@ -2,6 +2,7 @@
 // the simulated seed_lab run; shared by the live runner tests.
 #pragma once
 
+#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -10,9 +11,11 @@
 #include <string>
 #include <thread>
 #include <utility>
+#include <variant>
 
 #include "drivers/emulators/sim_device_player.h"
 #include "drivers/live/host_clock.h"
+#include "drivers/live/radar_device.h"
 #include "slam/app_config.h"
 #include "slam/live/live_runner.h"
 #include "test/shared_data.h"
@@ -35,6 +38,20 @@ inline std::set<std::pair<int, int>> AcceptedPairs(const pipeline::SlamSystem& s
     if (l.accepted()) pairs.insert({l.match_id, l.query_id});
   }
   return pairs;
+}
+
+/// A radar's own counter `name` (for the LT102: Lt102Radar::ToRadarStats); a failure when
+/// the radar has none of that type.
+template <class T = long long>
+T RadarCount(const RadarStats& s, const std::string& name) {
+  const RadarStatValue* value = s.Extra(name);
+  EXPECT_TRUE(value != nullptr && std::holds_alternative<T>(*value)) << name;
+  return value != nullptr && std::holds_alternative<T>(*value) ? std::get<T>(*value) : T{};
+}
+
+/// An LT102's start-up found the CRC byte on (its setup line says so).
+inline bool Lt102Crc(const RadarStats& s) {
+  return s.setup.description.find("; CRC on;") != std::string::npos;
 }
 
 inline std::string SeedLabMapPath() { return ::uwbsar::testing::SeedLabLidarMap(); }
