@@ -46,7 +46,7 @@ double ResidentMiB() {
 /// The state of the run when the odometry path first reached a whole metre.
 struct Sample {
   double path_m = 0.0;
-  pipeline::StageTimes times;
+  slam::StageTimes times;
   std::size_t keyframes = 0;
   std::size_t loops = 0;
   int validated = 0;              ///< loops the validator accepted so far
@@ -54,7 +54,7 @@ struct Sample {
   double rss_mib = 0.0;
 };
 
-double Total(const pipeline::StageTimes& t) {
+double Total(const slam::StageTimes& t) {
   return t.imaging_s + t.features_s + t.matching_s + t.optimization_s;
 }
 
@@ -71,12 +71,12 @@ Window PerMetre(const Sample& a, const Sample& b) {
 }
 
 /// Maps the 1 km run, taking a Sample each time the odometry path reaches a whole metre.
-pipeline::MapRun RunSampled(const Config& config, std::vector<Sample>* samples) {
+slam::MapRun RunSampled(const Config& config, std::vector<Sample>* samples) {
   std::vector<OdometrySample> ground_truth;
   long long ground_truth_seen = 0;
-  pipeline::MapRun run = pipeline::MapSimulation(
+  slam::MapRun run = slam::MapSimulation(
       config, Floor50File("floor50.yaml"), Floor50File("route_1km.txt"), /*seed=*/1,
-      [&](pipeline::MapRun* r) {
+      [&](slam::MapRun* r) {
         // Ground truth comes at 200 Hz; keep 50 Hz (the odometry rate) for the ATE so the
         // harness itself stays small.
         for (const OdometrySample& g : r->ground_truth) {
@@ -94,7 +94,7 @@ pipeline::MapRun RunSampled(const Config& config, std::vector<Sample>* samples) 
         s.times = r->slam->times();
         s.keyframes = r->slam->keyframes().size();
         s.loops = r->slam->loops().size();
-        for (const pipeline::LoopRecord& l : r->slam->loops()) s.validated += l.validation.accepted;
+        for (const slam::LoopRecord& l : r->slam->loops()) s.validated += l.validation.accepted;
         if (!ground_truth.empty()) {
           const Pose2& truth = ground_truth.back().T_world_robot;
           const Pose2& odom = odometry.back().T_world_robot;
@@ -145,9 +145,9 @@ std::pair<Window, Window> FirstAndLastHundredMetres(const std::vector<Sample>& s
 
 /// Accepted loops, and those more than 0.2 m or 5 deg from the truth. True anchor poses: the
 /// anchor is rigidly attached to the robot at the keyframe's stamp.
-std::pair<int, int> CountLoops(const pipeline::MapRun& run) {
+std::pair<int, int> CountLoops(const slam::MapRun& run) {
   std::map<int, Pose2> true_anchor;
-  for (const pipeline::KeyframeRecord& k : run.slam->keyframes()) {
+  for (const slam::KeyframeRecord& k : run.slam->keyframes()) {
     auto it =
         std::lower_bound(run.ground_truth.begin(), run.ground_truth.end(), k.keyframe.stamp_ns,
                          [](const OdometrySample& g, TimestampNs t) { return g.stamp_ns < t; });
@@ -156,7 +156,7 @@ std::pair<int, int> CountLoops(const pipeline::MapRun& run) {
     true_anchor[k.keyframe.id] = it->T_world_robot * T_robot_anchor;
   }
   int accepted = 0, false_accepted = 0;
-  for (const pipeline::LoopRecord& l : run.slam->loops()) {
+  for (const slam::LoopRecord& l : run.slam->loops()) {
     if (!l.accepted()) continue;
     ++accepted;
     const Pose2 truth = Between(true_anchor[l.match_id], true_anchor[l.query_id]);
@@ -169,10 +169,10 @@ std::pair<int, int> CountLoops(const pipeline::MapRun& run) {
 
 /// What SlamSystem holds per keyframe: the detected tile at map resolution, and the range
 /// profiles of the scans it imaged (shared between overlapping tiles).
-void CountHeldBytes(const pipeline::MapRun& run, benchmark::State& state) {
+void CountHeldBytes(const slam::MapRun& run, benchmark::State& state) {
   double detected_bytes = 0.0, profile_bytes = 0.0;
   std::set<const RangeProfile*> profiles;
-  for (const pipeline::KeyframeRecord& k : run.slam->keyframes()) {
+  for (const slam::KeyframeRecord& k : run.slam->keyframes()) {
     detected_bytes += static_cast<double>(k.detected.total() * k.detected.elemSize());
     for (const ImagedScan& scan : k.keyframe.scans) {
       if (scan.profile && profiles.insert(scan.profile.get()).second) {
@@ -187,20 +187,20 @@ void CountHeldBytes(const pipeline::MapRun& run, benchmark::State& state) {
 }
 
 /// ATE of SLAM and of the odometry against the run's ground truth.
-std::pair<AteResult, AteResult> Errors(const pipeline::MapRun& run) {
+std::pair<AteResult, AteResult> Errors(const slam::MapRun& run) {
   std::vector<std::pair<TimestampNs, Pose2>> odometry;
   for (const OdometryEntry& e : run.slam->odometry()) {
     odometry.push_back({e.stamp_ns, e.T_world_robot});
   }
-  return {pipeline::TrajectoryError(run.slam->CorrectedTrajectory(), run.ground_truth),
-          pipeline::TrajectoryError(odometry, run.ground_truth)};
+  return {slam::TrajectoryError(run.slam->CorrectedTrajectory(), run.ground_truth),
+          slam::TrajectoryError(odometry, run.ground_truth)};
 }
 
 void BM_ScaleFloor50OneKm(benchmark::State& state) {
   const Config config;
   for (auto _ : state) {
     std::vector<Sample> samples;  // one per metre of odometry path
-    const pipeline::MapRun run = RunSampled(config, &samples);
+    const slam::MapRun run = RunSampled(config, &samples);
     if (samples.size() < 201) {
       state.SkipWithError("the run is shorter than 200 m");
       return;
@@ -218,7 +218,7 @@ void BM_ScaleFloor50OneKm(benchmark::State& state) {
     CountHeldBytes(run, state);
 
     state.counters["travel_m"] = last.path_m;
-    state.counters["peak_rss_MiB"] = pipeline::PeakMemoryMiB();
+    state.counters["peak_rss_MiB"] = slam::PeakMemoryMiB();
     state.counters["first100_ms_per_m"] = w_first.total * 1e3;
     state.counters["last100_ms_per_m"] = w_last.total * 1e3;
     state.counters["last_over_first"] = w_last.total / w_first.total;

@@ -104,7 +104,7 @@ MapMetrics ScoreMosaic(const cv::Mat& map, const ImageGrid& grid, const Config& 
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   WriteFloatTiff(dir + "/map_float.tif", map);
-  std::ofstream(dir + "/map_grid.yaml") << pipeline::GridYaml(grid, name, "map_float.tif");
+  std::ofstream(dir + "/map_grid.yaml") << slam::GridYaml(grid, name, "map_float.tif");
   AlignRequest request;
   request.T_lidar_sar = T_lidar_sar;
   const ComparisonReport report = CompareMapFiles(dir + "/map_grid.yaml", grid_yaml, request,
@@ -118,7 +118,7 @@ MapMetrics Score(const SessionData& session, const Config& config, const std::st
                  const std::string& name, const Pose2& T_lidar_sar = {}) {
   ImageGrid grid;
   cv::Mat observed;
-  const cv::Mat map = pipeline::RenderSessionMosaic(session, config, &grid, &observed);
+  const cv::Mat map = slam::RenderSessionMosaic(session, config, &grid, &observed);
   return ScoreMosaic(map, grid, config, grid_yaml, name, T_lidar_sar);
 }
 
@@ -133,7 +133,7 @@ MapMetrics ScoreOnRunArea(const SessionData& session, int trajectory, const Conf
   }
   ImageGrid grid, run_grid;
   cv::Mat observed, run_observed;
-  cv::Mat map = pipeline::RenderSessionMosaic(session, config, &grid, &observed);
+  cv::Mat map = slam::RenderSessionMosaic(session, config, &grid, &observed);
   run.Render(&run_grid, &run_observed);
   // Both on the world lattice: the run's canvas is a block-aligned part of the whole one.
   const int c0 = static_cast<int>(std::lround((run_grid.x0_m - grid.x0_m) / res));
@@ -164,8 +164,8 @@ struct ResumeFigures {
   AteResult common, ate_a, ate_b;    ///< both runs in the joined frame; each run alone
 };
 
-ResumeFigures Resume(const Config& config_a, const pipeline::MapRun& a, const SessionData& sa,
-                     const pipeline::MapRun& b, const SessionData& sb) {
+ResumeFigures Resume(const Config& config_a, const slam::MapRun& a, const SessionData& sa,
+                     const slam::MapRun& b, const SessionData& sb) {
   ResumeFigures f;
   const auto t_merge = std::chrono::steady_clock::now();
   f.merged = MergeSessions(sa, sb, config_a, &f.report);
@@ -180,10 +180,10 @@ ResumeFigures Resume(const Config& config_a, const pipeline::MapRun& a, const Se
     ++f.between;
     f.false_loops += IsFalse(l.T_ij, Between(truth.at(l.match_id), truth.at(l.query_id)));
   }
-  f.common = pipeline::CommonFrameError(
+  f.common = slam::CommonFrameError(
       f.merged, {{0, a.ground_truth}, {f.report.trajectory_offset, b.ground_truth}});
-  f.ate_a = pipeline::TrajectoryError(a.slam->CorrectedTrajectory(), a.ground_truth);
-  f.ate_b = pipeline::TrajectoryError(b.slam->CorrectedTrajectory(), b.ground_truth);
+  f.ate_a = slam::TrajectoryError(a.slam->CorrectedTrajectory(), a.ground_truth);
+  f.ate_b = slam::TrajectoryError(b.slam->CorrectedTrajectory(), b.ground_truth);
   return f;
 }
 
@@ -232,20 +232,20 @@ MapScores ScoreMaps(const Scenario& s, const std::string& label, const SessionDa
 
 /// B localised in A's saved map (`localize B --map A`).
 struct LocalizeFigures {
-  pipeline::LocalizeRun loc;
+  slam::LocalizeRun loc;
   double wall_s = 0.0;  ///< with the simulator
   int fixes = 0, false_fixes = 0;
   AteResult ate_tracking;
 };
 
-LocalizeFigures LocalizeB(const Scenario& s, std::uint64_t seed, const pipeline::MapRun& a,
+LocalizeFigures LocalizeB(const Scenario& s, std::uint64_t seed, const slam::MapRun& a,
                           const SessionData& sa, const Pose2& T_odom_world_b) {
   LocalizeFigures f;
   const auto t_loc = std::chrono::steady_clock::now();
-  f.loc = pipeline::LocalizeSimulation(sa, s.config_b, s.map_yaml, s.route_b, 1, seed + 1,
-                                       T_odom_world_b);
+  f.loc =
+      slam::LocalizeSimulation(sa, s.config_b, s.map_yaml, s.route_b, 1, seed + 1, T_odom_world_b);
   f.wall_s = Seconds(t_loc);
-  const pipeline::LocalizeRun& loc = f.loc;
+  const slam::LocalizeRun& loc = f.loc;
   // The map frame in the world: the best fit of all of A's keyframes (one keyframe's
   // heading error of 1 deg would move places 12 m away by 20 cm, the false-fix limit).
   std::vector<Pose2> map_anchors, true_anchors;
@@ -268,13 +268,13 @@ LocalizeFigures LocalizeB(const Scenario& s, std::uint64_t seed, const pipeline:
     f.false_fixes +=
         IsFalse(T_world_map * k.T_map_anchor, TrueAnchor(as_session, loc.ground_truth));
   }
-  f.ate_tracking = pipeline::TrajectoryError(loc.Trajectory(true), loc.ground_truth);
+  f.ate_tracking = slam::TrajectoryError(loc.Trajectory(true), loc.ground_truth);
   return f;
 }
 
-void PrintResumeAndLocalize(const std::string& label, const pipeline::MapRun& a,
-                            const pipeline::MapRun& b, const SessionData& sa,
-                            const ResumeFigures& r, const LocalizeFigures& l, double map_b_wall_s) {
+void PrintResumeAndLocalize(const std::string& label, const slam::MapRun& a, const slam::MapRun& b,
+                            const SessionData& sa, const ResumeFigures& r, const LocalizeFigures& l,
+                            double map_b_wall_s) {
   const MergeReport& report = r.report;
   std::printf(
       "%s resume: %s after %.2f m of B, %d loops between the runs (%d rejected, %d dropped), "
@@ -284,10 +284,9 @@ void PrintResumeAndLocalize(const std::string& label, const pipeline::MapRun& a,
       label.c_str(), report.connected ? "connected" : "NOT connected", report.connect_path_m,
       r.between, report.loop_edges_rejected, report.dropped, r.false_loops, r.common.rmse_m * 100,
       r.ate_a.rmse_m * 100, r.ate_b.rmse_m * 100,
-      pipeline::CommonFrameError(r.merged, {{0, a.ground_truth}}).rmse_m * 100,
-      pipeline::CommonFrameError(r.merged, {{report.trajectory_offset, b.ground_truth}}).rmse_m *
-          100,
-      pipeline::CommonFrameError(sa, {{0, a.ground_truth}}).rmse_m * 100, r.merge_s);
+      slam::CommonFrameError(r.merged, {{0, a.ground_truth}}).rmse_m * 100,
+      slam::CommonFrameError(r.merged, {{report.trajectory_offset, b.ground_truth}}).rmse_m * 100,
+      slam::CommonFrameError(sa, {{0, a.ground_truth}}).rmse_m * 100, r.merge_s);
   std::printf(
       "%s localize: first fix after %.2f m, %zu keyframes, %d with fixes, %d false; ATE "
       "while tracking %.2f cm; wall clock with the simulator: %.2f s localising B vs %.2f s "
@@ -333,19 +332,19 @@ void BM_Session(benchmark::State& state) {
     state.SkipWithError(("missing " + s.map_yaml).c_str());
     return;
   }
-  const Pose2 T_odom_world_b = pipeline::RouteStart(s.config_b).Inverse();  // B's odometry from 0
+  const Pose2 T_odom_world_b = slam::RouteStart(s.config_b).Inverse();  // B's odometry from 0
   for (auto _ : state) {
     // Seed 1 is MapSimulation's (scene and noise from 1); others vary the noise of both runs
     // in the same scene.
-    const pipeline::MapRun a =
-        seed == 1 ? pipeline::MapSimulation(s.config_a, s.map_yaml, s.route_a, 1)
-                  : pipeline::MapSimulationInScene(s.config_a, s.map_yaml, s.route_a, 1, seed);
+    const slam::MapRun a =
+        seed == 1 ? slam::MapSimulation(s.config_a, s.map_yaml, s.route_a, 1)
+                  : slam::MapSimulationInScene(s.config_a, s.map_yaml, s.route_a, 1, seed);
     const auto t_map_b = std::chrono::steady_clock::now();
-    const pipeline::MapRun b = pipeline::MapSimulationInScene(s.config_b, s.map_yaml, s.route_b, 1,
-                                                              seed + 1, T_odom_world_b);
+    const slam::MapRun b =
+        slam::MapSimulationInScene(s.config_b, s.map_yaml, s.route_b, 1, seed + 1, T_odom_world_b);
     const double map_b_wall_s = Seconds(t_map_b);
-    const SessionData sa = pipeline::CaptureSession(a);
-    const SessionData sb = pipeline::CaptureSession(b);
+    const SessionData sa = slam::CaptureSession(a);
+    const SessionData sb = slam::CaptureSession(b);
     const ResumeFigures resume = Resume(s.config_a, a, sa, b, sb);
     const MapScores scores = ScoreMaps(s, label, sa, sb, resume, T_odom_world_b);
     const LocalizeFigures localize = LocalizeB(s, seed, a, sa, T_odom_world_b);

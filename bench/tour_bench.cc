@@ -61,15 +61,14 @@ void BM_Tour(benchmark::State& state) {
     int closed = 0, false_loops = 0, overlap = 0, overlap_accepted = 0, revisits = 0, recalled = 0;
     double worst_ate_m = 0.0;
     for (int seed = first_seed; seed < first_seed + seeds; ++seed) {
-      const pipeline::MapRun run =
-          pipeline::MapSimulation(config, MapsFile(tour.map), MapsFile(tour.route), seed);
-      const pipeline::TourEvaluation e = pipeline::EvaluateTour(run);
-      const pipeline::StageTimes times = run.slam->times();
+      const slam::MapRun run =
+          slam::MapSimulation(config, MapsFile(tour.map), MapsFile(tour.route), seed);
+      const slam::TourEvaluation e = slam::EvaluateTour(run);
+      const slam::StageTimes times = run.slam->times();
       int by_radar = 0;
-      for (const pipeline::LoopRecord& l : run.slam->loops())
-        by_radar += l.accepted() && l.by_radar;
+      for (const slam::LoopRecord& l : run.slam->loops()) by_radar += l.accepted() && l.by_radar;
       std::printf("%s seed %d: %s; %d loops by radar; features %.1f s, matching %.1f s\n",
-                  tour.name, seed, pipeline::FormatTourEvaluation(e).c_str(), by_radar,
+                  tour.name, seed, slam::FormatTourEvaluation(e).c_str(), by_radar,
                   times.features_s, times.matching_s);
       for (const auto& [trajectory, c] : run.slam->graph().OdometryCalibrations()) {
         std::printf(
@@ -77,7 +76,7 @@ void BM_Tour(benchmark::State& state) {
             c[0], c[1], c[2]);
       }
       if (std::getenv("UWBSAR_TOUR_VERBOSE")) {
-        for (const pipeline::LoopRecord& l : run.slam->loops()) {
+        for (const slam::LoopRecord& l : run.slam->loops()) {
           if (!l.validation.accepted) continue;
           std::printf("  loop %d -> %d%s%s: akaze %d orb %d, backend %s chi2 %.2f\n", l.match_id,
                       l.query_id, l.guided ? " guided" : "", l.by_radar ? " by radar" : "",

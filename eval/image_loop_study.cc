@@ -11,7 +11,7 @@
 #include "core/errors.h"
 #include "eval/image_match_report.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar {
 namespace {
 
 namespace fs = std::filesystem;
@@ -251,4 +251,4 @@ cv::Mat DrawLoopMatrix(const ImageLoopStudy& study) {
   return img;
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar

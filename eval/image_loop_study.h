@@ -12,7 +12,7 @@
 #include "eval/loop_stats.h"
 #include "frontend/place_recognition/image_match.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar {
 
 struct ImagePairResult {
   int d = 0;
@@ -46,4 +46,4 @@ std::string PairsMarkdown(const ImageLoopStudy& study);
 /// matches, accepted pairs green with a tick.
 cv::Mat DrawLoopMatrix(const ImageLoopStudy& study);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar

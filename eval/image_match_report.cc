@@ -8,7 +8,7 @@
 
 #include "core/errors.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar {
 namespace {
 
 std::string LowerName(DetectorKind kind) {
@@ -95,4 +95,4 @@ std::vector<DetectorKind> ParseDetectorList(const std::string& list) {
   return out;
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar

@@ -9,7 +9,7 @@
 
 #include "frontend/place_recognition/image_match.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar {
 
 /// {"accepted", "reason", "transform": {x_m, y_m, yaw_deg} or null, "detectors": {"akaze":
 /// {"keypoints": [a, b], "ratio_matches", "good", "scale", "x_m", "y_m", "yaw_deg"}, ...}}.
@@ -24,4 +24,4 @@ cv::Mat DrawImageMatch(const ImageFeatures& a, const ImageFeatures& b, const Ima
 /// an unknown or unavailable detector.
 std::vector<DetectorKind> ParseDetectorList(const std::string& list);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar

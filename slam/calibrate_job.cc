@@ -12,7 +12,7 @@
 #include "slam/map_job.h"
 #include "slam/output_folder.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 /// Keeps the odometry and the ground truth of a bag.
@@ -117,4 +117,4 @@ CalibrateJobResult RunCalibrateJob(const Config& config, const CalibrateJobOptio
   return result;
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -9,7 +9,7 @@
 #include "backend/odometry_calibration_fit.h"
 #include "slam/app_config.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 struct CalibrateJobOptions {
   std::string bag;               ///< the run: bag directory, .db3 or .mcap
@@ -37,4 +37,4 @@ CalibrateJobResult RunCalibrateJob(const Config& config, const CalibrateJobOptio
 /// the file's order. Loads with `--config`.
 std::string CalibrationYaml(const CalibrationFit& fit);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -8,7 +8,7 @@
 #include "eval/compare/sar_peaks.h"
 #include "slam/output_folder.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 /// `<prefix>_float.tif` -> `<prefix>_grid.yaml` (slam/imaging_job.cc's naming).
@@ -65,4 +65,4 @@ PcdExportResult ExportPcdJob(const Config& config, const std::string& map,
   return result;
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -11,7 +11,7 @@
 #include "eval/compare/map_comparison.h"
 #include "slam/app_config.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 struct CompareJobResult {
   ComparisonReport report;
@@ -46,4 +46,4 @@ struct PcdExportResult {
 PcdExportResult ExportPcdJob(const Config& config, const std::string& map,
                              const std::string& grid_yaml, const std::string& out_pcd, bool binary);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -16,7 +16,7 @@
 #include "imaging/image_io.h"
 #include "slam/output_folder.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 std::string Fmt(const char* fmt, double v) {
@@ -249,4 +249,4 @@ DetectorsJobResult RunDetectorsJob(const Config& config, const DetectorsJobOptio
   return result;
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

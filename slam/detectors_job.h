@@ -13,7 +13,7 @@
 
 #include "slam/app_config.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 struct DetectorsJobOptions {
   std::string bag;  ///< ROS 2 bag (directory, .db3 or .mcap)
@@ -42,4 +42,4 @@ struct DetectorsJobResult {
 /// one that cannot be split into two passes, or passes that share no region.
 DetectorsJobResult RunDetectorsJob(const Config& config, const DetectorsJobOptions& opts);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

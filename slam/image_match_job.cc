@@ -10,7 +10,7 @@
 #include "imaging/image_io.h"
 #include "slam/output_folder.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 constexpr double kMaxExtentRatio = 4.0;  ///< larger differences in metric size are refused
@@ -86,4 +86,4 @@ LoopMatrixJobResult LoopMatrixFromImages(const Config& config, const std::string
   return {study.matrix, ImageLoopStudyJson(study)};
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

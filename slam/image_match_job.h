@@ -12,7 +12,7 @@
 #include "frontend/place_recognition/image_match.h"
 #include "slam/app_config.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 struct ImageMatchJobOptions {
   std::string a, b;             ///< the images: PNG/PGM, float TIFF, or a grid YAML
@@ -50,4 +50,4 @@ LoopMatrixJobResult LoopMatrixFromImages(const Config& config, const std::string
                                          double resolution_m, const std::string& detectors,
                                          const std::string& out_dir);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -12,7 +12,7 @@
 #include "imaging/image_io.h"
 #include "slam/app_config.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 /// A strip needs imaged scans, and scans that are not all zero (InputError otherwise).
@@ -139,4 +139,4 @@ std::vector<Scatterer> DemoScatterers() {
   return scene;
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -11,7 +11,7 @@
 #include "frontend/strip_renderer.h"
 #include "slam/app_config.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 struct StripResult {
   StripImage strip;
@@ -54,4 +54,4 @@ std::vector<std::string> WriteStripOutputs(const std::string& dir, const std::st
 std::vector<Scatterer> DemoScatterers();
 std::vector<Point2> DemoPointTargets();
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -6,7 +6,7 @@
 #include "drivers/rosbag/bag_reader.h"
 #include "drivers/rosbag/robot_bag.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 std::string Format(const char* fmt, const std::string& text, unsigned long long n) {
@@ -44,4 +44,4 @@ std::string BagDecodeText(const std::string& bag, const Config& config) {
   return text;
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

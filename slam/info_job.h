@@ -7,7 +7,7 @@
 
 #include "slam/app_config.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 /// The bag's topics, counts and times, as `ros2 bag info` prints them (ends in a newline).
 /// Reads the metadata only; throws InputError naming the bag when it cannot be opened.
@@ -18,4 +18,4 @@ std::string BagInfoText(const std::string& bag);
 /// with the counts by kind, then one "Skipped type:" line per undecoded message type.
 std::string BagDecodeText(const std::string& bag, const Config& config);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -19,7 +19,7 @@
 #include "slam/map_outputs.h"
 #include "slam/output_folder.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -159,4 +159,4 @@ nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& o
   return summary;
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -19,7 +19,7 @@
 #include "slam/localizer.h"
 #include "slam/session/session_data.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 struct LocalizeRun {
   std::string input;
@@ -57,4 +57,4 @@ LocalizeRun LocalizeSimulation(const SessionData& map, const Config& config,
 /// (slam/saved_session.h RefuseMapFolderForLocalize).
 nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& out_dir);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

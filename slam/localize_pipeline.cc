@@ -2,7 +2,7 @@
 
 #include "frontend/place_recognition/place_recognizer.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 LocalizePipeline::LocalizePipeline(const SessionData& map, const Config& config, std::string input)
     : config_(config),
@@ -76,4 +76,4 @@ void LocalizePipeline::Localize(const Keyframe& k) {
   }
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -16,7 +16,7 @@
 #include "slam/localize_job.h"
 #include "slam/ordered_worker.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 class LocalizePipeline {
  public:
@@ -57,4 +57,4 @@ class LocalizePipeline {
   OrderedWorker<Keyframe> worker_;
 };
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

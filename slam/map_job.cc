@@ -16,7 +16,7 @@
 #include "drivers/sim/sim_source.h"
 #include "slam/app_config.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 /// A progress bar on stderr, redrawn at most 5 times a second; silent when stderr
@@ -222,4 +222,4 @@ double PeakMemoryMiB() {
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -15,7 +15,7 @@
 #include "slam/app_config.h"
 #include "slam/slam_system.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 struct MapRun {
   std::shared_ptr<SlamSystem> slam;  ///< shared: a live snapshot writer reads it on its own thread
@@ -82,4 +82,4 @@ AteResult TrajectoryError(const std::vector<std::pair<TimestampNs, Pose2>>& esti
 /// Peak resident memory of this process so far, in MiB.
 double PeakMemoryMiB();
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

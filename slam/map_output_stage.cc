@@ -15,7 +15,7 @@
 #include "slam/map_outputs.h"
 #include "slam/output_folder.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace fs = std::filesystem;
 namespace {
 
@@ -144,4 +144,4 @@ MapOutputs WriteMapOutputs(const MapState& state, const std::string& out_dir) {
   return stage.Commit(state);
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -28,7 +28,7 @@
 #include "slam/map_report.h"
 #include "slam/report_html.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace fs = std::filesystem;
 namespace {
 
@@ -383,4 +383,4 @@ std::string GridYaml(const ImageGrid& grid, const std::string& what, const std::
   return yaml.str();
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -16,7 +16,7 @@
 #include "core/interrupt_cleanup.h"
 #include "slam/map_job.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 struct MapOutputs {
   std::vector<std::string> files;  ///< final paths written
@@ -116,4 +116,4 @@ std::vector<std::string> WriteExactMap(const MapRun& run, const std::string& out
 std::string GridYaml(const ImageGrid& grid, const std::string& what, const std::string& image,
                      const std::string& frame = "world");
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -4,7 +4,7 @@
 #include <iomanip>
 #include <sstream>
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 /// The key figures at the top of the page.
@@ -124,4 +124,4 @@ RunReport BuildMapReport(const MapState& run, const MapOutputs& outputs,
   return report;
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

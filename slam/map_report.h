@@ -9,7 +9,7 @@
 #include "slam/map_outputs.h"
 #include "slam/report_html.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 /// A trajectory as written to the TUM files, stamps in nanoseconds.
 using StampedPoses = std::vector<std::pair<TimestampNs, Pose2>>;
@@ -38,4 +38,4 @@ RunReport BuildMapReport(const MapState& state, const MapOutputs& outputs,
 /// `v` with `digits` digits after the point (as the report and loops.csv print numbers).
 std::string Fixed(double v, int digits);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -7,7 +7,7 @@
 #include "imaging/image_io.h"
 #include "slam/output_folder.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 /// Why the solve must not be written (not converged, cost or poses not finite); empty if
@@ -63,4 +63,4 @@ OptimizeJobResult RunOptimizeJob(const Config& config, const OptimizeJobOptions&
   return job;
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

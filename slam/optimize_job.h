@@ -11,7 +11,7 @@
 #include "backend/pose_graph.h"
 #include "slam/app_config.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 struct OptimizeJobOptions {
   std::string input;    ///< the g2o file (VERTEX_SE2, EDGE_SE2, FIX)
@@ -38,4 +38,4 @@ OptimizeJobResult RunOptimizeJob(
     const Config& config, const OptimizeJobOptions& options,
     const std::function<void(const std::string&)>& on_skipped_line = nullptr);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -12,7 +12,7 @@
 #include <thread>
 #include <utility>
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 template <typename Item>
 class OrderedWorker {
@@ -128,4 +128,4 @@ class OrderedWorker {
   std::thread worker_;  // last: started after, and joined before, everything above
 };
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -9,7 +9,7 @@
 
 #include "core/errors.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 namespace {
 
@@ -68,4 +68,4 @@ void CheckOutputFile(const std::string& path) {
   if (!error.empty()) throw InputError(path + ": output file cannot be written: " + error);
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

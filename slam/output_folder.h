@@ -5,7 +5,7 @@
 
 #include <string>
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 /// Creates `dir` (and parents) if needed and checks that a file can be created in it.
 void EnsureDirectory(const std::string& dir);
@@ -15,4 +15,4 @@ void CheckOutputFolder(const std::string& dir);
 /// `path` is not a folder, its folder exists and a file can be created in it.
 void CheckOutputFile(const std::string& path);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

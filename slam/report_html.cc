@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 std::string Base64(const std::string& bytes) {
   static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -135,4 +135,4 @@ std::string RenderReportHtml(const RunReport& r) {
   return html.str();
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

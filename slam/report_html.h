@@ -10,7 +10,7 @@
 
 #include "core/pose2.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 struct ReportTable {
   std::string title;
@@ -40,4 +40,4 @@ std::string Base64(const std::string& bytes);
 /// Escapes &, <, >, " for HTML text and attributes.
 std::string HtmlEscape(const std::string& text);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -9,7 +9,7 @@
 #include "drivers/rosbag/bag_reader.h"
 #include "slam/session/session_file.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace fs = std::filesystem;
 namespace {
 
@@ -110,4 +110,4 @@ std::string BagFingerprint(const std::string& bag_path) {
          std::to_string(info.end_ns) + " " + std::to_string(info.message_count) + " " + hex;
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

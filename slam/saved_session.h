@@ -11,7 +11,7 @@
 #include "slam/app_config.h"
 #include "slam/session/session_data.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 struct SavedSession {
   std::string path;  ///< the session file
@@ -54,4 +54,4 @@ void RefuseRunsAlreadyJoined(const SessionData& saved, const std::string& saved_
 /// Opens the bag (InputError naming it when it cannot be read) and reads only those messages.
 std::string BagFingerprint(const std::string& bag_path);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -5,7 +5,7 @@
 #include "drivers/sim/sim_source.h"
 #include "slam/app_config.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 MapRun MapSimulationInScene(const Config& config, const std::string& map_yaml,
                             const std::string& route, std::uint64_t scene_seed, std::uint64_t seed,
@@ -23,4 +23,4 @@ Pose2 RouteStart(const Config& config) {
   return {r.start_x_m, r.start_y_m, r.start_yaw_deg * M_PI / 180.0};
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

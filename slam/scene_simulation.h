@@ -10,7 +10,7 @@
 #include "slam/app_config.h"
 #include "slam/map_job.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 /// As MapSimulation, with the scene from `scene_seed`. The wheel odometry is reported in a
 /// frame of its own: T_odom_world * (the simulator's odometry, which starts at the true
@@ -23,4 +23,4 @@ MapRun MapSimulationInScene(const Config& config, const std::string& map_yaml,
 /// The pose a built-in route starts at (simulator.route.start_*), in the world frame.
 Pose2 RouteStart(const Config& config);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

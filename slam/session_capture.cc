@@ -5,7 +5,7 @@
 #include "slam/app_config_io.h"
 #include "slam/config/config_fingerprint.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 SessionData CaptureSession(const MapRun& run) {
   const SlamSystem& slam = *run.slam;
@@ -63,4 +63,4 @@ SessionData CaptureSession(const MapRun& run) {
   return d;
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -5,10 +5,10 @@
 #include "slam/map_job.h"
 #include "slam/session/session_data.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 /// The session of one mapped run. Reads the SLAM state: call after Finish(), or hold
 /// run.slam->LockState(). Throws std::logic_error when a keyframe has no features.
 SessionData CaptureSession(const MapRun& run);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -10,7 +10,7 @@
 #include "backend/global_map.h"
 #include "core/errors.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 /// The value at `percentile` of the observed pixels (1 when none).
@@ -174,4 +174,4 @@ cv::Mat RenderSessionMosaic(const SessionData& session, double resolution_m, Joi
   return MaxOfRuns(runs, resolution_m, grid, observed);
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -9,7 +9,7 @@
 #include "slam/app_config.h"
 #include "slam/session/session_data.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 /// Throws InputError naming session.source (the session file; else the runs' inputs) and the
 /// extent when the mosaic of `session` at `resolution_m` (GlobalMap's block-aligned lattice)
@@ -30,4 +30,4 @@ cv::Mat RenderSessionMosaic(const SessionData& session, double resolution_m, Joi
 cv::Mat RenderSessionMosaic(const SessionData& session, const Config& config, ImageGrid* grid,
                             cv::Mat* observed);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -23,7 +23,7 @@
 #include "slam/session_mosaic.h"
 #include "slam/slam_snapshot.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 /// One colour per run (BGR for map.png, CSS for report.html): white, orange, green, magenta.
@@ -291,4 +291,4 @@ SessionOutputs CommitSessionOutputs(MapOutputStage* stage, const SessionData& se
   return out;
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

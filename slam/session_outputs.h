@@ -17,7 +17,7 @@
 #include "slam/session/session_data.h"
 #include "slam/session/session_merge.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 struct SessionOutputs {
   std::vector<std::string> files;
@@ -54,4 +54,4 @@ std::vector<std::pair<TimestampNs, Pose2>> CorrectedTrajectory(const SessionData
 /// The merge report as JSON (summary.json's "merge").
 nlohmann::json MergeReportJson(const MergeReport& report);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -12,7 +12,7 @@
 #include "slam/app_config_io.h"
 #include "slam/output_folder.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 SimulateJobResult RunSimulateJob(const Config& config, const SimulateJobOptions& o) {
   const std::vector<PointTargetConfig> targets =
@@ -60,4 +60,4 @@ SimulateJobResult RunSimulateJob(const Config& config, const SimulateJobOptions&
   return result;
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

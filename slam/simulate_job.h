@@ -11,7 +11,7 @@
 #include "drivers/sim/sim_bag_writer.h"
 #include "slam/app_config.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 struct SimulateJobOptions {
   std::string map_yaml;                 ///< the map_server map to drive in
@@ -39,4 +39,4 @@ struct SimulateJobResult {
 /// bag behind.
 SimulateJobResult RunSimulateJob(const Config& config, const SimulateJobOptions& options);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

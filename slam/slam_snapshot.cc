@@ -1,6 +1,6 @@
 #include "slam/slam_snapshot.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 const MatchResult& LoopRecord::Match(DetectorKind kind) const {
   static const MatchResult kNotMatched;
@@ -28,4 +28,4 @@ std::vector<std::pair<TimestampNs, Pose2>> SlamSnapshot::CorrectedTrajectory() c
   return out;
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -19,7 +19,7 @@
 #include "frontend/place_recognition/place_recognizer.h"
 #include "slam/app_config.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 /// Every candidate pair that was matched, with the outcome.
 struct LoopRecord {
@@ -115,4 +115,4 @@ struct SlamSnapshot {
   std::vector<std::pair<TimestampNs, Pose2>> CorrectedTrajectory() const;
 };
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

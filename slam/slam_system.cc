@@ -10,7 +10,7 @@
 #include "imaging/enhance.h"
 #include "slam/app_config.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -289,4 +289,4 @@ std::vector<std::pair<TimestampNs, Pose2>> SlamSystem::CorrectedTrajectory() con
   return out;
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -33,7 +33,7 @@
 #include "slam/slam_snapshot.h"
 #include "slam/wall_edges.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 /// A keyframe as SLAM keeps it (its features live in the PlaceRecognizer).
 struct KeyframeRecord {
@@ -145,4 +145,4 @@ class SlamSystem {
   OrderedWorker<Work> worker_;
 };
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

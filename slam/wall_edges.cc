@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -71,4 +71,4 @@ std::vector<PoseGraphEdge> WallEdgeFinder::Add(const Keyframe& keyframe, const c
   return edges;
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

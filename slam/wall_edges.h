@@ -12,7 +12,7 @@
 #include "frontend/keyframe.h"
 #include "frontend/wall_profile.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 class WallEdgeFinder {
  public:
@@ -46,4 +46,4 @@ class WallEdgeFinder {
   int pairs_tried_ = 0;
 };
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

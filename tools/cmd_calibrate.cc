@@ -49,12 +49,12 @@ void AddCalibrateCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--out", opts->out, "Write the calibration as a configuration file (YAML)");
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
-    pipeline::CalibrateJobOptions options;
+    slam::CalibrateJobOptions options;
     options.bag = opts->bag;
     options.ground_truth_tum = opts->ground_truth;
     options.out_yaml = opts->out;
     options.segment_m = opts->segment_m;
-    const pipeline::CalibrateJobResult result = pipeline::RunCalibrateJob(config, options);
+    const slam::CalibrateJobResult result = slam::RunCalibrateJob(config, options);
     const CalibrationFit& fit = result.fit;
     const std::string& yaml = result.yaml;
     // -q: only the result, the configuration keys, and only when no file receives them.

@@ -85,11 +85,11 @@ AlignRequest MakeAlignRequest(const CompareOptions& opts, const Config& config) 
 
 void RunCompare(const CompareOptions& opts, const GlobalOptions& globals) {
   Config config = LoadConfigFor(globals);
-  pipeline::CheckOutputFolder(opts.out_dir);  // before the work, creating nothing
+  slam::CheckOutputFolder(opts.out_dir);  // before the work, creating nothing
   if (opts.tolerance_cells >= 0) config.compare.tolerance_cells = opts.tolerance_cells;
   const AlignRequest request = MakeAlignRequest(opts, config);
-  const pipeline::CompareJobResult result =
-      pipeline::RunCompareJob(config, opts.sar, opts.lidar, request, opts.out_dir);
+  const slam::CompareJobResult result =
+      slam::RunCompareJob(config, opts.sar, opts.lidar, request, opts.out_dir);
   if (opts.json) {
     std::cout << result.json << "\n";
     return;

@@ -40,12 +40,12 @@ void AddDemoCommand(CLI::App& app, const GlobalOptions& globals) {
       ->check(CLI::ExistingFile);
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
-    pipeline::MapOutputStage stage(opts->out_dir);
-    pipeline::RefuseToReplaceSavedMap(opts->out_dir, {}, false, "give another --out");
-    pipeline::MapRun run =
-        pipeline::MapSimulation(config, opts->map_path.empty() ? BundledMap() : opts->map_path,
-                                "depart-return", opts->seed);
-    const pipeline::MapOutputs outputs = stage.Commit(run);
+    slam::MapOutputStage stage(opts->out_dir);
+    slam::RefuseToReplaceSavedMap(opts->out_dir, {}, false, "give another --out");
+    slam::MapRun run =
+        slam::MapSimulation(config, opts->map_path.empty() ? BundledMap() : opts->map_path,
+                            "depart-return", opts->seed);
+    const slam::MapOutputs outputs = stage.Commit(run);
     if (!globals.quiet) PrintMapSummary(run, outputs, opts->out_dir);
   });
 }

@@ -13,7 +13,7 @@
 namespace uwbsar::tools {
 namespace {
 
-void AddDetectorsOptions(CLI::App* cmd, pipeline::DetectorsJobOptions* opts) {
+void AddDetectorsOptions(CLI::App* cmd, slam::DetectorsJobOptions* opts) {
   cmd->add_option("BAG", opts->bag, "ROS 2 bag (directory, .db3 or .mcap)")
       ->required()
       ->check(CLI::ExistingPath);
@@ -29,9 +29,9 @@ void AddDetectorsOptions(CLI::App* cmd, pipeline::DetectorsJobOptions* opts) {
   cmd->add_flag("--no-images", opts->no_images, "Do not write match images");
 }
 
-void RunDetectors(const pipeline::DetectorsJobOptions& opts, const GlobalOptions& globals) {
+void RunDetectors(const slam::DetectorsJobOptions& opts, const GlobalOptions& globals) {
   const Config config = LoadConfigFor(globals);
-  const pipeline::DetectorsJobResult r = pipeline::RunDetectorsJob(config, opts);
+  const slam::DetectorsJobResult r = slam::RunDetectorsJob(config, opts);
   if (globals.quiet) return;
   std::printf("%zu scans (%zu departing, %zu returning), %zu regions of %.2f m every %.2f m\n\n",
               r.scans, r.departing, r.returning, r.regions, r.region_length_m, r.region_step_m);
@@ -46,7 +46,7 @@ void RunDetectors(const pipeline::DetectorsJobOptions& opts, const GlobalOptions
 }  // namespace
 
 void AddDetectorsCommand(CLI::App& app, const GlobalOptions& globals) {
-  auto opts = std::make_shared<pipeline::DetectorsJobOptions>();
+  auto opts = std::make_shared<slam::DetectorsJobOptions>();
   CLI::App* cmd = app.add_subcommand(
       "detectors", "The paper's detector comparison on a depart-and-return bag (Tables III, IV)");
   AddDetectorsOptions(cmd, opts.get());

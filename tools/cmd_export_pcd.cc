@@ -26,12 +26,12 @@ void AddExportPcdCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_flag("--ascii", opts->ascii, "ASCII PCD instead of binary");
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
-    pipeline::CheckOutputFile(opts->out);  // before the work
-    if (!opts->grid.empty() && !pipeline::IsFloatSarMapPath(opts->map)) {
+    slam::CheckOutputFile(opts->out);  // before the work
+    if (!opts->grid.empty() && !slam::IsFloatSarMapPath(opts->map)) {
       throw CLI::ValidationError("--grid", "only for a float TIFF MAP");
     }
-    const pipeline::PcdExportResult result =
-        pipeline::ExportPcdJob(config, opts->map, opts->grid, opts->out, !opts->ascii);
+    const slam::PcdExportResult result =
+        slam::ExportPcdJob(config, opts->map, opts->grid, opts->out, !opts->ascii);
     if (!globals.quiet) {
       std::printf("wrote %s: %zu %s\n", opts->out.c_str(), result.points, result.what.c_str());
     }

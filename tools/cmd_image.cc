@@ -30,30 +30,30 @@ void AddImageCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--prefix", opts->prefix, "Output file prefix")->capture_default_str();
   cmd->callback([opts, &globals] {
     Config config = LoadConfigFor(globals);
-    pipeline::EnsureDirectory(opts->out_dir);  // every output is checked before the work
+    slam::EnsureDirectory(opts->out_dir);  // every output is checked before the work
     if (!opts->mode.empty()) EnumFromName(opts->mode, &config.imaging.mode);  // checked above
     if (opts->resolution_m > 0) {
       config.imaging.pixel_size_m = opts->resolution_m;
       ValidateConfig(config, "--resolution");  // the sizes it implies, before any work
     }
-    pipeline::ImagingInput input;
+    slam::ImagingInput input;
     if (!opts->log_path.empty()) {
-      input = pipeline::ReadImagingLog(opts->log_path);
+      input = slam::ReadImagingLog(opts->log_path);
     } else if (!opts->synthetic.empty()) {
-      input = pipeline::SyntheticImagingRun(config, opts->synthetic);
+      input = slam::SyntheticImagingRun(config, opts->synthetic);
     } else {
       throw CLI::RequiredError("--log or --synthetic");
     }
-    pipeline::StripResult result;
+    slam::StripResult result;
     try {
-      result = pipeline::ImageRun(config, input.odometry, input.scans);
+      result = slam::ImageRun(config, input.odometry, input.scans);
     } catch (const InputError& e) {  // nothing imaged: name the input
       throw InputError(
           (opts->log_path.empty() ? "--synthetic " + opts->synthetic : opts->log_path) + ": " +
           e.what());
     }
     const auto files =
-        pipeline::WriteStripOutputs(opts->out_dir, opts->prefix, result.strip, config.enhance);
+        slam::WriteStripOutputs(opts->out_dir, opts->prefix, result.strip, config.enhance);
     if (globals.quiet) return;
     const FrontendStats& s = result.stats;
     std::printf("scans: %lld received, %lld imaged, %lld gated, %lld rejected\n", s.scans_received,

@@ -20,9 +20,9 @@ void AddInfoCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_flag("--decode", opts->decode,
                 "Also decode every message (checks the whole bag; uses the --config topics)");
   cmd->callback([opts, &globals] {
-    std::cout << pipeline::BagInfoText(opts->bag);
+    std::cout << slam::BagInfoText(opts->bag);
     if (!opts->decode) return;
-    std::cout << pipeline::BagDecodeText(opts->bag, LoadConfigFor(globals));
+    std::cout << slam::BagDecodeText(opts->bag, LoadConfigFor(globals));
   });
 }
 

@@ -25,11 +25,11 @@ void AddLocalizeCommand(CLI::App& app, const GlobalOptions& globals) {
     const Config config = LoadConfigFor(globals);
     // The output folder is locked for the whole run and the map's folder shared: neither can
     // change under the run, and the outputs never go into a map's folder.
-    const FolderLock out_lock = pipeline::LockOutputFolder(opts->out_dir);
-    pipeline::RefuseMapFolderForLocalize(opts->out_dir);
-    const pipeline::SavedSession map = pipeline::OpenSavedSession(opts->map, config);
-    const pipeline::LocalizeRun run = pipeline::LocalizeBag(map.data, config, opts->bag);
-    const nlohmann::json s = pipeline::WriteLocalizeOutputs(run, opts->out_dir);
+    const FolderLock out_lock = slam::LockOutputFolder(opts->out_dir);
+    slam::RefuseMapFolderForLocalize(opts->out_dir);
+    const slam::SavedSession map = slam::OpenSavedSession(opts->map, config);
+    const slam::LocalizeRun run = slam::LocalizeBag(map.data, config, opts->bag);
+    const nlohmann::json s = slam::WriteLocalizeOutputs(run, opts->out_dir);
     if (globals.quiet) return;
     std::printf(
         "localised %.1f s of log in %.2f s: %zu keyframes (%d tracking, %d lost, %d "

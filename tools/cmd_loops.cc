@@ -75,11 +75,11 @@ void AddLoopsCommand(CLI::App& app, const GlobalOptions& globals) {
       throw CLI::ValidationError("--out", "needs --images");
     }
     const Config config = LoadConfigFor(globals);
-    const pipeline::LoopMatrixJobResult result =
+    const slam::LoopMatrixJobResult result =
         !opts->stats_path.empty()
-            ? pipeline::LoopMatrixFromStats(config, opts->stats_path)
-            : pipeline::LoopMatrixFromImages(config, opts->images_dir, opts->resolution_m,
-                                             opts->detectors, opts->out_dir);
+            ? slam::LoopMatrixFromStats(config, opts->stats_path)
+            : slam::LoopMatrixFromImages(config, opts->images_dir, opts->resolution_m,
+                                         opts->detectors, opts->out_dir);
     const LoopMatrix& m = result.matrix;
     const nlohmann::json& json = result.json;
     if (opts->json) {

@@ -12,7 +12,7 @@
 
 namespace uwbsar::tools {
 
-void PrintMapSummary(const pipeline::MapRun& run, const pipeline::MapOutputs& outputs,
+void PrintMapSummary(const slam::MapRun& run, const slam::MapOutputs& outputs,
                      const std::string& out_dir) {
   const auto& s = outputs.summary;
   std::printf("mapped %.1f s of log (%.1f m) in %.2f s: real-time factor %.1f\n",
@@ -66,15 +66,15 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
     // incompatible one, or one that holds this recording already, is refused first).
     std::vector<OdometrySample> ground_truth;
     if (!opts->ground_truth.empty()) {
-      ground_truth = pipeline::ReadGroundTruthFile(opts->ground_truth);
+      ground_truth = slam::ReadGroundTruthFile(opts->ground_truth);
     }
-    pipeline::MapOutputStage stage(opts->out_dir);
-    std::optional<pipeline::SavedSession> saved;
-    const std::string fingerprint = pipeline::BagFingerprint(opts->bag);  // opens the bag
+    slam::MapOutputStage stage(opts->out_dir);
+    std::optional<slam::SavedSession> saved;
+    const std::string fingerprint = slam::BagFingerprint(opts->bag);  // opens the bag
     if (!opts->resume.empty()) {
       saved = OpenSessionToResume(opts->resume, opts->bag, fingerprint, config);
     }
-    pipeline::RefuseToReplaceSavedMap(
+    slam::RefuseToReplaceSavedMap(
         opts->out_dir, saved ? std::vector<std::string>{saved->dir} : std::vector<std::string>{},
         opts->overwrite,
         "give another --out, --resume " + opts->out_dir +
@@ -82,7 +82,7 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
             "replace it");
     rosbag::BagReadOptions read_options;
     read_options.skip_damaged_chunks = opts->skip_damaged;
-    pipeline::MapRun run = pipeline::MapBag(config, opts->bag, !globals.quiet, read_options);
+    slam::MapRun run = slam::MapBag(config, opts->bag, !globals.quiet, read_options);
     if (!opts->ground_truth.empty()) run.ground_truth = std::move(ground_truth);
     run.fingerprint = fingerprint;
     if (!opts->resume.empty()) {
@@ -90,12 +90,12 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
       return;
     }
     stage.SetExtraOutputs([&run](const std::string& dir) {
-      WriteSession(dir + "/" + kSessionFileName, pipeline::CaptureSession(run));
+      WriteSession(dir + "/" + kSessionFileName, slam::CaptureSession(run));
       return std::vector<std::string>{kSessionFileName};
     });
-    pipeline::MapOutputOptions output_options;
+    slam::MapOutputOptions output_options;
     output_options.exact = opts->exact;
-    const pipeline::MapOutputs outputs = stage.Commit(run, output_options);
+    const slam::MapOutputs outputs = stage.Commit(run, output_options);
     if (!globals.quiet) PrintMapSummary(run, outputs, opts->out_dir);
   });
 }

@@ -34,7 +34,7 @@ void PrintText(const ImageMatch& m) {
 }  // namespace
 
 void AddMatchCommand(CLI::App& app, const GlobalOptions& globals) {
-  struct Options : pipeline::ImageMatchJobOptions {
+  struct Options : slam::ImageMatchJobOptions {
     bool json = false;
   };
   auto opts = std::make_shared<Options>();
@@ -59,7 +59,7 @@ void AddMatchCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--out", opts->out_dir, "Also write match.png (good matches) and match.json");
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
-    const pipeline::ImageMatchJobResult result = pipeline::RunImageMatchJob(config, *opts);
+    const slam::ImageMatchJobResult result = slam::RunImageMatchJob(config, *opts);
     const nlohmann::json& json = result.json;
     if (opts->json) {
       std::cout << json.dump() << "\n";

@@ -26,17 +26,17 @@ void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--out", opts->out_dir, "Output folder")->required();
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
-    pipeline::MapOutputStage stage(opts->out_dir);  // locked; the outputs committed as one set
-    if (pipeline::SamePlace(ResolveSessionPath(opts->a), ResolveSessionPath(opts->b))) {
+    slam::MapOutputStage stage(opts->out_dir);  // locked; the outputs committed as one set
+    if (slam::SamePlace(ResolveSessionPath(opts->a), ResolveSessionPath(opts->b))) {
       throw InputError(opts->b + ": the same session as " + opts->a +
                        "; merging a session with itself would count its data twice");
     }
-    const pipeline::SavedSession saved_a = pipeline::OpenSavedSession(opts->a, config);
-    const pipeline::SavedSession saved_b = pipeline::OpenSavedSession(opts->b, config);
-    pipeline::RefuseToReplaceSavedMap(opts->out_dir, {saved_a.dir, saved_b.dir}, false,
-                                      "give another --out, or one of the merged sessions' folders");
-    pipeline::RefuseRunsAlreadyJoined(saved_a.data, saved_a.path, saved_b.data.trajectories,
-                                      saved_b.path);
+    const slam::SavedSession saved_a = slam::OpenSavedSession(opts->a, config);
+    const slam::SavedSession saved_b = slam::OpenSavedSession(opts->b, config);
+    slam::RefuseToReplaceSavedMap(opts->out_dir, {saved_a.dir, saved_b.dir}, false,
+                                  "give another --out, or one of the merged sessions' folders");
+    slam::RefuseRunsAlreadyJoined(saved_a.data, saved_a.path, saved_b.data.trajectories,
+                                  saved_b.path);
     const SessionData& a = saved_a.data;
     const SessionData& b = saved_b.data;
     MergeReport report;
@@ -46,9 +46,9 @@ void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
     }
     nlohmann::json extra;
     extra["inputs"] = {opts->a, opts->b};
-    extra["merge"] = pipeline::MergeReportJson(report);
-    pipeline::CommitSessionOutputs(&stage, merged, config, {}, extra,
-                                   "uwbsar merge: " + opts->a + " + " + opts->b);
+    extra["merge"] = slam::MergeReportJson(report);
+    slam::CommitSessionOutputs(&stage, merged, config, {}, extra,
+                               "uwbsar merge: " + opts->a + " + " + opts->b);
     if (globals.quiet) return;
     std::printf(
         "merged: %zu + %zu keyframes, %d loops between the sessions (%d rejected by the "

@@ -80,15 +80,15 @@ void PrintOptimizeText(const OptimizeResult& r, const std::string& out) {
 void Optimize(const OptimizeOptions& opts, const GlobalOptions& globals) {
   Config config = LoadConfigFor(globals);
   if (!opts.init.empty()) EnumFromName(opts.init, &config.backend.initialization);  // checked
-  pipeline::OptimizeJobOptions options;
+  slam::OptimizeJobOptions options;
   options.input = opts.in;
   options.out_g2o = opts.out;
   options.out_tum = opts.tum;
   options.out_png = opts.png;
   options.skip_bad_lines = opts.skip_bad_lines;
   options.drop_rejected = opts.drop_rejected;
-  const pipeline::OptimizeJobResult job =
-      pipeline::RunOptimizeJob(config, options, [&globals](const std::string& s) {
+  const slam::OptimizeJobResult job =
+      slam::RunOptimizeJob(config, options, [&globals](const std::string& s) {
         if (!globals.quiet) std::cerr << "uwbsar: skipped " << s << "\n";
       });
   const OptimizeResult& r = job.result;

@@ -68,7 +68,7 @@ void AddRunOptions(CLI::App* cmd, RunOptions* opts) {
                 "otherwise)");
 }
 
-void PrintRunResult(const pipeline::LiveRunResult& result, const std::string& out_dir) {
+void PrintRunResult(const slam::LiveRunResult& result, const std::string& out_dir) {
   std::printf(
       "live run: %lld scans, %lld odometry, %lld recorded messages, %lld dropped from "
       "processing\n",
@@ -82,7 +82,7 @@ void PrintRunResult(const pipeline::LiveRunResult& result, const std::string& ou
   }
   std::printf("recording: %s\n", result.recording_path.c_str());
   if (result.localized) {
-    const pipeline::LocalizeRun& l = result.localize;
+    const slam::LocalizeRun& l = result.localize;
     std::printf("localised %zu keyframes in the saved map; ", l.keyframes.size());
     if (l.first_fix >= 0) {
       std::printf("first fix after %.2f m (%.1f s of log)\n", l.first_fix_path_m,
@@ -106,7 +106,7 @@ void Run(const RunOptions& opts, const GlobalOptions& globals) {
   SetInterruptHandler([] { g_stop = true; });
   std::signal(SIGINT, OnStopSignal);
   std::signal(SIGTERM, OnStopSignal);
-  pipeline::LiveRunOptions options;
+  slam::LiveRunOptions options;
   options.out_dir = opts.out_dir;
   options.recording_dir = opts.recording;
   options.source = opts.source;
@@ -118,17 +118,17 @@ void Run(const RunOptions& opts, const GlobalOptions& globals) {
   options.localize_in = opts.localize_in;
   options.overwrite = opts.overwrite;
   // Locked and checked before any emulated device is made inside it.
-  const FolderLock out_lock = pipeline::LockLiveOutputFolder(options);
-  std::optional<pipeline::LiveEmulation> emulation;
+  const FolderLock out_lock = slam::LockLiveOutputFolder(options);
+  std::optional<slam::LiveEmulation> emulation;
   if (opts.emulate) {
-    pipeline::EmulationOptions emulation_options;
+    slam::EmulationOptions emulation_options;
     emulation_options.map_yaml = opts.map_path.empty() ? BundledMap() : opts.map_path;
     emulation_options.seed = opts.seed;
     emulation_options.speed = opts.speed;
     emulation_options.duration_s = opts.duration_s;
     emulation.emplace(emulation_options, &config, &options, &g_stop);
   }
-  pipeline::LiveRunResult result = pipeline::RunLive(config, std::move(options));
+  slam::LiveRunResult result = slam::RunLive(config, std::move(options));
   if (emulation) emulation->Finish();
   if (!globals.quiet) PrintRunResult(result, opts.out_dir);
 }

@@ -32,7 +32,7 @@ struct SimulateOptions {
 void RunSimulate(const SimulateOptions& o, const GlobalOptions& globals) {
   Config config = LoadConfigFor(globals);
   if (o.laser) config.simulator.laser.enabled = true;
-  pipeline::SimulateJobOptions options;
+  slam::SimulateJobOptions options;
   options.map_yaml = o.map_path;
   options.route = o.route;
   options.bag_dir = o.out_dir;
@@ -41,7 +41,7 @@ void RunSimulate(const SimulateOptions& o, const GlobalOptions& globals) {
   options.text_log = o.text_log_path;
   options.seed = o.seed;
   options.scene_seed = o.scene_seed.empty() ? o.seed : std::stoull(o.scene_seed);
-  const pipeline::SimulateJobResult result = pipeline::RunSimulateJob(config, options);
+  const slam::SimulateJobResult result = slam::RunSimulateJob(config, options);
   if (globals.quiet) return;
   const sim::SimBagSummary& summary = result.summary;
   const double length = result.route_length_m;

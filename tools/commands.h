@@ -11,10 +11,10 @@
 #include "slam/app_config.h"
 #include "slam/output_folder.h"  // EnsureDirectory, CheckOutputFolder, CheckOutputFile
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 struct MapOutputs;
 struct MapRun;
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam
 
 namespace uwbsar::tools {
 
@@ -47,7 +47,7 @@ std::string CheckSeed(const std::string& text);
 std::string CheckPositiveFinite(const std::string& text);
 
 /// The five-line summary printed by `uwbsar map`, `uwbsar demo` and `uwbsar run`.
-void PrintMapSummary(const pipeline::MapRun& run, const pipeline::MapOutputs& outputs,
+void PrintMapSummary(const slam::MapRun& run, const slam::MapOutputs& outputs,
                      const std::string& out_dir);
 
 void AddConfigCommand(CLI::App& app, const GlobalOptions& globals);

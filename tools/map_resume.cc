@@ -13,22 +13,21 @@
 
 namespace uwbsar::tools {
 
-pipeline::SavedSession OpenSessionToResume(const std::string& dir_or_file, const std::string& bag,
-                                           const std::string& fingerprint, const Config& config) {
-  pipeline::SavedSession saved = pipeline::OpenSavedSession(dir_or_file, config);
+slam::SavedSession OpenSessionToResume(const std::string& dir_or_file, const std::string& bag,
+                                       const std::string& fingerprint, const Config& config) {
+  slam::SavedSession saved = slam::OpenSavedSession(dir_or_file, config);
   SessionTrajectory run;
   run.input = bag;
   run.fingerprint = fingerprint;
-  pipeline::RefuseRunsAlreadyJoined(saved.data, saved.path, {run}, bag);
+  slam::RefuseRunsAlreadyJoined(saved.data, saved.path, {run}, bag);
   return saved;
 }
 
-void WriteResumedMap(const pipeline::SavedSession& saved, const pipeline::MapRun& run,
-                     pipeline::MapOutputStage* stage, const std::string& out_dir, bool quiet) {
+void WriteResumedMap(const slam::SavedSession& saved, const slam::MapRun& run,
+                     slam::MapOutputStage* stage, const std::string& out_dir, bool quiet) {
   const Config& config = run.slam->config();
   MergeReport report;
-  const SessionData merged =
-      MergeSessions(saved.data, pipeline::CaptureSession(run), config, &report);
+  const SessionData merged = MergeSessions(saved.data, slam::CaptureSession(run), config, &report);
   if (!report.connected) {
     throw InputError(run.input + ": does not connect to the saved map " + saved.path + " (" +
                      report.reason + "); nothing written. Map it on its own: uwbsar map " +
@@ -39,10 +38,10 @@ void WriteResumedMap(const pipeline::SavedSession& saved, const pipeline::MapRun
   nlohmann::json extra;
   extra["input"] = run.input;
   extra["processing_s"] = run.processing_s;
-  extra["merge"] = pipeline::MergeReportJson(report);
+  extra["merge"] = slam::MergeReportJson(report);
   // Staged and committed as one set, like the plain map's outputs.
-  pipeline::CommitSessionOutputs(stage, merged, config, ground_truth, extra,
-                                 "uwbsar map --resume: " + run.input);
+  slam::CommitSessionOutputs(stage, merged, config, ground_truth, extra,
+                             "uwbsar map --resume: " + run.input);
   if (quiet) return;
   std::printf("mapped %.1f s of log in %.2f s: %zu keyframes\n", run.log_duration_s(),
               run.processing_s, run.slam->keyframes().size());

@@ -18,13 +18,13 @@ namespace uwbsar::tools {
 /// Reads the saved session for `config` under a shared lock on its folder, held while the
 /// result lives (InputError, exit 3, when it cannot be resumed: incompatible, or it already
 /// holds the recording `bag` of identity `fingerprint`).
-pipeline::SavedSession OpenSessionToResume(const std::string& dir_or_file, const std::string& bag,
-                                           const std::string& fingerprint, const Config& config);
+slam::SavedSession OpenSessionToResume(const std::string& dir_or_file, const std::string& bag,
+                                       const std::string& fingerprint, const Config& config);
 
 /// Joins `run` to `saved` and writes the outputs into out_dir; prints a summary unless quiet.
 /// Throws InputError naming the bag and the session, writing nothing, when the run does not
 /// connect to the saved map.
-void WriteResumedMap(const pipeline::SavedSession& saved, const pipeline::MapRun& run,
-                     pipeline::MapOutputStage* stage, const std::string& out_dir, bool quiet);
+void WriteResumedMap(const slam::SavedSession& saved, const slam::MapRun& run,
+                     slam::MapOutputStage* stage, const std::string& out_dir, bool quiet);
 
 }  // namespace uwbsar::tools

@@ -8,7 +8,7 @@
 #include <map>
 #include <set>
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 constexpr double kFalseLoopM = 0.2;
@@ -163,4 +163,4 @@ std::string FormatTourEvaluation(const TourEvaluation& e) {
   return line;
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

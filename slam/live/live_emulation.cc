@@ -8,7 +8,7 @@
 #include "drivers/sim/sim_stream.h"
 #include "slam/output_folder.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 LiveEmulation::LiveEmulation(const EmulationOptions& emulation, Config* config,
                              LiveRunOptions* options, std::atomic<bool>* stop)
@@ -54,4 +54,4 @@ void LiveEmulation::Finish() {
   if (player_) player_->Stop();
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -18,7 +18,7 @@ class HostClock;
 class SimDevicePlayer;
 }  // namespace uwbsar::live
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 struct EmulationOptions {
   std::string map_yaml;     ///< the map_server map the run is simulated in
@@ -56,4 +56,4 @@ class LiveEmulation {
   std::thread watcher_;
 };
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -9,7 +9,7 @@
 #include "slam/session/session_file.h"
 #include "slam/session_capture.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 Processor::Processor(const Config& config, const LiveRunOptions& options, Dispatcher* dispatcher,
                      const SessionData* localize_map)
@@ -199,4 +199,4 @@ double Percentile(std::vector<double> v, double p) {
   return v[std::min(k, v.size() - 1)];
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -24,7 +24,7 @@
 #include "slam/live/live_runner.h"
 #include "slam/localize_pipeline.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 class Processor {
  public:
@@ -113,4 +113,4 @@ class Processor {
 /// The p-th percentile (nearest rank) of `v`; 0 when empty.
 double Percentile(std::vector<double> v, double p);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -6,7 +6,7 @@
 #include "drivers/sim/sim_bag_writer.h"
 #include "slam/app_config.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 Recorder::Recorder(const Config& config, const std::string& dir)
     : period_s_(config.live.recording_flush_period_s) {
@@ -145,4 +145,4 @@ std::string DefaultRecordingName() {
   return buffer;
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

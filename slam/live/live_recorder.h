@@ -22,7 +22,7 @@
 #include "drivers/rosbag/bag_writer.h"
 #include "slam/app_config.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 using SteadyClock = std::chrono::steady_clock;
 
@@ -101,4 +101,4 @@ class Dispatcher {
 /// rosbag2_<date>-<time>, like `ros2 bag record`.
 std::string DefaultRecordingName();
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -5,7 +5,7 @@
 #include "imaging/occupancy_grid.h"
 #include "slam/app_config.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 /// The accepted loops as lines between the two keyframes' corrected anchors.
@@ -89,4 +89,4 @@ SerialModePublishing MaybePublishInSerialMode(const Config& config, live::FaultL
   return out;
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

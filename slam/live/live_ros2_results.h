@@ -14,7 +14,7 @@
 #include "slam/app_config.h"
 #include "slam/live/live_processor.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 class LiveResultPublisher {
  public:
@@ -43,4 +43,4 @@ struct SerialModePublishing {
 SerialModePublishing MaybePublishInSerialMode(const Config& config, live::FaultLog* faults,
                                               Processor* processor);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -11,7 +11,7 @@
 #include "slam/live/live_source.h"
 #include "slam/live/stamp_order_buffer.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 std::int64_t SteadyNs() {
@@ -114,4 +114,4 @@ std::unique_ptr<LiveSource> MakeRos2Source(const Config& config, Dispatcher* dis
   return std::make_unique<Ros2Source>(config, dispatcher, faults, processor);
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

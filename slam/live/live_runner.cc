@@ -22,7 +22,7 @@
 #include "slam/saved_session.h"
 #include "slam/session/session_file.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 nlohmann::json StatValueJson(const live::RadarStatValue& value) {
@@ -249,4 +249,4 @@ LiveRunResult RunLive(const Config& config, LiveRunOptions options) {
   return result;
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

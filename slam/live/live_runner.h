@@ -31,7 +31,7 @@
 #include "slam/map_job.h"
 #include "slam/map_outputs.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 struct LiveRunOptions {
   std::string source = "serial";  ///< serial (the robot's devices) or ros2 (DDS)
@@ -91,4 +91,4 @@ FolderLock LockLiveOutputFolder(const LiveRunOptions& options);
 /// (device list not matching the radars, GPIO chip or line missing, DDS refusing).
 LiveRunResult RunLive(const Config& config, LiveRunOptions options);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

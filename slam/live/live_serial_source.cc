@@ -18,7 +18,7 @@
 #include "slam/live/live_source.h"
 #include "slam/live/stamp_order_buffer.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 class SerialSource : public LiveSource {
@@ -221,4 +221,4 @@ std::unique_ptr<LiveSource> MakeSerialSource(const Config& config, LiveRunOption
   return std::make_unique<SerialSource>(config, options, dispatcher, faults, clock);
 }
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

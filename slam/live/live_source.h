@@ -15,7 +15,7 @@
 #include "slam/app_config.h"
 #include "slam/live/live_processor.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 class LiveSource {
  public:
@@ -51,4 +51,4 @@ std::unique_ptr<LiveSource> MakeSerialSource(const Config& config, LiveRunOption
 std::unique_ptr<LiveSource> MakeRos2Source(const Config& config, Dispatcher* dispatcher,
                                            live::FaultLog* faults, Processor* processor);
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

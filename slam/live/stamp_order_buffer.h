@@ -22,7 +22,7 @@
 #include <utility>
 #include <vector>
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 
 template <class T>
 class StampOrderBuffer {
@@ -110,4 +110,4 @@ class StampOrderBuffer {
   long long late_ = 0;
 };
 
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

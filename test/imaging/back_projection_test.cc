@@ -33,7 +33,7 @@ ModeResult ImagePointTargets(const char* mode, const SyntheticPath& path) {
   std::vector<Scatterer> scene;
   for (const Point2& t : kTargets) scene.push_back({t, 1.0});
   const SyntheticRun run = SimulateRun(config, path, scene, EchoModel{}, 7);
-  const pipeline::StripResult result = pipeline::ImageRun(config, run.odometry, run.scans);
+  const slam::StripResult result = slam::ImageRun(config, run.odometry, run.scans);
   const cv::Mat detected = PaperDetection(config, result.strip.image);
   const cv::Mat magnitude = MagnitudeImage(result.strip.image);
   ModeResult out;
@@ -104,7 +104,7 @@ TEST(BackProjectionTest, FlatWallIsStraightRidgeAtItsDistance) {
     const SyntheticPath path;  // 3 m along +x at y = 0
     const auto wall = WallScatterers({-0.5, kWallY}, {3.5, kWallY}, 0.004, 0.05);
     const SyntheticRun run = SimulateRun(config, path, wall, EchoModel{}, 3);
-    const pipeline::StripResult result = pipeline::ImageRun(config, run.odometry, run.scans);
+    const slam::StripResult result = slam::ImageRun(config, run.odometry, run.scans);
     const cv::Mat detected = config.imaging.coherent() ? MagnitudeImage(result.strip.image)
                                                        : PaperDetection(config, result.strip.image);
     const ImageGrid& g = result.strip.grid;
@@ -142,7 +142,7 @@ TEST(BackProjectionTest, CurvedPathStillFocusesPointTargets) {
   for (const char* mode : {"paper", "coherent"}) {
     const Config config = ConfigForMode(mode);
     const SyntheticRun run = SimulateRun(config, arc, scene, EchoModel{}, 5);
-    const pipeline::StripResult result = pipeline::ImageRun(config, run.odometry, run.scans);
+    const slam::StripResult result = slam::ImageRun(config, run.odometry, run.scans);
     const cv::Mat detected = config.imaging.coherent() ? MagnitudeImage(result.strip.image)
                                                        : PaperDetection(config, result.strip.image);
     for (const Point2& t : targets) {
@@ -166,13 +166,13 @@ TEST(BackProjectionTest, IgnoringTheTurnDefocuses) {
   const Point2 target = mid * Point2{0.0, 1.3};
   const Config config = ConfigForMode("coherent");
   SyntheticRun run = SimulateRun(config, arc, {{target, 1.0}}, EchoModel{}, 5);
-  const pipeline::StripResult good = pipeline::ImageRun(config, run.odometry, run.scans);
+  const slam::StripResult good = slam::ImageRun(config, run.odometry, run.scans);
   SyntheticPath straight;
   for (auto& o : run.odometry) {
     o.T_world_robot =
         PathPose(straight, std::min(3.0, NsToSeconds(o.stamp_ns - straight.start_stamp_ns) * 0.2));
   }
-  const pipeline::StripResult bad = pipeline::ImageRun(config, run.odometry, run.scans);
+  const slam::StripResult bad = slam::ImageRun(config, run.odometry, run.scans);
   double good_peak = 0, bad_peak = 0;
   cv::minMaxLoc(MagnitudeImage(good.strip.image), nullptr, &good_peak);
   cv::minMaxLoc(MagnitudeImage(bad.strip.image), nullptr, &bad_peak);

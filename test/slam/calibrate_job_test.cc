@@ -6,7 +6,7 @@
 
 #include "slam/app_config_io.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 CalibrationFit SomeFit(bool scale_observed) {
@@ -54,4 +54,4 @@ TEST(CalibrateJobTest, CalibrationYamlLoadsAsTheFitAndDefaultsElsewhere) {
 }
 
 }  // namespace
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -1,4 +1,4 @@
-// pipeline::MapOutputStage::CommitWritten (the outputs of `map --resume` and `merge`): the files a
+// slam::MapOutputStage::CommitWritten (the outputs of `map --resume` and `merge`): the files a
 // writer stages are committed as one set; a writer that fails leaves the folder as it was.
 #include <gtest/gtest.h>
 
@@ -57,7 +57,7 @@ class MapOutputStageTest : public ::testing::Test {
 TEST_F(MapOutputStageTest, AWriterThatFailsLeavesTheFolderAsItWas) {
   const auto before = Listing(dir_);
   {
-    pipeline::MapOutputStage stage(dir_);
+    slam::MapOutputStage stage(dir_);
     EXPECT_THROW(stage.CommitWritten([](const std::string& stage_dir) -> std::vector<std::string> {
       Write(stage_dir + "/map.png", "new");
       Write(stage_dir + "/trajectory_0.tum", "new");
@@ -71,7 +71,7 @@ TEST_F(MapOutputStageTest, AWriterThatFailsLeavesTheFolderAsItWas) {
 TEST_F(MapOutputStageTest, CommittedFilesReplaceAnEarlierRunsOutputsAsOneSet) {
   std::vector<std::string> files;
   {
-    pipeline::MapOutputStage stage(dir_);
+    slam::MapOutputStage stage(dir_);
     files = stage.CommitWritten([](const std::string& stage_dir) {
       for (const char* name :
            {"map.png", "trajectory_0.tum", "trajectory_1.tum", "session.uwbsar", "summary.json"}) {

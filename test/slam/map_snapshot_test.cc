@@ -34,7 +34,7 @@ struct SimFeed {
   SyntheticRun run;
   std::size_t odom = 0, scan = 0;
   /// Feeds messages in time order until `until` scans were fed.
-  void To(pipeline::SlamSystem& slam, std::size_t until) {
+  void To(slam::SlamSystem& slam, std::size_t until) {
     while (scan < until && scan < run.scans.size()) {
       while (odom < run.odometry.size() &&
              run.odometry[odom].stamp_ns <= run.scans[scan].stamp_ns) {
@@ -59,28 +59,28 @@ TEST(MapSnapshotTest, OutputsFromTheCopyEqualThoseWrittenUnderTheLockAtThatMomen
   for (int i = 0; i < 12; ++i) scene.push_back({{-2.5 + 0.45 * i, i % 2 ? 2.6 : -0.3}, 1.0});
   SimFeed feed{SimulateRun(config, path, scene, EchoModel{}, 5)};
 
-  pipeline::MapRun run;
+  slam::MapRun run;
   run.input = "synthetic circle";
-  run.slam = std::make_shared<pipeline::SlamSystem>(config);
+  run.slam = std::make_shared<slam::SlamSystem>(config);
   feed.To(*run.slam, feed.run.scans.size() / 2);
   run.slam->WaitIdle();
 
   const fs::path dir = fs::temp_directory_path() / "uwbsar_map_snapshot_test";
   fs::remove_all(dir);
-  pipeline::MapState state;
+  slam::MapState state;
   {
     const auto lock = run.slam->LockState();
     ASSERT_GE(run.slam->keyframes().size(), 3u);
-    state = pipeline::CaptureMapState(run);
-    pipeline::WriteMapOutputs(run,
-                              (dir / "old_way").string());  // the old snapshot: all under the lock
+    state = slam::CaptureMapState(run);
+    slam::WriteMapOutputs(run,
+                          (dir / "old_way").string());  // the old snapshot: all under the lock
   }
   // SLAM moves on: more keyframes, new solves, more odometry.
   feed.To(*run.slam, feed.run.scans.size());
   run.slam->Finish();
   ASSERT_GT(run.slam->keyframes().size(), state.slam.tiles.size());
-  pipeline::WriteMapOutputs(state, (dir / "copy").string());
-  pipeline::WriteMapOutputs(run, (dir / "final").string());
+  slam::WriteMapOutputs(state, (dir / "copy").string());
+  slam::WriteMapOutputs(run, (dir / "final").string());
 
   for (const char* f : {"trajectory.tum", "odometry.tum", "graph.g2o", "loops.csv", "map_float.tif",
                         "map_grid.yaml", "map.png", "map.pgm", "map.yaml"}) {

@@ -28,8 +28,8 @@ TEST(OfficeRunTest, SeveralLoopsNoFalseLoopAndAteWithinTenCentimetres) {
   Config config;
   config.simulator.route.clearance_m = 0.3;  // the route keeps 0.3 m from every obstacle
   const auto t0 = std::chrono::steady_clock::now();
-  const pipeline::MapRun run = pipeline::MapSimulation(config, OfficeFile("office.yaml"),
-                                                       OfficeFile("route_loops.txt"), /*seed=*/1);
+  const slam::MapRun run = slam::MapSimulation(config, OfficeFile("office.yaml"),
+                                               OfficeFile("route_loops.txt"), /*seed=*/1);
   const double total_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   double travel_m = 0.0;  // true path length
@@ -43,9 +43,8 @@ TEST(OfficeRunTest, SeveralLoopsNoFalseLoopAndAteWithinTenCentimetres) {
   std::vector<std::pair<TimestampNs, Pose2>> odometry;
   for (const OdometryEntry& e : run.slam->odometry())
     odometry.push_back({e.stamp_ns, e.T_world_robot});
-  const AteResult slam =
-      pipeline::TrajectoryError(run.slam->CorrectedTrajectory(), run.ground_truth);
-  const AteResult odom = pipeline::TrajectoryError(odometry, run.ground_truth);
+  const AteResult slam = slam::TrajectoryError(run.slam->CorrectedTrajectory(), run.ground_truth);
+  const AteResult odom = slam::TrajectoryError(odometry, run.ground_truth);
 
   // True anchor poses: the anchor is rigidly attached to the robot at the keyframe's stamp.
   auto true_pose_at = [&](TimestampNs t) {
@@ -60,14 +59,14 @@ TEST(OfficeRunTest, SeveralLoopsNoFalseLoopAndAteWithinTenCentimetres) {
     return it->T_world_robot;
   };
   std::map<int, Pose2> true_anchor;
-  for (const pipeline::KeyframeRecord& k : run.slam->keyframes()) {
+  for (const slam::KeyframeRecord& k : run.slam->keyframes()) {
     const Pose2 T_robot_anchor = k.keyframe.T_world_robot.Inverse() * k.keyframe.T_world_anchor;
     true_anchor[k.keyframe.id] = true_pose_at(k.keyframe.stamp_ns) * T_robot_anchor;
   }
 
   int accepted = 0, validated = 0, false_accepted = 0, false_validated = 0;
   double worst_accepted_m = 0.0;
-  for (const pipeline::LoopRecord& l : run.slam->loops()) {
+  for (const slam::LoopRecord& l : run.slam->loops()) {
     if (!l.validation.accepted) continue;
     ++validated;
     accepted += l.accepted();
@@ -87,7 +86,7 @@ TEST(OfficeRunTest, SeveralLoopsNoFalseLoopAndAteWithinTenCentimetres) {
                 l.rejected_by_backend ? "rejected" : "accepted", l.chi2, is_false ? "  FALSE" : "");
   }
   const double log_s = run.log_duration_s();
-  const pipeline::StageTimes& t = run.slam->times();
+  const slam::StageTimes& t = run.slam->times();
   std::printf(
       "office: travel %.1f m, log %.1f s, keyframes %zu, candidates %zu, validated %d "
       "(%d false), accepted %d (%d false, worst %.1f mm)\n",

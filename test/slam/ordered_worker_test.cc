@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 TEST(OrderedWorkerTest, ItemsAreProcessedInHandOverOrderWithOrWithoutTheThread) {
@@ -76,4 +76,4 @@ TEST(OrderedWorkerTest, DestructionProcessesWhatIsStillQueued) {
 }
 
 }  // namespace
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -52,15 +52,15 @@ class ShiftedReplay : public MessageSource {
 Outcome MapShifted(const Config& config, const std::vector<Message>& messages, double dx_m,
                    double dy_m) {
   ShiftedReplay source(messages, dx_m, dy_m);
-  const pipeline::MapRun run = pipeline::MapSource(config, "shifted", source);
+  const slam::MapRun run = slam::MapSource(config, "shifted", source);
   Outcome out;
   out.keyframes = run.slam->keyframes().size();
   out.candidates = run.slam->loops().size();
-  for (const pipeline::LoopRecord& l : run.slam->loops()) {
+  for (const slam::LoopRecord& l : run.slam->loops()) {
     if (l.accepted()) out.accepted_loops.insert({l.match_id, l.query_id});
   }
   const auto trajectory = run.slam->CorrectedTrajectory();
-  out.ate = pipeline::TrajectoryError(trajectory, run.ground_truth);
+  out.ate = slam::TrajectoryError(trajectory, run.ground_truth);
   for (const auto& [stamp, pose] : trajectory) {
     out.trajectory.push_back({stamp, {pose.x_m - dx_m, pose.y_m - dy_m, pose.yaw_rad}});
   }

@@ -19,13 +19,12 @@ std::string SeedLab() { return ::uwbsar::testing::SeedLabLidarMap(); }
 TEST(SlamSystemTest, SeedLabDepartReturnBeatsOdometryByThreeTimes) {
   UWBSAR_NEED_SEED_LAB_MAP();
   const Config config;
-  const pipeline::MapRun run = pipeline::MapSimulation(config, SeedLab(), "depart-return", 1);
+  const slam::MapRun run = slam::MapSimulation(config, SeedLab(), "depart-return", 1);
   std::vector<std::pair<TimestampNs, Pose2>> odometry;
   for (const OdometryEntry& e : run.slam->odometry())
     odometry.push_back({e.stamp_ns, e.T_world_robot});
-  const AteResult slam =
-      pipeline::TrajectoryError(run.slam->CorrectedTrajectory(), run.ground_truth);
-  const AteResult odom = pipeline::TrajectoryError(odometry, run.ground_truth);
+  const AteResult slam = slam::TrajectoryError(run.slam->CorrectedTrajectory(), run.ground_truth);
+  const AteResult odom = slam::TrajectoryError(odometry, run.ground_truth);
   // True anchor poses: the anchor is rigidly attached to the robot at the tile's start.
   auto true_pose_at = [&](TimestampNs t) {
     const OdometrySample* best = &run.ground_truth.front();
@@ -35,13 +34,13 @@ TEST(SlamSystemTest, SeedLabDepartReturnBeatsOdometryByThreeTimes) {
     return best->T_world_robot;
   };
   std::map<int, Pose2> true_anchor;
-  for (const pipeline::KeyframeRecord& k : run.slam->keyframes()) {
+  for (const slam::KeyframeRecord& k : run.slam->keyframes()) {
     const Pose2 T_robot_anchor = k.keyframe.T_world_robot.Inverse() * k.keyframe.T_world_anchor;
     true_anchor[k.keyframe.id] = true_pose_at(k.keyframe.stamp_ns) * T_robot_anchor;
   }
   int accepted = 0;
   double worst_loop_m = 0.0;
-  for (const pipeline::LoopRecord& l : run.slam->loops()) {
+  for (const slam::LoopRecord& l : run.slam->loops()) {
     accepted += l.accepted();
     if (!l.validation.accepted) continue;
     const Pose2 truth = Between(true_anchor[l.match_id], true_anchor[l.query_id]);
@@ -54,7 +53,7 @@ TEST(SlamSystemTest, SeedLabDepartReturnBeatsOdometryByThreeTimes) {
                 NormalizeAngle(T.yaw_rad - truth.yaw_rad) * 180 / M_PI,
                 l.rejected_by_backend ? "rejected" : "accepted", l.chi2);
   }
-  const pipeline::StageTimes& t = run.slam->times();
+  const slam::StageTimes& t = run.slam->times();
   std::printf(
       "keyframes %zu, candidates %zu, loops accepted %d; ATE %.2f cm, odometry %.2f cm; "
       "log %.1f s processed in %.2f s (imaging %.2f, features %.2f, matching %.2f, "
@@ -77,8 +76,8 @@ TEST(SlamSystemTest, KeyframeThreadGivesTheSameResultAsOneThread) {
   threaded.slam.keyframe_queue_size = 2;  // the feeder also waits on a full queue
   Config inline_config = threaded;
   inline_config.slam.keyframe_thread = false;
-  const pipeline::MapRun a = pipeline::MapSimulation(threaded, SeedLab(), "depart-return", 1);
-  const pipeline::MapRun b = pipeline::MapSimulation(inline_config, SeedLab(), "depart-return", 1);
+  const slam::MapRun a = slam::MapSimulation(threaded, SeedLab(), "depart-return", 1);
+  const slam::MapRun b = slam::MapSimulation(inline_config, SeedLab(), "depart-return", 1);
   ASSERT_EQ(a.slam->keyframes().size(), b.slam->keyframes().size());
   ASSERT_EQ(a.slam->loops().size(), b.slam->loops().size());
   for (std::size_t i = 0; i < a.slam->loops().size(); ++i) {

@@ -31,10 +31,10 @@ std::string ToursFile(const std::string& name) {
 TEST(TourRunTest, RingClosedAfterFiftyMetresWithoutFalseLoops) {
   Config config;
   config.simulator.route.clearance_m = 0.3;  // the route keeps 0.45 m from every obstacle
-  const pipeline::MapRun run = pipeline::MapSimulation(
-      config, ToursFile("tours/two_rings.yaml"), ToursFile("tours/two_rings_west.txt"), /*seed=*/1);
-  const pipeline::TourEvaluation e = pipeline::EvaluateTour(run);
-  std::printf("two_rings west ring: %s\n", pipeline::FormatTourEvaluation(e).c_str());
+  const slam::MapRun run = slam::MapSimulation(config, ToursFile("tours/two_rings.yaml"),
+                                               ToursFile("tours/two_rings_west.txt"), /*seed=*/1);
+  const slam::TourEvaluation e = slam::EvaluateTour(run);
+  std::printf("two_rings west ring: %s\n", slam::FormatTourEvaluation(e).c_str());
   ASSERT_GE(e.travel_m, 50.0);
   EXPECT_EQ(e.false_accepted, 0);
   EXPECT_GE(e.longest_loop_path_m, 45.0);  // the ring's closure itself was accepted
@@ -62,8 +62,8 @@ TEST(TourRunTest, RingClosedAfterFiftyMetresWithoutFalseLoops) {
 TEST(TourRunTest, ABaseCalibratedOnAnotherRunKeepsTheTourWithinFiveCentimetres) {
   Config config;
   config.simulator.route.clearance_m = 0.3;
-  const pipeline::MapRun calibration_run =
-      pipeline::MapSimulation(config, ToursFile("seed_hall/seed_hall.yaml"), "loop", /*seed=*/7);
+  const slam::MapRun calibration_run =
+      slam::MapSimulation(config, ToursFile("seed_hall/seed_hall.yaml"), "loop", /*seed=*/7);
   std::vector<OdometrySample> odometry;
   for (const OdometryEntry& e : calibration_run.slam->odometry()) {
     OdometrySample o;
@@ -83,10 +83,10 @@ TEST(TourRunTest, ABaseCalibratedOnAnotherRunKeepsTheTourWithinFiveCentimetres) 
   config.backend.calibration_heading_drift_mean_rad_per_m = fit.calibration[kCalibHeadingDrift];
   config.backend.calibration_rotation_mean = fit.calibration[kCalibRotation];
   config.backend.calibration_scale_sigma = std::max(0.001, 3.0 * fit.sigma[kCalibScale]);
-  const pipeline::MapRun run = pipeline::MapSimulation(
-      config, ToursFile("floor50/floor50.yaml"), ToursFile("floor50/route_tour.txt"), /*seed=*/1);
-  const pipeline::TourEvaluation e = pipeline::EvaluateTour(run);
-  std::printf("floor50 tour, calibrated base: %s\n", pipeline::FormatTourEvaluation(e).c_str());
+  const slam::MapRun run = slam::MapSimulation(config, ToursFile("floor50/floor50.yaml"),
+                                               ToursFile("floor50/route_tour.txt"), /*seed=*/1);
+  const slam::TourEvaluation e = slam::EvaluateTour(run);
+  std::printf("floor50 tour, calibrated base: %s\n", slam::FormatTourEvaluation(e).c_str());
   EXPECT_EQ(e.false_accepted, 0);
   EXPECT_TRUE(e.ring_closed);
   EXPECT_LE(e.ate_m, 0.05);

@@ -10,7 +10,7 @@
 
 #include "test/frontend/corridor_tile.h"
 
-namespace uwbsar::pipeline {
+namespace uwbsar::slam {
 namespace {
 
 using testing::CorridorTile;
@@ -107,4 +107,4 @@ TEST(WallEdgesTest, NoEdgeAcrossATurnOrFromATileCutShort) {
 }
 
 }  // namespace
-}  // namespace uwbsar::pipeline
+}  // namespace uwbsar::slam

@@ -73,8 +73,8 @@ bool Prepare(const std::string& name, Fixture* f) {
 
 /// Runs `uwbsar run --source ros2` in this process until `players` (run one after the
 /// other, `gap_s` apart) have finished.
-pipeline::LiveRunResult RunWhilePlaying(const Fixture& f, const std::vector<std::string>& players,
-                                        double gap_s, std::vector<nlohmann::json>* sent) {
+slam::LiveRunResult RunWhilePlaying(const Fixture& f, const std::vector<std::string>& players,
+                                    double gap_s, std::vector<nlohmann::json>* sent) {
   std::atomic<bool> stop{false};
   std::thread driver([&] {
     std::this_thread::sleep_for(std::chrono::milliseconds(500));  // uwbsar is up
@@ -88,13 +88,13 @@ pipeline::LiveRunResult RunWhilePlaying(const Fixture& f, const std::vector<std:
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
     stop = true;
   });
-  pipeline::LiveRunOptions options;
+  slam::LiveRunOptions options;
   options.source = "ros2";
   options.out_dir = f.dir + "/live";
   options.recording_dir = f.dir + "/recording";
   options.stop = &stop;
   options.quiet = true;
-  pipeline::LiveRunResult result = pipeline::RunLive(f.config, std::move(options));
+  slam::LiveRunResult result = slam::RunLive(f.config, std::move(options));
   driver.join();
   return result;
 }
@@ -105,8 +105,7 @@ TEST(LiveRos2Test, A_B_PeerDrivesALiveRunMatchingOfflineAndPublishesWhatIsOnDisk
   if (!Prepare("ab", &f)) GTEST_SKIP() << "UWBSAR_VENV not set (make test sets it)";
   BackgroundCommand listener(PlayerCommand(f.python, "listen", "--idle 6 --timeout 300"));
   std::vector<nlohmann::json> sent;
-  const pipeline::LiveRunResult live =
-      RunWhilePlaying(f, {"--bag " + f.bag + " --speed 2"}, 0, &sent);
+  const slam::LiveRunResult live = RunWhilePlaying(f, {"--bag " + f.bag + " --speed 2"}, 0, &sent);
   ASSERT_EQ(sent.size(), 1u);
   ASSERT_FALSE(sent[0].contains("error")) << sent[0].dump();
   int status = -1;
@@ -114,11 +113,11 @@ TEST(LiveRos2Test, A_B_PeerDrivesALiveRunMatchingOfflineAndPublishesWhatIsOnDisk
   ASSERT_FALSE(heard.contains("error")) << heard["error"].get<std::string>();
 
   // A: the same result as `uwbsar map` on the bag the peer played.
-  const pipeline::MapRun offline = pipeline::MapBag(f.config, f.bag, false);
+  const slam::MapRun offline = slam::MapBag(f.config, f.bag, false);
   const AteResult offline_ate =
-      pipeline::TrajectoryError(offline.slam->CorrectedTrajectory(), offline.ground_truth);
+      slam::TrajectoryError(offline.slam->CorrectedTrajectory(), offline.ground_truth);
   const AteResult live_ate =
-      pipeline::TrajectoryError(live.run.slam->CorrectedTrajectory(), offline.ground_truth);
+      slam::TrajectoryError(live.run.slam->CorrectedTrajectory(), offline.ground_truth);
   std::printf(
       "A: live over DDS: %zu keyframes, %zu accepted loops, ATE %.2f cm; uwbsar map: "
       "%zu keyframes, %zu loops, ATE %.2f cm; %lld scans, %lld odometry received\n",
@@ -131,7 +130,7 @@ TEST(LiveRos2Test, A_B_PeerDrivesALiveRunMatchingOfflineAndPublishesWhatIsOnDisk
   EXPECT_LT(std::abs(live_ate.rmse_m - offline_ate.rmse_m), 0.01);
   EXPECT_EQ(AcceptedPairs(*live.run.slam), AcceptedPairs(*offline.slam));
   // The recording, mapped offline, gives the live trajectory.
-  const pipeline::MapRun replay = pipeline::MapBag(f.config, live.recording_path, false);
+  const slam::MapRun replay = slam::MapBag(f.config, live.recording_path, false);
   const auto a = live.run.slam->CorrectedTrajectory();
   const auto b = replay.slam->CorrectedTrajectory();
   ASSERT_EQ(a.size(), b.size());
@@ -206,7 +205,7 @@ TEST(LiveRos2Test, C_PublisherGoneDuplicatesDisorderAndWrongTypeAreSurvived) {
   // A wrong type on the odometry topic while the bag plays.
   BackgroundCommand wrong(dds::testing::PeerCommand(f.python, "wrongtype", "--linger 6"));
   std::vector<nlohmann::json> sent;
-  const pipeline::LiveRunResult live = RunWhilePlaying(
+  const slam::LiveRunResult live = RunWhilePlaying(
       f,
       {"--bag " + f.bag + " --speed 2 --duration 12 --duplicate-every 50 --out-of-order-at 100",
        "--bag " + f.bag + " --speed 2 --start 16 --duration 12"},

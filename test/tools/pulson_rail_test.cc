@@ -28,12 +28,12 @@ struct Peak {
 
 /// The rail run imaged as `uwbsar --config CONFIG image --log LOG --mode coherent
 /// --resolution 0.01` does; |I| of the strip.
-pipeline::StripResult ImageRail(const std::string& log, const std::string& config_file) {
+slam::StripResult ImageRail(const std::string& log, const std::string& config_file) {
   Config config = LoadConfig(testing::SharedDataPath("real/pulson440_rail/" + config_file));
   config.imaging.mode = ImagingMode::kCoherent;
   config.imaging.pixel_size_m = 0.01;
   TextLog text = ReadTextLog(testing::SharedDataPath("real/pulson440_rail/" + log));
-  return pipeline::ImageRun(config, text.odometry, text.scans);
+  return slam::ImageRun(config, text.odometry, text.scans);
 }
 
 /// Strongest |I| pixel within radius_m of `expected`.
@@ -71,7 +71,7 @@ double MedianOfImaged(const cv::Mat& magnitude) {
 std::vector<Peak> CheckFocus(const std::string& log, const std::string& config_file,
                              const std::vector<Point2>& expected,
                              const std::vector<Point2>& independent) {
-  const pipeline::StripResult result = ImageRail(log, config_file);
+  const slam::StripResult result = ImageRail(log, config_file);
   const cv::Mat magnitude = MagnitudeImage(result.strip.image);
   const double median = MedianOfImaged(magnitude);
   std::vector<Peak> peaks;

@@ -36,17 +36,17 @@ std::string FreshDir(const std::string& name) {
   return dir.string();
 }
 
-const pipeline::ImageLoopStudy& Study() {
-  static const pipeline::ImageLoopStudy study =
-      pipeline::RunImageLoopStudy(RegionsDir(), 0.005, {DetectorKind::kAkaze, DetectorKind::kOrb},
-                                  Config{}, Config{}.limits.max_map_image_pixels);
+const ImageLoopStudy& Study() {
+  static const ImageLoopStudy study =
+      RunImageLoopStudy(RegionsDir(), 0.005, {DetectorKind::kAkaze, DetectorKind::kOrb}, Config{},
+                        Config{}.limits.max_map_image_pixels);
   return study;
 }
 
 TEST(RealCorridorTest, AllSixLoopsAreAcceptedWithTheDefaultConfiguration) {
   UWBSAR_NEED_SHARED_DATA(kRegions);
   int accepted = 0;
-  for (const pipeline::ImagePairResult& p : Study().pairs) {
+  for (const ImagePairResult& p : Study().pairs) {
     if (p.d != p.r) continue;
     const ImageMatch& m = p.match;
     const auto& a = m.matches.at(DetectorKind::kAkaze);
@@ -67,7 +67,7 @@ TEST(RealCorridorTest, AllSixLoopsAreAcceptedWithTheDefaultConfiguration) {
 TEST(RealCorridorTest, NoFalseLoopAmongTheThirtyNonLoopPairs) {
   UWBSAR_NEED_SHARED_DATA(kRegions);
   int accepted_off_diagonal = 0;
-  for (const pipeline::ImagePairResult& p : Study().pairs) {
+  for (const ImagePairResult& p : Study().pairs) {
     if (p.d == p.r || !p.match.accepted()) continue;
     ++accepted_off_diagonal;
     const CentredTransform& t = p.match.transform;

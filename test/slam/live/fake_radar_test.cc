@@ -116,7 +116,7 @@ TEST(FakeRadarTest, ARadarModelRegisteredThroughTheFactoryFeedsTheLiveRun) {
   Config config;
   config.live.radar_model = "fake";
   const EmulatedRun live = RunEmulated(config, "fake_radar", 2.0, 4.0);
-  const pipeline::LiveRunResult& r = live.result;
+  const slam::LiveRunResult& r = live.result;
 
   // Created through the factory, one per radars[] entry, with its device and name.
   {

@@ -25,26 +25,26 @@ namespace {
 namespace fs = std::filesystem;
 
 /// `uwbsar demo`'s pipeline on the same simulated run, without devices.
-pipeline::MapRun MapSimulated(const Config& config) {
-  return pipeline::MapSimulation(config, SeedLabMapPath(), "depart-return", 1);
+slam::MapRun MapSimulated(const Config& config) {
+  return slam::MapSimulation(config, SeedLabMapPath(), "depart-return", 1);
 }
 
-int AcceptedLoops(const pipeline::SlamSystem& slam) {
+int AcceptedLoops(const slam::SlamSystem& slam) {
   int n = 0;
-  for (const pipeline::LoopRecord& l : slam.loops()) n += l.accepted() ? 1 : 0;
+  for (const slam::LoopRecord& l : slam.loops()) n += l.accepted() ? 1 : 0;
   return n;
 }
 
 /// Loops accepted by one run and not the other that are not weak: a weak loop had at most
 /// twice the paper's min_good_matches for one detector where it was accepted, so a
 /// different noise draw in its tiles can move it across the threshold.
-std::vector<std::pair<int, int>> NonMarginalDifferences(const pipeline::SlamSystem& a,
-                                                        const pipeline::SlamSystem& b) {
+std::vector<std::pair<int, int>> NonMarginalDifferences(const slam::SlamSystem& a,
+                                                        const slam::SlamSystem& b) {
   const int marginal = 2 * a.config().place_recognition.validation.min_good_matches;
   std::vector<std::pair<int, int>> out;
   for (const auto& pair : {std::make_pair(&a, &b), std::make_pair(&b, &a)}) {
     const std::set<std::pair<int, int>> other = AcceptedPairs(*pair.second);
-    for (const pipeline::LoopRecord& l : pair.first->loops()) {
+    for (const slam::LoopRecord& l : pair.first->loops()) {
       if (!l.accepted() || other.count({l.match_id, l.query_id})) continue;
       std::printf("A: loop %d-%d only in one run (good matches AKAZE %d, ORB %d)\n", l.match_id,
                   l.query_id, l.Match(DetectorKind::kAkaze).good_matches,
@@ -62,11 +62,11 @@ TEST(LiveAcceptanceTest, A_B_RealTimeRunMatchesOfflineMappingAndReportsLatency) 
   UWBSAR_NEED_SEED_LAB_MAP();
   Config config;
   const EmulatedRun live = RunEmulated(config, "accept_a", 1.0, 0.0);
-  const pipeline::LiveRunResult& r = live.result;
-  const pipeline::MapRun offline = MapSimulated(config);
+  const slam::LiveRunResult& r = live.result;
+  const slam::MapRun offline = MapSimulated(config);
   const AteResult offline_ate =
-      pipeline::TrajectoryError(offline.slam->CorrectedTrajectory(), offline.ground_truth);
-  const pipeline::MapRun replay = pipeline::MapBag(config, r.recording_path, false);
+      slam::TrajectoryError(offline.slam->CorrectedTrajectory(), offline.ground_truth);
+  const slam::MapRun replay = slam::MapBag(config, r.recording_path, false);
   const auto a = r.run.slam->CorrectedTrajectory();
   const auto b = replay.slam->CorrectedTrajectory();
   std::printf(
@@ -152,7 +152,7 @@ TEST(LiveAcceptanceTest, C_FaultsAreReportedAndTheRunCompletesWithoutFalseLoops)
   faults.stall_for_s = 2.0;
   faults.encoder_jump_at_s = 60.0;
   const EmulatedRun live = RunEmulated(config, "accept_c", 1.0, 0.0, faults);
-  const pipeline::LiveRunResult& r = live.result;
+  const slam::LiveRunResult& r = live.result;
   for (const auto& [kind, count] : r.faults)
     std::printf("C: fault %s: %lld\n", kind.c_str(), count);
   std::printf("C: emulator corrupted %lld frames and %lld packets; %d loops, ATE %.2f cm\n",

@@ -49,8 +49,8 @@ TEST(LiveLocalizeTest, LiveRunInASavedSessionIsPlacedAndItsMapToOdomIsTrue) {
   Config config = ::uwbsar::testing::ShortSessionConfig();
   config.live.snapshot_period_s = 1.0;
   const std::string lidar = ::uwbsar::testing::SeedLabLidarMap();
-  const pipeline::MapRun a = pipeline::MapSimulation(config, lidar, "depart-return", 1);
-  const SessionData map = pipeline::CaptureSession(a);
+  const slam::MapRun a = slam::MapSimulation(config, lidar, "depart-return", 1);
+  const SessionData map = slam::CaptureSession(a);
   const std::string session_dir =
       (std::filesystem::temp_directory_path() / ("uwbsar_live_map_" + std::to_string(::getpid())))
           .string();
@@ -80,12 +80,12 @@ TEST(LiveLocalizeTest, LiveRunInASavedSessionIsPlacedAndItsMapToOdomIsTrue) {
   run_over = true;
   taker.join();
   std::filesystem::remove_all(session_dir);
-  const pipeline::LiveRunResult& r = live.result;
+  const slam::LiveRunResult& r = live.result;
   ASSERT_TRUE(r.localized);
   EXPECT_FALSE(r.run.slam);  // nothing mapped
   EXPECT_EQ(r.dropped_from_processing, 0);
   EXPECT_GE(r.recorded_messages, r.scans_received + r.odometry_received);
-  const pipeline::LocalizeRun& run = r.localize;
+  const slam::LocalizeRun& run = r.localize;
   ASSERT_GE(run.first_fix, 0) << "never placed";
   EXPECT_LE(run.first_fix_path_m, 3.0);
 

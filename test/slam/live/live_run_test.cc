@@ -22,7 +22,7 @@ TEST(LiveRunTest, RecordingMappedOfflineReproducesTheLiveTrajectory) {
   Config config;
   config.live.snapshot_period_s = 1.0;
   const EmulatedRun live = RunEmulated(config, "short", 2.0, 14.0);
-  const pipeline::LiveRunResult& r = live.result;
+  const slam::LiveRunResult& r = live.result;
   ASSERT_TRUE(r.run.slam);
   ASSERT_FALSE(r.run.slam->keyframes().empty());
   EXPECT_EQ(r.dropped_from_processing, 0);
@@ -41,7 +41,7 @@ TEST(LiveRunTest, RecordingMappedOfflineReproducesTheLiveTrajectory) {
   // a 2 s period gave one snapshot in the 7 s run).
   EXPECT_GE(r.snapshots, 1);
   // Offline, from the recording: the same trajectory, pose by pose.
-  const pipeline::MapRun offline = pipeline::MapBag(config, r.recording_path, false);
+  const slam::MapRun offline = slam::MapBag(config, r.recording_path, false);
   const auto a = r.run.slam->CorrectedTrajectory();
   const auto b = offline.slam->CorrectedTrajectory();
   ASSERT_EQ(a.size(), b.size());
@@ -64,12 +64,12 @@ TEST(LiveRunTest, RecordingMappedOfflineReproducesTheLiveTrajectory) {
 TEST(LiveRunTest, DeviceListNotMatchingTheRadarsIsAnInputError) {
   Config config;
   config.live.radar_devices = {"/dev/ttyACM0"};
-  pipeline::LiveRunOptions options;
+  slam::LiveRunOptions options;
   options.out_dir = std::filesystem::temp_directory_path() / "uwbsar_live_bad";
-  EXPECT_THROW(pipeline::RunLive(config, std::move(options)), InputError);
+  EXPECT_THROW(slam::RunLive(config, std::move(options)), InputError);
 }
 
-long long Fault(const pipeline::LiveRunResult& r, const std::string& kind) {
+long long Fault(const slam::LiveRunResult& r, const std::string& kind) {
   auto it = r.faults.find(kind);
   return it == r.faults.end() ? 0 : it->second;
 }
@@ -79,7 +79,7 @@ TEST(LiveRunTest, TheEchoedRangeNotTheYamlSetsTheImagingGeometry) {
   config.live.lt102.range_min_m = 0.5;
   config.live.lt102.range_max_m = 3.0;
   const EmulatedRun live = RunEmulated(config, "range", 2.0, 8.0);
-  const pipeline::LiveRunResult& r = live.result;
+  const slam::LiveRunResult& r = live.result;
   const double bin_m = 299792458.0 / (2 * 23.328e9);
   for (const RadarConfig& radar : r.run.slam->config().radars) {
     EXPECT_NEAR(radar.range_offset_m, 78 * bin_m, 1e-6);  // 0.5 m on the radar's grid
@@ -102,7 +102,7 @@ TEST(LiveRunTest, Lt102FaultsAreCountedAndEveryScanThatArrivedIsRecorded) {
   faults.lt102_missing_answer_times = 3;     // 0.75 s without bytes: under live.read_timeout_s
   config.live.lt102.frame_timeout_s = 0.25;  // the request in flight when the run ends stays so
   const EmulatedRun live = RunEmulated(config, "lt102_faults", 2.0, 8.0, faults);
-  const pipeline::LiveRunResult& r = live.result;
+  const slam::LiveRunResult& r = live.result;
   long long answers = 0, invalid = 0, repeated = 0;
   for (const auto& [name, s] : r.radars) {
     std::printf("%s: %lld requests, %lld answers, %lld lost, %lld invalid; CRC %s\n", name.c_str(),
@@ -140,13 +140,13 @@ TEST(LiveRunTest, ARadarRefusingASettingStopsTheRunWithOneLineNamingIt) {
       config, scenario, 1, config.live.radar_devices, config.live.kobuki_device, 1.0, faults,
       [&] { return clock.Now(); }, 5.0);
   player.Start();
-  pipeline::LiveRunOptions options;
+  slam::LiveRunOptions options;
   options.out_dir = dir;
   options.quiet = true;
   std::atomic<bool> stop{true};
   options.stop = &stop;
   try {
-    pipeline::RunLive(config, std::move(options));
+    slam::RunLive(config, std::move(options));
     ADD_FAILURE() << "the run started";
   } catch (const InputError& e) {
     std::printf("refused: %s\n", e.what());
@@ -184,7 +184,7 @@ TEST_P(LivePollingTest, EachFrameOnceAtTheRadarsFrameRate) {
   faults.lt102_actual_frame_rate_fps = c.radar_fps;
   const EmulatedRun live = RunEmulated(config, std::string("poll_") + c.name, 1.0, 10.0, faults, 1,
                                        {}, /*asked_frame_rate_fps=*/100);
-  const pipeline::LiveRunResult& r = live.result;
+  const slam::LiveRunResult& r = live.result;
   ASSERT_EQ(r.radars.size(), 2u);
   const bool loaded = std::getenv("UWBSAR_UNDER_LOAD") != nullptr;
   long long delivered = 0, repeated = 0, missed = 0;

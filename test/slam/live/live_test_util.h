@@ -23,7 +23,7 @@
 namespace uwbsar::live {
 
 struct EmulatedRun {
-  pipeline::LiveRunResult result;
+  slam::LiveRunResult result;
   std::vector<OdometrySample> ground_truth;
   EmulatorCounts emulator;
   std::string out_dir;
@@ -32,9 +32,9 @@ struct EmulatedRun {
 
 /// The accepted loops as (earlier keyframe, new keyframe) ids: keyframe ids are world-
 /// lattice segment numbers, so two runs over the same path number them alike.
-inline std::set<std::pair<int, int>> AcceptedPairs(const pipeline::SlamSystem& slam) {
+inline std::set<std::pair<int, int>> AcceptedPairs(const slam::SlamSystem& slam) {
   std::set<std::pair<int, int>> pairs;
-  for (const pipeline::LoopRecord& l : slam.loops()) {
+  for (const slam::LoopRecord& l : slam.loops()) {
     if (l.accepted()) pairs.insert({l.match_id, l.query_id});
   }
   return pairs;
@@ -81,7 +81,7 @@ inline EmulatedRun RunEmulated(Config config, const std::string& name, double sp
       config, scenario, seed, config.live.radar_devices, config.live.kobuki_device, speed, faults,
       [&] { return truth_clock.Now(); }, duration_s);
   std::atomic<bool> stop{false};
-  pipeline::LiveRunOptions options;
+  slam::LiveRunOptions options;
   options.out_dir = out.out_dir;
   options.recording_dir = out.out_dir + "/recording";
   options.time_scale = speed;
@@ -95,7 +95,7 @@ inline EmulatedRun RunEmulated(Config config, const std::string& name, double sp
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
     stop = true;
   });
-  out.result = pipeline::RunLive(config, std::move(options));
+  out.result = slam::RunLive(config, std::move(options));
   watcher.join();
   player.Stop();
   out.ground_truth = player.ground_truth();

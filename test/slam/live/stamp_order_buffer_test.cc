@@ -16,9 +16,9 @@ struct Released {
 
 /// A buffer with a 50 ms window that records what it releases into `out`; `streams` and
 /// `startup_hold_ns` as in StampOrderBuffer (0: no startup hold).
-pipeline::StampOrderBuffer<int> MakeBuffer(Released* out, int streams = 0,
-                                           std::int64_t startup_hold_ns = 0) {
-  return pipeline::StampOrderBuffer<int>(
+slam::StampOrderBuffer<int> MakeBuffer(Released* out, int streams = 0,
+                                       std::int64_t startup_hold_ns = 0) {
+  return slam::StampOrderBuffer<int>(
       50 * kMs,
       [out](int&& item, bool late) {
         out->items.push_back(item);

@@ -28,10 +28,10 @@ TEST(LocalizerTest, TurnedRunIsPlacedWithinThreeMetresWithTrueFixesOnly) {
   const Config config = ShortSessionConfig();
   const Config config_b = ::uwbsar::testing::TurnedRevisitConfig(config);
   const std::string lidar = ::uwbsar::testing::SeedLabLidarMap();
-  const pipeline::MapRun a = pipeline::MapSimulation(config, lidar, "depart-return", 1);
-  const SessionData map = pipeline::CaptureSession(a);
-  const pipeline::LocalizeRun run = pipeline::LocalizeSimulation(
-      map, config_b, lidar, "depart-return", 1, 2, pipeline::RouteStart(config_b).Inverse());
+  const slam::MapRun a = slam::MapSimulation(config, lidar, "depart-return", 1);
+  const SessionData map = slam::CaptureSession(a);
+  const slam::LocalizeRun run = slam::LocalizeSimulation(map, config_b, lidar, "depart-return", 1,
+                                                         2, slam::RouteStart(config_b).Inverse());
   ASSERT_GE(run.first_fix, 0);
   EXPECT_LE(run.first_fix_path_m, 3.0);
 
@@ -59,7 +59,7 @@ TEST(LocalizerTest, TurnedRunIsPlacedWithinThreeMetresWithTrueFixesOnly) {
   }
   EXPECT_GE(fixes, 2);
   EXPECT_EQ(false_fixes, 0);
-  const AteResult ate = pipeline::TrajectoryError(run.Trajectory(true), run.ground_truth);
+  const AteResult ate = slam::TrajectoryError(run.Trajectory(true), run.ground_truth);
   EXPECT_GT(ate.num_poses, 10);
   EXPECT_LE(ate.rmse_m, 0.05);
   EXPECT_EQ(map.keyframes.size(), a.slam->keyframes().size());  // nothing added
@@ -78,10 +78,10 @@ TEST(LocalizerTest, RunOutsideTheMapReportsLost) {
   // Another room (the bundled seed_hall), never seen by the map.
   const std::string hall = std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_hall/seed_hall.yaml";
   const std::string lidar = ::uwbsar::testing::SeedLabLidarMap();
-  const pipeline::MapRun a = pipeline::MapSimulation(config, lidar, "depart-return", 1);
-  const SessionData map = pipeline::CaptureSession(a);
-  const pipeline::LocalizeRun run =
-      pipeline::LocalizeSimulation(map, config_b, hall, "depart-return", 1, 2);
+  const slam::MapRun a = slam::MapSimulation(config, lidar, "depart-return", 1);
+  const SessionData map = slam::CaptureSession(a);
+  const slam::LocalizeRun run =
+      slam::LocalizeSimulation(map, config_b, hall, "depart-return", 1, 2);
   EXPECT_EQ(run.first_fix, -1);
   for (const LocalizedKeyframe& k : run.keyframes) {
     EXPECT_EQ(k.status, LocalizeStatus::kLost) << "keyframe " << k.id;

@@ -58,9 +58,9 @@ class SessionFileTest : public ::testing::Test {
     if (!::uwbsar::testing::MissingSharedData("maps/seed_lab/my_map.yaml").empty()) return;
     config_ = new Config();
     config_->simulator.route.depart_distance_m = 3.0;  // short: a few keyframes and a loop
-    const pipeline::MapRun run = pipeline::MapSimulation(
-        *config_, ::uwbsar::testing::SeedLabLidarMap(), "depart-return", /*seed=*/1);
-    saved_ = new SessionData(pipeline::CaptureSession(run));
+    const slam::MapRun run = slam::MapSimulation(*config_, ::uwbsar::testing::SeedLabLidarMap(),
+                                                 "depart-return", /*seed=*/1);
+    saved_ = new SessionData(slam::CaptureSession(run));
     dir_ = new std::string(
         (fs::temp_directory_path() / ("uwbsar_session_test_" + std::to_string(::getpid())))
             .string());

@@ -246,13 +246,13 @@ TEST_F(SessionHostileTest, MapExtentBeyondMaxImagePixelsIsRefusedNamingTheFile) 
   const Config config;
   ImageGrid grid;
   cv::Mat observed;
-  const cv::Mat fine = pipeline::RenderSessionMosaic(ReadSession(path_), config, &grid, &observed);
+  const cv::Mat fine = slam::RenderSessionMosaic(ReadSession(path_), config, &grid, &observed);
   EXPECT_FALSE(fine.empty());
   // One keyframe moved 2 km along each axis: the mosaic's bounding box would be ~1e10 pixels.
   Sql("UPDATE keyframes SET x_m = x_m + 2000, y_m = y_m + 2000 WHERE id = 1");
   const SessionData moved = ReadSession(path_);
   const std::string error =
-      ErrorOf([&] { pipeline::RenderSessionMosaic(moved, config, &grid, &observed); });
+      ErrorOf([&] { slam::RenderSessionMosaic(moved, config, &grid, &observed); });
   std::printf("%s\n", error.c_str());
   EXPECT_EQ(error.rfind(path_ + ": the map of its keyframes spans x ", 0), 0u) << error;
   EXPECT_NE(error.find("more than limits.max_image_pixels (2e+08); refused before allocation"),

@@ -37,7 +37,7 @@ std::map<int, Pose2> TrueAnchors(const SessionData& s, int trajectory,
 }
 
 struct Runs {
-  pipeline::MapRun a, b;
+  slam::MapRun a, b;
 };
 
 using ::uwbsar::testing::ShortSessionConfig;
@@ -47,11 +47,11 @@ TEST(SessionMergeTest, SecondRunTurnedAndShiftedIsPlacedWithinThreeMetresWithout
   const Config config_a = ShortSessionConfig();
   const Config config_b = ::uwbsar::testing::TurnedRevisitConfig(config_a);
   const std::string map = ::uwbsar::testing::SeedLabLidarMap();
-  const pipeline::MapRun a = pipeline::MapSimulation(config_a, map, "depart-return", 1);
-  const pipeline::MapRun b = pipeline::MapSimulationInScene(
-      config_b, map, "depart-return", 1, 2, pipeline::RouteStart(config_b).Inverse());
-  const SessionData sa = pipeline::CaptureSession(a);
-  const SessionData sb = pipeline::CaptureSession(b);
+  const slam::MapRun a = slam::MapSimulation(config_a, map, "depart-return", 1);
+  const slam::MapRun b = slam::MapSimulationInScene(config_b, map, "depart-return", 1, 2,
+                                                    slam::RouteStart(config_b).Inverse());
+  const SessionData sa = slam::CaptureSession(a);
+  const SessionData sb = slam::CaptureSession(b);
   MergeReport report;
   const SessionData merged = MergeSessions(sa, sb, config_a, &report);
   ASSERT_TRUE(report.connected) << report.reason;
@@ -74,9 +74,8 @@ TEST(SessionMergeTest, SecondRunTurnedAndShiftedIsPlacedWithinThreeMetresWithout
 
   std::map<int, std::vector<OdometrySample>> gt = {{0, a.ground_truth},
                                                    {report.trajectory_offset, b.ground_truth}};
-  const AteResult common = pipeline::CommonFrameError(merged, gt);
-  const AteResult alone_a =
-      pipeline::TrajectoryError(a.slam->CorrectedTrajectory(), a.ground_truth);
+  const AteResult common = slam::CommonFrameError(merged, gt);
+  const AteResult alone_a = slam::TrajectoryError(a.slam->CorrectedTrajectory(), a.ground_truth);
   EXPECT_LE(common.rmse_m, 0.05);
   // session.freeze_saved_map (default): the saved map does not move; the run is fitted to it.
   ASSERT_TRUE(config_a.session.freeze_saved_map);
@@ -100,7 +99,7 @@ TEST(SessionMergeTest, SecondRunTurnedAndShiftedIsPlacedWithinThreeMetresWithout
     moved_m = std::max(moved_m, std::hypot(d.x_m, d.y_m));
   }
   EXPECT_GT(moved_m, 1e-4);
-  EXPECT_LE(pipeline::CommonFrameError(joint, gt).rmse_m, 0.05);
+  EXPECT_LE(slam::CommonFrameError(joint, gt).rmse_m, 0.05);
   std::printf(
       "merge: placed after %.2f m of the second run (keyframe %d), %d keyframe pairs matched, "
       "%d validated, %d loops between the runs (%d rejected, %d dropped), %d false; "
@@ -134,11 +133,11 @@ TEST(SessionMergeTest, RunThatNeverSeesTheMapIsNotConnected) {
   // Another room (the bundled seed_hall), never seen by A.
   const std::string hall = std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_hall/seed_hall.yaml";
   const std::string map = ::uwbsar::testing::SeedLabLidarMap();
-  const pipeline::MapRun a = pipeline::MapSimulation(config_a, map, "depart-return", 1);
-  const pipeline::MapRun b = pipeline::MapSimulationInScene(config_b, hall, "depart-return", 1, 2);
+  const slam::MapRun a = slam::MapSimulation(config_a, map, "depart-return", 1);
+  const slam::MapRun b = slam::MapSimulationInScene(config_b, hall, "depart-return", 1, 2);
   MergeReport report;
   const SessionData merged =
-      MergeSessions(pipeline::CaptureSession(a), pipeline::CaptureSession(b), config_a, &report);
+      MergeSessions(slam::CaptureSession(a), slam::CaptureSession(b), config_a, &report);
   EXPECT_FALSE(report.connected);
   EXPECT_FALSE(report.reason.empty());
   EXPECT_EQ(merged.keyframes.size(), a.slam->keyframes().size());

@@ -30,7 +30,7 @@ OccupancyGrid Occupancy(const SessionData& session, JoinedMosaic mosaic) {
   config.session.joined_mosaic = mosaic;
   ImageGrid grid;
   cv::Mat observed;
-  const cv::Mat map = pipeline::RenderSessionMosaic(session, config, &grid, &observed);
+  const cv::Mat map = slam::RenderSessionMosaic(session, config, &grid, &observed);
   return MapToOccupancy(map, observed, grid, config.slam.occupancy_resolution_m,
                         config.slam.occupied_fraction, config.slam.occupancy_reference_percentile);
 }
