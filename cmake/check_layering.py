@@ -24,6 +24,8 @@ import os
 import re
 import sys
 
+from repo_check import run_check
+
 DRIVERS = ["drivers/rosbag", "drivers/logs", "drivers/sim", "drivers/live", "drivers/dds"]
 BELOW_SLAM = ["core", "imaging", *DRIVERS, "drivers/emulators", "frontend",
               "frontend/place_recognition", "backend", "eval", "eval/compare"]
@@ -115,16 +117,8 @@ def check(root):
 
 
 def main():
-    root = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(
-        os.path.dirname(os.path.abspath(__file__)))
-    errors = check(root)
-    for e in errors:
-        print(e)
-    if errors:
-        print(f"{len(errors)} include(s) break the dependency table (cmake/check_layering.py)")
-        return 1
-    print("layering: every include is allowed by the dependency table")
-    return 0
+    return run_check(check, "{} include(s) break the dependency table (cmake/check_layering.py)",
+                     "layering: every include is allowed by the dependency table")
 
 
 if __name__ == "__main__":

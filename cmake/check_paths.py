@@ -18,6 +18,8 @@ import re
 import subprocess
 import sys
 
+from repo_check import run_check
+
 # Top-level folders whose paths are checked (the repository's own tree).
 TOP = ["core", "imaging", "drivers", "frontend", "backend", "eval", "slam", "tools", "test",
        "bench", "fuzz", "docs", "config", "cmake", ".ci",
@@ -80,16 +82,8 @@ def check(root):
 
 
 def main():
-    root = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(
-        os.path.dirname(os.path.abspath(__file__)))
-    errors = check(root)
-    for e in errors:
-        print(e)
-    if errors:
-        print(f"{len(errors)} pointer(s) to paths that do not exist (cmake/check_paths.py)")
-        return 1
-    print("paths: every repository path named in the sources and documents exists")
-    return 0
+    return run_check(check, "{} pointer(s) to paths that do not exist (cmake/check_paths.py)",
+                     "paths: every repository path named in the sources and documents exists")
 
 
 if __name__ == "__main__":
