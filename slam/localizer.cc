@@ -90,11 +90,7 @@ std::vector<Localizer::Loop> Localizer::MatchMap(const KeyframeFeatures& feature
       if (std::hypot(q.x_m - centre.x_m, q.y_m - centre.y_m) > sc.search_radius_m) continue;
     }
     ++*candidates;
-    DetectorMap<MatchResult> matches;
-    for (DetectorKind kind : pr_.validation.detectors) {
-      matches[kind] =
-          MatchFeatures(m.features.Features(kind), features.Features(kind), pr_.matching);
-    }
+    const DetectorMap<MatchResult> matches = MatchDetectorPair(m.features, features, pr_);
     const LoopValidation v =
         ValidateLoop(m.id, m.features.grid, features.id, features.grid, matches, pr_.validation);
     if (!v.accepted) continue;

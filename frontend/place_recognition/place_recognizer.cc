@@ -32,6 +32,16 @@ const MatchResult& LoopAttempt::Match(DetectorKind kind) const {
   return Of(matches, kind, kNotMatched);
 }
 
+DetectorMap<MatchResult> MatchDetectorPair(const KeyframeFeatures& older,
+                                           const KeyframeFeatures& newer,
+                                           const PlaceRecognitionConfig& pr) {
+  DetectorMap<MatchResult> matches;
+  for (DetectorKind kind : pr.validation.detectors) {
+    matches[kind] = MatchFeatures(older.Features(kind), newer.Features(kind), pr.matching);
+  }
+  return matches;
+}
+
 KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe,
                                          const PlaceRecognizerConfig& config) {
   const DetectorConfig& d = config.place_recognition.detectors;
@@ -132,10 +142,7 @@ PlaceRecognitionResult PlaceRecognizer::Process(KeyframeFeatures features, doubl
     const KeyframeFeatures& old = *database_.at(id);
     LoopAttempt attempt;
     attempt.candidate_id = id;
-    for (DetectorKind kind : pr.validation.detectors) {
-      attempt.matches[kind] =
-          MatchFeatures(old.Features(kind), features.Features(kind), pr.matching);
-    }
+    attempt.matches = MatchDetectorPair(old, features, pr);
     attempt.validation =
         ValidateLoop(old.id, old.grid, features.id, features.grid, attempt.matches, pr.validation);
     if (!attempt.validation.accepted && pr.per_radar.enabled && HasRadarFeatures(old, pr) &&

@@ -88,6 +88,12 @@ PlaceRecognitionConfig AtFeatureResolution(PlaceRecognitionConfig pr, double fac
 KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe,
                                          const PlaceRecognizerConfig& config);
 
+/// The loop rule's pair (validation.detectors) matched between two keyframes' whole-tile
+/// features: `older` is the train side, as every loop attempt, localisation and merge uses it.
+DetectorMap<MatchResult> MatchDetectorPair(const KeyframeFeatures& older,
+                                           const KeyframeFeatures& newer,
+                                           const PlaceRecognitionConfig& pr);
+
 struct LoopAttempt {
   int candidate_id = 0;  ///< i (the older keyframe); the new one is j
   int query_id = -1;     ///< j when not the new keyframe (a guided pair before it), else -1

@@ -89,11 +89,7 @@ std::vector<Hypothesis> FindMergeLoops(const SessionData& a, const SessionData& 
   for (const SessionKeyframe& kb : b.keyframes) {
     for (const SessionKeyframe* ka : MergeCandidates(a, kb, r, sc)) {
       ++r.candidates;
-      DetectorMap<MatchResult> matches;
-      for (DetectorKind kind : pr.validation.detectors) {
-        matches[kind] =
-            MatchFeatures(ka->features.Features(kind), kb.features.Features(kind), pr.matching);
-      }
+      const DetectorMap<MatchResult> matches = MatchDetectorPair(ka->features, kb.features, pr);
       const LoopValidation v =
           ValidateLoop(ka->id, ka->features.grid, kb.id, kb.features.grid, matches, pr.validation);
       if (!v.accepted) continue;

@@ -21,15 +21,9 @@ TEST(PlaceRecognitionDetectorPairTest, BriskAndOrbFromYamlValidateASimulatedRevi
   const Config config = LoadConfigFromString(
       "place_recognition:\n  validation:\n    detectors: [brisk, orb]\n", "brisk_orb.yaml");
   // Out along a cluttered corridor and back the same way, with a drifting second pass.
-  SyntheticPath out;
-  out.length_m = 8.0;
-  out.radar_rate_hz = 60.0;
-  SyntheticPath back = out;
-  back.start = {8.0, 0.05, M_PI};
-  back.start_stamp_ns = out.start_stamp_ns + SecondsToNs(60);
-  const auto scene = ClutterScene(7);
-  ImagedPass d = ImagePass(config, out, scene, 1);
-  ImagedPass r = ImagePass(config, back, scene, 2, 0.01, 0.003, Pose2{0.05, -0.03, 0.01});
+  CorridorRevisit revisit = ImageClutteredCorridorRevisit(config);
+  ImagedPass& d = revisit.out;
+  ImagedPass& r = revisit.back;
 
   PlaceRecognizer recognizer(config);
   std::vector<Pose2> truth;  // by keyframe id

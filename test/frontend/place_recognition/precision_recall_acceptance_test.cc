@@ -138,15 +138,9 @@ TEST(PrecisionRecallAcceptanceTest, AkazeOrbRuleHasPrecisionOneOnSimulatedRuns) 
   }
   {
     // Second environment: a cluttered corridor of point scatterers (walls, furniture).
-    SyntheticPath out;
-    out.length_m = 8.0;
-    out.radar_rate_hz = 60.0;
-    SyntheticPath back = out;
-    back.start = {8.0, 0.05, M_PI};
-    back.start_stamp_ns = out.start_stamp_ns + SecondsToNs(60);
-    const auto scene = ClutterScene(7);
-    ImagedPass d = ImagePass(config, out, scene, 1);
-    ImagedPass r = ImagePass(config, back, scene, 2, 0.01, 0.003, Pose2{0.05, -0.03, 0.01});
+    CorridorRevisit revisit = ImageClutteredCorridorRevisit(config);
+    ImagedPass& d = revisit.out;
+    ImagedPass& r = revisit.back;
     std::vector<Keyframe> keyframes = std::move(d.keyframes);
     std::vector<Pose2> truth = d.T_world_anchor_true;
     for (std::size_t k = 0; k < r.keyframes.size(); ++k) {

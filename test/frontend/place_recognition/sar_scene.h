@@ -110,4 +110,22 @@ inline ImagedPass ImagePass(const Config& config, const SyntheticPath& path,
   return pass;
 }
 
+/// Out 8 m along a cluttered corridor of point scatterers (seed 7) and back the same way 5 cm
+/// aside, the return pass with drifting odometry: the revisit the acceptance tests match.
+struct CorridorRevisit {
+  ImagedPass out;
+  ImagedPass back;
+};
+inline CorridorRevisit ImageClutteredCorridorRevisit(const Config& config) {
+  SyntheticPath out;
+  out.length_m = 8.0;
+  out.radar_rate_hz = 60.0;
+  SyntheticPath back = out;
+  back.start = {8.0, 0.05, M_PI};
+  back.start_stamp_ns = out.start_stamp_ns + SecondsToNs(60);
+  const auto scene = ClutterScene(7);
+  return {ImagePass(config, out, scene, 1),
+          ImagePass(config, back, scene, 2, 0.01, 0.003, Pose2{0.05, -0.03, 0.01})};
+}
+
 }  // namespace uwbsar::testing
