@@ -44,7 +44,8 @@ class OrderedWorker {
   bool threaded() const { return worker_.joinable(); }
 
   /// Hands `item` (counted as `weight` against the bound) over. Rethrows an error the worker
-  /// met on an earlier item; the worker takes no item after an error.
+  /// met on an earlier item before this call queued (then `item` is not queued); the worker
+  /// takes no item after an error.
   void Push(Item item, int weight) {
     if (!threaded()) {
       process_(std::move(item));
@@ -53,13 +54,13 @@ class OrderedWorker {
     {
       std::unique_lock<std::mutex> lock(mutex_);
       changed_.wait(lock, [this] { return queued_weight_ < max_weight_ || error_; });
-      if (!error_) {
-        queue_.push_back({std::move(item), weight});
-        queued_weight_ += weight;
-      }
+      // Checked before queueing, under the lock: an error of `item` itself reaches the caller
+      // from a later Push or Drain, never from this one, whatever the thread timing.
+      if (error_) std::rethrow_exception(error_);
+      queue_.push_back({std::move(item), weight});
+      queued_weight_ += weight;
     }
     changed_.notify_all();
-    RethrowError();
   }
 
   /// Waits until every item handed over is processed; rethrows the worker's error.

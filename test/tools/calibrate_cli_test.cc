@@ -9,6 +9,8 @@
 #include <fstream>
 #include <string>
 
+#include <unistd.h>
+
 #include "test/cli_runner.h"
 
 namespace {
@@ -19,7 +21,10 @@ using uwbsar::testing::Uwbsar;
 class CalibrateCliTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = (std::filesystem::temp_directory_path() / "uwbsar_cli_calibrate").string();
+    // One folder per process: ctest runs the suite's tests as parallel processes.
+    dir_ = (std::filesystem::temp_directory_path() /
+            ("uwbsar_cli_calibrate_" + std::to_string(::getpid())))
+               .string();
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
     // seed_hall's 15 m loop: two straights and two U-turns, 2-3 s to simulate.

@@ -9,6 +9,8 @@
 #include <optional>
 #include <string>
 
+#include <unistd.h>
+
 #include "drivers/rosbag/bag_writer.h"
 #include "drivers/rosbag/ros_codecs.h"
 #include "drivers/sim/synthetic_run.h"
@@ -19,8 +21,10 @@ namespace map_test {
 
 namespace fs = std::filesystem;
 
+/// A fresh folder named after `name` and this process (ctest runs tests as parallel processes).
 inline std::string TempDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("uwbsar_map_cli_" + name);
+  const fs::path dir =
+      fs::temp_directory_path() / ("uwbsar_map_cli_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir.string();
