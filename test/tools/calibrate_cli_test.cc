@@ -2,14 +2,13 @@
 // base's distance scale and a configuration file that loads; a bag without ground truth, or
 // with too little of it, is refused with one line.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
-
-#include <unistd.h>
 
 #include "test/cli_runner.h"
 

@@ -2,14 +2,14 @@
 // and poles written as a ROS 2 bag, optionally damaged.
 #pragma once
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <optional>
 #include <string>
-
-#include <unistd.h>
 
 #include "drivers/rosbag/bag_writer.h"
 #include "drivers/rosbag/ros_codecs.h"
