@@ -12,15 +12,17 @@ ImagingFrontend::ImagingFrontend(const ImagingFrontendConfig& config)
   const bool coherent = config.imaging.coherent();
   for (const RadarConfig& radar : config.radars) {
     sensors_.push_back(SensorGeometry::FromConfig(radar, config.pulse));
+    // imaging.method ffbp forms paper-mode images from the analytic signal at baseband.
     compressors_.push_back(std::make_unique<RangeCompressor>(
-        config.pulse, sensors_.back(), coherent, config.imaging.coherent_oversampling));
+        config.pulse, sensors_.back(), coherent, config.imaging.coherent_oversampling,
+        config.imaging.method == ImagingMethod::kFfbp));
   }
   have_last_.assign(sensors_.size(), false);
   last_imaged_pose_.resize(sensors_.size());
   // Per-radar tiles only where there are radars to tell apart (place_recognition.per_radar).
   const bool per_radar = config.per_radar_tiles && sensors_.size() >= 2;
-  builder_ =
-      std::make_unique<KeyframeBuilder>(config.keyframe, config.imaging, sensors_, per_radar);
+  builder_ = std::make_unique<KeyframeBuilder>(config.keyframe, config.imaging, config.pulse,
+                                               sensors_, per_radar);
 }
 
 ImagingFrontend::~ImagingFrontend() = default;

@@ -7,7 +7,8 @@
 namespace uwbsar {
 
 KeyframeBuilder::KeyframeBuilder(const KeyframeConfig& keyframe, const ImagingConfig& imaging,
-                                 std::vector<SensorGeometry> sensors, bool keep_sensor_images)
+                                 const PulseConfig& pulse, std::vector<SensorGeometry> sensors,
+                                 bool keep_sensor_images)
     : config_(keyframe),
       resolution_m_(imaging.pixel_size_m),
       coherent_(imaging.coherent()),
@@ -16,7 +17,30 @@ KeyframeBuilder::KeyframeBuilder(const KeyframeConfig& keyframe, const ImagingCo
           1, static_cast<int>(std::lround(keyframe.tile_length_m / keyframe.tile_spacing_m)))),
       sensors_(std::move(sensors)),
       canvas_(SegmentCanvasFor(keyframe, sensors_)),
-      projector_(std::max(1, imaging.num_threads)) {}
+      projector_(std::max(1, imaging.num_threads)) {
+  if (imaging.method == ImagingMethod::kFfbp) {
+    const PolarSampling sampling = PolarSamplingFor(imaging.ffbp, pulse, coherent_);
+    for (std::size_t i = 0; i < sensors_.size(); ++i) {
+      subapertures_.emplace_back(imaging.ffbp, sampling, std::max(1, imaging.num_threads));
+    }
+  }
+}
+
+KeyframeBuilder::Layer& KeyframeBuilder::LayerOf(Segment& segment, int sensor_id) {
+  return segment.layers.at(keep_sensor_images_ ? static_cast<std::size_t>(sensor_id) : 0);
+}
+
+long long KeyframeBuilder::FlushSubapertures() {
+  long long pixels = 0;
+  if (segments_.empty()) return pixels;
+  Segment& seg = segments_.back();
+  for (std::size_t sensor = 0; sensor < subapertures_.size(); ++sensor) {
+    if (subapertures_[sensor].pending_scans() == 0) continue;
+    Layer& layer = LayerOf(seg, static_cast<int>(sensor));
+    pixels += subapertures_[sensor].Flush(seg.grid, &layer.image);
+  }
+  return pixels;
+}
 
 void KeyframeBuilder::OpenSegment(const ImagedScan& scan) {
   Segment seg;
@@ -132,9 +156,11 @@ void KeyframeBuilder::AddSensorTiles(std::size_t first, std::size_t count, long 
 }
 
 long long KeyframeBuilder::Add(const ImagedScan& scan) {
+  long long flushed = 0;
   if (segments_.empty() || scan.path_m >= segments_.back().path_begin_m + config_.tile_spacing_m) {
     // The newest segment is full. When the window holds a whole tile's worth, that
     // tile is complete; then the oldest segment is no longer needed.
+    flushed = FlushSubapertures();
     if (static_cast<int>(segments_.size()) == segments_per_tile_) {
       closed_.push_back(MakeTile(0, segments_.size(), /*complete=*/true));
       segments_.pop_front();
@@ -143,12 +169,16 @@ long long KeyframeBuilder::Add(const ImagedScan& scan) {
   }
   Segment& seg = segments_.back();
   const SensorGeometry& sensor = sensors_.at(scan.sensor_id);
-  Layer& layer = seg.layers.at(keep_sensor_images_ ? static_cast<std::size_t>(scan.sensor_id) : 0);
+  Layer& layer = LayerOf(seg, scan.sensor_id);
   if (layer.image.empty()) layer.image = MakeSarImage(seg.grid, coherent_);
   cv::Rect touched;
+  const Pose2 T_grid_sensor = scan.T_world_robot * sensor.T_robot_sensor;
   const long long pixels =
-      projector_.Accumulate(*scan.profile, scan.T_world_robot * sensor.T_robot_sensor, sensor,
-                            seg.grid, &layer.image, &touched);
+      subapertures_.empty()
+          ? projector_.Accumulate(*scan.profile, T_grid_sensor, sensor, seg.grid, &layer.image,
+                                  &touched)
+          : subapertures_.at(static_cast<std::size_t>(scan.sensor_id))
+                .Add(scan.profile, T_grid_sensor, sensor, seg.grid, &layer.image, &touched);
   auto unite = [](cv::Rect* acc, const cv::Rect& r) {
     *acc = acc->empty() ? r : (r.empty() ? *acc : *acc | r);
   };
@@ -156,7 +186,7 @@ long long KeyframeBuilder::Add(const ImagedScan& scan) {
   unite(&seg.touched, touched);
   seg.scans.push_back(scan);
   seg.path_end_m = scan.path_m;
-  return pixels;
+  return pixels + flushed;
 }
 
 void KeyframeBuilder::Finish() {
@@ -164,6 +194,7 @@ void KeyframeBuilder::Finish() {
   // spacing of path (less is too little aperture to be worth a keyframe); so a run
   // shorter than a whole tile still gives one tile.
   if (!segments_.empty()) {
+    FlushSubapertures();
     const double path = segments_.back().path_end_m - segments_.front().path_begin_m;
     const bool complete = static_cast<int>(segments_.size()) == segments_per_tile_ &&
                           path >= config_.tile_length_m * 0.999;

@@ -17,6 +17,7 @@
 #include "frontend/keyframe_config.h"
 #include "frontend/segment_canvas.h"
 #include "imaging/back_projection.h"
+#include "imaging/factorized_back_projection.h"
 #include "imaging/imaging_config.h"
 #include "imaging/sensor_geometry.h"
 
@@ -25,11 +26,14 @@ namespace uwbsar {
 class KeyframeBuilder {
  public:
   /// tile_length_m must be a whole multiple of tile_spacing_m (ValidateConfig checks).
+  /// `pulse` sets the polar sampling of imaging.method ffbp.
   KeyframeBuilder(const KeyframeConfig& keyframe, const ImagingConfig& imaging,
-                  std::vector<SensorGeometry> sensors, bool keep_sensor_images = false);
+                  const PulseConfig& pulse, std::vector<SensorGeometry> sensors,
+                  bool keep_sensor_images = false);
 
   /// Images `scan` into the current segment; scans must come in non-decreasing path_m.
-  /// Returns the pixels updated.
+  /// Returns the pixels updated (imaging.method ffbp: those written by this call, as
+  /// sub-apertures complete).
   long long Add(const ImagedScan& scan);
   /// End of run: emits the last tile (marked incomplete if shorter than L) when it
   /// holds at least half a tile spacing of path.
@@ -57,6 +61,10 @@ class KeyframeBuilder {
   };
 
   void OpenSegment(const ImagedScan& scan);
+  /// imaging.method ffbp: writes every radar's pending sub-apertures into the newest segment;
+  /// returns the pixels written.
+  long long FlushSubapertures();
+  Layer& LayerOf(Segment& segment, int sensor_id);
   /// Tile of the segments [first, first + count) of segments_.
   Keyframe MakeTile(std::size_t first, std::size_t count, bool complete);
   /// Where a layer's touched pixels land in a tile whose top-left lattice pixel is (c_lo, r_lo).
@@ -74,6 +82,8 @@ class KeyframeBuilder {
   std::vector<SensorGeometry> sensors_;
   SegmentCanvas canvas_;  ///< one segment's canvas (SegmentCanvasFor)
   BackProjector projector_;
+  /// imaging.method ffbp: one per radar (sub-apertures never mix radars); empty for direct.
+  std::vector<FactorizedBackProjector> subapertures_;
   std::deque<Segment> segments_;  ///< the last segments_per_tile_ segments, newest last
   std::vector<Keyframe> closed_;
   int segments_opened_ = 0;

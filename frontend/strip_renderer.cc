@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "imaging/back_projection.h"
+#include "imaging/factorized_back_projection.h"
 
 namespace uwbsar {
 
@@ -43,6 +44,32 @@ StripImage RenderScans(const std::vector<ImagedScan>& scans,
     out.pixel_updates += projector.Accumulate(*scan.profile, T_world_robot * sensor.T_robot_sensor,
                                               sensor, grid, &out.image);
   }
+  return out;
+}
+
+StripImage RenderScans(const std::vector<ImagedScan>& scans,
+                       const std::vector<SensorGeometry>& sensors, const ImageGrid& grid,
+                       const ImagingConfig& imaging, const PulseConfig& pulse,
+                       const std::function<Pose2(const ImagedScan&)>& pose_of) {
+  if (imaging.method == ImagingMethod::kDirect) {
+    return RenderScans(scans, sensors, grid, imaging.coherent(), imaging.num_threads, pose_of);
+  }
+  StripImage out;
+  out.grid = grid;
+  out.image = MakeSarImage(grid, imaging.coherent());
+  const PolarSampling sampling = PolarSamplingFor(imaging.ffbp, pulse, imaging.coherent());
+  std::vector<FactorizedBackProjector> streams(
+      sensors.size(),
+      FactorizedBackProjector(imaging.ffbp, sampling, std::max(1, imaging.num_threads)));
+  for (const ImagedScan& scan : scans) {
+    const SensorGeometry& sensor = sensors.at(scan.sensor_id);
+    const Pose2 T_world_robot = pose_of ? pose_of(scan) : scan.T_world_robot;
+    out.pixel_updates +=
+        streams.at(scan.sensor_id)
+            .Add(scan.profile, T_world_robot * sensor.T_robot_sensor, sensor, grid, &out.image);
+  }
+  for (FactorizedBackProjector& stream : streams)
+    out.pixel_updates += stream.Flush(grid, &out.image);
   return out;
 }
 

@@ -9,6 +9,8 @@
 
 #include "frontend/keyframe.h"
 #include "imaging/image_grid.h"
+#include "imaging/imaging_config.h"
+#include "imaging/pulse_config.h"
 #include "imaging/sensor_geometry.h"
 
 namespace uwbsar {
@@ -29,6 +31,13 @@ ImageGrid WorldGridCovering(const std::vector<Pose2>& T_world_robot,
 StripImage RenderScans(const std::vector<ImagedScan>& scans,
                        const std::vector<SensorGeometry>& sensors, const ImageGrid& grid,
                        bool coherent, int threads,
+                       const std::function<Pose2(const ImagedScan&)>& pose_of = nullptr);
+/// The same by imaging.method and imaging.mode (ffbp forms sub-apertures per radar over the
+/// scans in order; in paper mode the profiles must carry their quadrature, as ImagingFrontend
+/// makes them for imaging.method ffbp).
+StripImage RenderScans(const std::vector<ImagedScan>& scans,
+                       const std::vector<SensorGeometry>& sensors, const ImageGrid& grid,
+                       const ImagingConfig& imaging, const PulseConfig& pulse,
                        const std::function<Pose2(const ImagedScan&)>& pose_of = nullptr);
 
 }  // namespace uwbsar

@@ -8,10 +8,11 @@
 namespace uwbsar {
 
 RangeCompressor::RangeCompressor(const PulseConfig& pulse, const SensorGeometry& geometry,
-                                 bool coherent, int oversampling)
+                                 bool coherent, int oversampling, bool quadrature)
     : pulse_(pulse),
       geometry_(geometry),
       coherent_(coherent),
+      quadrature_(quadrature && !coherent),
       oversampling_(coherent ? std::max(1, oversampling) : 1) {
   const GaussianPulse model(pulse);
   pulse_samples_ = model.Sampled();
@@ -46,13 +47,14 @@ std::shared_ptr<const RangeProfile> RangeCompressor::Compress(const std::vector<
   profile->range_start_m = geometry_.range_offset_m + first * step;
   profile->range_step_m = step;
   profile->max_valid_range_m = geometry_.range_offset_m + (table_length - 1) * step;
-  if (coherent_) {
+  if (coherent_ || quadrature_) {
     filter_->CompressAnalytic(scratch_in_.data(), scratch_analytic_.data());
     profile->real.resize(static_cast<std::size_t>(last - first + 1));
-    profile->imag.resize(profile->real.size());
+    std::vector<float>& imag = coherent_ ? profile->imag : profile->quadrature;
+    imag.resize(profile->real.size());
     for (int k = first; k <= last; ++k) {
       profile->real[k - first] = scratch_analytic_[k].real();
-      profile->imag[k - first] = scratch_analytic_[k].imag();
+      imag[k - first] = scratch_analytic_[k].imag();
     }
   } else {
     filter_->CompressReal(scratch_in_.data(), scratch_real_.data());

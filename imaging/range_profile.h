@@ -21,6 +21,9 @@ struct RangeProfile {
   /// upsampled analytic signal (planar storage so the lookup vectorises).
   std::vector<float> real;
   std::vector<float> imag;  ///< coherent mode only: imaginary part of the analytic signal
+  /// Paper mode, when asked (imaging.method ffbp): the Hilbert transform of `real` at the same
+  /// samples, so that real + j quadrature is the analytic signal whose real part is imaged.
+  std::vector<float> quadrature;
   bool coherent() const { return !imag.empty(); }
   std::size_t size() const { return real.size(); }
 };
@@ -28,8 +31,9 @@ struct RangeProfile {
 /// Turns raw scans into RangeProfiles for one radar. Not thread-safe (owns FFT buffers).
 class RangeCompressor {
  public:
+  /// `quadrature`: paper mode also fills RangeProfile::quadrature.
   RangeCompressor(const PulseConfig& pulse, const SensorGeometry& geometry, bool coherent,
-                  int oversampling);
+                  int oversampling, bool quadrature = false);
 
   /// Compresses `samples` (any length > 1; the filter is rebuilt if the length changes).
   /// Samples below geometry.zero_leading_samples are zeroed first, as the reference does.
@@ -41,6 +45,7 @@ class RangeCompressor {
   PulseConfig pulse_;
   SensorGeometry geometry_;
   bool coherent_;
+  bool quadrature_;
   int oversampling_;
   std::vector<float> pulse_samples_;
   int pulse_center_ = 0;

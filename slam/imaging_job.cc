@@ -68,8 +68,7 @@ StripResult ImageRun(const Config& config, const std::vector<OdometrySample>& od
   const ImageGrid grid =
       WorldGridCovering(poses, frontend.sensors(), 0.1, config.imaging.pixel_size_m);
   CheckWholeRunImage(grid, config.limits, "the strip image");
-  result.strip = RenderScans(result.scans, frontend.sensors(), grid, config.imaging.coherent(),
-                             config.imaging.num_threads);
+  result.strip = RenderScans(result.scans, frontend.sensors(), grid, config.imaging, config.pulse);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

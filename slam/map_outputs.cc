@@ -358,9 +358,9 @@ std::vector<std::string> WriteExactMap(const MapRun& run, const std::string& out
   const ImageGrid grid =
       WorldGridCovering(corrected, slam.sensors(), 0.1, config.imaging.pixel_size_m);
   CheckWholeRunImage(grid, config.limits, "the exact map");
-  const StripImage exact = RenderScans(
-      scans, slam.sensors(), grid, config.imaging.coherent(), config.imaging.num_threads,
-      [&](const ImagedScan& s) { return corrected[&s - scans.data()]; });
+  const StripImage exact =
+      RenderScans(scans, slam.sensors(), grid, config.imaging, config.pulse,
+                  [&](const ImagedScan& s) { return corrected[&s - scans.data()]; });
   const std::string base = out_dir + "/map_exact";
   WriteFloatTiff(base + "_float.tif", exact.image);
   WriteTextAtomic(base + "_grid.yaml",

@@ -71,7 +71,7 @@ std::vector<Keyframe> Build(double tile_length_m, const std::string& mode,
   KeyframeConfig keyframe;
   keyframe.tile_length_m = tile_length_m;
   keyframe.tile_spacing_m = 1.0;
-  KeyframeBuilder builder(keyframe, Imaging(mode), Sensors(), keep_sensor_images);
+  KeyframeBuilder builder(keyframe, Imaging(mode), PulseConfig{}, Sensors(), keep_sensor_images);
   for (const ImagedScan& s : Scans(mode == "coherent")) builder.Add(s);
   builder.Finish();
   return builder.TakeClosed();

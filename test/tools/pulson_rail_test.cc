@@ -27,11 +27,13 @@ struct Peak {
 };
 
 /// The rail run imaged as `uwbsar --config CONFIG image --log LOG --mode coherent
-/// --resolution 0.01` does; |I| of the strip.
-slam::StripResult ImageRail(const std::string& log, const std::string& config_file) {
+/// --resolution 0.01` does (with `method`: imaging.method); |I| of the strip.
+slam::StripResult ImageRail(const std::string& log, const std::string& config_file,
+                            ImagingMethod method = ImagingMethod::kDirect) {
   Config config = LoadConfig(testing::SharedDataPath("real/pulson440_rail/" + config_file));
   config.imaging.mode = ImagingMode::kCoherent;
   config.imaging.pixel_size_m = 0.01;
+  config.imaging.method = method;
   TextLog text = ReadTextLog(testing::SharedDataPath("real/pulson440_rail/" + log));
   return slam::ImageRun(config, text.odometry, text.scans);
 }
@@ -123,6 +125,45 @@ TEST(PulsonRailTest, RailSar2FocusesItsReflector) {
 TEST(PulsonRailTest, RailSar3FocusesItsReflector) {
   UWBSAR_NEED_SHARED_DATA("real/pulson440_rail/rail_sar3.log");
   CheckFocus("rail_sar3.log", "p440_team5.yaml", {{-0.662, 1.160}}, {{-0.66, 1.17}});
+}
+
+/// imaging.method ffbp against direct on the real rail images: |I| alike (NCC of the detected
+/// strips) and every reflector's peak where direct puts it, within 1 cm.
+TEST(PulsonRailTest, FactorisedBackProjectionKeepsTheReflectors) {
+  struct Run {
+    const char* log;
+    const char* config;
+    std::vector<Point2> reflectors;
+  };
+  const std::vector<Run> runs = {
+      {"rail_trial6.log", "p440_team6.yaml", {{2.411, 3.877}, {2.535, -1.034}}},
+      {"rail_sar2.log", "p440_team5.yaml", {{-0.662, 1.160}}},
+      {"rail_sar3.log", "p440_team5.yaml", {{-0.662, 1.160}}}};
+  for (const Run& run : runs) {
+    UWBSAR_NEED_SHARED_DATA(std::string("real/pulson440_rail/") + run.log);
+    const slam::StripResult direct = ImageRail(run.log, run.config);
+    const slam::StripResult ffbp = ImageRail(run.log, run.config, ImagingMethod::kFfbp);
+    ASSERT_EQ(direct.strip.image.size(), ffbp.strip.image.size());
+    const EnhanceConfig enhance;
+    cv::Mat a, b;
+    EnhancedFloat(direct.strip.image, enhance).convertTo(a, CV_64F);
+    EnhancedFloat(ffbp.strip.image, enhance).convertTo(b, CV_64F);
+    a -= cv::mean(a)[0];
+    b -= cv::mean(b)[0];
+    const double ncc = a.dot(b) / std::sqrt(a.dot(a) * b.dot(b));
+    const cv::Mat mag_direct = MagnitudeImage(direct.strip.image);
+    const cv::Mat mag_ffbp = MagnitudeImage(ffbp.strip.image);
+    for (const Point2& e : run.reflectors) {
+      const Peak d = StrongestNear(mag_direct, direct.strip.grid, e, 0.5);
+      const Peak f = StrongestNear(mag_ffbp, ffbp.strip.grid, e, 0.5);
+      const double offset_m =
+          std::hypot(d.position.x_m - f.position.x_m, d.position.y_m - f.position.y_m);
+      std::printf("%s ffbp: NCC %.4f, reflector peak %.3f m from direct's, level %+.2f dB\n",
+                  run.log, ncc, offset_m, 20.0 * std::log10(f.value / d.value));
+      EXPECT_LE(offset_m, 0.01) << run.log;
+    }
+    EXPECT_GE(ncc, 0.99) << run.log;
+  }
 }
 
 }  // namespace

@@ -1,0 +1,86 @@
+// Fast factorised back-projection (FFBP; Ulander, Hellsten and Stenstroem, IEEE TAES 2003) of
+// one radar's scans into one image, formed as the scans arrive: every base_scans scans are
+// imaged on a coarse polar grid (imaging/polar_subaperture.h), merge_factor consecutive polar
+// images are merged into one with finer angular sampling, `levels` times, and each top image is
+// interpolated onto the image's pixels. Direct back-projection costs scans x pixels; this costs
+// about pixels x scans / top_scans plus polar work that grows with log(top_scans).
+//
+// The result approximates BackProjector's (the reference) to the interpolation error of the
+// polar grids, which imaging.ffbp's oversampling settings bound (measured in the tests and in
+// `uwbsar_bench --benchmark_filter=ImageTile`). Scans whose sectors do not fit one polar grid
+// (a turn on the spot) are back-projected directly. The result does not depend on the number of
+// threads.
+#pragma once
+
+#include <memory>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <vector>
+
+#include "imaging/back_projection.h"
+#include "imaging/imaging_config.h"
+#include "imaging/polar_subaperture.h"
+#include "imaging/pulse_config.h"
+
+namespace uwbsar {
+
+/// The polar sampling imaging.ffbp asks for, for profiles of `mode` (range bin c / (2 fs)).
+PolarSampling PolarSamplingFor(const FfbpConfig& ffbp, const PulseConfig& pulse, bool coherent);
+
+class FactorizedBackProjector {
+ public:
+  FactorizedBackProjector(const FfbpConfig& config, const PolarSampling& sampling, int threads);
+
+  /// Hands over one scan of the radar `geometry` for `image` (grid-sized, CV_32FC1 or CV_32FC2
+  /// to match the profile). Until Flush, every scan must be for the same radar, grid and image.
+  /// `touched` (if given) receives the bounding box of the scan's sector pixels, which hold its
+  /// contribution by the time Flush returns. Returns the pixels written by this call (when it
+  /// completes a top sub-aperture).
+  long long Add(std::shared_ptr<const RangeProfile> profile, const Pose2& T_grid_sensor,
+                const SensorGeometry& geometry, const ImageGrid& grid, cv::Mat* image,
+                cv::Rect* touched = nullptr);
+  /// Images everything handed over and not yet written into `image`; the next Add may start a
+  /// new image. Returns the pixels written.
+  long long Flush(const ImageGrid& grid, cv::Mat* image);
+
+  /// Scans handed over and not yet written.
+  int pending_scans() const;
+
+ private:
+  /// The pixels a sub-aperture's scans cover: per grid row, the hull of their sector spans
+  /// (empty rows have lo >= hi). Kept beside each pending image so that sector spans are
+  /// computed once per scan.
+  struct Footprint {
+    std::vector<int> lo, hi;
+    void Add(const std::vector<RowSpan>& spans, int rows);
+    void Add(const Footprint& other);
+    std::vector<RowSpan> Spans() const;
+  };
+  struct Pending {
+    PolarSubaperture image;
+    Footprint footprint;
+  };
+
+  /// Writes `part` into the image.
+  long long Project(const Pending& part, const ImageGrid& grid, cv::Mat* image);
+  /// One image of `parts` (nullopt when they do not fit one polar grid).
+  std::optional<Pending> MergeParts(const std::vector<Pending>& parts);
+  /// Polar image of the base scans gathered so far (written directly if they do not fit one).
+  void CloseBase(const ImageGrid& grid, cv::Mat* image, long long* pixels);
+  /// Merges full levels upwards; a full top level is written into the image.
+  void Carry(int level, const ImageGrid& grid, cv::Mat* image, long long* pixels);
+  long long ProjectDirect(const std::vector<SubaperturePulse>& pulses, const ImageGrid& grid,
+                          cv::Mat* image);
+
+  FfbpConfig config_;
+  PolarSampling sampling_;
+  int threads_;
+  SensorGeometry geometry_;                   ///< of the scans pending
+  std::vector<SubaperturePulse> base_;        ///< scans of the base being filled
+  Footprint base_footprint_;                  ///< their pixels
+  std::vector<std::vector<Pending>> levels_;  ///< [l]: fewer than merge_factor images
+  BackProjector direct_;
+  std::vector<RowSpan> spans_;  ///< reused
+};
+
+}  // namespace uwbsar

@@ -1,0 +1,453 @@
+#include "imaging/polar_subaperture.h"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+
+namespace uwbsar {
+namespace {
+
+/// Sectors seen from the centre must stay within this angle of the mean boresight: beyond it,
+/// psi = sin(angle) samples the image too unevenly (and at 90 deg not at all).
+constexpr double kMaxAngleFromBoresightRad = 80.0 * M_PI / 180.0;
+
+/// The farthest range a scan images (its sector, cut where the profile's samples end).
+double MaxRangeM(const SubaperturePulse& p, const SensorGeometry& g) {
+  return std::min(g.max_range_m, p.profile->max_valid_range_m);
+}
+
+/// Runs body(begin, end) over [0, n) in `threads` stripes (each index once; disjoint outputs).
+template <typename Body>
+void ForStripes(int n, int threads, const Body& body) {
+  if (threads <= 1 || n < 2) {
+    body(0, n);
+    return;
+  }
+  cv::parallel_for_(
+      cv::Range(0, threads),
+      [&](const cv::Range& r) {
+        for (int s = r.start; s < r.end; ++s) {
+          body(static_cast<int>(static_cast<long long>(n) * s / threads),
+               static_cast<int>(static_cast<long long>(n) * (s + 1) / threads));
+        }
+      },
+      threads);
+}
+
+/// sin and cos of x (|x| < 1e4 rad) to about 1e-6, branch-free so that the loops calling it
+/// vectorise: Cody-Waite reduction to [-pi/4, pi/4], Taylor polynomials, quadrant by selects.
+inline void SinCos(float x, float* s, float* c) {
+  const float q = std::nearbyint(x * 0.636619772f);
+  float y = x - q * 1.5703125f;  // pi/2 split so that q * part is exact
+  y -= q * 4.837512969970703125e-4f;
+  y -= q * 7.54978995489188216e-8f;
+  const float y2 = y * y;
+  const float sp = y + y * y2 * (-1.6666667e-1f + y2 * (8.3333333e-3f + y2 * -1.9841270e-4f));
+  const float cp =
+      1.0f + y2 * (-0.5f + y2 * (4.1666667e-2f + y2 * (-1.3888889e-3f + y2 * 2.4801587e-5f)));
+  const int m = static_cast<int>(q) & 3;
+  const float odd = static_cast<float>(m & 1);  // selects by arithmetic, so that it vectorises
+  const float ss = sp + odd * (cp - sp);
+  const float cc = cp + odd * (sp - cp);
+  *s = ss * (1.0f - static_cast<float>(m & 2));
+  *c = cc * (1.0f - static_cast<float>((m + 1) & 2));
+}
+
+/// Where a sample falls in a polar image of rows x cols: the cell, bilinear weights and `keep`,
+/// 1 inside and 0 outside (outside samples read the border and are multiplied by 0). Masks are
+/// products of 0/1 floats, not bools: boolean logic stops GCC from vectorising these loops.
+struct Cell {
+  int index;     ///< row * cols + col of the top-left corner
+  float wi, wj;  ///< weights along range (col) and angle (row)
+  float keep;
+};
+inline float Step(bool condition) { return condition ? 1.0f : 0.0f; }
+inline Cell Locate(float fj, float fi, int rows, int cols) {
+  const float fi_max = static_cast<float>(cols - 1), fj_max = static_cast<float>(rows - 1);
+  Cell c;
+  const float fic = std::min(std::max(fi, 0.0f), fi_max);
+  const float fjc = std::min(std::max(fj, 0.0f), fj_max);
+  c.keep = Step(fic == fi) * Step(fjc == fj);
+  const int i0 = std::min(static_cast<int>(fic), cols - 2);
+  const int j0 = std::min(static_cast<int>(fjc), rows - 2);
+  c.wi = fic - static_cast<float>(i0);
+  c.wj = fjc - static_cast<float>(j0);
+  c.index = j0 * cols + i0;
+  return c;
+}
+inline float Bilinear(const float* __restrict p, int cols, const Cell& c) {
+  const float top = p[c.index] + c.wi * (p[c.index + 1] - p[c.index]);
+  const float bottom = p[c.index + cols] + c.wi * (p[c.index + cols + 1] - p[c.index + cols]);
+  return top + c.wj * (bottom - top);
+}
+
+// The inner loops, as functions of plain values with restrict pointers, kept out of line:
+// inlined into the callers' lambdas, GCC loses the restrict qualifiers and no longer
+// vectorises them (the bilinear gathers may alias the output).
+
+/// One scan's contribution along a polar row: sample i lies at e + r dir from the antenna.
+struct PulseRow {
+  float r0, dr, e_dir, e2, e_b, dir_b, min_r, max_r, cos_fov, inv_step, start_index;
+  int last;  ///< table size - 2
+};
+__attribute__((noinline)) void AddPulseRow(PulseRow t, const float* __restrict table, int n,
+                                           float* __restrict out) {
+  // The same lookup as BackProjector's, at the polar samples.
+  for (int i = 0; i < n; ++i) {
+    const float r = t.r0 + static_cast<float>(i) * t.dr;
+    const float range = std::sqrt(std::max(0.0f, t.e2 + 2.0f * r * t.e_dir + r * r));
+    const float keep = Step(range >= t.min_r) * Step(range <= t.max_r) *
+                       Step(t.e_b + r * t.dir_b >= range * t.cos_fov);
+    const float pos = range * t.inv_step - t.start_index;
+    const int k = std::min(std::max(static_cast<int>(pos), 0), t.last);
+    const float frac = pos - static_cast<float>(k);
+    out[i] += keep * (table[k] + frac * (table[k + 1] - table[k]));
+  }
+}
+
+/// A part's image sampled along a row of the merged grid: sample i lies at e + r dir from the
+/// part's centre, i.e. at range rp and psi (e_a + r dir_a) / rp of the part.
+struct PartRow {
+  float r0, dr, e_dir, e2, e_a, e_b, dir_a, dir_b, p_r0, p_inv_dr, p_psi0, p_inv_dpsi, kc;
+  int rows, cols;  ///< of the part
+};
+inline Cell LocateInPart(const PartRow& t, int i, float* r_out, float* rp_out, float* keep) {
+  const float r = t.r0 + static_cast<float>(i) * t.dr;
+  const float rp = std::sqrt(std::max(1e-12f, t.e2 + 2.0f * r * t.e_dir + r * r));
+  const float psi = (t.e_a + r * t.dir_a) / rp;
+  const Cell cell =
+      Locate((psi - t.p_psi0) * t.p_inv_dpsi, (rp - t.p_r0) * t.p_inv_dr, t.rows, t.cols);
+  *keep = cell.keep * Step(t.e_b + r * t.dir_b > 0.0f);
+  *r_out = r;
+  *rp_out = rp;
+  return cell;
+}
+__attribute__((noinline)) void AddPartRowComplex(PartRow t, const float* __restrict in_re,
+                                                 const float* __restrict in_im, int n,
+                                                 float* __restrict out_re,
+                                                 float* __restrict out_im) {
+  for (int i = 0; i < n; ++i) {
+    float r, rp, keep;
+    const Cell cell = LocateInPart(t, i, &r, &rp, &keep);
+    const float v = Bilinear(in_re, t.cols, cell), w = Bilinear(in_im, t.cols, cell);
+    // From the part's baseband at rp to this grid's at r: times exp(j kc (rp - r)).
+    float sn, cs;
+    SinCos(t.kc * (rp - r), &sn, &cs);
+    out_re[i] += keep * (v * cs - w * sn);
+    out_im[i] += keep * (v * sn + w * cs);
+  }
+}
+
+/// The polar image sampled along a row span of pixels: pixel c lies at (dx0 + c res, dy) from
+/// the centre.
+struct SpanRow {
+  float dx0, dy, res, ax, ay, bx, by, r0, inv_dr, psi0, inv_dpsi, kc;
+  int rows, cols;  ///< of the polar image
+};
+inline Cell LocatePixel(const SpanRow& t, int c, float* r_out, float* keep) {
+  const float dx = t.dx0 + static_cast<float>(c) * t.res;
+  const float r = std::sqrt(std::max(1e-12f, dx * dx + t.dy * t.dy));
+  const float psi = (dx * t.ax + t.dy * t.ay) / r;
+  const Cell cell = Locate((psi - t.psi0) * t.inv_dpsi, (r - t.r0) * t.inv_dr, t.rows, t.cols);
+  *keep = cell.keep * Step(dx * t.bx + t.dy * t.by > 0.0f);
+  *r_out = r;
+  return cell;
+}
+__attribute__((noinline)) void ProjectSpanReal(SpanRow t, const float* __restrict in_re,
+                                               const float* __restrict in_im, int n,
+                                               float* __restrict out) {
+  for (int c = 0; c < n; ++c) {
+    float r, keep;
+    const Cell cell = LocatePixel(t, c, &r, &keep);
+    const float v = Bilinear(in_re, t.cols, cell), w = Bilinear(in_im, t.cols, cell);
+    float sn, cs;
+    SinCos(t.kc * r, &sn, &cs);  // the real part of the baseband times exp(j kc r)
+    out[c] += keep * (v * cs - w * sn);
+  }
+}
+__attribute__((noinline)) void ProjectSpanComplex(SpanRow t, const float* __restrict in_re,
+                                                  const float* __restrict in_im, int n,
+                                                  float* __restrict out) {
+  for (int c = 0; c < n; ++c) {
+    float r, keep;
+    const Cell cell = LocatePixel(t, c, &r, &keep);
+    const float v = Bilinear(in_re, t.cols, cell), w = Bilinear(in_im, t.cols, cell);
+    float sn, cs;
+    SinCos(t.kc * r, &sn, &cs);  // back from baseband: times exp(j kc r)
+    out[2 * c] += keep * (v * cs - w * sn);
+    out[2 * c + 1] += keep * (v * sn + w * cs);
+  }
+}
+
+}  // namespace
+
+bool PolarSubaperture::PlanGrid(const SensorGeometry& g, const PolarSampling& sampling) {
+  const double n = static_cast<double>(pulses_.size());
+  double sx = 0.0, sy = 0.0, sc = 0.0, ss = 0.0;
+  std::vector<std::pair<double, double>> boresights;  // cos, sin of each scan's yaw
+  boresights.reserve(pulses_.size());
+  for (const SubaperturePulse& p : pulses_) {
+    sx += p.T_grid_sensor.x_m;
+    sy += p.T_grid_sensor.y_m;
+    boresights.emplace_back(std::cos(p.T_grid_sensor.yaw_rad), std::sin(p.T_grid_sensor.yaw_rad));
+    sc += boresights.back().first;
+    ss += boresights.back().second;
+  }
+  const double norm = std::hypot(sc, ss);
+  if (pulses_.empty() || norm < 1e-6 * n) return false;
+  cx_m_ = sx / n;
+  cy_m_ = sy / n;
+  bx_ = sc / norm;
+  by_ = ss / norm;
+  ax_ = by_;
+  ay_ = -bx_;
+
+  // Angular extent of the sectors seen from C, from points along their boundaries (the extreme
+  // directions to a region lie on its boundary), and the farthest antenna from C. Boundary
+  // directions relative to the boresight, once: t in [0, 1] across the sector.
+  constexpr int kSteps = 8;
+  double across_cos[kSteps + 1], across_sin[kSteps + 1];
+  for (int i = 0; i <= kSteps; ++i) {
+    const double angle = g.fov_half_angle_rad * (2.0 * i / kSteps - 1.0);
+    across_cos[i] = std::cos(angle);
+    across_sin[i] = std::sin(angle);
+  }
+  const double cos_limit = std::cos(kMaxAngleFromBoresightRad);
+  double sin_lo = 1.0, sin_hi = -1.0, max_offset_m = 0.0, max_range_m = 0.0;
+  for (std::size_t k = 0; k < pulses_.size(); ++k) {
+    const SubaperturePulse& p = pulses_[k];
+    const double ux = p.T_grid_sensor.x_m - cx_m_, uy = p.T_grid_sensor.y_m - cy_m_;
+    max_offset_m = std::max(max_offset_m, std::sqrt(ux * ux + uy * uy));
+    const double r_max = MaxRangeM(p, g);
+    if (r_max <= g.min_range_m) continue;  // images nothing (direct gives 0 too)
+    max_range_m = std::max(max_range_m, r_max);
+    const double c = boresights[k].first, sn = boresights[k].second;
+    // The point at range_m along the relative direction (ca, sa) of this scan's sector.
+    auto visit = [&](double range_m, double ca, double sa) {
+      const double dx = ux + range_m * (c * ca - sn * sa);
+      const double dy = uy + range_m * (sn * ca + c * sa);
+      const double r = std::sqrt(dx * dx + dy * dy);
+      if (dx * bx_ + dy * by_ <= cos_limit * r) return false;
+      const double s = (dx * ax_ + dy * ay_) / r;
+      sin_lo = std::min(sin_lo, s);
+      sin_hi = std::max(sin_hi, s);
+      return true;
+    };
+    for (int i = 0; i <= kSteps; ++i) {
+      const double range = g.min_range_m + (r_max - g.min_range_m) * i / kSteps;
+      if (!visit(g.min_range_m, across_cos[i], across_sin[i]) ||
+          !visit(r_max, across_cos[i], across_sin[i]) ||
+          !visit(range, across_cos[0], across_sin[0]) ||
+          !visit(range, across_cos[kSteps], across_sin[kSteps])) {
+        return false;
+      }
+    }
+  }
+  if (max_range_m <= 0.0) return false;
+
+  // psi step: a scan at offset u from C sees sample (r, psi) at delay r - u . dir(psi), and
+  // d(u . dir)/dpsi = u.a - u.b tan(angle): one two-way fringe per lambda / (2 H) of psi.
+  const double max_sin = std::max(std::abs(sin_lo), std::abs(sin_hi));
+  const double max_tan = max_sin / std::sqrt(std::max(1e-12, 1.0 - max_sin * max_sin));
+  double extent_m = 0.0;
+  for (const SubaperturePulse& p : pulses_) {
+    const double ux = p.T_grid_sensor.x_m - cx_m_, uy = p.T_grid_sensor.y_m - cy_m_;
+    extent_m =
+        std::max(extent_m, std::abs(ux * ax_ + uy * ay_) + std::abs(ux * bx_ + uy * by_) * max_tan);
+  }
+  double step =
+      sampling.min_wavelength_m / (2.0 * std::max(extent_m, 1e-6) * sampling.angular_oversampling);
+  const double margin = std::min(step, 0.05);  // samples just outside, for interpolation
+  psi0_ = std::max(-1.0, sin_lo - margin);
+  const double psi1 = std::min(1.0, sin_hi + margin);
+  angle_samples_ = std::max(2, static_cast<int>(std::ceil((psi1 - psi0_) / step)) + 1);
+  psi_step_ = (psi1 - psi0_) / (angle_samples_ - 1);
+
+  range_step_m_ = sampling.range_step_m;
+  range0_m_ = std::max(0.0, g.min_range_m - max_offset_m - range_step_m_);
+  const double range1_m = max_range_m + max_offset_m + range_step_m_;
+  range_samples_ = std::max(2, static_cast<int>(std::ceil((range1_m - range0_m_) / range_step_m_)));
+  return true;
+}
+
+void PolarSubaperture::RowDirection(int j, double* dx, double* dy) const {
+  const double psi = psi0_ + j * psi_step_;
+  const double c = std::sqrt(std::max(0.0, 1.0 - psi * psi));
+  *dx = psi * ax_ + c * bx_;
+  *dy = psi * ay_ + c * by_;
+}
+
+std::optional<PolarSubaperture> PolarSubaperture::FromPulses(std::vector<SubaperturePulse> pulses,
+                                                             const SensorGeometry& g,
+                                                             const PolarSampling& sampling,
+                                                             int threads) {
+  PolarSubaperture s;
+  s.pulses_ = std::move(pulses);
+  s.coherent_ = sampling.coherent;
+  s.kc_ = sampling.carrier_wavenumber_rad_per_m;
+  if (!s.PlanGrid(g, sampling)) return std::nullopt;
+  const int nr = s.range_samples_;
+  const std::size_t size = static_cast<std::size_t>(s.angle_samples_) * nr;
+  s.re_.assign(size, 0.0f);
+  s.im_.assign(size, 0.0f);
+  const float cos_fov = static_cast<float>(std::cos(g.fov_half_angle_rad));
+  const float min_r = static_cast<float>(g.min_range_m);
+  const float dr = static_cast<float>(s.range_step_m_);
+  // Each sample is the mean of kTaps samples spread over one range bin: linear interpolation of
+  // a table leaves artefacts periodic in the table's bin, which a grid this coarse would fold
+  // into the baseband; the mean over a bin cancels them (and is flat over the baseband).
+  // exp(-j kc r) per sample takes the sum to baseband.
+  constexpr int kTaps = 4;
+  std::vector<float> to_base_re(static_cast<std::size_t>(kTaps) * nr);
+  std::vector<float> to_base_im(to_base_re.size());
+  double tap_offset_m[kTaps];
+  for (int m = 0; m < kTaps; ++m) {
+    tap_offset_m[m] = g.bin_size_m * ((m + 0.5) / kTaps - 0.5);
+    for (int i = 0; i < nr; ++i) {
+      const double phase = -s.kc_ * (s.range0_m_ + i * s.range_step_m_ + tap_offset_m[m]);
+      to_base_re[static_cast<std::size_t>(m) * nr + i] =
+          static_cast<float>(std::cos(phase) / kTaps);
+      to_base_im[static_cast<std::size_t>(m) * nr + i] =
+          static_cast<float>(std::sin(phase) / kTaps);
+    }
+  }
+  std::vector<std::pair<double, double>> boresights;  // cos, sin of each scan's yaw
+  for (const SubaperturePulse& p : s.pulses_) {
+    boresights.emplace_back(std::cos(p.T_grid_sensor.yaw_rad), std::sin(p.T_grid_sensor.yaw_rad));
+  }
+
+  ForStripes(s.angle_samples_, threads, [&](int j_begin, int j_end) {
+    std::vector<float> tap_re(static_cast<std::size_t>(nr)), tap_im(tap_re.size());
+    for (int j = j_begin; j < j_end; ++j) {
+      double dir_x, dir_y;
+      s.RowDirection(j, &dir_x, &dir_y);
+      float* __restrict out_re = s.re_.data() + static_cast<std::size_t>(j) * nr;
+      float* __restrict out_im = s.im_.data() + static_cast<std::size_t>(j) * nr;
+      for (int m = 0; m < kTaps; ++m) {
+        std::fill(tap_re.begin(), tap_re.end(), 0.0f);
+        std::fill(tap_im.begin(), tap_im.end(), 0.0f);
+        for (std::size_t k = 0; k < s.pulses_.size(); ++k) {
+          const SubaperturePulse& p = s.pulses_[k];
+          const RangeProfile& prof = *p.profile;
+          const Pose2& T = p.T_grid_sensor;
+          const float max_r = static_cast<float>(MaxRangeM(p, g));
+          if (max_r <= min_r || prof.size() < 2) continue;
+          // Sample (r) relative to this scan's antenna: e + r dir, e = C - U.
+          const double ex = s.cx_m_ - T.x_m, ey = s.cy_m_ - T.y_m;
+          const double bx = boresights[k].first, by = boresights[k].second;
+          PulseRow t;
+          t.r0 = static_cast<float>(s.range0_m_ + tap_offset_m[m]);
+          t.dr = dr;
+          t.e_dir = static_cast<float>(ex * dir_x + ey * dir_y);
+          t.e2 = static_cast<float>(ex * ex + ey * ey);
+          t.e_b = static_cast<float>(ex * bx + ey * by);
+          t.dir_b = static_cast<float>(dir_x * bx + dir_y * by);
+          t.min_r = min_r;
+          t.max_r = max_r;
+          t.cos_fov = cos_fov;
+          t.inv_step = static_cast<float>(1.0 / prof.range_step_m);
+          t.start_index = static_cast<float>(prof.range_start_m / prof.range_step_m);
+          t.last = static_cast<int>(prof.size()) - 2;
+          AddPulseRow(t, prof.real.data(), nr, tap_re.data());
+          AddPulseRow(t, s.coherent_ ? prof.imag.data() : prof.quadrature.data(), nr,
+                      tap_im.data());
+        }
+        const float* base_re = to_base_re.data() + static_cast<std::size_t>(m) * nr;
+        const float* base_im = to_base_im.data() + static_cast<std::size_t>(m) * nr;
+        for (int i = 0; i < nr; ++i) {
+          out_re[i] += tap_re[i] * base_re[i] - tap_im[i] * base_im[i];
+          out_im[i] += tap_re[i] * base_im[i] + tap_im[i] * base_re[i];
+        }
+      }
+    }
+  });
+  return s;
+}
+
+std::optional<PolarSubaperture> PolarSubaperture::Merge(
+    const std::vector<const PolarSubaperture*>& parts, const SensorGeometry& g,
+    const PolarSampling& sampling, int threads) {
+  PolarSubaperture s;
+  for (const PolarSubaperture* part : parts) {
+    s.pulses_.insert(s.pulses_.end(), part->pulses_.begin(), part->pulses_.end());
+  }
+  s.coherent_ = sampling.coherent;
+  s.kc_ = sampling.carrier_wavenumber_rad_per_m;
+  if (!s.PlanGrid(g, sampling)) return std::nullopt;
+  const int nr = s.range_samples_;
+  const std::size_t size = static_cast<std::size_t>(s.angle_samples_) * nr;
+  s.re_.assign(size, 0.0f);
+  s.im_.assign(size, 0.0f);
+  const float r0 = static_cast<float>(s.range0_m_), dr = static_cast<float>(s.range_step_m_);
+  const float kc = static_cast<float>(s.kc_);
+
+  ForStripes(s.angle_samples_, threads, [&](int j_begin, int j_end) {
+    for (int j = j_begin; j < j_end; ++j) {
+      double dir_x, dir_y;
+      s.RowDirection(j, &dir_x, &dir_y);
+      float* __restrict out_re = s.re_.data() + static_cast<std::size_t>(j) * nr;
+      float* __restrict out_im = s.im_.data() + static_cast<std::size_t>(j) * nr;
+      for (const PolarSubaperture* part : parts) {
+        const PolarSubaperture& p = *part;
+        // This row's samples relative to the part's centre: e + r dir, e = C - C_part.
+        const double ex = s.cx_m_ - p.cx_m_, ey = s.cy_m_ - p.cy_m_;
+        PartRow t;
+        t.r0 = r0;
+        t.dr = dr;
+        t.e_dir = static_cast<float>(ex * dir_x + ey * dir_y);
+        t.e2 = static_cast<float>(ex * ex + ey * ey);
+        t.e_a = static_cast<float>(ex * p.ax_ + ey * p.ay_);
+        t.e_b = static_cast<float>(ex * p.bx_ + ey * p.by_);
+        t.dir_a = static_cast<float>(dir_x * p.ax_ + dir_y * p.ay_);
+        t.dir_b = static_cast<float>(dir_x * p.bx_ + dir_y * p.by_);
+        t.p_r0 = static_cast<float>(p.range0_m_);
+        t.p_inv_dr = static_cast<float>(1.0 / p.range_step_m_);
+        t.p_psi0 = static_cast<float>(p.psi0_);
+        t.p_inv_dpsi = static_cast<float>(1.0 / p.psi_step_);
+        t.kc = kc;
+        t.rows = p.angle_samples_;
+        t.cols = p.range_samples_;
+        AddPartRowComplex(t, p.re_.data(), p.im_.data(), nr, out_re, out_im);
+      }
+    }
+  });
+  return s;
+}
+
+long long PolarSubaperture::ProjectInto(const ImageGrid& grid, const std::vector<RowSpan>& spans,
+                                        cv::Mat* image, int threads) const {
+  long long pixels = 0;
+  for (const RowSpan& sp : spans) pixels += sp.col_end - sp.col_begin;
+  SpanRow base;
+  base.res = static_cast<float>(grid.resolution_m);
+  base.ax = static_cast<float>(ax_);
+  base.ay = static_cast<float>(ay_);
+  base.bx = static_cast<float>(bx_);
+  base.by = static_cast<float>(by_);
+  base.r0 = static_cast<float>(range0_m_);
+  base.inv_dr = static_cast<float>(1.0 / range_step_m_);
+  base.psi0 = static_cast<float>(psi0_);
+  base.inv_dpsi = static_cast<float>(1.0 / psi_step_);
+  base.kc = static_cast<float>(kc_);
+  base.rows = angle_samples_;
+  base.cols = range_samples_;
+  ForStripes(static_cast<int>(spans.size()), threads, [&](int b, int e) {
+    for (int k = b; k < e; ++k) {
+      const RowSpan& sp = spans[static_cast<std::size_t>(k)];
+      SpanRow t = base;
+      // Offsets from C in double first: the grid may sit far from its frame's origin.
+      t.dy = static_cast<float>(grid.RowToY(sp.row) - cy_m_);
+      t.dx0 = static_cast<float>(grid.ColToX(sp.col_begin) - cx_m_);
+      float* out = image->ptr<float>(sp.row);
+      if (coherent_) {
+        ProjectSpanComplex(t, re_.data(), im_.data(), sp.col_end - sp.col_begin,
+                           out + 2 * static_cast<std::size_t>(sp.col_begin));
+      } else {
+        ProjectSpanReal(t, re_.data(), im_.data(), sp.col_end - sp.col_begin, out + sp.col_begin);
+      }
+    }
+  });
+  return pixels;
+}
+
+}  // namespace uwbsar
