@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <map>
 #include <sstream>
 
@@ -40,6 +41,13 @@ std::vector<std::pair<std::string, std::string>> CompatibilityKeys(const SystemC
   }
   Flatten(root["place_recognition"]["detectors"], "place_recognition.detectors", &out);
   Flatten(root["slam"]["map_resolution_m"], "slam.map_resolution_m", &out);
+  // imaging.ffbp.* shape tiles only when imaging.method is ffbp.
+  if (config.imaging.method != ImagingMethod::kFfbp) {
+    out.erase(
+        std::remove_if(out.begin(), out.end(),
+                       [](const auto& kv) { return kv.first.rfind("imaging.ffbp.", 0) == 0; }),
+        out.end());
+  }
   return out;
 }
 
@@ -61,9 +69,17 @@ std::string FingerprintDifference(const std::string& stored, const SystemConfig&
     }
     saved[line.substr(0, colon)] = line.substr(colon + 2);
   }
+  // A setting added after a session was saved is not in it: that session was made as the
+  // setting's built-in default makes tiles (e.g. imaging.method, direct, before ffbp existed).
+  std::map<std::string, std::string> defaults;
+  for (const auto& [key, value] : CompatibilityKeys(SystemConfig{})) defaults[key] = value;
   for (const auto& [key, value] : CompatibilityKeys(config)) {
     auto it = saved.find(key);
-    if (it == saved.end()) return key + " is not in the session (set to " + value + " here)";
+    if (it == saved.end()) {
+      auto d = defaults.find(key);
+      if (d != defaults.end() && d->second == value) continue;
+      return key + " is not in the session (set to " + value + " here)";
+    }
     if (it->second != value) {
       return key + " is " + it->second + " in the session, " + value + " in this configuration";
     }
