@@ -37,7 +37,7 @@ void AddDemoCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--map", opts->map_path,
                   "map_server map (YAML + PGM) to simulate in; default: the bundled "
                   "config/maps/seed_hall/seed_hall.yaml")
-      ->check(CLI::ExistingFile);
+      ->check(InputFile());
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
     slam::MapOutputStage stage(opts->out_dir);

@@ -16,7 +16,7 @@ namespace {
 void AddDetectorsOptions(CLI::App* cmd, slam::DetectorsJobOptions* opts) {
   cmd->add_option("BAG", opts->bag, "ROS 2 bag (directory, .db3 or .mcap)")
       ->required()
-      ->check(CLI::ExistingPath);
+      ->check(InputPath());
   cmd->add_option("--out", opts->out_dir, "Output folder")->capture_default_str();
   cmd->add_option("--regions", opts->regions, "Region length and step in metres (default 2,1)")
       ->expected(2)

@@ -44,7 +44,7 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--out", opts->out_dir, "Output folder")->required();
   cmd->add_option("--ground-truth", opts->ground_truth,
                   "TUM trajectory to evaluate against (default: the bag's ground-truth topic)")
-      ->check(CLI::ExistingFile);
+      ->check(InputFile());
   cmd->add_flag("--exact", opts->exact,
                 "Also write map_exact.png / map_exact_float.tif: every scan back-projected again "
                 "at its corrected pose, at the imaging resolution");

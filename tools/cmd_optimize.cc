@@ -23,7 +23,7 @@ struct OptimizeOptions {
 void AddOptimizeOptions(CLI::App* cmd, OptimizeOptions* opts) {
   cmd->add_option("input", opts->in, "g2o file (VERTEX_SE2, EDGE_SE2, FIX)")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(InputFile());
   cmd->add_option("--out", opts->out, "Write the optimised graph (g2o)");
   cmd->add_option("--tum", opts->tum, "Write the optimised trajectory (TUM; time = vertex id)");
   cmd->add_option("--png", opts->png, "Write a picture of the optimised graph");

@@ -59,7 +59,7 @@ void AddRunOptions(CLI::App* cmd, RunOptions* opts) {
       ->capture_default_str();
   cmd->add_option("--map", opts->map_path,
                   "--emulate: map_server map to simulate in (default: the bundled seed_hall)")
-      ->check(CLI::ExistingFile);
+      ->check(InputFile());
   cmd->add_option("--localize-in", opts->localize_in,
                   "Saved session (folder or session.uwbsar): localise in it instead of mapping "
                   "(the map is not changed; outputs as `localize`, pose and map->odom on /tf)");

@@ -72,7 +72,7 @@ void AddSimulateCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--map", o->map_path,
                   "map_server map (YAML + PGM), e.g. config/maps/seed_hall/seed_hall.yaml")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(InputFile());
   cmd->add_option("--route", o->route,
                   "depart-return, loop, or a waypoints file (lines 'x_m y_m', world frame)")
       ->capture_default_str();
@@ -90,7 +90,7 @@ void AddSimulateCommand(CLI::App& app, const GlobalOptions& globals) {
       ->check(CheckSeed, "integer 0..2^64-1");
   cmd->add_option("--targets", o->targets_path,
                   "Point targets file (YAML: point_targets: [{x_m, y_m, rcs_m2}, ...])")
-      ->check(CLI::ExistingFile);
+      ->check(InputFile());
   cmd->add_option("--text-log", o->text_log_path,
                   "Also write odometry and scans as a plain text log to this file");
   cmd->add_flag("--laser", o->laser, "Also simulate a 2-D LiDAR on simulator.laser.topic");
