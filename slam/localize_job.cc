@@ -91,7 +91,11 @@ namespace {
 nlohmann::json WriteLocalizeFiles(const LocalizeRun& run, const std::string& out_dir) {
   const auto trajectory = run.Trajectory(false);
   std::vector<std::pair<double, Pose2>> tum;
-  for (const auto& [t, p] : trajectory) tum.push_back({NsToSeconds(t), p});
+  // From the first fix on (README): before it the robot was not placed in the map, and a
+  // pose back-corrected from a later fix is not one a live robot would have had.
+  for (const auto& [t, p] : trajectory) {
+    if (t >= run.first_fix_stamp_ns) tum.push_back({NsToSeconds(t), p});
+  }
   WriteTum(out_dir + "/trajectory.tum", tum);
   std::ostringstream csv;
   csv << "keyframe_id,stamp_s,path_m,status,x_m,y_m,yaw_deg,candidates,loops\n";

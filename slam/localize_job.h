@@ -31,6 +31,7 @@ struct LocalizeRun {
   int first_fix = -1;             ///< index into keyframes, -1 when never placed
   double first_fix_path_m = 0.0;  ///< odometry path from the start to the first fix
   double first_fix_time_s = 0.0;  ///< log time from the first odometry to the first fix
+  TimestampNs first_fix_stamp_ns = 0;  ///< when the first fix was known (its tile's last scan)
 
   /// The odometry in the map frame, each sample corrected by the latest placed keyframe at
   /// or before it (earliest placed one before that); `tracking_only` drops the samples

@@ -116,14 +116,6 @@ std::string LoopsCsv(const SlamSnapshot& slam) {
   return csv.str();
 }
 
-nlohmann::json AteJson(const AteResult& a) {
-  return {{"poses", a.num_poses},
-          {"rmse_m", a.rmse_m},
-          {"mean_m", a.mean_m},
-          {"max_m", a.max_m},
-          {"yaw_rmse_deg", a.yaw_rmse_rad * 180.0 / M_PI}};
-}
-
 std::string ReadFileBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream s;
@@ -271,10 +263,16 @@ nlohmann::json SummaryJson(const MapState& run, const MapOutputs& outputs,
               {"cols", extent.grid.cols},
               {"blocks", extent.blocks},
               {"memory_mib", static_cast<double>(extent.memory_bytes) / 1048576.0}};
+  // The shape every map summary shares with a joined one (docs/formats.md): runs[], and the
+  // newest run's ATE at the top.
+  nlohmann::json only_run = {
+      {"id", 0}, {"input", run.input}, {"keyframes", slam.tiles.size()}, {"tum", "trajectory.tum"}};
   if (outputs.ate.num_poses > 0) {
     s["ate"] = AteJson(outputs.ate);
     s["odometry_ate"] = AteJson(outputs.odometry_ate);
+    only_run["ate"] = s["ate"];
   }
+  s["runs"] = nlohmann::json::array({only_run});
   return s;
 }
 
@@ -293,6 +291,14 @@ void CommitStagedOutputs(const fs::path& stage, const std::string& out_dir,
 }
 
 }  // namespace
+
+nlohmann::json AteJson(const AteResult& a) {
+  return {{"poses", a.num_poses},
+          {"rmse_m", a.rmse_m},
+          {"mean_m", a.mean_m},
+          {"max_m", a.max_m},
+          {"yaw_rmse_deg", a.yaw_rmse_rad * 180.0 / M_PI}};
+}
 
 MapOutputs MapOutputStage::CommitState(const MapState& run, const MapRun* exact_from) {
   MapOutputs result;

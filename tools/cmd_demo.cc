@@ -9,6 +9,7 @@
 #include "slam/app_config.h"
 #include "slam/map_outputs.h"
 #include "slam/saved_session.h"
+#include "slam/session_capture.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -45,8 +46,9 @@ void AddDemoCommand(CLI::App& app, const GlobalOptions& globals) {
     slam::MapRun run =
         slam::MapSimulation(config, opts->map_path.empty() ? BundledMap() : opts->map_path,
                             "depart-return", opts->seed);
+    slam::SaveSessionWithOutputs(&stage, run);  // `map --resume DIR` extends the demo's map
     const slam::MapOutputs outputs = stage.Commit(run);
-    if (!globals.quiet) PrintMapSummary(run, outputs, opts->out_dir);
+    PrintMapSummary(run, outputs, opts->out_dir, globals);
   });
 }
 

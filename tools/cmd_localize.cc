@@ -43,7 +43,7 @@ void AddLocalizeCommand(CLI::App& app, const GlobalOptions& globals) {
     } else {
       std::printf("never placed in the map: lost\n");
     }
-    std::printf("outputs: %s/trajectory.tum, localize.csv, summary.json\n", opts->out_dir.c_str());
+    PrintWrittenFolder(opts->out_dir, {"trajectory.tum", "localize.csv", "summary.json"}, globals);
   });
 }
 

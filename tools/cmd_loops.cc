@@ -88,6 +88,7 @@ void AddLoopsCommand(CLI::App& app, const GlobalOptions& globals) {
       PrintMatrix(m);
     }
     if (opts->reasons) PrintReasons(m);
+    PrintWritten(result.files, globals, opts->json);
   });
 }
 

@@ -45,10 +45,11 @@ void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
       throw InputError(opts->b + " cannot be merged into " + opts->a + ": " + report.reason);
     }
     nlohmann::json extra;
+    extra["input"] = opts->a + " + " + opts->b;
     extra["inputs"] = {opts->a, opts->b};
     extra["merge"] = slam::MergeReportJson(report);
-    slam::CommitSessionOutputs(&stage, merged, config, {}, extra,
-                               "uwbsar merge: " + opts->a + " + " + opts->b);
+    const slam::SessionOutputs outputs = slam::CommitSessionOutputs(
+        &stage, merged, config, {}, extra, "uwbsar merge: " + opts->a + " + " + opts->b);
     if (globals.quiet) return;
     std::printf(
         "merged: %zu + %zu keyframes, %d loops between the sessions (%d rejected by the "
@@ -56,6 +57,7 @@ void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
         a.keyframes.size(), b.keyframes.size(), report.loop_edges, report.loop_edges_rejected,
         report.connect_path_m);
     std::printf("report: %s/report.html\n", opts->out_dir.c_str());
+    PrintWrittenFolder(opts->out_dir, outputs.files, globals);
   });
 }
 

@@ -55,9 +55,19 @@ std::string CheckSeed(const std::string& text);
 /// A finite number > 0 (CLI::PositiveNumber lets nan through).
 std::string CheckPositiveFinite(const std::string& text);
 
+/// "wrote FILE" for each of `files`, unless -q: on stdout, or on stderr when stdout carries a
+/// JSON document (--json). Every command lists what it wrote.
+void PrintWritten(const std::vector<std::string>& files, const GlobalOptions& globals,
+                  bool json = false);
+
+/// One line "wrote DIR: a, b, ..." (the names of `files`, paths in DIR), unless -q: the
+/// outputs of a command that fills a folder.
+void PrintWrittenFolder(const std::string& dir, const std::vector<std::string>& files,
+                        const GlobalOptions& globals);
+
 /// The five-line summary printed by `uwbsar map`, `uwbsar demo` and `uwbsar run`.
 void PrintMapSummary(const slam::MapRun& run, const slam::MapOutputs& outputs,
-                     const std::string& out_dir);
+                     const std::string& out_dir, const GlobalOptions& globals);
 
 void AddConfigCommand(CLI::App& app, const GlobalOptions& globals);
 void AddImageCommand(CLI::App& app, const GlobalOptions& globals);

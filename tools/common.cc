@@ -1,5 +1,6 @@
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -61,6 +62,22 @@ std::string CheckPositiveFinite(const std::string& text) {
     return "expected a finite number > 0, got '" + text + "'";
   }
   return {};
+}
+
+void PrintWritten(const std::vector<std::string>& files, const GlobalOptions& globals,
+                  bool json) {
+  if (globals.quiet) return;
+  for (const std::string& f : files) std::fprintf(json ? stderr : stdout, "wrote %s\n", f.c_str());
+}
+
+void PrintWrittenFolder(const std::string& dir, const std::vector<std::string>& files,
+                        const GlobalOptions& globals) {
+  if (globals.quiet || files.empty()) return;
+  std::string names;
+  for (const std::string& f : files) {
+    names += (names.empty() ? "" : ", ") + std::filesystem::path(f).filename().string();
+  }
+  std::printf("wrote %s: %s\n", dir.c_str(), names.c_str());
 }
 
 void AddConfigCommand(CLI::App& app, const GlobalOptions& globals) {

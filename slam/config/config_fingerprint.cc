@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cstdlib>
 #include <map>
 #include <sstream>
 
@@ -28,6 +29,17 @@ void Flatten(const YAML::Node& node, const std::string& prefix,
   } else if (!Irrelevant(prefix)) {
     out->push_back({prefix, node.IsNull() ? std::string() : node.Scalar()});
   }
+}
+
+/// The same text, or the same number however it is written: sessions saved before numbers
+/// were written shortest hold "0.0050000000000000001" where this one writes "0.005".
+bool SameValue(const std::string& a, const std::string& b) {
+  if (a == b) return true;
+  char* end_a = nullptr;
+  char* end_b = nullptr;
+  const double x = std::strtod(a.c_str(), &end_a);
+  const double y = std::strtod(b.c_str(), &end_b);
+  return !a.empty() && !b.empty() && *end_a == '\0' && *end_b == '\0' && x == y;
 }
 
 }  // namespace
@@ -64,7 +76,7 @@ std::string FingerprintDifference(const std::string& stored, const SystemConfig&
   for (const auto& [key, value] : CompatibilityKeys(config)) {
     auto it = saved.find(key);
     if (it == saved.end()) return key + " is not in the session (set to " + value + " here)";
-    if (it->second != value) {
+    if (!SameValue(it->second, value)) {
       return key + " is " + it->second + " in the session, " + value + " in this configuration";
     }
     saved.erase(it);
