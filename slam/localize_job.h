@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -40,11 +41,13 @@ struct LocalizeRun {
 };
 
 /// Localises what `source` emits: scans and odometry through FeedScanOrOdometry, ground
-/// truth kept for the evaluation.
+/// truth kept for the evaluation. `on_message` (optional) is called with each message's stamp.
 LocalizeRun LocalizeSource(const SessionData& map, const Config& config,
-                           const std::string& description, MessageSource& source);
-/// A ROS 2 bag.
-LocalizeRun LocalizeBag(const SessionData& map, const Config& config, const std::string& bag);
+                           const std::string& description, MessageSource& source,
+                           const std::function<void(TimestampNs)>& on_message = nullptr);
+/// A ROS 2 bag; `progress` draws a bar on stderr (slam/progress.h).
+LocalizeRun LocalizeBag(const SessionData& map, const Config& config, const std::string& bag,
+                        bool progress = false);
 /// A simulated run (as MapSimulationInScene: the scene from scene_seed, odometry in its
 /// own frame T_odom_world).
 LocalizeRun LocalizeSimulation(const SessionData& map, const Config& config,

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -20,6 +21,8 @@
 #include "backend/occupancy_io.h"
 #include "core/commit_journal.h"
 #include "core/errors.h"
+#include "core/log.h"
+#include "core/shortest_number.h"
 #include "frontend/strip_renderer.h"
 #include "imaging/enhance.h"
 #include "imaging/image_io.h"
@@ -301,6 +304,7 @@ nlohmann::json AteJson(const AteResult& a) {
 }
 
 MapOutputs MapOutputStage::CommitState(const MapState& run, const MapRun* exact_from) {
+  const auto t0 = std::chrono::steady_clock::now();
   MapOutputs result;
   const fs::path stage = stage_;
   std::vector<std::string> names;
@@ -324,6 +328,11 @@ MapOutputs MapOutputStage::CommitState(const MapState& run, const MapRun* exact_
   }
   WriteTextAtomic((stage / "summary.json").string(), result.summary.dump(2) + "\n");
   CommitStagedOutputs(stage, out_dir_, names, &result.files);
+  Log(LogLevel::kDebug,
+      "stage outputs: " +
+          ShortestNumber(RoundToDigits(
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 3)) +
+          " s, " + std::to_string(result.files.size()) + " files committed to " + out_dir_);
   return result;
 }
 

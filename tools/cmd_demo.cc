@@ -45,7 +45,7 @@ void AddDemoCommand(CLI::App& app, const GlobalOptions& globals) {
     slam::RefuseToReplaceSavedMap(opts->out_dir, {}, false, "give another --out");
     slam::MapRun run =
         slam::MapSimulation(config, opts->map_path.empty() ? BundledMap() : opts->map_path,
-                            "depart-return", opts->seed);
+                            "depart-return", opts->seed, nullptr, !globals.quiet);
     slam::SaveSessionWithOutputs(&stage, run);  // `map --resume DIR` extends the demo's map
     const slam::MapOutputs outputs = stage.Commit(run);
     PrintMapSummary(run, outputs, opts->out_dir, globals);

@@ -4,6 +4,7 @@
 
 #include "core/errors.h"
 #include "slam/app_config.h"
+#include "slam/progress.h"
 #include "slam/saved_session.h"
 #include "slam/session/session_file.h"
 #include "slam/session/session_merge.h"
@@ -40,7 +41,11 @@ void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
     const SessionData& a = saved_a.data;
     const SessionData& b = saved_b.data;
     MergeReport report;
-    const SessionData merged = MergeSessions(a, b, config, &report);
+    SessionData merged;
+    {
+      slam::ProgressBar bar(!globals.quiet, "of the second session's keyframes matched");
+      merged = MergeSessions(a, b, config, &report, [&bar](double f) { bar.Update(f); });
+    }
     if (!report.connected) {
       throw InputError(opts->b + " cannot be merged into " + opts->a + ": " + report.reason);
     }

@@ -41,6 +41,7 @@ void RunSimulate(const SimulateOptions& o, const GlobalOptions& globals) {
   options.text_log = o.text_log_path;
   options.seed = o.seed;
   options.scene_seed = o.scene_seed.empty() ? o.seed : std::stoull(o.scene_seed);
+  options.progress = !globals.quiet;
   const slam::SimulateJobResult result = slam::RunSimulateJob(config, options);
   if (globals.quiet) return;
   const sim::SimBagSummary& summary = result.summary;
