@@ -179,4 +179,41 @@ TEST(CliContractTest, ConfigPrintsShortestRoundTripNumbers) {
   EXPECT_EQ(again.output, r.output);
 }
 
+// `loops --out`, `match --out` and `optimize` did not say what they wrote.
+TEST(CliContractTest, EveryCommandListsWhatItWrote) {
+  const std::string dir = TempDir("listing");
+  WriteFile(dir + "/graph.g2o",
+            "VERTEX_SE2 0 0 0 0\nVERTEX_SE2 1 1 0 0\nEDGE_SE2 0 1 1 0 0 1 0 0 1 0 1\n");
+  CliRun r = Uwbsar("optimize " + dir + "/graph.g2o --out " + dir + "/out.g2o --tum " + dir +
+                    "/out.tum --png " + dir + "/out.png");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* f : {"/out.g2o\n", "/out.tum\n", "/out.png\n"}) {
+    EXPECT_TRUE(Has(r.output, "wrote " + dir + f)) << f << " in " << r.output;
+  }
+  // --json: stdout is the document alone, the list goes to stderr.
+  r = Uwbsar("optimize " + dir + "/graph.g2o --json --out " + dir + "/j.g2o", false);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(Has(r.output, "wrote ")) << r.output;
+  EXPECT_TRUE(Has(Uwbsar("optimize " + dir + "/graph.g2o --json --out " + dir + "/j.g2o").output,
+                  "wrote " + dir + "/j.g2o"));
+  r = Uwbsar("optimize -q " + dir + "/graph.g2o --out " + dir + "/q.g2o");
+  EXPECT_EQ(r.output, "");
+
+  UWBSAR_NEED_SHARED_DATA("real/seed_corridor/regions/D1.png");
+  fs::create_directories(dir + "/regions");
+  for (const char* name : {"D1.png", "R1.png"}) {
+    fs::copy_file(uwbsar::testing::SharedDataPath(std::string("real/seed_corridor/regions/") + name),
+                  dir + "/regions/" + name);
+  }
+  r = Uwbsar("match " + dir + "/regions/D1.png " + dir + "/regions/R1.png --out " + dir + "/m");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(Has(r.output, "wrote " + dir + "/m/match.png\n")) << r.output;
+  EXPECT_TRUE(Has(r.output, "wrote " + dir + "/m/match.json\n")) << r.output;
+  r = Uwbsar("loops --images " + dir + "/regions --out " + dir + "/l");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* f : {"pairs.csv", "pairs.md", "loops.json", "matrix.png"}) {
+    EXPECT_TRUE(Has(r.output, "wrote " + dir + "/l/" + f + "\n")) << f << " in " << r.output;
+  }
+}
+
 }  // namespace
