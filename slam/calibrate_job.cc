@@ -74,7 +74,8 @@ std::string CalibrationYaml(const CalibrationFit& fit) {
                                      &b.calibration_heading_drift_mean_rad_per_m,
                                      &b.calibration_rotation_mean};
   if (fit.observed[kCalibScale]) {
-    b.calibration_scale_sigma = RoundToDigits(std::max(0.001, 3.0 * fit.sigma[kCalibScale]), kDigits);
+    b.calibration_scale_sigma =
+        RoundToDigits(std::max(0.001, 3.0 * fit.sigma[kCalibScale]), kDigits);
     fields.push_back(&b.calibration_scale_sigma);
   }
   YAML::Emitter out;

@@ -33,9 +33,9 @@ void CheckComparable(const SarImageFile& a, const SarImageFile& b) {
 std::vector<std::string> WriteStudy(const ImageLoopStudy& study, const std::string& out_dir) {
   EnsureDirectory(out_dir);
   const std::filesystem::path dir(out_dir);
-  const std::vector<std::string> files = {
-      (dir / "pairs.csv").string(), (dir / "pairs.md").string(), (dir / "loops.json").string(),
-      (dir / "matrix.png").string()};
+  const std::vector<std::string> files = {(dir / "pairs.csv").string(), (dir / "pairs.md").string(),
+                                          (dir / "loops.json").string(),
+                                          (dir / "matrix.png").string()};
   WriteTextAtomic(files[0], PairsCsv(study));
   WriteTextAtomic(files[1], PairsMarkdown(study));
   WriteTextAtomic(files[2], ImageLoopStudyJson(study).dump(2) + "\n");

@@ -24,7 +24,7 @@ struct ImageMatchJobOptions {
 
 struct ImageMatchJobResult {
   ImageMatch match;
-  nlohmann::json json;  ///< ImageMatchJson(match), as match.json holds it
+  nlohmann::json json;             ///< ImageMatchJson(match), as match.json holds it
   std::vector<std::string> files;  ///< what was written (out_dir), in order
 };
 

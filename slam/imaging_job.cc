@@ -20,9 +20,9 @@ namespace {
 /// run with nothing imaged ("" when none stands out): a log recorded with another radar
 /// needs that radar's configuration.
 std::string FittingKey(const FrontendStats& s) {
-  const long long most = std::max({s.scans_rejected_length, s.scans_rejected_unknown_sensor,
-                                    s.scans_rejected_no_odometry + s.scans_rejected_stale,
-                                    s.scans_gated});
+  const long long most =
+      std::max({s.scans_rejected_length, s.scans_rejected_unknown_sensor,
+                s.scans_rejected_no_odometry + s.scans_rejected_stale, s.scans_gated});
   if (most == 0) return {};
   if (most == s.scans_rejected_length) {
     return "; the scans' sample count differs from radars[].num_samples: give the radar's "

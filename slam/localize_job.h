@@ -7,9 +7,9 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -29,9 +29,9 @@ struct LocalizeRun {
   std::vector<OdometrySample> ground_truth;
   double processing_s = 0.0;  ///< imaging, features and localisation (not the log source)
   double log_duration_s = 0.0;
-  int first_fix = -1;             ///< index into keyframes, -1 when never placed
-  double first_fix_path_m = 0.0;  ///< odometry path from the start to the first fix
-  double first_fix_time_s = 0.0;  ///< log time from the first odometry to the first fix
+  int first_fix = -1;                  ///< index into keyframes, -1 when never placed
+  double first_fix_path_m = 0.0;       ///< odometry path from the start to the first fix
+  double first_fix_time_s = 0.0;       ///< log time from the first odometry to the first fix
   TimestampNs first_fix_stamp_ns = 0;  ///< when the first fix was known (its tile's last scan)
 
   /// The odometry in the map frame, each sample corrected by the latest placed keyframe at

@@ -30,9 +30,8 @@ void LogStages(const MapRun& run) {
   int accepted = 0;
   for (const LoopRecord& l : slam.loops()) accepted += l.accepted();
   char line[256];
-  std::snprintf(line, sizeof(line),
-                "input: %lld messages (%lld radar, %lld odometry) of %s", run.messages,
-                run.radar_messages, run.odometry_messages, run.input.c_str());
+  std::snprintf(line, sizeof(line), "input: %lld messages (%lld radar, %lld odometry) of %s",
+                run.messages, run.radar_messages, run.odometry_messages, run.input.c_str());
   Log(LogLevel::kDebug, line);
   std::snprintf(line, sizeof(line),
                 "stage imaging: %.3f s, %lld scans imaged of %lld (%lld gated, %lld rejected)",

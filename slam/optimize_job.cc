@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "backend/g2o_io.h"
-#include "core/shortest_number.h"
 #include "backend/graph_plot.h"
+#include "core/shortest_number.h"
 #include "imaging/image_io.h"
 #include "slam/output_folder.h"
 
@@ -42,14 +42,15 @@ std::string DegenerateSolution(const OptimizeResult& r, const BackendConfig& bac
   std::string why = std::to_string(rejected) + " of " + std::to_string(r.num_loops) +
                     " loops rejected, the optimised graph would keep the tangle they close: ";
   if (2 * unsupported >= rejected) {
-    why += std::to_string(unsupported) + " unsupported (no loop within backend.loop_support_window" +
+    why += std::to_string(unsupported) +
+           " unsupported (no loop within backend.loop_support_window" +
            " agrees, backend.min_loop_support: " + std::to_string(backend.min_loop_support) +
            "); for a graph whose loops are isolated set backend.min_loop_support: 0 (with "
            "--init chordal for a poor initial guess)";
   } else {
     why += std::to_string(rejected - unsupported) +
-           " by their residual (backend.loop_rejection_chi2: " + ShortestNumber(
-               backend.loop_rejection_chi2) +
+           " by their residual (backend.loop_rejection_chi2: " +
+           ShortestNumber(backend.loop_rejection_chi2) +
            "); for a poor initial guess try --init chordal (backend.initialization)";
   }
   return why;

@@ -6,7 +6,6 @@
 #include <filesystem>
 
 #include "core/errors.h"
-
 #include "slam/app_config_io.h"
 #include "tools/commands.h"
 
@@ -64,8 +63,7 @@ std::string CheckPositiveFinite(const std::string& text) {
   return {};
 }
 
-void PrintWritten(const std::vector<std::string>& files, const GlobalOptions& globals,
-                  bool json) {
+void PrintWritten(const std::vector<std::string>& files, const GlobalOptions& globals, bool json) {
   if (globals.quiet) return;
   for (const std::string& f : files) std::fprintf(json ? stderr : stdout, "wrote %s\n", f.c_str());
 }

@@ -228,13 +228,12 @@ SessionData MergeSessions(const SessionData& a_in, const SessionData& b_in,
       Renumbered(dense ? WithDenseIds(b_in) : b_in, r.id_offset, r.trajectory_offset);
   std::vector<Hypothesis> before;  // validated loops before placement
   const std::vector<Hypothesis> loops = FindMergeLoops(a, b, config, &r, &before, on_progress);
-  Log(LogLevel::kDebug, "stage merge matching: " + std::to_string(b.keyframes.size()) +
-                            " keyframes against " + std::to_string(a.keyframes.size()) + ", " +
-                            std::to_string(r.candidates) + " pairs matched, " +
-                            std::to_string(r.validated) + " validated" +
-                            (r.connected ? ", placed after " + std::to_string(r.connect_path_m) +
-                                               " m"
-                                         : ", not placed"));
+  Log(LogLevel::kDebug,
+      "stage merge matching: " + std::to_string(b.keyframes.size()) + " keyframes against " +
+          std::to_string(a.keyframes.size()) + ", " + std::to_string(r.candidates) +
+          " pairs matched, " + std::to_string(r.validated) + " validated" +
+          (r.connected ? ", placed after " + std::to_string(r.connect_path_m) + " m"
+                       : ", not placed"));
 
   SessionData out = a;
   out.trajectories.insert(out.trajectories.end(), b.trajectories.begin(), b.trajectories.end());
@@ -250,9 +249,8 @@ SessionData MergeSessions(const SessionData& a_in, const SessionData& b_in,
   const std::vector<int> new_edges =
       BuildJointGraph(a, b, r.T_mapA_mapB, loops, config.session.freeze_saved_map, &graph);
   r.optimization = graph.Optimize();
-  Log(LogLevel::kDebug, "stage merge optimisation: " +
-                            std::to_string(r.optimization.solve_time_s) + " s, " +
-                            r.optimization.termination);
+  Log(LogLevel::kDebug, "stage merge optimisation: " + std::to_string(r.optimization.solve_time_s) +
+                            " s, " + r.optimization.termination);
   r.loop_edges = static_cast<int>(loops.size());
   StoreJoined(graph, b, loops, new_edges, &r, &out);
   return out;

@@ -94,8 +94,8 @@ TEST(CliContractTest, EveryMissingInputFileIsExit3) {
         "calibrate " + none, "calibrate " + dir + " --ground-truth " + none + ".tum",
         "image --log " + none + ".log --out " + dir + "/o", "optimize " + none + ".g2o",
         "loops --from-stats " + none + ".csv", "loops --images " + none,
-        "match " + none + ".png " + none + "2.png", "detectors " + none,
-        "info " + none, "simulate --map " + none + ".yaml --out " + dir + "/b",
+        "match " + none + ".png " + none + "2.png", "detectors " + none, "info " + none,
+        "simulate --map " + none + ".yaml --out " + dir + "/b",
         "simulate --map " + kMap + " --targets " + none + ".yaml --out " + dir + "/b",
         "demo --map " + none + ".yaml --out " + dir + "/d",
         "compare " + none + ".yaml " + kMap + " --out " + dir + "/c",
@@ -157,8 +157,7 @@ TEST(CliContractTest, RepeatedConfigFilesMergeInOrder) {
   }
   // Each file is still checked: an unknown key names its file and line.
   WriteFile(dir + "/bad.yaml", "slam:\n  occupied_fractoin: 0.5\n");
-  const CliRun r =
-      Uwbsar("--config " + dir + "/robot.yaml --config " + dir + "/bad.yaml config");
+  const CliRun r = Uwbsar("--config " + dir + "/robot.yaml --config " + dir + "/bad.yaml config");
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_TRUE(Has(r.output, "bad.yaml:2")) << r.output;
 }
@@ -202,8 +201,9 @@ TEST(CliContractTest, EveryCommandListsWhatItWrote) {
   UWBSAR_NEED_SHARED_DATA("real/seed_corridor/regions/D1.png");
   fs::create_directories(dir + "/regions");
   for (const char* name : {"D1.png", "R1.png"}) {
-    fs::copy_file(uwbsar::testing::SharedDataPath(std::string("real/seed_corridor/regions/") + name),
-                  dir + "/regions/" + name);
+    fs::copy_file(
+        uwbsar::testing::SharedDataPath(std::string("real/seed_corridor/regions/") + name),
+        dir + "/regions/" + name);
   }
   r = Uwbsar("match " + dir + "/regions/D1.png " + dir + "/regions/R1.png --out " + dir + "/m");
   ASSERT_EQ(r.exit_code, 0) << r.output;

@@ -33,8 +33,8 @@ nlohmann::json Json(const std::string& path) {
 
 /// `uwbsar <args>` with UWBSAR_PROGRESS set to `progress`.
 CliRun UwbsarWithProgress(const std::string& progress, const std::string& args) {
-  return uwbsar::testing::RunCommand("UWBSAR_PROGRESS=" + progress + " " +
-                                     std::string(UWBSAR_BIN) + " " + args);
+  return uwbsar::testing::RunCommand("UWBSAR_PROGRESS=" + progress + " " + std::string(UWBSAR_BIN) +
+                                     " " + args);
 }
 
 class CliContractRunTest : public ::testing::Test {
@@ -104,11 +104,10 @@ TEST_F(CliContractRunTest, DemoSavesItsSessionAndSummariesShareOneShape) {
 // fix as documented.
 TEST_F(CliContractRunTest, LocalizeTrajectoryStartsAtTheFirstFix) {
   const std::string out = *dir_ + "/localized";
-  const CliRun r =
-      UwbsarWithProgress("1", "localize " + *dir_ + "/bag2 --map " + *dir_ + "/demo --out " +
-                                  out + " --verbose");
+  const CliRun r = UwbsarWithProgress(
+      "1", "localize " + *dir_ + "/bag2 --map " + *dir_ + "/demo --out " + out + " --verbose");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_TRUE(Has(r.output, "% of ")) << r.output;  // progress
+  EXPECT_TRUE(Has(r.output, "% of ")) << r.output;                                // progress
   EXPECT_TRUE(Has(r.output, "uwbsar: debug: stage localisation: ")) << r.output;  // -v
   EXPECT_TRUE(Has(r.output, "wrote " + out + ": trajectory.tum, localize.csv, summary.json"))
       << r.output;
@@ -142,10 +141,10 @@ TEST_F(CliContractRunTest, EveryLongCommandDrawsProgressAndVerboseLogsStages) {
   CliRun r = UwbsarWithProgress("1", "map -v " + b + " --out " + d + "/alone");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(Has(r.output, "% of ")) << r.output;
-  for (const char* stage : {"uwbsar: debug: stage imaging: ", "uwbsar: debug: stage features: ",
-                            "uwbsar: debug: stage matching: ",
-                            "uwbsar: debug: stage optimisation: ",
-                            "uwbsar: debug: stage outputs: "}) {
+  for (const char* stage :
+       {"uwbsar: debug: stage imaging: ", "uwbsar: debug: stage features: ",
+        "uwbsar: debug: stage matching: ", "uwbsar: debug: stage optimisation: ",
+        "uwbsar: debug: stage outputs: "}) {
     EXPECT_TRUE(Has(r.output, stage)) << stage << " in " << r.output;
   }
   EXPECT_FALSE(Has(demo_->output, "debug")) << demo_->output;  // only with -v
@@ -167,8 +166,7 @@ TEST_F(CliContractRunTest, EveryLongCommandDrawsProgressAndVerboseLogsStages) {
 // A failed map left an empty --out folder behind; one that existed before stays.
 TEST(CliContractMapTest, FailedMapLeavesNoFolderItCreated) {
   const std::string dir =
-      (fs::temp_directory_path() / ("uwbsar_contract_fail_" + std::to_string(::getpid())))
-          .string();
+      (fs::temp_directory_path() / ("uwbsar_contract_fail_" + std::to_string(::getpid()))).string();
   fs::remove_all(dir);
   fs::create_directories(dir + "/existing");
   std::ofstream(dir + "/empty.mcap") << "";
