@@ -88,7 +88,7 @@ void Optimize(const OptimizeOptions& opts, const GlobalOptions& globals) {
   options.drop_rejected = opts.drop_rejected;
   const slam::OptimizeJobResult job =
       slam::RunOptimizeJob(config, options, [&globals](const std::string& s) {
-        if (!globals.quiet) std::cerr << "uwbsar: skipped " << s << "\n";
+        if (!globals.quiet) std::cerr << "uwbsar: warning: skipped " << s << "\n";
       });
   const OptimizeResult& r = job.result;
   if (!job.failure.empty()) {
