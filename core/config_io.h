@@ -17,6 +17,7 @@
 
 #include "core/errors.h"
 #include "core/named_enum.h"
+#include "core/shortest_number.h"
 #include "core/yaml_document.h"
 
 namespace uwbsar {
@@ -155,6 +156,13 @@ class Writer {
       out_ << YAML::EndSeq;
     } else if constexpr (std::is_enum_v<T>) {
       out_ << EnumName(value);
+    } else if constexpr (std::is_floating_point_v<T>) {
+      // yaml-cpp's own form has 17 digits (0.59999999999999998); the shortest reads back the same.
+      if (std::isfinite(value)) {
+        out_ << ShortestNumber(value);
+      } else {
+        out_ << value;
+      }
     } else {
       out_ << value;
     }
@@ -166,12 +174,10 @@ class Writer {
 
 }  // namespace config_yaml
 
-/// Reads YAML text over the defaults of `T` (a struct with Visit): keys that are absent keep
-/// their default; an empty text means all defaults. No semantic checks. Throws ConfigError
-/// on syntax errors, duplicate keys, a second document (ParseYamlDocument), unknown keys,
-/// wrong types and numbers with a leading zero; `source_name` is used in messages.
+/// As ReadConfigYaml, over `base` instead of the defaults: the keys of the text replace
+/// base's, a list as a whole (repeated --config files merged in order, later wins).
 template <class T>
-T ReadConfigYaml(const std::string& yaml_text, const std::string& source_name) {
+T ReadConfigYamlOver(const std::string& yaml_text, const std::string& source_name, T base) {
   YAML::Node root;
   try {
     root = ParseYamlDocument(yaml_text, source_name);
@@ -180,8 +186,8 @@ T ReadConfigYaml(const std::string& yaml_text, const std::string& source_name) {
   } catch (const InputError& e) {
     throw ConfigError(e.what());
   }
-  T config;
-  if (root.IsNull()) return config;  // an empty file means all defaults
+  T config = std::move(base);
+  if (root.IsNull()) return config;  // an empty file changes nothing
   if (!root.IsMap()) throw ConfigError(source_name + ": the top level must be a mapping");
   try {
     config_yaml::Reader reader(root, source_name, "");
@@ -194,6 +200,15 @@ T ReadConfigYaml(const std::string& yaml_text, const std::string& source_name) {
                       ": unexpected YAML shape: " + e.msg);
   }
   return config;
+}
+
+/// Reads YAML text over the defaults of `T` (a struct with Visit): keys that are absent keep
+/// their default; an empty text means all defaults. No semantic checks. Throws ConfigError
+/// on syntax errors, duplicate keys, a second document (ParseYamlDocument), unknown keys,
+/// wrong types and numbers with a leading zero; `source_name` is used in messages.
+template <class T>
+T ReadConfigYaml(const std::string& yaml_text, const std::string& source_name) {
+  return ReadConfigYamlOver(yaml_text, source_name, T{});
 }
 
 /// The configuration (any struct with Visit) as YAML: every field, no comments, e.g. for

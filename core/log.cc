@@ -17,7 +17,7 @@ void Log(LogLevel level, const std::string& message) {
   if (static_cast<int>(level) < g_level.load()) return;
   static const char* kNames[] = {"debug", "info", "warning", "error"};
   std::lock_guard<std::mutex> lock(g_mutex);
-  std::fprintf(stderr, "uwbsar %s: %s\n", kNames[static_cast<int>(level)], message.c_str());
+  std::fprintf(stderr, "uwbsar: %s: %s\n", kNames[static_cast<int>(level)], message.c_str());
 }
 
 void LogOnce::Warn(const std::string& key, const std::string& message) {

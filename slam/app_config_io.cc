@@ -44,6 +44,19 @@ Config LoadConfig(const std::string& path) {
   return LoadConfigFromString(ReadConfigFile(path, "configuration"), path);
 }
 
+Config LoadConfigs(const std::vector<std::string>& paths) {
+  if (paths.size() == 1) return LoadConfig(paths.front());
+  Config config;
+  for (const std::string& path : paths) {
+    config = ReadConfigYamlOver(ReadConfigFile(path, "configuration"), path, std::move(config));
+  }
+  // Checked merged: a calibration file alone need not be a whole valid configuration.
+  std::string sources;
+  for (const std::string& path : paths) sources += (sources.empty() ? "" : " + ") + path;
+  if (!paths.empty()) ValidateConfig(config, sources);
+  return config;
+}
+
 std::vector<PointTargetConfig> LoadPointTargets(const std::string& path) {
   const std::string text = ReadConfigFile(path, "point-target");
   YAML::Node root;

@@ -14,6 +14,13 @@ namespace uwbsar {
 /// Throws ConfigError on unreadable files, unknown keys, wrong types or invalid values.
 Config LoadConfig(const std::string& path);
 
+/// Loads the files in order, each over the result of the ones before (the defaults for the
+/// first): a key of a later file replaces the earlier value, a list as a whole (a robot's
+/// configuration, then a calibration file from `uwbsar calibrate`). Each file is read and
+/// checked for syntax, unknown keys and types; the merged result is validated once, naming
+/// the files ("a.yaml + b.yaml"). No files: the defaults.
+Config LoadConfigs(const std::vector<std::string>& paths);
+
 /// Same as LoadConfig, from YAML text; `source_name` is used in messages.
 Config LoadConfigFromString(const std::string& yaml_text, const std::string& source_name);
 

@@ -65,19 +65,20 @@ class SelectedFieldsWriter {
 std::string CalibrationYaml(const CalibrationFit& fit) {
   Config config;
   BackendConfig& b = config.backend;
-  b.calibration_scale_mean = fit.calibration[kCalibScale];
-  b.calibration_heading_drift_mean_rad_per_m = fit.calibration[kCalibHeadingDrift];
-  b.calibration_rotation_mean = fit.calibration[kCalibRotation];
+  constexpr int kDigits = 6;  // a measured figure: more digits would be noise
+  b.calibration_scale_mean = RoundToDigits(fit.calibration[kCalibScale], kDigits);
+  b.calibration_heading_drift_mean_rad_per_m =
+      RoundToDigits(fit.calibration[kCalibHeadingDrift], kDigits);
+  b.calibration_rotation_mean = RoundToDigits(fit.calibration[kCalibRotation], kDigits);
   std::vector<const void*> fields = {&b.calibration_scale_mean,
                                      &b.calibration_heading_drift_mean_rad_per_m,
                                      &b.calibration_rotation_mean};
   if (fit.observed[kCalibScale]) {
-    b.calibration_scale_sigma = std::max(0.001, 3.0 * fit.sigma[kCalibScale]);
+    b.calibration_scale_sigma =
+        RoundToDigits(std::max(0.001, 3.0 * fit.sigma[kCalibScale]), kDigits);
     fields.push_back(&b.calibration_scale_sigma);
   }
-  constexpr int kDigits = 6;
   YAML::Emitter out;
-  out.SetDoublePrecision(kDigits);
   SelectedFieldsWriter writer(out, std::move(fields));
   out << YAML::BeginMap;
   config.Visit(writer);

@@ -15,6 +15,7 @@
 #include "frontend/imaging_frontend.h"
 #include "imaging/image_io.h"
 #include "slam/output_folder.h"
+#include "slam/progress.h"
 
 namespace uwbsar::slam {
 namespace {
@@ -167,15 +168,28 @@ RegionStudyOptions StudyOptions(const DetectorsJobOptions& opts) {
   return options;
 }
 
+/// The share of the progress bar that imaging the bag fills; matching the regions fills most
+/// of the rest.
+constexpr double kImagingShare = 0.4;
+
 /// The bag's scans that `frontend` imaged, in time order.
 std::vector<ImagedScan> ImageBag(const std::string& bag, const Config& config,
-                                 ImagingFrontend* frontend) {
+                                 ImagingFrontend* frontend, ProgressBar* bar) {
+  bar->Update(0.0, "reading the bag");
   const rosbag::RobotLog log = rosbag::LoadRobotBag(bag, rosbag::RobotBagOptionsFromConfig(config));
   std::vector<ImagedScan> scans;
   frontend->SetScanObserver([&](const ImagedScan& s) { scans.push_back(s); });
+  const TimestampNs start = log.odometry.empty() ? 0 : log.odometry.front().stamp_ns;
+  const TimestampNs end = log.odometry.empty() ? 0 : log.odometry.back().stamp_ns;
+  const double span = static_cast<double>(end) - static_cast<double>(start);
   // The one merge of a log's streams (odometry first on equal stamps); imaging only, so the
   // messages go to the frontend (FeedScanOrOdometry) rather than into a SlamSystem.
   LogSource(log.odometry, log.scans).Run([&](const Message& m) {
+    if (span > 0) {
+      bar->Update(
+          kImagingShare * (static_cast<double>(m.stamp_ns) - static_cast<double>(start)) / span,
+          "imaging");
+    }
     FeedScanOrOdometry(*frontend, m);
   });
   frontend->Finish();
@@ -225,16 +239,20 @@ DetectorsJobResult RunDetectorsJob(const Config& config, const DetectorsJobOptio
   if (!opts.no_images) EnsureDirectory(opts.out_dir + "/matches");
   const RegionStudyOptions options = StudyOptions(opts);
   ImagingFrontend frontend(config);
-  const std::vector<ImagedScan> scans = ImageBag(opts.bag, config, &frontend);
+  ProgressBar bar(opts.progress, "of the detector comparison");
+  const std::vector<ImagedScan> scans = ImageBag(opts.bag, config, &frontend, &bar);
   const std::size_t turn = SplitIndex(scans, opts);
   const std::vector<ImagedScan> depart(scans.begin(), scans.begin() + static_cast<long>(turn));
   const std::vector<ImagedScan> back(scans.begin() + static_cast<long>(turn), scans.end());
+  bar.Update(kImagingShare, "matching the regions");
   const RegionStudy study = RunRegionStudy(depart, back, frontend.sensors(), config, options);
+  bar.Update(0.9, "writing");
   if (study.d_regions.empty()) throw InputError(opts.bag + ": the passes share no region");
   Outputs out;
   WriteTables(study, options, config.imaging.pixel_size_m, &out);
   const std::string dir = opts.out_dir + "/";
   WriteDetectorOutputs(dir, out, study, options, !opts.no_images);
+  bar.Update(1.0, "done");
   DetectorsJobResult result;
   result.scans = scans.size();
   result.departing = depart.size();

@@ -22,6 +22,7 @@ struct DetectorsJobOptions {
   std::vector<double> regions;  ///< empty, or region length and step in metres
   double split_path_m = 0.0;    ///< where the returning pass starts; 0: where it turns
   bool no_images = false;       ///< do not write match images (matches/)
+  bool progress = false;        ///< draw a progress bar on stderr (slam/progress.h)
 };
 
 struct DetectorsJobResult {

@@ -29,13 +29,18 @@ void CheckComparable(const SarImageFile& a, const SarImageFile& b) {
   }
 }
 
-void WriteStudy(const ImageLoopStudy& study, const std::string& out_dir) {
+/// Writes the study's files into out_dir; returns their paths.
+std::vector<std::string> WriteStudy(const ImageLoopStudy& study, const std::string& out_dir) {
   EnsureDirectory(out_dir);
   const std::filesystem::path dir(out_dir);
-  WriteTextAtomic((dir / "pairs.csv").string(), PairsCsv(study));
-  WriteTextAtomic((dir / "pairs.md").string(), PairsMarkdown(study));
-  WriteTextAtomic((dir / "loops.json").string(), ImageLoopStudyJson(study).dump(2) + "\n");
-  WriteImageAtomic((dir / "matrix.png").string(), DrawLoopMatrix(study));
+  const std::vector<std::string> files = {(dir / "pairs.csv").string(), (dir / "pairs.md").string(),
+                                          (dir / "loops.json").string(),
+                                          (dir / "matrix.png").string()};
+  WriteTextAtomic(files[0], PairsCsv(study));
+  WriteTextAtomic(files[1], PairsMarkdown(study));
+  WriteTextAtomic(files[2], ImageLoopStudyJson(study).dump(2) + "\n");
+  WriteImageAtomic(files[3], DrawLoopMatrix(study));
+  return files;
 }
 
 }  // namespace
@@ -57,8 +62,9 @@ ImageMatchJobResult RunImageMatchJob(const Config& config, const ImageMatchJobOp
   result.json = ImageMatchJson(result.match);
   if (!o.out_dir.empty()) {
     const std::filesystem::path dir(o.out_dir);
-    WriteImageAtomic((dir / "match.png").string(), DrawImageMatch(fa, fb, result.match));
-    WriteTextAtomic((dir / "match.json").string(), result.json.dump(2) + "\n");
+    result.files = {(dir / "match.png").string(), (dir / "match.json").string()};
+    WriteImageAtomic(result.files[0], DrawImageMatch(fa, fb, result.match));
+    WriteTextAtomic(result.files[1], result.json.dump(2) + "\n");
   }
   return result;
 }
@@ -82,8 +88,9 @@ LoopMatrixJobResult LoopMatrixFromImages(const Config& config, const std::string
   if (!out_dir.empty()) EnsureDirectory(out_dir);
   const ImageLoopStudy study = RunImageLoopStudy(images_dir, resolution_m, kinds, config,
                                                  config.limits.max_map_image_pixels);
-  if (!out_dir.empty()) WriteStudy(study, out_dir);
-  return {study.matrix, ImageLoopStudyJson(study)};
+  LoopMatrixJobResult result{study.matrix, ImageLoopStudyJson(study), {}};
+  if (!out_dir.empty()) result.files = WriteStudy(study, out_dir);
+  return result;
 }
 
 }  // namespace uwbsar::slam

@@ -24,7 +24,8 @@ struct ImageMatchJobOptions {
 
 struct ImageMatchJobResult {
   ImageMatch match;
-  nlohmann::json json;  ///< ImageMatchJson(match), as match.json holds it
+  nlohmann::json json;             ///< ImageMatchJson(match), as match.json holds it
+  std::vector<std::string> files;  ///< what was written (out_dir), in order
 };
 
 /// Parses the detectors, creates out_dir (before the work), reads both images (refused
@@ -37,6 +38,7 @@ struct LoopMatrixJobResult {
   LoopMatrix matrix;
   /// {"loops", "d", "r"}; from images also "pairs" (ImageLoopStudyJson).
   nlohmann::json json;
+  std::vector<std::string> files;  ///< what was written (out_dir), in order
 };
 
 /// `loops --from-stats`: the loop matrix of config.place_recognition.validation on the

@@ -1,5 +1,6 @@
 #include "slam/imaging_job.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <opencv2/core.hpp>
@@ -15,6 +16,25 @@
 namespace uwbsar::slam {
 namespace {
 
+/// The configuration key that decides the most rejections, as the end of the message of a
+/// run with nothing imaged ("" when none stands out): a log recorded with another radar
+/// needs that radar's configuration.
+std::string FittingKey(const FrontendStats& s) {
+  const long long most =
+      std::max({s.scans_rejected_length, s.scans_rejected_unknown_sensor,
+                s.scans_rejected_no_odometry + s.scans_rejected_stale, s.scans_gated});
+  if (most == 0) return {};
+  if (most == s.scans_rejected_length) {
+    return "; the scans' sample count differs from radars[].num_samples: give the radar's "
+           "configuration (--config)";
+  }
+  if (most == s.scans_rejected_unknown_sensor) {
+    return "; the scans come from radars the configuration does not list (radars[])";
+  }
+  if (most == s.scans_gated) return "; the robot never moved gating.min_travel_m";
+  return "; no odometry covers the scans' stamps (gating.max_scan_latency_s)";
+}
+
 /// A strip needs imaged scans, and scans that are not all zero (InputError otherwise).
 void CheckImaged(const FrontendStats& s) {
   if (s.scans_received == 0) throw InputError("nothing to image: no scans");
@@ -25,7 +45,8 @@ void CheckImaged(const FrontendStats& s) {
   if (s.scans_imaged > 0) return;
   throw InputError("nothing imaged: none of the " + std::to_string(s.scans_received) +
                    " scans could be imaged (" + std::to_string(s.scans_rejected()) + " rejected, " +
-                   std::to_string(s.scans_gated) + " while not moving)" + s.BadSamplesNote());
+                   std::to_string(s.scans_gated) + " while not moving)" + s.BadSamplesNote() +
+                   FittingKey(s));
 }
 
 }  // namespace

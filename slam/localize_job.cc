@@ -2,11 +2,13 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <iomanip>
 #include <sstream>
 
 #include "backend/g2o_io.h"
 #include "core/errors.h"
+#include "core/log.h"
 #include "drivers/rosbag/bag_reader.h"
 #include "drivers/rosbag/bag_source.h"
 #include "drivers/rosbag/robot_bag.h"
@@ -18,6 +20,7 @@
 #include "slam/map_job.h"
 #include "slam/map_outputs.h"
 #include "slam/output_folder.h"
+#include "slam/progress.h"
 
 namespace uwbsar::slam {
 namespace {
@@ -40,13 +43,15 @@ std::vector<std::pair<TimestampNs, Pose2>> LocalizeRun::Trajectory(bool tracking
 }
 
 LocalizeRun LocalizeSource(const SessionData& map, const Config& config,
-                           const std::string& description, MessageSource& source) {
+                           const std::string& description, MessageSource& source,
+                           const std::function<void(TimestampNs)>& on_message) {
   LocalizePipeline pipeline(map, config, description);
   std::vector<OdometrySample> ground_truth;
   // The feeding thread's time (imaging, hand-over, waiting for the keyframe thread when
   // it falls behind and at the end), not the source's.
   double busy_s = 0.0;
   source.Run([&](const Message& m) {
+    if (on_message) on_message(m.stamp_ns);
     if (m.kind == Message::Kind::kGroundTruth) ground_truth.push_back(m.odometry);
     if (m.kind != Message::Kind::kRadarScan && m.kind != Message::Kind::kOdometry) return;
     const auto t0 = Clock::now();
@@ -65,13 +70,26 @@ LocalizeRun LocalizeSource(const SessionData& map, const Config& config,
   if (run.keyframes.empty()) {
     throw InputError(description + ": no keyframe could be imaged (odometry and radar topics?)");
   }
+  char line[200];
+  std::snprintf(line, sizeof(line),
+                "stage localisation: %.3f s, %zu keyframes, first fix %s after %.2f m", busy_s,
+                run.keyframes.size(), run.first_fix >= 0 ? "found" : "not found",
+                run.first_fix_path_m);
+  Log(LogLevel::kDebug, line);
   return run;
 }
 
-LocalizeRun LocalizeBag(const SessionData& map, const Config& config, const std::string& bag) {
+LocalizeRun LocalizeBag(const SessionData& map, const Config& config, const std::string& bag,
+                        bool progress) {
   rosbag::BagReader reader(bag);
   rosbag::BagSource source(reader, rosbag::RobotBagOptionsFromConfig(config));
-  return LocalizeSource(map, config, bag, source);
+  const TimestampNs start = reader.Info().start_ns, end = reader.Info().end_ns;
+  char what[64];
+  std::snprintf(what, sizeof(what), "of %.0f s of log",
+                (static_cast<double>(end) - static_cast<double>(start)) * 1e-9);
+  ProgressBar bar(progress, what);
+  return LocalizeSource(map, config, bag, source,
+                        [&](TimestampNs t) { bar.UpdateStamp(t, start, end); });
 }
 
 LocalizeRun LocalizeSimulation(const SessionData& map, const Config& config,
@@ -91,7 +109,11 @@ namespace {
 nlohmann::json WriteLocalizeFiles(const LocalizeRun& run, const std::string& out_dir) {
   const auto trajectory = run.Trajectory(false);
   std::vector<std::pair<double, Pose2>> tum;
-  for (const auto& [t, p] : trajectory) tum.push_back({NsToSeconds(t), p});
+  // From the first fix on (README): before it the robot was not placed in the map, and a
+  // pose back-corrected from a later fix is not one a live robot would have had.
+  for (const auto& [t, p] : trajectory) {
+    if (t >= run.first_fix_stamp_ns) tum.push_back({NsToSeconds(t), p});
+  }
   WriteTum(out_dir + "/trajectory.tum", tum);
   std::ostringstream csv;
   csv << "keyframe_id,stamp_s,path_m,status,x_m,y_m,yaw_deg,candidates,loops\n";

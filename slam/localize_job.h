@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -28,9 +29,10 @@ struct LocalizeRun {
   std::vector<OdometrySample> ground_truth;
   double processing_s = 0.0;  ///< imaging, features and localisation (not the log source)
   double log_duration_s = 0.0;
-  int first_fix = -1;             ///< index into keyframes, -1 when never placed
-  double first_fix_path_m = 0.0;  ///< odometry path from the start to the first fix
-  double first_fix_time_s = 0.0;  ///< log time from the first odometry to the first fix
+  int first_fix = -1;                  ///< index into keyframes, -1 when never placed
+  double first_fix_path_m = 0.0;       ///< odometry path from the start to the first fix
+  double first_fix_time_s = 0.0;       ///< log time from the first odometry to the first fix
+  TimestampNs first_fix_stamp_ns = 0;  ///< when the first fix was known (its tile's last scan)
 
   /// The odometry in the map frame, each sample corrected by the latest placed keyframe at
   /// or before it (earliest placed one before that); `tracking_only` drops the samples
@@ -39,11 +41,13 @@ struct LocalizeRun {
 };
 
 /// Localises what `source` emits: scans and odometry through FeedScanOrOdometry, ground
-/// truth kept for the evaluation.
+/// truth kept for the evaluation. `on_message` (optional) is called with each message's stamp.
 LocalizeRun LocalizeSource(const SessionData& map, const Config& config,
-                           const std::string& description, MessageSource& source);
-/// A ROS 2 bag.
-LocalizeRun LocalizeBag(const SessionData& map, const Config& config, const std::string& bag);
+                           const std::string& description, MessageSource& source,
+                           const std::function<void(TimestampNs)>& on_message = nullptr);
+/// A ROS 2 bag; `progress` draws a bar on stderr (slam/progress.h).
+LocalizeRun LocalizeBag(const SessionData& map, const Config& config, const std::string& bag,
+                        bool progress = false);
 /// A simulated run (as MapSimulationInScene: the scene from scene_seed, odometry in its
 /// own frame T_odom_world).
 LocalizeRun LocalizeSimulation(const SessionData& map, const Config& config,

@@ -71,6 +71,7 @@ void LocalizePipeline::Localize(const Keyframe& k) {
     run_.first_fix_path_m = k.path_end_m - (run_.odometry.empty() ? 0 : run_.odometry[0].path_m);
     // The tile closes at its last scan: that is when the fix is known.
     const TimestampNs t = k.scans.empty() ? k.stamp_ns : k.scans.back().stamp_ns;
+    run_.first_fix_stamp_ns = t;
     run_.first_fix_time_s =
         run_.odometry.empty() ? 0 : NsToSeconds(t - run_.odometry.front().stamp_ns);
   }

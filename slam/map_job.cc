@@ -1,7 +1,6 @@
 #include "slam/map_job.h"
 
 #include <sys/resource.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -9,51 +8,50 @@
 #include <cstdio>
 
 #include "core/errors.h"
+#include "core/log.h"
 #include "drivers/logs/tum_reader.h"
 #include "drivers/rosbag/bag_reader.h"
 #include "drivers/rosbag/bag_source.h"
 #include "drivers/rosbag/robot_bag.h"
 #include "drivers/sim/sim_source.h"
 #include "slam/app_config.h"
+#include "slam/progress.h"
 
 namespace uwbsar::slam {
 namespace {
 
-/// A progress bar on stderr, redrawn at most 5 times a second; silent when stderr
-/// is not a terminal.
-class ProgressBar {
- public:
-  ProgressBar(bool enabled, TimestampNs start_ns, TimestampNs end_ns)
-      : enabled_(enabled && ::isatty(2)), start_ns_(start_ns), end_ns_(end_ns) {}
-  ~ProgressBar() {
-    if (drawn_) std::fprintf(stderr, "\n");
-  }
-  void Update(TimestampNs now_ns) {
-    if (!enabled_ || end_ns_ <= start_ns_) return;
-    const auto now = std::chrono::steady_clock::now();
-    if (drawn_ && now - last_ < std::chrono::milliseconds(200)) return;
-    last_ = now;
-    drawn_ = true;
-    // In doubles: a damaged bag's stamps can be anything, and must not overflow.
-    const double span = static_cast<double>(end_ns_) - static_cast<double>(start_ns_);
-    const double f =
-        std::clamp((static_cast<double>(now_ns) - static_cast<double>(start_ns_)) / span, 0.0, 1.0);
-    const int filled = static_cast<int>(f * 30);
-    std::fprintf(stderr, "\r[%.*s%*s] %3.0f%% of %.0f s of log", filled,
-                 "##############################", 30 - filled, "", 100 * f, span * 1e-9);
-    std::fflush(stderr);
-  }
-
- private:
-  bool enabled_;
-  TimestampNs start_ns_, end_ns_;
-  bool drawn_ = false;
-  std::chrono::steady_clock::time_point last_;
-};
+/// The per-stage log of a finished run (`-v`): what each stage of the pipeline did and the
+/// time it took.
+void LogStages(const MapRun& run) {
+  if (GetLogLevel() > LogLevel::kDebug) return;
+  const SlamSystem& slam = *run.slam;
+  const FrontendStats& f = slam.frontend_stats();
+  const StageTimes& t = slam.times();
+  int accepted = 0;
+  for (const LoopRecord& l : slam.loops()) accepted += l.accepted();
+  char line[256];
+  std::snprintf(line, sizeof(line), "input: %lld messages (%lld radar, %lld odometry) of %s",
+                run.messages, run.radar_messages, run.odometry_messages, run.input.c_str());
+  Log(LogLevel::kDebug, line);
+  std::snprintf(line, sizeof(line),
+                "stage imaging: %.3f s, %lld scans imaged of %lld (%lld gated, %lld rejected)",
+                t.imaging_s, f.scans_imaged, f.scans_received, f.scans_gated, f.scans_rejected());
+  Log(LogLevel::kDebug, line);
+  std::snprintf(line, sizeof(line), "stage features: %.3f s, %zu keyframes", t.features_s,
+                slam.keyframes().size());
+  Log(LogLevel::kDebug, line);
+  std::snprintf(line, sizeof(line), "stage matching: %.3f s, %zu loop candidates, %d accepted",
+                t.matching_s, slam.loops().size(), accepted);
+  Log(LogLevel::kDebug, line);
+  std::snprintf(line, sizeof(line), "stage optimisation: %.3f s, %s", t.optimization_s,
+                slam.last_optimization().termination.c_str());
+  Log(LogLevel::kDebug, line);
+}
 
 /// Finishes a streamed run: the last keyframes, processing time as SLAM's own, checks.
 void FinishStreamed(MapRun* run) {
   run->slam->Finish();
+  LogStages(*run);
   // The source (e.g. the simulator) is not part of the mapping: count SLAM's own time.
   const StageTimes& t = run->slam->times();
   run->processing_s = t.imaging_s + t.features_s + t.matching_s + t.optimization_s;
@@ -123,15 +121,19 @@ MapRun MapBag(const Config& config, const std::string& bag_path, bool progress,
   run.slam = std::make_unique<SlamSystem>(config);
   const rosbag::RobotBagOptions options = rosbag::RobotBagOptionsFromConfig(config);
   {
-    ProgressBar bar(progress, start, end);
+    char what[64];
+    std::snprintf(what, sizeof(what), "of %.0f s of log",
+                  (static_cast<double>(end) - static_cast<double>(start)) * 1e-9);
+    ProgressBar bar(progress, what);
     rosbag::BagSource source(reader, options);
     source.Run([&](const Message& m) {
-      bar.Update(m.stamp_ns);
+      bar.UpdateStamp(m.stamp_ns, start, end);
       Feed(&run, m);
     });
   }
   run.slam->Finish();
   run.processing_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  LogStages(run);
   CheckMappable(run);
   return run;
 }
@@ -150,12 +152,22 @@ MapRun MapSource(const Config& config, const std::string& description, MessageSo
 }
 
 MapRun MapSimulation(const Config& config, const std::string& map_yaml, const std::string& route,
-                     std::uint64_t seed, const std::function<void(MapRun*)>& on_message) {
+                     std::uint64_t seed, const std::function<void(MapRun*)>& on_message,
+                     bool progress) {
   const sim::SimScenario scenario = sim::MakeScenario(config, map_yaml, route, seed);
   sim::SimSource source(config, scenario, seed);
   const std::string description =
       "simulated " + route + " in " + map_yaml + " (seed " + std::to_string(seed) + ")";
-  return MapSource(config, description, source, on_message);
+  const double duration_s = scenario.trajectory.duration_s();
+  char what[64];
+  std::snprintf(what, sizeof(what), "of %.0f s of simulated run", duration_s);
+  ProgressBar bar(progress, what);
+  return MapSource(config, description, source, [&](MapRun* run) {
+    if (bar.enabled() && duration_s > 0) {
+      bar.Update(NsToSeconds(run->last_stamp_ns - run->first_stamp_ns) / duration_s);
+    }
+    if (on_message) on_message(run);
+  });
 }
 
 void CountMessage(MapRun* run, const Message& m) {

@@ -38,7 +38,8 @@ struct MapRun {
   double log_duration_s() const;
 };
 
-/// Maps a ROS 2 bag (directory, .db3 or .mcap). `progress` draws a bar on stderr.
+/// Maps a ROS 2 bag (directory, .db3 or .mcap). `progress` draws a bar on stderr
+/// (slam/progress.h).
 /// Throws InputError for bags that cannot be mapped (no odometry or radar topic,
 /// no scan overlapping the odometry, too short for one keyframe).
 MapRun MapBag(const Config& config, const std::string& bag_path, bool progress,
@@ -60,9 +61,11 @@ void FeedSlam(SlamSystem& slam, const Message& m);
 
 /// Maps a simulated run (drivers/sim: `map_yaml`, built-in route name or waypoints
 /// file, seed) in memory, with its ground truth: the demo, tests and benchmarks.
-/// `on_message` (optional) is called after each message, e.g. to time the run.
+/// `on_message` (optional) is called after each message, e.g. to time the run; `progress`
+/// draws a bar on stderr (slam/progress.h).
 MapRun MapSimulation(const Config& config, const std::string& map_yaml, const std::string& route,
-                     std::uint64_t seed, const std::function<void(MapRun*)>& on_message = nullptr);
+                     std::uint64_t seed, const std::function<void(MapRun*)>& on_message = nullptr,
+                     bool progress = false);
 
 /// Checks that the run produced a map; throws InputError with the reason if not.
 void CheckMappable(const MapRun& run);

@@ -108,8 +108,18 @@ const std::vector<std::string>& AllMapOutputNames() {
   return names;
 }
 
+namespace {
+
+/// `path` does not exist (and no error says otherwise).
+bool Missing(const std::string& path) {
+  std::error_code ec;
+  return !fs::exists(path, ec) && !ec;
+}
+
+}  // namespace
+
 MapOutputStage::MapOutputStage(const std::string& out_dir)
-    : out_dir_(out_dir), lock_(LockOutputFolder(out_dir)) {
+    : out_dir_(out_dir), created_dir_(Missing(out_dir)), lock_(LockOutputFolder(out_dir)) {
   RefuseFolderOutputs(out_dir);
   stage_ = (fs::path(out_dir) / (std::string(kStagePrefix) + std::to_string(::getpid()))).string();
   guard_ = std::make_unique<RemoveOnInterrupt>(stage_);
@@ -123,6 +133,15 @@ MapOutputStage::MapOutputStage(const std::string& out_dir)
 MapOutputStage::~MapOutputStage() {
   std::error_code ec;
   fs::remove_all(stage_, ec);
+  // A run that failed leaves no empty folder it created behind (nothing was committed: it
+  // holds only its lock file). The lock is still held here, so no other command is in it.
+  if (!created_dir_) return;
+  for (const fs::directory_entry& e : fs::directory_iterator(out_dir_, ec)) {
+    if (e.path().filename() != kFolderLockName) return;
+  }
+  if (ec) return;
+  fs::remove(fs::path(out_dir_) / kFolderLockName, ec);
+  fs::remove(out_dir_, ec);
 }
 
 FolderLock LockOutputFolder(const std::string& out_dir) {

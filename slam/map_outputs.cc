@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -20,6 +21,8 @@
 #include "backend/occupancy_io.h"
 #include "core/commit_journal.h"
 #include "core/errors.h"
+#include "core/log.h"
+#include "core/shortest_number.h"
 #include "frontend/strip_renderer.h"
 #include "imaging/enhance.h"
 #include "imaging/image_io.h"
@@ -114,14 +117,6 @@ std::string LoopsCsv(const SlamSnapshot& slam) {
         << (l.edge_index >= 0 ? Fixed(l.chi2, 3) : "") << "\n";
   }
   return csv.str();
-}
-
-nlohmann::json AteJson(const AteResult& a) {
-  return {{"poses", a.num_poses},
-          {"rmse_m", a.rmse_m},
-          {"mean_m", a.mean_m},
-          {"max_m", a.max_m},
-          {"yaw_rmse_deg", a.yaw_rmse_rad * 180.0 / M_PI}};
 }
 
 std::string ReadFileBytes(const std::string& path) {
@@ -271,10 +266,16 @@ nlohmann::json SummaryJson(const MapState& run, const MapOutputs& outputs,
               {"cols", extent.grid.cols},
               {"blocks", extent.blocks},
               {"memory_mib", static_cast<double>(extent.memory_bytes) / 1048576.0}};
+  // The shape every map summary shares with a joined one (docs/formats.md): runs[], and the
+  // newest run's ATE at the top.
+  nlohmann::json only_run = {
+      {"id", 0}, {"input", run.input}, {"keyframes", slam.tiles.size()}, {"tum", "trajectory.tum"}};
   if (outputs.ate.num_poses > 0) {
     s["ate"] = AteJson(outputs.ate);
     s["odometry_ate"] = AteJson(outputs.odometry_ate);
+    only_run["ate"] = s["ate"];
   }
+  s["runs"] = nlohmann::json::array({only_run});
   return s;
 }
 
@@ -294,7 +295,16 @@ void CommitStagedOutputs(const fs::path& stage, const std::string& out_dir,
 
 }  // namespace
 
+nlohmann::json AteJson(const AteResult& a) {
+  return {{"poses", a.num_poses},
+          {"rmse_m", a.rmse_m},
+          {"mean_m", a.mean_m},
+          {"max_m", a.max_m},
+          {"yaw_rmse_deg", a.yaw_rmse_rad * 180.0 / M_PI}};
+}
+
 MapOutputs MapOutputStage::CommitState(const MapState& run, const MapRun* exact_from) {
+  const auto t0 = std::chrono::steady_clock::now();
   MapOutputs result;
   const fs::path stage = stage_;
   std::vector<std::string> names;
@@ -318,6 +328,11 @@ MapOutputs MapOutputStage::CommitState(const MapState& run, const MapRun* exact_
   }
   WriteTextAtomic((stage / "summary.json").string(), result.summary.dump(2) + "\n");
   CommitStagedOutputs(stage, out_dir_, names, &result.files);
+  Log(LogLevel::kDebug,
+      "stage outputs: " +
+          ShortestNumber(RoundToDigits(
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 3)) +
+          " s, " + std::to_string(result.files.size()) + " files committed to " + out_dir_);
   return result;
 }
 

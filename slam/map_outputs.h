@@ -40,6 +40,10 @@ struct MapState {
 /// The state of `run` now. Hold run.slam->LockState() while its keyframe thread may run.
 MapState CaptureMapState(const MapRun& run);
 
+/// An ATE as summary.json holds it, everywhere (docs/formats.md): poses, rmse_m, mean_m,
+/// max_m, yaw_rmse_deg.
+nlohmann::json AteJson(const AteResult& ate);
+
 struct MapOutputOptions {
   bool exact = false;  ///< also the exact map (WriteExactMap), staged and committed with the rest
 };
@@ -78,6 +82,7 @@ class MapOutputStage {
   MapOutputs CommitState(const MapState& state, const MapRun* exact_from);
 
   std::string out_dir_, stage_;
+  bool created_dir_ = false;  ///< out_dir did not exist: a run that fails removes it again
   FolderLock lock_;
   std::unique_ptr<RemoveOnInterrupt> guard_;
   ExtraOutputs extra_outputs_;

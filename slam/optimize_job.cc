@@ -4,6 +4,7 @@
 
 #include "backend/g2o_io.h"
 #include "backend/graph_plot.h"
+#include "core/shortest_number.h"
 #include "imaging/image_io.h"
 #include "slam/output_folder.h"
 
@@ -25,6 +26,34 @@ std::string SolveFailure(const OptimizeResult& r, const PoseGraph& graph) {
     }
   }
   return failure;
+}
+
+/// Why the solution is degenerate although it converged: more than half the loops rejected,
+/// so the graph keeps the tangle those loops should have closed (MIT-B with the defaults: 11
+/// of 20 held back as unsupported). Says which key changes it; empty if usable.
+std::string DegenerateSolution(const OptimizeResult& r, const BackendConfig& backend) {
+  int rejected = 0, unsupported = 0;
+  for (const EdgeReport& e : r.rejected) {
+    if (e.kind != EdgeKind::kLoop) continue;
+    ++rejected;
+    unsupported += e.reason == "unsupported";
+  }
+  if (r.num_loops == 0 || 2 * rejected <= r.num_loops) return {};
+  std::string why = std::to_string(rejected) + " of " + std::to_string(r.num_loops) +
+                    " loops rejected, the optimised graph would keep the tangle they close: ";
+  if (2 * unsupported >= rejected) {
+    why += std::to_string(unsupported) +
+           " unsupported (no loop within backend.loop_support_window" +
+           " agrees, backend.min_loop_support: " + std::to_string(backend.min_loop_support) +
+           "); for a graph whose loops are isolated set backend.min_loop_support: 0 (with "
+           "--init chordal for a poor initial guess)";
+  } else {
+    why += std::to_string(rejected - unsupported) +
+           " by their residual (backend.loop_rejection_chi2: " +
+           ShortestNumber(backend.loop_rejection_chi2) +
+           "); for a poor initial guess try --init chordal (backend.initialization)";
+  }
+  return why;
 }
 
 void WriteOptimizeOutputs(const OptimizeJobOptions& options, const PoseGraph& graph) {
@@ -59,6 +88,7 @@ OptimizeJobResult RunOptimizeJob(const Config& config, const OptimizeJobOptions&
   job.result = graph.Optimize();
   job.skipped_lines = file.skipped;
   job.failure = SolveFailure(job.result, graph);
+  if (job.failure.empty()) job.failure = DegenerateSolution(job.result, config.backend);
   if (job.failure.empty()) WriteOptimizeOutputs(options, graph);
   return job;
 }

@@ -25,8 +25,9 @@ struct OptimizeJobOptions {
 struct OptimizeJobResult {
   OptimizeResult result;
   std::vector<std::string> skipped_lines;  ///< the bad lines skipped (skip_bad_lines)
-  /// Why the solution was not written (not converged, cost or poses not finite: such a
-  /// result would look like a map); empty when the outputs were written.
+  /// Why the solution was not written (not converged, cost or poses not finite, or
+  /// degenerate: more than half the loops rejected; such a result would look like a map);
+  /// empty when the outputs were written.
   std::string failure;
 };
 

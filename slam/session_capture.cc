@@ -4,6 +4,7 @@
 
 #include "slam/app_config_io.h"
 #include "slam/config/config_fingerprint.h"
+#include "slam/session/session_file.h"
 
 namespace uwbsar::slam {
 
@@ -61,6 +62,13 @@ SessionData CaptureSession(const MapRun& run) {
     d.odometry.push_back({0, e.stamp_ns, e.T_world_robot, e.path_m});
   }
   return d;
+}
+
+void SaveSessionWithOutputs(MapOutputStage* stage, const MapRun& run) {
+  stage->SetExtraOutputs([&run](const std::string& dir) {
+    WriteSession(dir + "/" + kSessionFileName, CaptureSession(run));
+    return std::vector<std::string>{kSessionFileName};
+  });
 }
 
 }  // namespace uwbsar::slam

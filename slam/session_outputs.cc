@@ -74,10 +74,6 @@ void Pair(const std::vector<std::pair<TimestampNs, Pose2>>& est,
   }
 }
 
-nlohmann::json AteJson(const AteResult& a) {
-  return {{"poses", a.num_poses}, {"rmse_m", a.rmse_m}, {"max_m", a.max_m}};
-}
-
 /// Output paths in `dir`, each recorded in `files` (in the order written) as it is handed out.
 struct OutputPaths {
   std::string dir;
@@ -254,8 +250,10 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
   nlohmann::json& s = result.summary;
   s = extra;
   s["keyframes"] = session.keyframes.size();
-  s["loops_accepted"] = accepted;
+  s["loops"] = {{"accepted", accepted}};
   s["runs"] = runs_json;
+  // As a plain map's summary (docs/formats.md): the newest run's ATE at the top.
+  if (!runs_json.empty() && runs_json.back().contains("ate")) s["ate"] = runs_json.back()["ate"];
   if (ground_truth.size() >= 2) {
     const AteResult common = CommonFrameError(session, ground_truth);
     s["ate_common"] = AteJson(common);

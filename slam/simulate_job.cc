@@ -1,6 +1,7 @@
 #include "slam/simulate_job.h"
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "drivers/sim/sim_stream.h"
 #include "slam/app_config_io.h"
 #include "slam/output_folder.h"
+#include "slam/progress.h"
 
 namespace uwbsar::slam {
 
@@ -39,8 +41,14 @@ SimulateJobResult RunSimulateJob(const Config& config, const SimulateJobOptions&
   {
     const RemoveOnInterrupt guard(partial);  // Ctrl-C leaves no BAG.partial behind
     try {
+      char what[64];
+      std::snprintf(what, sizeof(what), "of %.0f s of route", stream.duration_s());
+      ProgressBar bar(o.progress, what);
+      const TimestampNs start_ns = stream.start_ns();
+      const TimestampNs end_ns = start_ns + SecondsToNs(stream.duration_s());
       result.summary =
-          sim::WriteSimBag(&stream, config, o.bag_dir, o.storage, o.bag_dir + "/ground_truth.tum");
+          sim::WriteSimBag(&stream, config, o.bag_dir, o.storage, o.bag_dir + "/ground_truth.tum",
+                           [&](TimestampNs t) { bar.UpdateStamp(t, start_ns, end_ns); });
     } catch (...) {
       // A failed simulation (disk full) leaves nothing that blocks a retry (neither existed
       // before: checked above).

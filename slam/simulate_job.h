@@ -22,6 +22,7 @@ struct SimulateJobOptions {
   std::string text_log;          ///< also write odometry and scans as a text log here; empty: not
   std::uint64_t seed = 1;        ///< the run's noise and odometry errors
   std::uint64_t scene_seed = 1;  ///< the scene's scatterers (slam/scene_simulation.h)
+  bool progress = false;         ///< draw a progress bar on stderr (slam/progress.h)
 };
 
 struct SimulateJobResult {

@@ -43,7 +43,7 @@ void AddCalibrateCommand(CLI::App& app, const GlobalOptions& globals) {
       ->required();
   cmd->add_option("--ground-truth", opts->ground_truth,
                   "TUM trajectory of the true poses (default: the bag's ground-truth topic)")
-      ->check(CLI::ExistingFile);
+      ->check(InputFile());
   cmd->add_option("--segment-m", opts->segment_m, "Odometry path per fitted segment")
       ->check(CheckPositiveFinite);
   cmd->add_option("--out", opts->out, "Write the calibration as a configuration file (YAML)");

@@ -9,6 +9,7 @@
 #include "slam/app_config.h"
 #include "slam/map_outputs.h"
 #include "slam/saved_session.h"
+#include "slam/session_capture.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -37,16 +38,17 @@ void AddDemoCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--map", opts->map_path,
                   "map_server map (YAML + PGM) to simulate in; default: the bundled "
                   "config/maps/seed_hall/seed_hall.yaml")
-      ->check(CLI::ExistingFile);
+      ->check(InputFile());
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
     slam::MapOutputStage stage(opts->out_dir);
     slam::RefuseToReplaceSavedMap(opts->out_dir, {}, false, "give another --out");
     slam::MapRun run =
         slam::MapSimulation(config, opts->map_path.empty() ? BundledMap() : opts->map_path,
-                            "depart-return", opts->seed);
+                            "depart-return", opts->seed, nullptr, !globals.quiet);
+    slam::SaveSessionWithOutputs(&stage, run);  // `map --resume DIR` extends the demo's map
     const slam::MapOutputs outputs = stage.Commit(run);
-    if (!globals.quiet) PrintMapSummary(run, outputs, opts->out_dir);
+    PrintMapSummary(run, outputs, opts->out_dir, globals);
   });
 }
 

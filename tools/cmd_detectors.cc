@@ -16,7 +16,7 @@ namespace {
 void AddDetectorsOptions(CLI::App* cmd, slam::DetectorsJobOptions* opts) {
   cmd->add_option("BAG", opts->bag, "ROS 2 bag (directory, .db3 or .mcap)")
       ->required()
-      ->check(CLI::ExistingPath);
+      ->check(InputPath());
   cmd->add_option("--out", opts->out_dir, "Output folder")->capture_default_str();
   cmd->add_option("--regions", opts->regions, "Region length and step in metres (default 2,1)")
       ->expected(2)
@@ -29,8 +29,9 @@ void AddDetectorsOptions(CLI::App* cmd, slam::DetectorsJobOptions* opts) {
   cmd->add_flag("--no-images", opts->no_images, "Do not write match images");
 }
 
-void RunDetectors(const slam::DetectorsJobOptions& opts, const GlobalOptions& globals) {
+void RunDetectors(slam::DetectorsJobOptions opts, const GlobalOptions& globals) {
   const Config config = LoadConfigFor(globals);
+  opts.progress = !globals.quiet;
   const slam::DetectorsJobResult r = slam::RunDetectorsJob(config, opts);
   if (globals.quiet) return;
   std::printf("%zu scans (%zu departing, %zu returning), %zu regions of %.2f m every %.2f m\n\n",

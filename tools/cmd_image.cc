@@ -17,8 +17,8 @@ void AddImageCommand(CLI::App& app, const GlobalOptions& globals) {
   };
   auto opts = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("image", "Write the SAR strip image of a whole run");
-  auto* log = cmd->add_option("--log", opts->log_path, "Text log (odom/scan records)")
-                  ->check(CLI::ExistingFile);
+  auto* log =
+      cmd->add_option("--log", opts->log_path, "Text log (odom/scan records)")->check(InputFile());
   cmd->add_option("--synthetic", opts->synthetic, "Built-in scene: straight or arc")
       ->check(CLI::IsMember({"straight", "arc"}))
       ->excludes(log);

@@ -28,7 +28,7 @@ void AddLocalizeCommand(CLI::App& app, const GlobalOptions& globals) {
     const FolderLock out_lock = slam::LockOutputFolder(opts->out_dir);
     slam::RefuseMapFolderForLocalize(opts->out_dir);
     const slam::SavedSession map = slam::OpenSavedSession(opts->map, config);
-    const slam::LocalizeRun run = slam::LocalizeBag(map.data, config, opts->bag);
+    const slam::LocalizeRun run = slam::LocalizeBag(map.data, config, opts->bag, !globals.quiet);
     const nlohmann::json s = slam::WriteLocalizeOutputs(run, opts->out_dir);
     if (globals.quiet) return;
     std::printf(
@@ -43,7 +43,7 @@ void AddLocalizeCommand(CLI::App& app, const GlobalOptions& globals) {
     } else {
       std::printf("never placed in the map: lost\n");
     }
-    std::printf("outputs: %s/trajectory.tum, localize.csv, summary.json\n", opts->out_dir.c_str());
+    PrintWrittenFolder(opts->out_dir, {"trajectory.tum", "localize.csv", "summary.json"}, globals);
   });
 }
 

@@ -50,7 +50,7 @@ void AddLoopsCommand(CLI::App& app, const GlobalOptions& globals) {
   auto* stats = cmd->add_option("--from-stats", opts->stats_path,
                                 "CSV: d,r,n_akaze,scale_akaze,tx_akaze_px,ty_akaze_px,"
                                 "rot_akaze_deg,n_orb,scale_orb,tx_orb_px,ty_orb_px,rot_orb_deg")
-                    ->check(CLI::ExistingFile);
+                    ->check(InputFile());
   auto* images = cmd->add_option("--images", opts->images_dir,
                                  "Folder of region images D<i>, R<j> (.png/.pgm/.tif): every "
                                  "D x R pair through `uwbsar match`");
@@ -88,6 +88,7 @@ void AddLoopsCommand(CLI::App& app, const GlobalOptions& globals) {
       PrintMatrix(m);
     }
     if (opts->reasons) PrintReasons(m);
+    PrintWritten(result.files, globals, opts->json);
   });
 }
 

@@ -13,7 +13,8 @@
 namespace uwbsar::tools {
 
 void PrintMapSummary(const slam::MapRun& run, const slam::MapOutputs& outputs,
-                     const std::string& out_dir) {
+                     const std::string& out_dir, const GlobalOptions& globals) {
+  if (globals.quiet) return;
   const auto& s = outputs.summary;
   std::printf("mapped %.1f s of log (%.1f m) in %.2f s: real-time factor %.1f\n",
               run.log_duration_s(), s["path_length_m"].get<double>(), run.processing_s,
@@ -29,6 +30,7 @@ void PrintMapSummary(const slam::MapRun& run, const slam::MapOutputs& outputs,
   }
   std::printf("peak memory %.0f MiB\n", s["peak_memory_mib"].get<double>());
   std::printf("report: %s/report.html\n", out_dir.c_str());
+  PrintWrittenFolder(out_dir, outputs.files, globals);
 }
 
 void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
@@ -44,7 +46,7 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--out", opts->out_dir, "Output folder")->required();
   cmd->add_option("--ground-truth", opts->ground_truth,
                   "TUM trajectory to evaluate against (default: the bag's ground-truth topic)")
-      ->check(CLI::ExistingFile);
+      ->check(InputFile());
   cmd->add_flag("--exact", opts->exact,
                 "Also write map_exact.png / map_exact_float.tif: every scan back-projected again "
                 "at its corrected pose, at the imaging resolution");
@@ -86,17 +88,14 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
     if (!opts->ground_truth.empty()) run.ground_truth = std::move(ground_truth);
     run.fingerprint = fingerprint;
     if (!opts->resume.empty()) {
-      WriteResumedMap(*saved, run, &stage, opts->out_dir, globals.quiet);
+      WriteResumedMap(*saved, run, &stage, opts->out_dir, globals);
       return;
     }
-    stage.SetExtraOutputs([&run](const std::string& dir) {
-      WriteSession(dir + "/" + kSessionFileName, slam::CaptureSession(run));
-      return std::vector<std::string>{kSessionFileName};
-    });
+    slam::SaveSessionWithOutputs(&stage, run);
     slam::MapOutputOptions output_options;
     output_options.exact = opts->exact;
     const slam::MapOutputs outputs = stage.Commit(run, output_options);
-    if (!globals.quiet) PrintMapSummary(run, outputs, opts->out_dir);
+    PrintMapSummary(run, outputs, opts->out_dir, globals);
   });
 }
 

@@ -66,6 +66,7 @@ void AddMatchCommand(CLI::App& app, const GlobalOptions& globals) {
     } else if (!globals.quiet) {
       PrintText(result.match);
     }
+    PrintWritten(result.files, globals, opts->json);
   });
 }
 

@@ -4,6 +4,7 @@
 
 #include "core/errors.h"
 #include "slam/app_config.h"
+#include "slam/progress.h"
 #include "slam/saved_session.h"
 #include "slam/session/session_file.h"
 #include "slam/session/session_merge.h"
@@ -40,15 +41,20 @@ void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
     const SessionData& a = saved_a.data;
     const SessionData& b = saved_b.data;
     MergeReport report;
-    const SessionData merged = MergeSessions(a, b, config, &report);
+    SessionData merged;
+    {
+      slam::ProgressBar bar(!globals.quiet, "of the second session's keyframes matched");
+      merged = MergeSessions(a, b, config, &report, [&bar](double f) { bar.Update(f); });
+    }
     if (!report.connected) {
       throw InputError(opts->b + " cannot be merged into " + opts->a + ": " + report.reason);
     }
     nlohmann::json extra;
+    extra["input"] = opts->a + " + " + opts->b;
     extra["inputs"] = {opts->a, opts->b};
     extra["merge"] = slam::MergeReportJson(report);
-    slam::CommitSessionOutputs(&stage, merged, config, {}, extra,
-                               "uwbsar merge: " + opts->a + " + " + opts->b);
+    const slam::SessionOutputs outputs = slam::CommitSessionOutputs(
+        &stage, merged, config, {}, extra, "uwbsar merge: " + opts->a + " + " + opts->b);
     if (globals.quiet) return;
     std::printf(
         "merged: %zu + %zu keyframes, %d loops between the sessions (%d rejected by the "
@@ -56,6 +62,7 @@ void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
         a.keyframes.size(), b.keyframes.size(), report.loop_edges, report.loop_edges_rejected,
         report.connect_path_m);
     std::printf("report: %s/report.html\n", opts->out_dir.c_str());
+    PrintWrittenFolder(opts->out_dir, outputs.files, globals);
   });
 }
 

@@ -23,7 +23,7 @@ struct OptimizeOptions {
 void AddOptimizeOptions(CLI::App* cmd, OptimizeOptions* opts) {
   cmd->add_option("input", opts->in, "g2o file (VERTEX_SE2, EDGE_SE2, FIX)")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(InputFile());
   cmd->add_option("--out", opts->out, "Write the optimised graph (g2o)");
   cmd->add_option("--tum", opts->tum, "Write the optimised trajectory (TUM; time = vertex id)");
   cmd->add_option("--png", opts->png, "Write a picture of the optimised graph");
@@ -64,7 +64,7 @@ void PrintOptimizeJson(const std::string& input, const OptimizeResult& r,
   std::cout << j.dump(2) << "\n";
 }
 
-void PrintOptimizeText(const OptimizeResult& r, const std::string& out) {
+void PrintOptimizeText(const OptimizeResult& r) {
   std::printf("graph: %d nodes, %d edges (%d loops)\n", r.num_nodes, r.num_edges, r.num_loops);
   std::printf("termination: %s\n", r.termination.c_str());
   std::printf("iterations: %d in %d solves, %.3f s\n", r.iterations, r.solves, r.solve_time_s);
@@ -74,7 +74,6 @@ void PrintOptimizeText(const OptimizeResult& r, const std::string& out) {
     std::printf("  edge %d: %d -> %d  chi2 %.3f  %s (support %d)\n", e.index, e.from_id, e.to_id,
                 e.chi2, e.reason.c_str(), e.support);
   }
-  if (!out.empty()) std::printf("wrote %s\n", out.c_str());
 }
 
 void Optimize(const OptimizeOptions& opts, const GlobalOptions& globals) {
@@ -89,7 +88,7 @@ void Optimize(const OptimizeOptions& opts, const GlobalOptions& globals) {
   options.drop_rejected = opts.drop_rejected;
   const slam::OptimizeJobResult job =
       slam::RunOptimizeJob(config, options, [&globals](const std::string& s) {
-        if (!globals.quiet) std::cerr << "uwbsar: skipped " << s << "\n";
+        if (!globals.quiet) std::cerr << "uwbsar: warning: skipped " << s << "\n";
       });
   const OptimizeResult& r = job.result;
   if (!job.failure.empty()) {
@@ -102,8 +101,13 @@ void Optimize(const OptimizeOptions& opts, const GlobalOptions& globals) {
   if (opts.json) {
     PrintOptimizeJson(opts.in, r, job.skipped_lines);
   } else if (!globals.quiet) {
-    PrintOptimizeText(r, opts.out);
+    PrintOptimizeText(r);
   }
+  std::vector<std::string> written;
+  for (const std::string* f : {&opts.out, &opts.tum, &opts.png}) {
+    if (!f->empty()) written.push_back(*f);
+  }
+  PrintWritten(written, globals, opts.json);
 }
 
 }  // namespace

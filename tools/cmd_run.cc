@@ -59,7 +59,7 @@ void AddRunOptions(CLI::App* cmd, RunOptions* opts) {
       ->capture_default_str();
   cmd->add_option("--map", opts->map_path,
                   "--emulate: map_server map to simulate in (default: the bundled seed_hall)")
-      ->check(CLI::ExistingFile);
+      ->check(InputFile());
   cmd->add_option("--localize-in", opts->localize_in,
                   "Saved session (folder or session.uwbsar): localise in it instead of mapping "
                   "(the map is not changed; outputs as `localize`, pose and map->odom on /tf)");
@@ -68,7 +68,8 @@ void AddRunOptions(CLI::App* cmd, RunOptions* opts) {
                 "otherwise)");
 }
 
-void PrintRunResult(const slam::LiveRunResult& result, const std::string& out_dir) {
+void PrintRunResult(const slam::LiveRunResult& result, const std::string& out_dir,
+                    const GlobalOptions& globals) {
   std::printf(
       "live run: %lld scans, %lld odometry, %lld recorded messages, %lld dropped from "
       "processing\n",
@@ -95,7 +96,7 @@ void PrintRunResult(const slam::LiveRunResult& result, const std::string& out_di
     return;
   }
   if (result.run.slam && !result.run.slam->keyframes().empty()) {
-    PrintMapSummary(result.run, result.outputs, out_dir);
+    PrintMapSummary(result.run, result.outputs, out_dir, globals);
   }
 }
 
@@ -130,7 +131,7 @@ void Run(const RunOptions& opts, const GlobalOptions& globals) {
   }
   slam::LiveRunResult result = slam::RunLive(config, std::move(options));
   if (emulation) emulation->Finish();
-  if (!globals.quiet) PrintRunResult(result, opts.out_dir);
+  if (!globals.quiet) PrintRunResult(result, opts.out_dir, globals);
 }
 
 }  // namespace

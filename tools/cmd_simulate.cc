@@ -41,6 +41,7 @@ void RunSimulate(const SimulateOptions& o, const GlobalOptions& globals) {
   options.text_log = o.text_log_path;
   options.seed = o.seed;
   options.scene_seed = o.scene_seed.empty() ? o.seed : std::stoull(o.scene_seed);
+  options.progress = !globals.quiet;
   const slam::SimulateJobResult result = slam::RunSimulateJob(config, options);
   if (globals.quiet) return;
   const sim::SimBagSummary& summary = result.summary;
@@ -72,7 +73,7 @@ void AddSimulateCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--map", o->map_path,
                   "map_server map (YAML + PGM), e.g. config/maps/seed_hall/seed_hall.yaml")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(InputFile());
   cmd->add_option("--route", o->route,
                   "depart-return, loop, or a waypoints file (lines 'x_m y_m', world frame)")
       ->capture_default_str();
@@ -90,7 +91,7 @@ void AddSimulateCommand(CLI::App& app, const GlobalOptions& globals) {
       ->check(CheckSeed, "integer 0..2^64-1");
   cmd->add_option("--targets", o->targets_path,
                   "Point targets file (YAML: point_targets: [{x_m, y_m, rcs_m2}, ...])")
-      ->check(CLI::ExistingFile);
+      ->check(InputFile());
   cmd->add_option("--text-log", o->text_log_path,
                   "Also write odometry and scans as a plain text log to this file");
   cmd->add_flag("--laser", o->laser, "Also simulate a 2-D LiDAR on simulator.laser.topic");

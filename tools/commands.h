@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "slam/app_config.h"
 #include "slam/output_folder.h"  // EnsureDirectory, CheckOutputFolder, CheckOutputFile
@@ -27,7 +28,9 @@ enum ExitCode : int {
 };
 
 struct GlobalOptions {
-  std::string config_path;  ///< --config; empty = built-in defaults (config/default.yaml)
+  /// --config, repeatable: merged in order, later wins; none = built-in defaults
+  /// (config/default.yaml).
+  std::vector<std::string> config_paths;
   bool quiet = false;
   bool verbose = false;
   /// The configuration, loaded once when the command line is parsed (before any subcommand
@@ -40,15 +43,31 @@ Config LoadConfigFor(const GlobalOptions& globals);
 /// Loads --config into globals->config; throws ConfigError (exit 3) for a bad file.
 void LoadGlobalConfig(GlobalOptions* globals);
 
+/// CLI11 checks of an input path: one that does not exist (or, for InputFile, a folder)
+/// throws InputError, exit 3 like every other bad input file (CLI11's own checks are
+/// command-line errors, exit 2). Other kinds of path are left to the loaders.
+CLI::Validator InputFile();
+CLI::Validator InputPath();
+
 /// CLI11 check functions ("" when valid). --seed: a decimal integer in [0, 2^64 - 1]
 /// (CLI11 itself wraps -1 and saturates 2^64).
 std::string CheckSeed(const std::string& text);
 /// A finite number > 0 (CLI::PositiveNumber lets nan through).
 std::string CheckPositiveFinite(const std::string& text);
 
+/// "wrote FILE" for each of `files`, unless -q: on stdout, or on stderr when stdout carries a
+/// JSON document (--json). Every command lists what it wrote.
+void PrintWritten(const std::vector<std::string>& files, const GlobalOptions& globals,
+                  bool json = false);
+
+/// One line "wrote DIR: a, b, ..." (the names of `files`, paths in DIR), unless -q: the
+/// outputs of a command that fills a folder.
+void PrintWrittenFolder(const std::string& dir, const std::vector<std::string>& files,
+                        const GlobalOptions& globals);
+
 /// The five-line summary printed by `uwbsar map`, `uwbsar demo` and `uwbsar run`.
 void PrintMapSummary(const slam::MapRun& run, const slam::MapOutputs& outputs,
-                     const std::string& out_dir);
+                     const std::string& out_dir, const GlobalOptions& globals);
 
 void AddConfigCommand(CLI::App& app, const GlobalOptions& globals);
 void AddImageCommand(CLI::App& app, const GlobalOptions& globals);

@@ -1,8 +1,11 @@
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 
+#include "core/errors.h"
 #include "slam/app_config_io.h"
 #include "tools/commands.h"
 
@@ -10,14 +13,34 @@ namespace uwbsar::tools {
 
 Config LoadConfigFor(const GlobalOptions& globals) {
   if (globals.config) return *globals.config;
-  if (globals.config_path.empty()) return Config{};
-  return LoadConfig(globals.config_path);
+  return LoadConfigs(globals.config_paths);
 }
 
 void LoadGlobalConfig(GlobalOptions* globals) {
-  if (globals->config_path.empty()) return;
-  globals->config = std::make_shared<const Config>(LoadConfig(globals->config_path));
+  if (globals->config_paths.empty()) return;
+  globals->config = std::make_shared<const Config>(LoadConfigs(globals->config_paths));
 }
+
+namespace {
+
+CLI::Validator InputCheck(bool file) {
+  return CLI::Validator(
+      [file](std::string& path) {
+        std::error_code ec;
+        const std::filesystem::file_status st = std::filesystem::status(path, ec);
+        if (!std::filesystem::exists(st)) throw InputError(path + ": no such file or folder");
+        if (file && std::filesystem::is_directory(st)) {
+          throw InputError(path + ": is a folder, expected a file");
+        }
+        return std::string();
+      },
+      file ? "FILE" : "PATH");
+}
+
+}  // namespace
+
+CLI::Validator InputFile() { return InputCheck(true); }
+CLI::Validator InputPath() { return InputCheck(false); }
 
 std::string CheckSeed(const std::string& text) {
   const std::string error =
@@ -38,6 +61,21 @@ std::string CheckPositiveFinite(const std::string& text) {
     return "expected a finite number > 0, got '" + text + "'";
   }
   return {};
+}
+
+void PrintWritten(const std::vector<std::string>& files, const GlobalOptions& globals, bool json) {
+  if (globals.quiet) return;
+  for (const std::string& f : files) std::fprintf(json ? stderr : stdout, "wrote %s\n", f.c_str());
+}
+
+void PrintWrittenFolder(const std::string& dir, const std::vector<std::string>& files,
+                        const GlobalOptions& globals) {
+  if (globals.quiet || files.empty()) return;
+  std::string names;
+  for (const std::string& f : files) {
+    names += (names.empty() ? "" : ", ") + std::filesystem::path(f).filename().string();
+  }
+  std::printf("wrote %s: %s\n", dir.c_str(), names.c_str());
 }
 
 void AddConfigCommand(CLI::App& app, const GlobalOptions& globals) {

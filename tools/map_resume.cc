@@ -24,7 +24,8 @@ slam::SavedSession OpenSessionToResume(const std::string& dir_or_file, const std
 }
 
 void WriteResumedMap(const slam::SavedSession& saved, const slam::MapRun& run,
-                     slam::MapOutputStage* stage, const std::string& out_dir, bool quiet) {
+                     slam::MapOutputStage* stage, const std::string& out_dir,
+                     const GlobalOptions& globals) {
   const Config& config = run.slam->config();
   MergeReport report;
   const SessionData merged = MergeSessions(saved.data, slam::CaptureSession(run), config, &report);
@@ -40,9 +41,9 @@ void WriteResumedMap(const slam::SavedSession& saved, const slam::MapRun& run,
   extra["processing_s"] = run.processing_s;
   extra["merge"] = slam::MergeReportJson(report);
   // Staged and committed as one set, like the plain map's outputs.
-  slam::CommitSessionOutputs(stage, merged, config, ground_truth, extra,
-                             "uwbsar map --resume: " + run.input);
-  if (quiet) return;
+  const slam::SessionOutputs outputs = slam::CommitSessionOutputs(
+      stage, merged, config, ground_truth, extra, "uwbsar map --resume: " + run.input);
+  if (globals.quiet) return;
   std::printf("mapped %.1f s of log in %.2f s: %zu keyframes\n", run.log_duration_s(),
               run.processing_s, run.slam->keyframes().size());
   std::printf(
@@ -52,6 +53,7 @@ void WriteResumedMap(const slam::SavedSession& saved, const slam::MapRun& run,
       report.loop_edges, report.loop_edges_rejected, report.dropped);
   std::printf("%zu keyframes in the map; report: %s/report.html\n", merged.keyframes.size(),
               out_dir.c_str());
+  PrintWrittenFolder(out_dir, outputs.files, globals);
 }
 
 }  // namespace uwbsar::tools

@@ -12,6 +12,7 @@
 #include "slam/map_outputs.h"
 #include "slam/saved_session.h"
 #include "slam/session/session_data.h"
+#include "tools/commands.h"
 
 namespace uwbsar::tools {
 
@@ -25,6 +26,7 @@ slam::SavedSession OpenSessionToResume(const std::string& dir_or_file, const std
 /// Throws InputError naming the bag and the session, writing nothing, when the run does not
 /// connect to the saved map.
 void WriteResumedMap(const slam::SavedSession& saved, const slam::MapRun& run,
-                     slam::MapOutputStage* stage, const std::string& out_dir, bool quiet);
+                     slam::MapOutputStage* stage, const std::string& out_dir,
+                     const GlobalOptions& globals);
 
 }  // namespace uwbsar::tools

@@ -61,7 +61,8 @@ rosbag::LaserScan ToRosLaserScan(const SimLaserScan& scan) {
 }
 
 SimBagSummary WriteSimBag(SimStream* stream, const SimSettings& config, const std::string& bag_dir,
-                          const std::string& storage, const std::string& tum_path) {
+                          const std::string& storage, const std::string& tum_path,
+                          const std::function<void(TimestampNs)>& on_message) {
   rosbag::BagWriterOptions options;
   options.storage = storage;
   rosbag::BagWriter bag(bag_dir, options);
@@ -103,6 +104,7 @@ SimBagSummary WriteSimBag(SimStream* stream, const SimSettings& config, const st
         ++summary.laser_scans;
         break;
     }
+    if (on_message) on_message(msg.stamp_ns);
   }
   bag.Close();
   if (!tum_path.empty()) WriteTumTrajectory(tum_path, ground_truth);

@@ -8,6 +8,7 @@
 // written message by message, so memory stays small whatever the run's length.
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "drivers/rosbag/ros_messages.h"
@@ -27,8 +28,10 @@ struct SimBagSummary {
 /// Drains `stream` into a bag at `bag_dir` (storage "sqlite3" or "mcap") and the ground
 /// truth into `tum_path` (empty: not written). Throws InputError if the bag exists or
 /// cannot be written.
+/// `on_message` (optional) is called with each message's stamp once it is written (progress).
 SimBagSummary WriteSimBag(SimStream* stream, const SimSettings& config, const std::string& bag_dir,
-                          const std::string& storage, const std::string& tum_path);
+                          const std::string& storage, const std::string& tum_path,
+                          const std::function<void(TimestampNs)>& on_message = nullptr);
 
 /// The ROS messages of one simulated message (exposed for tests).
 rosbag::Odometry ToRosOdometry(const OdometrySample& pose, const std::string& frame_id,

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <map>
 #include <sstream>
 
@@ -29,6 +30,17 @@ void Flatten(const YAML::Node& node, const std::string& prefix,
   } else if (!Irrelevant(prefix)) {
     out->push_back({prefix, node.IsNull() ? std::string() : node.Scalar()});
   }
+}
+
+/// The same text, or the same number however it is written: sessions saved before numbers
+/// were written shortest hold "0.0050000000000000001" where this one writes "0.005".
+bool SameValue(const std::string& a, const std::string& b) {
+  if (a == b) return true;
+  char* end_a = nullptr;
+  char* end_b = nullptr;
+  const double x = std::strtod(a.c_str(), &end_a);
+  const double y = std::strtod(b.c_str(), &end_b);
+  return !a.empty() && !b.empty() && *end_a == '\0' && *end_b == '\0' && x == y;
 }
 
 }  // namespace
@@ -77,10 +89,10 @@ std::string FingerprintDifference(const std::string& stored, const SystemConfig&
     auto it = saved.find(key);
     if (it == saved.end()) {
       auto d = defaults.find(key);
-      if (d != defaults.end() && d->second == value) continue;
+      if (d != defaults.end() && SameValue(d->second, value)) continue;
       return key + " is not in the session (set to " + value + " here)";
     }
-    if (it->second != value) {
+    if (!SameValue(it->second, value)) {
       return key + " is " + it->second + " in the session, " + value + " in this configuration";
     }
     saved.erase(it);

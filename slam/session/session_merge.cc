@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <map>
 
+#include "core/log.h"
 #include "frontend/place_recognition/feature_matcher.h"
 #include "frontend/place_recognition/loop_validator.h"
 
@@ -76,7 +77,8 @@ std::vector<const SessionKeyframe*> MergeCandidates(const SessionData& a, const 
 /// `r` records the connection.
 std::vector<Hypothesis> FindMergeLoops(const SessionData& a, const SessionData& b,
                                        const SessionSettings& config, MergeReport* report,
-                                       std::vector<Hypothesis>* before) {
+                                       std::vector<Hypothesis>* before,
+                                       const std::function<void(double)>& on_progress) {
   MergeReport& r = *report;
   const SessionConfig& sc = config.session;
   const PlaceRecognitionConfig pr =
@@ -86,7 +88,9 @@ std::vector<Hypothesis> FindMergeLoops(const SessionData& a, const SessionData& 
   for (const SessionOdometry& o : b.odometry) path_origin.emplace(o.trajectory, o.path_m);
 
   std::vector<Hypothesis> loops;  // the loops that go into the graph
-  for (const SessionKeyframe& kb : b.keyframes) {
+  for (std::size_t n = 0; n < b.keyframes.size(); ++n) {
+    const SessionKeyframe& kb = b.keyframes[n];
+    if (on_progress) on_progress(static_cast<double>(n) / static_cast<double>(b.keyframes.size()));
     for (const SessionKeyframe* ka : MergeCandidates(a, kb, r, sc)) {
       ++r.candidates;
       const DetectorMap<MatchResult> matches = MatchDetectorPair(ka->features, kb.features, pr);
@@ -200,7 +204,8 @@ void ShareLoopInformationPerKeyframe(std::vector<PoseGraphEdge>* loops) {
 }
 
 SessionData MergeSessions(const SessionData& a_in, const SessionData& b_in,
-                          const SessionSettings& config, MergeReport* report) {
+                          const SessionSettings& config, MergeReport* report,
+                          const std::function<void(double)>& on_progress) {
   MergeReport& r = *report;
   r = MergeReport{};
   // Ids offset past the saved map's never wrap: when the joined ids would pass kMaxJoinedId
@@ -222,7 +227,13 @@ SessionData MergeSessions(const SessionData& a_in, const SessionData& b_in,
   const SessionData b =
       Renumbered(dense ? WithDenseIds(b_in) : b_in, r.id_offset, r.trajectory_offset);
   std::vector<Hypothesis> before;  // validated loops before placement
-  const std::vector<Hypothesis> loops = FindMergeLoops(a, b, config, &r, &before);
+  const std::vector<Hypothesis> loops = FindMergeLoops(a, b, config, &r, &before, on_progress);
+  Log(LogLevel::kDebug,
+      "stage merge matching: " + std::to_string(b.keyframes.size()) + " keyframes against " +
+          std::to_string(a.keyframes.size()) + ", " + std::to_string(r.candidates) +
+          " pairs matched, " + std::to_string(r.validated) + " validated" +
+          (r.connected ? ", placed after " + std::to_string(r.connect_path_m) + " m"
+                       : ", not placed"));
 
   SessionData out = a;
   out.trajectories.insert(out.trajectories.end(), b.trajectories.begin(), b.trajectories.end());
@@ -238,6 +249,8 @@ SessionData MergeSessions(const SessionData& a_in, const SessionData& b_in,
   const std::vector<int> new_edges =
       BuildJointGraph(a, b, r.T_mapA_mapB, loops, config.session.freeze_saved_map, &graph);
   r.optimization = graph.Optimize();
+  Log(LogLevel::kDebug, "stage merge optimisation: " + std::to_string(r.optimization.solve_time_s) +
+                            " s, " + r.optimization.termination);
   r.loop_edges = static_cast<int>(loops.size());
   StoreJoined(graph, b, loops, new_edges, &r, &out);
   return out;

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -55,7 +56,9 @@ constexpr std::int64_t kMaxJoinedId = std::int64_t{1} << 30;
 /// ids of both are first made dense: 0..n-1 in their order); when b cannot be connected
 /// it is `a` unchanged plus b's trajectories (report->connected false, reason set) and b's
 /// keyframes are not in it.
+/// `on_progress` (optional) is called with the share of b's keyframes matched so far.
 SessionData MergeSessions(const SessionData& a, const SessionData& b, const SessionSettings& config,
-                          MergeReport* report);
+                          MergeReport* report,
+                          const std::function<void(double)>& on_progress = nullptr);
 
 }  // namespace uwbsar
