@@ -76,7 +76,8 @@ Lattice CoveringLattice(const std::vector<NavigationKeyframe>& keyframes,
   for (const NavigationKeyframe& k : keyframes) {
     const ImageGrid& g = k.grid;
     for (const double c : {-0.5, g.cols - 0.5}) {
-      for (const double r : {-0.5, g.rows - 0.5}) include(k.T_map_anchor * g.PixelToMetric(c, r), 0);
+      for (const double r : {-0.5, g.rows - 0.5})
+        include(k.T_map_anchor * g.PixelToMetric(c, r), 0);
     }
   }
   for (const Pose2& p : path) include({p.x_m, p.y_m}, footprint_m + cell_m);
@@ -102,11 +103,15 @@ class KeyframeCaster {
  public:
   KeyframeCaster(const NavigationKeyframe& k, const NavigationGridConfig& config,
                  const Lattice& lattice, float reference, Fusion* fusion)
-      : k_(k), config_(config), lattice_(lattice), fusion_(fusion),
+      : k_(k),
+        config_(config),
+        lattice_(lattice),
+        fusion_(fusion),
         hit_level_(static_cast<float>(config.return_fraction) * reference),
         support_level_(static_cast<float>(config.ridge_support_fraction) * reference),
         step_m_(std::min(k.grid.resolution_m, 0.5 * lattice.cell_m)),
-        half_width_px_(static_cast<int>(std::lround(0.5 * config.ray_width_m / k.grid.resolution_m))) {}
+        half_width_px_(
+            static_cast<int>(std::lround(0.5 * config.ray_width_m / k.grid.resolution_m))) {}
 
   void Cast(const Pose2& T_anchor_sensor, const SensorGeometry& sensor, const WallRidge* ridge) {
     const Point2 o{T_anchor_sensor.x_m, T_anchor_sensor.y_m};
@@ -130,7 +135,8 @@ class KeyframeCaster {
     }
     if (ridge != nullptr && ridge->found) {
       const double along = ridge->normal_x * dx + ridge->normal_y * dy;
-      const double r = (ridge->offset_m - ridge->normal_x * o.x_m - ridge->normal_y * o.y_m) / along;
+      const double r =
+          (ridge->offset_m - ridge->normal_x * o.x_m - ridge->normal_y * o.y_m) / along;
       const int i = static_cast<int>(std::lround(r / step_m_));
       if (std::abs(along) > 0.5 && r >= sensor.min_range_m && (hit < 0 || i < hit) && i < end &&
           Supported(i, o, dx, dy)) {
@@ -141,7 +147,8 @@ class KeyframeCaster {
     const int free_end = hit >= 0 ? hit - margin : (config_.free_without_return ? end : 0);
     for (int i = 0; i < free_end; ++i) fusion_->MarkFree(CellAt(o, dx, dy, i));
     if (hit < 0) return;
-    const int thick = std::max(0, static_cast<int>(std::lround(config_.wall_thickness_m / step_m_)));
+    const int thick =
+        std::max(0, static_cast<int>(std::lround(config_.wall_thickness_m / step_m_)));
     for (int i = hit; i <= hit + thick; ++i) fusion_->MarkHit(CellAt(o, dx, dy, i));
   }
 
@@ -197,8 +204,9 @@ float TileReferenceLevel(const std::vector<NavigationKeyframe>& keyframes, doubl
     }
   }
   if (values.empty()) return 0.0f;
-  const std::size_t k = std::min(values.size() - 1, static_cast<std::size_t>(
-                                                        percentile / 100.0 * static_cast<double>(values.size())));
+  const std::size_t k =
+      std::min(values.size() - 1,
+               static_cast<std::size_t>(percentile / 100.0 * static_cast<double>(values.size())));
   std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
   return values[k];
 }
@@ -228,10 +236,10 @@ OccupancyGrid BuildNavigationGrid(const std::vector<NavigationKeyframe>& keyfram
 
   Fusion fusion(num_cells, config);
   const double step_rad = config.ray_angle_step_deg * M_PI / 180.0;
-  const int num_side = config.ray_half_angle_deg > 0
-                           ? static_cast<int>(std::floor(config.ray_half_angle_deg * M_PI / 180.0 /
-                                                         step_rad + 1e-9))
-                           : 0;
+  const int num_side =
+      config.ray_half_angle_deg > 0
+          ? static_cast<int>(std::floor(config.ray_half_angle_deg * M_PI / 180.0 / step_rad + 1e-9))
+          : 0;
   for (const NavigationKeyframe& k : keyframes) {
     KeyframeCaster caster(k, config, lattice, reference_level, &fusion);
     Point2 last{INFINITY, INFINITY};

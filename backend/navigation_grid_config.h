@@ -31,10 +31,10 @@ struct NavigationGridConfig {
                                      ///< is continuous where its image is dashed
   double ridge_max_heading_change_deg = 5.0;  ///< straight: the robot's heading within a
                                               ///< keyframe varies by at most this
-  double ridge_min_contrast = 3.0;   ///< a ridge: a profile bin this many times the profile's
-                                     ///< median (frontend/wall_profile.h contrast) ...
-  double ridge_fraction = 0.5;       ///< ... the first bin of a side reaching this fraction of
-                                     ///< that side's highest bin
+  double ridge_min_contrast = 3.0;       ///< a ridge: a profile bin this many times the profile's
+                                         ///< median (frontend/wall_profile.h contrast) ...
+  double ridge_fraction = 0.5;           ///< ... the first bin of a side reaching this fraction of
+                                         ///< that side's highest bin
   double ridge_support_fraction = 0.05;  ///< a line stops at the ridge only where the tile has
                                          ///< at least this fraction of the reference level
                                          ///< within wall_thickness_m of it (a doorway in a

@@ -5,6 +5,8 @@
 // (the odometry starts at the true start pose), so both grids are compared where they lie.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -15,8 +17,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "core/pose2.h"
 #include "imaging/occupancy_grid.h"
@@ -71,7 +71,8 @@ inline std::vector<std::uint8_t> VisibleFromPath(const OccupancyGrid& truth,
       const double dx = std::cos(a * M_PI / 360.0), dy = std::sin(a * M_PI / 360.0);
       for (double r = 0.0; r <= range_m; r += step) {
         int row = 0, col = 0;
-        if (!truth.CellOf({p.x_m + r * dx, p.y_m + r * dy}, &row, &col) || !truth.IsFree(row, col)) {
+        if (!truth.CellOf({p.x_m + r * dx, p.y_m + r * dy}, &row, &col) ||
+            !truth.IsFree(row, col)) {
           break;
         }
         seen[static_cast<std::size_t>(row) * truth.cols + col] = 1;
@@ -82,9 +83,9 @@ inline std::vector<std::uint8_t> VisibleFromPath(const OccupancyGrid& truth,
 }
 
 struct BehindWallFigures {
-  int free = 0;            ///< free cells of the map
-  int bad = 0;             ///< of them, occupied or not visible from the path in the truth
-  int bad_occupied = 0;    ///< of those, occupied in the truth
+  int free = 0;          ///< free cells of the map
+  int bad = 0;           ///< of them, occupied or not visible from the path in the truth
+  int bad_occupied = 0;  ///< of those, occupied in the truth
   double fraction() const { return free > 0 ? static_cast<double>(bad) / free : 0.0; }
 };
 
@@ -153,7 +154,8 @@ inline std::vector<Point2> PlanPath(const OccupancyGrid& map, const Point2& star
         if ((dr == 0 && dc == 0) || !map.InBounds(r + dr, c + dc)) continue;
         const int j = (r + dr) * map.cols + c + dc;
         // A diagonal step may not cut the corner of a blocked cell.
-        if (!passable[j] || !passable[r * map.cols + c + dc] || !passable[(r + dr) * map.cols + c]) {
+        if (!passable[j] || !passable[r * map.cols + c + dc] ||
+            !passable[(r + dr) * map.cols + c]) {
           continue;
         }
         const double next = cost[i] + std::hypot(dr, dc);
@@ -243,8 +245,8 @@ inline void ExpectNavigationMap(const char* name, const OccupancyGrid& map,
       "%.2f %% (%d on a wall); A* start -> farthest point (%.2f m away): %s, %.2f m%s\n",
       name, swept.free, swept.swept, 100.0 * swept.fraction(), behind.bad, behind.free,
       100.0 * behind.fraction(), behind.bad_occupied,
-      std::hypot(far.x_m - start.x_m, far.y_m - start.y_m), plan.empty() ? "none" : "found",
-      plan_m, !plan.empty() && CrossesWall(truth, plan) ? ", CROSSES A WALL" : "");
+      std::hypot(far.x_m - start.x_m, far.y_m - start.y_m), plan.empty() ? "none" : "found", plan_m,
+      !plan.empty() && CrossesWall(truth, plan) ? ", CROSSES A WALL" : "");
   EXPECT_GE(swept.fraction(), 0.99) << name;
   EXPECT_LE(behind.fraction(), 0.01) << name;
   EXPECT_GT(behind.free, swept.swept) << name << ": the radars free more than the footprint";

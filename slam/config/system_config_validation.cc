@@ -29,8 +29,8 @@ void Validate(const SlamConfig& s, const std::string& src) {
   Require(n.ray_width_m >= 0 && n.ray_width_m <= 1, src, k + "ray_width_m", "must be in [0, 1]");
   Require(n.ray_half_angle_deg >= 0 && n.ray_half_angle_deg <= 90, src, k + "ray_half_angle_deg",
           "must be in [0, 90]");
-  Require(n.ray_angle_step_deg >= 0.1 && n.ray_angle_step_deg <= 90, src,
-          k + "ray_angle_step_deg", "must be in [0.1, 90]");
+  Require(n.ray_angle_step_deg >= 0.1 && n.ray_angle_step_deg <= 90, src, k + "ray_angle_step_deg",
+          "must be in [0.1, 90]");
   Require(n.free_margin_m >= 0 && n.free_margin_m <= 1, src, k + "free_margin_m",
           "must be in [0, 1]");
   Require(n.wall_thickness_m >= 0 && n.wall_thickness_m <= 1, src, k + "wall_thickness_m",

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "test/navigation_checks.h"
 
 namespace uwbsar {
 namespace {
@@ -125,8 +126,8 @@ TEST(NavigationGridTest, KeyframesVoteInLogOdds) {
   clear.Wall(1.5, -0.5, 2.5, 1.0f);
   EXPECT_EQ(At(Build({clutter.Keyframe()}), 1.0, 0.8), OccupancyGrid::kOccupied);
   // Seen free by three others: 0.85 - 3 x 0.4 = -0.35, free.
-  const OccupancyGrid g = Build(
-      {clutter.Keyframe(), clear.Keyframe(), clear.Keyframe(), clear.Keyframe()});
+  const OccupancyGrid g =
+      Build({clutter.Keyframe(), clear.Keyframe(), clear.Keyframe(), clear.Keyframe()});
   EXPECT_EQ(At(g, 1.0, 0.8), OccupancyGrid::kFree);
 }
 
@@ -145,9 +146,37 @@ TEST(NavigationGridTest, TheSweptFootprintIsFreeWhateverTheRadarSaw) {
 }
 
 TEST(NavigationGridTest, AWildPoseIsRefusedBeforeAllocation) {
-  EXPECT_THROW(BuildNavigationGrid({}, {{0.0, 0.0, 0.0}, {1e6, 1e6, 0.0}}, Radars(), {}, kCellM,
-                                   1.0f, 1e8),
-               InputError);
+  EXPECT_THROW(
+      BuildNavigationGrid({}, {{0.0, 0.0, 0.0}, {1e6, 1e6, 0.0}}, Radars(), {}, kCellM, 1.0f, 1e8),
+      InputError);
+}
+
+}  // namespace
+}  // namespace uwbsar
+
+namespace uwbsar {
+namespace {
+
+// The acceptance checks' planner (test/navigation_checks.h) keeps the robot's radius from
+// occupied cells and never enters unknown ones; CrossesWall sees a segment through a wall.
+TEST(NavigationChecksTest, PlannerKeepsTheRobotRadiusAndCrossingsAreSeen) {
+  OccupancyGrid g;
+  g.rows = 40, g.cols = 40, g.resolution_m = 0.05;
+  g.cells.assign(1600, OccupancyGrid::kFree);
+  auto set = [&](int r, int c, std::int8_t v) {
+    g.cells[static_cast<std::size_t>(r) * 40 + c] = v;
+  };
+  for (int r = 0; r < 40; ++r) set(r, 20, OccupancyGrid::kOccupied);  // a wall x = 1.0 .. 1.05
+  for (int r = 10; r < 17; ++r) set(r, 20, OccupancyGrid::kFree);     // a 0.35 m gap
+  const Point2 a{0.5, 1.0}, b{1.5, 1.0};
+  EXPECT_TRUE(testing::PlanPath(g, a, b, 0.2).empty());            // the robot (0.4 m) does not fit
+  for (int r = 10; r < 22; ++r) set(r, 20, OccupancyGrid::kFree);  // 0.6 m
+  const std::vector<Point2> path = testing::PlanPath(g, a, b, 0.2);
+  ASSERT_FALSE(path.empty());
+  EXPECT_FALSE(testing::CrossesWall(g, path));
+  EXPECT_TRUE(testing::CrossesWall(g, {{0.5, 0.3}, {1.5, 0.3}}));
+  for (int r = 10; r < 22; ++r) set(r, 20, OccupancyGrid::kUnknown);
+  EXPECT_TRUE(testing::PlanPath(g, a, b, 0.2).empty());  // unknown is not entered
 }
 
 }  // namespace

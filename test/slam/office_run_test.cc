@@ -116,8 +116,7 @@ TEST(OfficeRunTest, SeveralLoopsNoFalseLoopAndAteWithinTenCentimetres) {
   for (const auto& [stamp, pose] : corrected) slam_path.push_back(pose);
   for (const OdometrySample& g : run.ground_truth) truth_path.push_back(g.T_world_robot);
   testing::ExpectNavigationMap("office", LoadOccupancyGrid(yaml),
-                               LoadOccupancyGrid(OfficeFile("office.yaml")), slam_path,
-                               truth_path);
+                               LoadOccupancyGrid(OfficeFile("office.yaml")), slam_path, truth_path);
 }
 
 }  // namespace
