@@ -8,7 +8,7 @@ Usage (the README's picture is the office run):
         --route config/maps/office/route_loops.txt --out /tmp/office_bag
     uwbsar map /tmp/office_bag --out /tmp/office_map
     .venv/bin/python docs/make_navigation_figure.py /tmp/office_map docs/navigation_grid.png
-Needs Pillow and PyYAML (test/requirements.txt).
+Needs Pillow and PyYAML (both come with evo in the test venv, test/requirements.txt).
 """
 import math
 import os
