@@ -29,6 +29,7 @@
 #include "slam/app_config.h"
 #include "slam/imaging_job.h"
 #include "slam/map_report.h"
+#include "slam/navigation_map.h"
 #include "slam/report_html.h"
 
 namespace uwbsar::slam {
@@ -182,7 +183,7 @@ struct MapExtent {
 };
 
 /// The global map from the optimised keyframes: map_float.tif, map_grid.yaml, map.png, and
-/// its occupancy grid map.yaml + map.pgm.
+/// the navigation grid map.yaml + map.pgm.
 MapExtent WriteMapAndOccupancy(const MapState& run, const StampedPoses& trajectory,
                                const fs::path& stage, std::vector<std::string>* names) {
   const SlamSnapshot& slam = run.slam;
@@ -208,10 +209,9 @@ MapExtent WriteMapAndOccupancy(const MapState& run, const StampedPoses& trajecto
                   GridYaml(extent.grid, "map_float.tif and map.png", "map_float.tif"));
   WriteImageAtomic(staged("map.png"), RenderMapPng(map, observed, extent.grid, slam, trajectory,
                                                    config.enhance.colormap));
-  const OccupancyGrid occupancy =
-      MapToOccupancy(map, observed, extent.grid, config.slam.occupancy_resolution_m,
-                     config.slam.occupied_fraction, config.slam.occupancy_reference_percentile);
-  WriteOccupancyGrid(staged("map.yaml"), "map.pgm", occupancy);
+  // map.pgm is the navigation grid; the paper's intensity rule stays with `compare`, which
+  // applies it to map_grid.yaml.
+  WriteOccupancyGrid(staged("map.yaml"), "map.pgm", RunNavigationGrid(slam, trajectory));
   names->insert(names->end(), {"map_float.tif", "map_grid.yaml", "map.png", "map.yaml", "map.pgm"});
   extent.blocks = global.num_blocks();
   extent.memory_bytes = global.memory_bytes();

@@ -16,6 +16,7 @@
 #include "imaging/image_io.h"
 #include "slam/app_config.h"
 #include "slam/map_job.h"
+#include "slam/navigation_map.h"
 #include "slam/output_folder.h"
 #include "slam/report_html.h"
 #include "slam/session/session_file.h"
@@ -234,10 +235,7 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
   }
   const int accepted = DrawAcceptedLoops(session, poses, grid, &png, &report);
   WriteImageAtomic(path("map.png"), png);
-  const OccupancyGrid occupancy =
-      MapToOccupancy(map, observed, grid, config.slam.occupancy_resolution_m,
-                     config.slam.occupied_fraction, config.slam.occupancy_reference_percentile);
-  WriteOccupancyGrid(path("map.yaml"), "map.pgm", occupancy);
+  WriteOccupancyGrid(path("map.yaml"), "map.pgm", SessionNavigationGrid(session, config));
   result.files.push_back(out_dir + "/map.pgm");
   std::vector<PoseGraphEdge> edges;
   std::vector<int> fixed;

@@ -1,5 +1,5 @@
 // `uwbsar compare`: scores a SAR occupancy map, or a SAR intensity image described by a
-// grid YAML (turned into occupancy by the rule of `uwbsar map`), against a LiDAR grid
+// grid YAML (turned into occupancy by the paper's intensity rule), against a LiDAR grid
 // (paper: cell-wise difference 1397 / 16800 = 8.3 %) and writes overlay.png + metrics.json.
 #include <cmath>
 #include <cstdio>
@@ -45,8 +45,8 @@ struct CompareOptions {
 void AddCompareOptions(CLI::App* cmd, CompareOptions* opts) {
   cmd->add_option("SAR_MAP", opts->sar,
                   "SAR occupancy map (map_server YAML), or a SAR image's grid YAML (keys image, "
-                  "x0_m, y0_m, resolution_m, as map_grid.yaml): occupancy by the rule of "
-                  "`uwbsar map` (slam.occupancy_resolution_m, slam.occupied_fraction, "
+                  "x0_m, y0_m, resolution_m, as map_grid.yaml): occupancy by the paper's "
+                  "intensity rule (slam.occupancy_resolution_m, slam.occupied_fraction, "
                   "slam.occupancy_reference_percentile)")
       ->required();
   cmd->add_option("LIDAR_MAP", opts->lidar, "LiDAR ground-truth grid (map_server YAML)")

@@ -1,8 +1,9 @@
 // A SAR intensity image as an occupancy grid, so that `uwbsar compare` scores images from
 // any imager (the paper's published strips, `uwbsar image` strips, `uwbsar map`'s
 // map_float.tif) against a LiDAR grid. The image is described by a grid YAML (image, x0_m,
-// y0_m, resolution_m; imaging/sar_grid_metadata.h) and becomes occupancy with the rule of
-// `uwbsar map` (backend/global_map.h MapToOccupancy).
+// y0_m, resolution_m; imaging/sar_grid_metadata.h) and becomes occupancy with the paper's
+// intensity rule (backend/global_map.h MapToOccupancy; `uwbsar map`'s map.pgm is the navigation
+// grid of backend/navigation_grid.h instead).
 #pragma once
 
 #include <string>
@@ -11,7 +12,7 @@
 
 namespace uwbsar {
 
-/// The occupancy rule of `uwbsar map` (slam.occupancy_resolution_m, slam.occupied_fraction,
+/// The paper's intensity rule (slam.occupancy_resolution_m, slam.occupied_fraction,
 /// slam.occupancy_reference_percentile).
 struct SarOccupancyRule {
   double cell_m = 0.05;
@@ -19,7 +20,7 @@ struct SarOccupancyRule {
   double reference_percentile = 99.0;
 };
 
-/// The rule `uwbsar map` writes map.pgm with (slam.occupancy_resolution_m,
+/// The intensity rule as the configuration sets it (slam.occupancy_resolution_m,
 /// slam.occupied_fraction, slam.occupancy_reference_percentile).
 template <class SlamSection>
 SarOccupancyRule SarOccupancyRuleOf(const SlamSection& slam) {

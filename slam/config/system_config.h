@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "backend/backend_config.h"
+#include "backend/navigation_grid_config.h"
 #include "core/limits_config.h"
 #include "core/radar_config.h"
 #include "frontend/gating_config.h"
@@ -38,7 +39,9 @@ struct SlamConfig {
   int keyframe_queue_size = 16;      ///< keyframes waiting for that thread; when full, the
                                      ///< feeding thread waits (bounds memory in offline runs)
   double occupancy_resolution_m = 0.05;  ///< cell size of map.pgm (map_server format)
-  double occupied_fraction = 0.6;        ///< a cell is occupied when its strongest map pixel
+  NavigationGridConfig navigation;       ///< map.pgm: the navigation grid's sensor model
+  double occupied_fraction = 0.6;        ///< the paper's rule (`compare`): a cell is occupied
+                                         ///< when its strongest map pixel
                                          ///< reaches this fraction of the reference level
                                          ///< (0.6: best F1 of the paper's real strip vs
                                          ///< LiDAR; 0.3, tuned on simulated maps, made
@@ -57,6 +60,7 @@ struct SlamConfig {
     v("keyframe_thread", keyframe_thread);
     v("keyframe_queue_size", keyframe_queue_size);
     v("occupancy_resolution_m", occupancy_resolution_m);
+    v("navigation", navigation);
     v("occupied_fraction", occupied_fraction);
     v("occupancy_reference_percentile", occupancy_reference_percentile);
   }

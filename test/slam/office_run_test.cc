@@ -9,9 +9,12 @@
 #include <cstdio>
 #include <map>
 
+#include "backend/occupancy_io.h"
 #include "slam/app_config.h"
 #include "slam/map_job.h"
+#include "slam/navigation_map.h"
 #include "slam/slam_system.h"
+#include "test/navigation_checks.h"
 
 namespace uwbsar {
 namespace {
@@ -103,6 +106,17 @@ TEST(OfficeRunTest, SeveralLoopsNoFalseLoopAndAteWithinTenCentimetres) {
   EXPECT_EQ(false_accepted, 0);
   EXPECT_LE(slam.rmse_m, 0.10);
   EXPECT_LT(slam.rmse_m, odom.rmse_m);
+
+  // map.pgm as `uwbsar map` writes it, read back as a planner would (issue 29).
+  const auto corrected = run.slam->CorrectedTrajectory();
+  const std::string yaml = ::testing::TempDir() + "office_navigation_map.yaml";
+  WriteOccupancyGrid(yaml, "office_navigation_map.pgm",
+                     slam::RunNavigationGrid(run.slam->Capture(), corrected));
+  std::vector<Pose2> slam_path, truth_path;
+  for (const auto& [stamp, pose] : corrected) slam_path.push_back(pose);
+  for (const OdometrySample& g : run.ground_truth) truth_path.push_back(g.T_world_robot);
+  testing::ExpectNavigationMap("office", LoadOccupancyGrid(yaml),
+                               LoadOccupancyGrid(OfficeFile("office.yaml")), slam_path, truth_path);
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 // The SAR map of the simulated seed_lab depart-and-return run against
 // the seed_lab LiDAR grid (paper: cell-wise difference 1397 / 16800 = 8.3 %), and the same run
 // mapped from odometry alone, which must score visibly worse. Runs the real CLI end to end.
+// The paper's figures come from its intensity rule (`compare` of map_grid.yaml); map.pgm, the
+// navigation grid, is scored beside them and checked as a planner uses it (issue 29).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -9,7 +11,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "imaging/occupancy_grid.h"
 #include "test/cli_runner.h"
+#include "test/navigation_checks.h"
 #include "test/shared_data.h"
 #include "test_maps.h"
 
@@ -38,8 +42,17 @@ TEST(CompareAcceptanceTest, SeedLabSlamMapMatchesLidarAndBeatsOdometryOnly) {
   std::ofstream(dir + "/odometry_only.yaml")
       << "place_recognition:\n  candidates:\n    exclude_recent_path_m: 1000000.0\n";
   RunUwbsar("--config " + dir + "/odometry_only.yaml map " + dir + "/bag --out " + dir + "/odom");
-  const nlohmann::json slam = Compare(dir + "/slam/map.yaml", dir + "/cmp_slam");
-  const nlohmann::json odom = Compare(dir + "/odom/map.yaml", dir + "/cmp_odom");
+  const nlohmann::json slam = Compare(dir + "/slam/map_grid.yaml", dir + "/cmp_slam");
+  const nlohmann::json odom = Compare(dir + "/odom/map_grid.yaml", dir + "/cmp_odom");
+  const nlohmann::json nav = Compare(dir + "/slam/map.yaml", dir + "/cmp_nav");
+  const auto& n = nav["metrics"];
+  std::printf("map.pgm (navigation grid): difference %.1f %% (paper's counting %.1f %%), F1 %.3f\n",
+              100 * n["difference_ratio"].get<double>(),
+              100 * n["paper_difference_ratio"].get<double>(), n["f1"].get<double>());
+  testing::ExpectNavigationMap("seed_lab", LoadOccupancyGrid(dir + "/slam/map.yaml"),
+                               testing::SeedLabGrid(),
+                               testing::ReadTumPoses(dir + "/slam/trajectory.tum"),
+                               testing::ReadTumPoses(dir + "/slam/ground_truth.tum"));
   const auto& s = slam["metrics"];
   const auto& o = odom["metrics"];
   std::printf("SLAM:     difference %.1f %% (paper's rule %.1f %%), F1 %.3f, SAR->LiDAR %.3f m\n",

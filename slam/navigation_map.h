@@ -1,0 +1,32 @@
+// map.pgm of a run or a session: the navigation grid (backend/navigation_grid.h) from the
+// keyframes' detected tiles at their optimised poses, the robot's poses while each tile was
+// imaged, and each straight keyframe's wall ridges (frontend/wall_profile.h) — the inputs
+// the backend's sensor model takes, gathered here where the frontend may be included.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "backend/navigation_grid.h"
+#include "core/types.h"
+#include "imaging/occupancy_grid.h"
+#include "slam/app_config.h"
+#include "slam/session/session_data.h"
+#include "slam/slam_snapshot.h"
+
+namespace uwbsar::slam {
+
+/// The ridges of one keyframe, per sensor (slam.navigation.wall_ridges): none when the robot
+/// turned by more than ridge_max_heading_change_deg while it was imaged.
+std::vector<WallRidge> KeyframeWallRidges(const NavigationKeyframe& k,
+                                          const std::vector<SensorGeometry>& sensors,
+                                          const NavigationGridConfig& config);
+
+/// The grid of a run: `corrected` is its corrected trajectory (trajectory.tum), map frame.
+OccupancyGrid RunNavigationGrid(const SlamSnapshot& slam,
+                                const std::vector<std::pair<TimestampNs, Pose2>>& corrected);
+
+/// The grid of a session (every run in the map frame; unplaced keyframes are left out).
+OccupancyGrid SessionNavigationGrid(const SessionData& session, const Config& config);
+
+}  // namespace uwbsar::slam
