@@ -18,6 +18,7 @@
 #include "drivers/sim/synthetic_run.h"
 #include "frontend/imaging_frontend.h"
 #include "imaging/enhance.h"
+#include "imaging/image_ncc.h"
 #include "slam/app_config.h"
 #include "slam/app_config_io.h"
 #include "test/shared_data.h"
@@ -87,16 +88,6 @@ std::vector<Keyframe> ImageTiles(const Workload& w, ImagingMethod method) {
   return builder.TakeClosed();
 }
 
-double Ncc(const cv::Mat& a, const cv::Mat& b) {
-  cv::Mat fa, fb;
-  a.convertTo(fa, CV_64F);
-  b.convertTo(fb, CV_64F);
-  fa -= cv::mean(fa)[0];
-  fb -= cv::mean(fb)[0];
-  const double den = std::sqrt(fa.dot(fa) * fb.dot(fb));
-  return den > 0 ? fa.dot(fb) / den : 0.0;
-}
-
 /// The detected tile features are made from (enhance: positive image or magnitude, blurred).
 cv::Mat Detected(const cv::Mat& sar, const EnhanceConfig& enhance) {
   return EnhancedFloat(sar, enhance);
@@ -123,8 +114,8 @@ void BM_ImageTile(benchmark::State& state, ImagingMethod method, bool rail) {
     const std::vector<Keyframe> ffbp = ImageTiles(*w, ImagingMethod::kFfbp);
     double worst = 1.0;
     for (std::size_t i = 0; i < direct.size() && i < ffbp.size(); ++i) {
-      worst = std::min(worst, Ncc(Detected(direct[i].image, w->config.enhance),
-                                  Detected(ffbp[i].image, w->config.enhance)));
+      worst = std::min(worst, ZeroMeanNcc(Detected(direct[i].image, w->config.enhance),
+                                          Detected(ffbp[i].image, w->config.enhance)));
     }
     state.counters["worst_tile_ncc"] = worst;
   }

@@ -101,7 +101,8 @@ long long FactorizedBackProjector::Add(std::shared_ptr<const RangeProfile> profi
   return pixels;
 }
 
-void FactorizedBackProjector::CloseBase(const ImageGrid& grid, cv::Mat* image, long long* pixels) {
+std::optional<FactorizedBackProjector::Pending> FactorizedBackProjector::TakeBase(
+    const ImageGrid& grid, cv::Mat* image, long long* pixels) {
   std::vector<SubaperturePulse> scans;
   scans.swap(base_);
   Footprint footprint;
@@ -110,14 +111,19 @@ void FactorizedBackProjector::CloseBase(const ImageGrid& grid, cv::Mat* image, l
       PolarSubaperture::FromPulses(scans, geometry_, sampling_, threads_);
   if (!polar) {
     *pixels += ProjectDirect(scans, grid, image);
-    return;
+    return std::nullopt;
   }
-  Pending part{std::move(*polar), std::move(footprint)};
+  return Pending{std::move(*polar), std::move(footprint)};
+}
+
+void FactorizedBackProjector::CloseBase(const ImageGrid& grid, cv::Mat* image, long long* pixels) {
+  std::optional<Pending> part = TakeBase(grid, image, pixels);
+  if (!part) return;
   if (levels_.empty()) {
-    *pixels += Project(part, grid, image);
+    *pixels += Project(*part, grid, image);
     return;
   }
-  levels_[0].push_back(std::move(part));
+  levels_[0].push_back(std::move(*part));
   Carry(0, grid, image, pixels);
 }
 
@@ -161,16 +167,8 @@ long long FactorizedBackProjector::Flush(const ImageGrid& grid, cv::Mat* image) 
     level->clear();
   }
   if (!base_.empty()) {
-    std::vector<SubaperturePulse> scans;
-    scans.swap(base_);
-    Footprint footprint;
-    std::swap(footprint, base_footprint_);
-    std::optional<PolarSubaperture> polar =
-        PolarSubaperture::FromPulses(scans, geometry_, sampling_, threads_);
-    if (polar) {
-      parts.push_back({std::move(*polar), std::move(footprint)});
-    } else {
-      pixels += ProjectDirect(scans, grid, image);
+    if (std::optional<Pending> part = TakeBase(grid, image, &pixels)) {
+      parts.push_back(std::move(*part));
     }
   }
   if (parts.size() >= 2) {  // one projection instead of one per part, when they fit one grid

@@ -65,7 +65,10 @@ class FactorizedBackProjector {
   long long Project(const Pending& part, const ImageGrid& grid, cv::Mat* image);
   /// One image of `parts` (nullopt when they do not fit one polar grid).
   std::optional<Pending> MergeParts(const std::vector<Pending>& parts);
-  /// Polar image of the base scans gathered so far (written directly if they do not fit one).
+  /// The base scans gathered so far as a polar image, emptying the base; nullopt when they do
+  /// not fit one (then they are written into the image directly).
+  std::optional<Pending> TakeBase(const ImageGrid& grid, cv::Mat* image, long long* pixels);
+  /// The base as a level-0 image, carried upwards.
   void CloseBase(const ImageGrid& grid, cv::Mat* image, long long* pixels);
   /// Merges full levels upwards; a full top level is written into the image.
   void Carry(int level, const ImageGrid& grid, cv::Mat* image, long long* pixels);

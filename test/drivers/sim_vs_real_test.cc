@@ -33,6 +33,7 @@
 #include "frontend/strip_renderer.h"
 #include "imaging/enhance.h"
 #include "imaging/image_io.h"
+#include "imaging/image_ncc.h"
 #include "slam/app_config_io.h"
 #include "test/drivers/sim_test_util.h"
 
@@ -102,16 +103,6 @@ LookFigures Measure(const cv::Mat& image8u) {
   f.bright_fraction =
       static_cast<double>(cv::countNonZero(image8u > 128)) / static_cast<double>(image8u.total());
   return f;
-}
-
-/// Zero-mean normalised cross-correlation of two equally sized images.
-double Ncc(const cv::Mat& a8u, const cv::Mat& b8u) {
-  cv::Mat a, b;
-  a8u.convertTo(a, CV_64F);
-  b8u.convertTo(b, CV_64F);
-  a -= cv::mean(a)[0];
-  b -= cv::mean(b)[0];
-  return a.dot(b) / std::sqrt(a.dot(a) * b.dot(b));
 }
 
 void Print(const char* name, const LookFigures& f) {
@@ -199,7 +190,7 @@ cv::Mat* SimVsReal::sim_ = nullptr;
 
 TEST_F(SimVsReal, FiguresOfBothImages) {
   const LookFigures real = Measure(*real_), sim = Measure(*sim_);
-  const double ncc = Ncc(*real_, *sim_);
+  const double ncc = ZeroMeanNcc(*real_, *sim_);
   Print("real", real);
   Print("simulated", sim);
   std::printf("NCC of the two enhanced images: %.3f\n", ncc);

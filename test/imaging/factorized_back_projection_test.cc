@@ -10,6 +10,7 @@
 #include <cstdio>
 
 #include "frontend/imaging_frontend.h"
+#include "imaging/image_ncc.h"
 #include "test/frontend/imaging_scenario.h"
 
 namespace uwbsar {
@@ -17,17 +18,6 @@ namespace {
 
 using testing::ConfigForMode;
 using testing::PaperDetection;
-
-/// Normalised cross-correlation of two images of one size (1 = equal up to gain and offset).
-double Ncc(const cv::Mat& a, const cv::Mat& b) {
-  cv::Mat fa, fb;
-  a.convertTo(fa, CV_64F);
-  b.convertTo(fb, CV_64F);
-  fa -= cv::mean(fa)[0];
-  fb -= cv::mean(fb)[0];
-  const double den = std::sqrt(fa.dot(fa) * fb.dot(fb));
-  return den > 0 ? fa.dot(fb) / den : 0.0;
-}
 
 std::vector<Keyframe> Tiles(const Config& config, const SyntheticRun& run) {
   ImagingFrontend frontend{ImagingFrontendConfig(config)};
@@ -65,7 +55,7 @@ Comparison CompareTiles(const char* mode, const SyntheticPath& path,
     if (d.image.size() != f.image.size()) continue;
     // As features see them: the positive image (paper) or magnitude (coherent), blurred.
     const double ncc =
-        Ncc(EnhancedFloat(d.image, config.enhance), EnhancedFloat(f.image, config.enhance));
+        ZeroMeanNcc(EnhancedFloat(d.image, config.enhance), EnhancedFloat(f.image, config.enhance));
     std::printf("%s tile %zu: NCC %.5f\n", mode, i, ncc);
     c.min_ncc = std::min(c.min_ncc, ncc);
   }
@@ -145,7 +135,7 @@ TEST(FfbpTest, PointTargetPeakLevelAndWidthMatchDirect) {
     const cv::Mat dd = PaperDetection(config, direct), fd = PaperDetection(config, ffbp);
     // Not asserted: isolated point targets are where direct's own interpolation artefacts
     // (which ffbp does not reproduce) weigh most; the tiles' NCC is asserted above.
-    std::printf("%s: NCC of the point-target images %.4f\n", mode, Ncc(dd, fd));
+    std::printf("%s: NCC of the point-target images %.4f\n", mode, ZeroMeanNcc(dd, fd));
     for (const Point2& t : targets) {
       const Point2 range_dir{0.0, t.y_m > 0 ? 1.0 : -1.0};
       const PsfMetrics a = MeasurePsf(dd, grid, t, range_dir);

@@ -14,6 +14,7 @@
 
 #include "drivers/logs/text_log.h"
 #include "imaging/enhance.h"
+#include "imaging/image_ncc.h"
 #include "slam/app_config_io.h"
 #include "slam/imaging_job.h"
 #include "test/shared_data.h"
@@ -145,12 +146,8 @@ TEST(PulsonRailTest, FactorisedBackProjectionKeepsTheReflectors) {
     const slam::StripResult ffbp = ImageRail(run.log, run.config, ImagingMethod::kFfbp);
     ASSERT_EQ(direct.strip.image.size(), ffbp.strip.image.size());
     const EnhanceConfig enhance;
-    cv::Mat a, b;
-    EnhancedFloat(direct.strip.image, enhance).convertTo(a, CV_64F);
-    EnhancedFloat(ffbp.strip.image, enhance).convertTo(b, CV_64F);
-    a -= cv::mean(a)[0];
-    b -= cv::mean(b)[0];
-    const double ncc = a.dot(b) / std::sqrt(a.dot(a) * b.dot(b));
+    const double ncc = ZeroMeanNcc(EnhancedFloat(direct.strip.image, enhance),
+                                   EnhancedFloat(ffbp.strip.image, enhance));
     const cv::Mat mag_direct = MagnitudeImage(direct.strip.image);
     const cv::Mat mag_ffbp = MagnitudeImage(ffbp.strip.image);
     for (const Point2& e : run.reflectors) {
