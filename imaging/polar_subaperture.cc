@@ -4,6 +4,8 @@
 #include <climits>
 #include <cmath>
 
+#include "imaging/polar_kernels.h"
+
 namespace uwbsar {
 namespace {
 
@@ -34,154 +36,10 @@ void ForStripes(int n, int threads, const Body& body) {
       threads);
 }
 
-/// sin and cos of x (|x| < 1e4 rad) to about 1e-6, branch-free so that the loops calling it
-/// vectorise: Cody-Waite reduction to [-pi/4, pi/4], Taylor polynomials, quadrant by selects.
-inline void SinCos(float x, float* s, float* c) {
-  const float q = std::nearbyint(x * 0.636619772f);
-  float y = x - q * 1.5703125f;  // pi/2 split so that q * part is exact
-  y -= q * 4.837512969970703125e-4f;
-  y -= q * 7.54978995489188216e-8f;
-  const float y2 = y * y;
-  const float sp = y + y * y2 * (-1.6666667e-1f + y2 * (8.3333333e-3f + y2 * -1.9841270e-4f));
-  const float cp =
-      1.0f + y2 * (-0.5f + y2 * (4.1666667e-2f + y2 * (-1.3888889e-3f + y2 * 2.4801587e-5f)));
-  const int m = static_cast<int>(q) & 3;
-  const float odd = static_cast<float>(m & 1);  // selects by arithmetic, so that it vectorises
-  const float ss = sp + odd * (cp - sp);
-  const float cc = cp + odd * (sp - cp);
-  *s = ss * (1.0f - static_cast<float>(m & 2));
-  *c = cc * (1.0f - static_cast<float>((m + 1) & 2));
-}
-
-/// Where a sample falls in a polar image of rows x cols: the cell, bilinear weights and `keep`,
-/// 1 inside and 0 outside (outside samples read the border and are multiplied by 0). Masks are
-/// products of 0/1 floats, not bools: boolean logic stops GCC from vectorising these loops.
-struct Cell {
-  int index;     ///< row * cols + col of the top-left corner
-  float wi, wj;  ///< weights along range (col) and angle (row)
-  float keep;
-};
-inline float Step(bool condition) { return condition ? 1.0f : 0.0f; }
-inline Cell Locate(float fj, float fi, int rows, int cols) {
-  const float fi_max = static_cast<float>(cols - 1), fj_max = static_cast<float>(rows - 1);
-  Cell c;
-  const float fic = std::min(std::max(fi, 0.0f), fi_max);
-  const float fjc = std::min(std::max(fj, 0.0f), fj_max);
-  c.keep = Step(fic == fi) * Step(fjc == fj);
-  const int i0 = std::min(static_cast<int>(fic), cols - 2);
-  const int j0 = std::min(static_cast<int>(fjc), rows - 2);
-  c.wi = fic - static_cast<float>(i0);
-  c.wj = fjc - static_cast<float>(j0);
-  c.index = j0 * cols + i0;
-  return c;
-}
-inline float Bilinear(const float* __restrict p, int cols, const Cell& c) {
-  const float top = p[c.index] + c.wi * (p[c.index + 1] - p[c.index]);
-  const float bottom = p[c.index + cols] + c.wi * (p[c.index + cols + 1] - p[c.index + cols]);
-  return top + c.wj * (bottom - top);
-}
-
-// The inner loops, as functions of plain values with restrict pointers, kept out of line:
-// inlined into the callers' lambdas, GCC loses the restrict qualifiers and no longer
-// vectorises them (the bilinear gathers may alias the output).
-
-/// One scan's contribution along a polar row: sample i lies at e + r dir from the antenna.
-struct PulseRow {
-  float r0, dr, e_dir, e2, e_b, dir_b, min_r, max_r, cos_fov, inv_step, start_index;
-  int last;  ///< table size - 2
-};
-__attribute__((noinline)) void AddPulseRow(PulseRow t, const float* __restrict table, int n,
-                                           float* __restrict out) {
-  // The same lookup as BackProjector's, at the polar samples.
-  for (int i = 0; i < n; ++i) {
-    const float r = t.r0 + static_cast<float>(i) * t.dr;
-    const float range = std::sqrt(std::max(0.0f, t.e2 + 2.0f * r * t.e_dir + r * r));
-    const float keep = Step(range >= t.min_r) * Step(range <= t.max_r) *
-                       Step(t.e_b + r * t.dir_b >= range * t.cos_fov);
-    const float pos = range * t.inv_step - t.start_index;
-    const int k = std::min(std::max(static_cast<int>(pos), 0), t.last);
-    const float frac = pos - static_cast<float>(k);
-    out[i] += keep * (table[k] + frac * (table[k + 1] - table[k]));
-  }
-}
-
-/// A part's image sampled along a row of the merged grid: sample i lies at e + r dir from the
-/// part's centre, i.e. at range rp and psi (e_a + r dir_a) / rp of the part.
-struct PartRow {
-  float r0, dr, e_dir, e2, e_a, e_b, dir_a, dir_b, p_r0, p_inv_dr, p_psi0, p_inv_dpsi, kc;
-  int rows, cols;  ///< of the part
-};
-inline Cell LocateInPart(const PartRow& t, int i, float* r_out, float* rp_out, float* keep) {
-  const float r = t.r0 + static_cast<float>(i) * t.dr;
-  const float rp = std::sqrt(std::max(1e-12f, t.e2 + 2.0f * r * t.e_dir + r * r));
-  const float psi = (t.e_a + r * t.dir_a) / rp;
-  const Cell cell =
-      Locate((psi - t.p_psi0) * t.p_inv_dpsi, (rp - t.p_r0) * t.p_inv_dr, t.rows, t.cols);
-  *keep = cell.keep * Step(t.e_b + r * t.dir_b > 0.0f);
-  *r_out = r;
-  *rp_out = rp;
-  return cell;
-}
-__attribute__((noinline)) void AddPartRowComplex(PartRow t, const float* __restrict in_re,
-                                                 const float* __restrict in_im, int n,
-                                                 float* __restrict out_re,
-                                                 float* __restrict out_im) {
-  for (int i = 0; i < n; ++i) {
-    float r, rp, keep;
-    const Cell cell = LocateInPart(t, i, &r, &rp, &keep);
-    const float v = Bilinear(in_re, t.cols, cell), w = Bilinear(in_im, t.cols, cell);
-    // From the part's baseband at rp to this grid's at r: times exp(j kc (rp - r)).
-    float sn, cs;
-    SinCos(t.kc * (rp - r), &sn, &cs);
-    out_re[i] += keep * (v * cs - w * sn);
-    out_im[i] += keep * (v * sn + w * cs);
-  }
-}
-
-/// The polar image sampled along a row span of pixels: pixel c lies at (dx0 + c res, dy) from
-/// the centre.
-struct SpanRow {
-  float dx0, dy, res, ax, ay, bx, by, r0, inv_dr, psi0, inv_dpsi, kc;
-  int rows, cols;  ///< of the polar image
-};
-inline Cell LocatePixel(const SpanRow& t, int c, float* r_out, float* keep) {
-  const float dx = t.dx0 + static_cast<float>(c) * t.res;
-  const float r = std::sqrt(std::max(1e-12f, dx * dx + t.dy * t.dy));
-  const float psi = (dx * t.ax + t.dy * t.ay) / r;
-  const Cell cell = Locate((psi - t.psi0) * t.inv_dpsi, (r - t.r0) * t.inv_dr, t.rows, t.cols);
-  *keep = cell.keep * Step(dx * t.bx + t.dy * t.by > 0.0f);
-  *r_out = r;
-  return cell;
-}
-__attribute__((noinline)) void ProjectSpanReal(SpanRow t, const float* __restrict in_re,
-                                               const float* __restrict in_im, int n,
-                                               float* __restrict out) {
-  for (int c = 0; c < n; ++c) {
-    float r, keep;
-    const Cell cell = LocatePixel(t, c, &r, &keep);
-    const float v = Bilinear(in_re, t.cols, cell), w = Bilinear(in_im, t.cols, cell);
-    float sn, cs;
-    SinCos(t.kc * r, &sn, &cs);  // the real part of the baseband times exp(j kc r)
-    out[c] += keep * (v * cs - w * sn);
-  }
-}
-__attribute__((noinline)) void ProjectSpanComplex(SpanRow t, const float* __restrict in_re,
-                                                  const float* __restrict in_im, int n,
-                                                  float* __restrict out) {
-  for (int c = 0; c < n; ++c) {
-    float r, keep;
-    const Cell cell = LocatePixel(t, c, &r, &keep);
-    const float v = Bilinear(in_re, t.cols, cell), w = Bilinear(in_im, t.cols, cell);
-    float sn, cs;
-    SinCos(t.kc * r, &sn, &cs);  // back from baseband: times exp(j kc r)
-    out[2 * c] += keep * (v * cs - w * sn);
-    out[2 * c + 1] += keep * (v * sn + w * cs);
-  }
-}
-
 }  // namespace
 
-bool PolarSubaperture::PlanGrid(const SensorGeometry& g, const PolarSampling& sampling) {
+bool PolarSubaperture::PlanGrid(const SensorGeometry& g, const PolarSampling& sampling,
+                                std::vector<std::pair<double, double>>* boresights_out) {
   const double n = static_cast<double>(pulses_.size());
   double sx = 0.0, sy = 0.0, sc = 0.0, ss = 0.0;
   std::vector<std::pair<double, double>> boresights;  // cos, sin of each scan's yaw
@@ -267,6 +125,7 @@ bool PolarSubaperture::PlanGrid(const SensorGeometry& g, const PolarSampling& sa
   range0_m_ = std::max(0.0, g.min_range_m - max_offset_m - range_step_m_);
   const double range1_m = max_range_m + max_offset_m + range_step_m_;
   range_samples_ = std::max(2, static_cast<int>(std::ceil((range1_m - range0_m_) / range_step_m_)));
+  if (boresights_out != nullptr) *boresights_out = std::move(boresights);
   return true;
 }
 
@@ -285,7 +144,8 @@ std::optional<PolarSubaperture> PolarSubaperture::FromPulses(std::vector<Subaper
   s.pulses_ = std::move(pulses);
   s.coherent_ = sampling.coherent;
   s.kc_ = sampling.carrier_wavenumber_rad_per_m;
-  if (!s.PlanGrid(g, sampling)) return std::nullopt;
+  std::vector<std::pair<double, double>> boresights;  // cos, sin of each scan's yaw
+  if (!s.PlanGrid(g, sampling, &boresights)) return std::nullopt;
   const int nr = s.range_samples_;
   const std::size_t size = static_cast<std::size_t>(s.angle_samples_) * nr;
   s.re_.assign(size, 0.0f);
@@ -310,10 +170,6 @@ std::optional<PolarSubaperture> PolarSubaperture::FromPulses(std::vector<Subaper
       to_base_im[static_cast<std::size_t>(m) * nr + i] =
           static_cast<float>(std::sin(phase) / kTaps);
     }
-  }
-  std::vector<std::pair<double, double>> boresights;  // cos, sin of each scan's yaw
-  for (const SubaperturePulse& p : s.pulses_) {
-    boresights.emplace_back(std::cos(p.T_grid_sensor.yaw_rad), std::sin(p.T_grid_sensor.yaw_rad));
   }
 
   ForStripes(s.angle_samples_, threads, [&](int j_begin, int j_end) {

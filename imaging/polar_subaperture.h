@@ -17,6 +17,7 @@
 #include <memory>
 #include <opencv2/core.hpp>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "core/pose2.h"
@@ -68,7 +69,9 @@ class PolarSubaperture {
  private:
   PolarSubaperture() = default;
   /// Centre, axes and sample lattice for `pulses`; false when the sectors do not fit.
-  bool PlanGrid(const SensorGeometry& geometry, const PolarSampling& sampling);
+  /// `boresights` (if given) receives each scan's (cos, sin) of yaw.
+  bool PlanGrid(const SensorGeometry& geometry, const PolarSampling& sampling,
+                std::vector<std::pair<double, double>>* boresights = nullptr);
   /// The unit direction of psi row `j` in the grid frame.
   void RowDirection(int j, double* dx, double* dy) const;
 
