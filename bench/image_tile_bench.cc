@@ -14,6 +14,7 @@
 #include <cmath>
 #include <opencv2/core.hpp>
 
+#include "drivers/logs/log_source.h"
 #include "drivers/logs/text_log.h"
 #include "drivers/sim/synthetic_run.h"
 #include "frontend/imaging_frontend.h"
@@ -41,13 +42,7 @@ Workload Gate(Config config, const std::vector<OdometrySample>& odometry,
   w.radars = static_cast<int>(config.radars.size());
   ImagingFrontend frontend{ImagingFrontendConfig(config)};
   frontend.SetScanObserver([&](const ImagedScan& s) { w.scans.push_back(s); });
-  std::size_t o = 0;
-  for (const RadarScan& scan : radar_scans) {
-    while (o < odometry.size() && odometry[o].stamp_ns <= scan.stamp_ns) {
-      frontend.AddOdometry(odometry[o++]);
-    }
-    frontend.AddScan(scan);
-  }
+  LogSource(odometry, radar_scans).Run([&](const Message& m) { FeedScanOrOdometry(frontend, m); });
   frontend.Finish();
   w.sensors = frontend.sensors();
   return w;

@@ -3,9 +3,12 @@
 #pragma once
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace uwbsar::testing {
@@ -24,6 +27,44 @@ inline CliRun RunCommand(const std::string& command_line, bool merge_stderr = tr
   const int status = pclose(pipe);
   run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return run;
+}
+
+/// A fresh folder `<tmp>/<prefix>_<name>_<pid>`: one per process, as ctest runs the tests of
+/// a suite in parallel processes.
+inline std::string FreshFolder(const std::string& prefix, const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    (prefix + "_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+inline void WriteTextFile(const std::string& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
+
+/// The number of lines of `text` (a message is one line).
+inline int LineCount(const std::string& text) {
+  int n = 0;
+  for (char c : text) n += c == '\n';
+  return n;
+}
+
+/// A tiny text log (`uwbsar image --log`): the robot drives 0.3 m while the left radar, with
+/// `samples` samples a scan, sees one echo at sample 200.
+inline std::string TinyTextLog(int samples) {
+  std::string log;
+  for (int i = 0; i <= 30; ++i) {
+    log += "odom " + std::to_string(1000000000LL + i * 20000000LL) + " " +
+           std::to_string(i * 0.01) + " 0 0\n";
+  }
+  for (int i = 0; i < 25; ++i) {
+    log +=
+        "scan " + std::to_string(1010000000LL + i * 20000000LL) + " 0 " + std::to_string(samples);
+    for (int k = 0; k < samples; ++k) log += (k == 200 ? " 1.0" : " 0");
+    log += "\n";
+  }
+  return log;
 }
 
 #ifdef UWBSAR_BIN

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "drivers/logs/log_source.h"
 #include "frontend/imaging_frontend.h"
 #include "imaging/image_ncc.h"
 #include "test/frontend/imaging_scenario.h"
@@ -21,14 +22,9 @@ using testing::PaperDetection;
 
 std::vector<Keyframe> Tiles(const Config& config, const SyntheticRun& run) {
   ImagingFrontend frontend{ImagingFrontendConfig(config)};
-  std::size_t o = 0;
-  for (const RadarScan& scan : run.scans) {
-    while (o < run.odometry.size() && run.odometry[o].stamp_ns <= scan.stamp_ns) {
-      frontend.AddOdometry(run.odometry[o++]);
-    }
-    frontend.AddScan(scan);
-  }
-  while (o < run.odometry.size()) frontend.AddOdometry(run.odometry[o++]);
+  LogSource(run.odometry, run.scans).Run([&](const Message& m) {
+    FeedScanOrOdometry(frontend, m);
+  });
   frontend.Finish();
   return frontend.TakeKeyframes();
 }
@@ -107,13 +103,9 @@ TEST(FfbpTest, PointTargetPeakLevelAndWidthMatchDirect) {
     config.imaging.method = ImagingMethod::kFfbp;
     ImagingFrontend frontend{ImagingFrontendConfig(config)};
     frontend.SetScanObserver([&](const ImagedScan& s) { scans.push_back(s); });
-    std::size_t o = 0;
-    for (const RadarScan& scan : run.scans) {
-      while (o < run.odometry.size() && run.odometry[o].stamp_ns <= scan.stamp_ns) {
-        frontend.AddOdometry(run.odometry[o++]);
-      }
-      frontend.AddScan(scan);
-    }
+    LogSource(run.odometry, run.scans).Run([&](const Message& m) {
+      FeedScanOrOdometry(frontend, m);
+    });
     frontend.Finish();
     std::vector<Pose2> poses;
     for (const ImagedScan& s : scans) poses.push_back(s.T_world_robot);

@@ -51,19 +51,8 @@ TEST(CliTest, MalformedTextLogNamesFileAndLine) {
 }
 
 TEST(CliTest, ImageFromTextLogWritesEveryOutput) {
-  // A tiny log: the robot drives 0.3 m while the left radar sees one echo.
   const std::string dir = TempDir("image");
-  std::string log;
-  for (int i = 0; i <= 30; ++i) {
-    log += "odom " + std::to_string(1000000000LL + i * 20000000LL) + " " +
-           std::to_string(i * 0.01) + " 0 0\n";
-  }
-  for (int i = 0; i < 25; ++i) {
-    log += "scan " + std::to_string(1010000000LL + i * 20000000LL) + " 0 1000";
-    for (int k = 0; k < 1000; ++k) log += (k == 200 ? " 1.0" : " 0");
-    log += "\n";
-  }
-  WriteFile(dir + "/run.log", log);
+  WriteFile(dir + "/run.log", uwbsar::testing::TinyTextLog(1000));
   const CliRun r = Uwbsar("image --log " + dir + "/run.log --out " + dir + "/out --mode coherent");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* f : {"strip_raw.png", "strip_positive.png", "strip_enhanced.png",

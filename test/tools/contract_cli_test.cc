@@ -16,22 +16,8 @@ namespace fs = std::filesystem;
 using uwbsar::testing::CliRun;
 using uwbsar::testing::Uwbsar;
 
-/// A fresh folder of this process (ctest runs the tests of a suite in parallel processes).
 std::string TempDir(const std::string& name) {
-  const auto dir =
-      fs::temp_directory_path() / ("uwbsar_contract_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir.string();
-}
-
-void WriteFile(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
-
-/// The number of lines of `text` (a message is one line).
-int Lines(const std::string& text) {
-  int n = 0;
-  for (char c : text) n += c == '\n';
-  return n;
+  return uwbsar::testing::FreshFolder("uwbsar_contract", name);
 }
 
 bool Has(const std::string& text, const std::string& part) {
@@ -48,12 +34,12 @@ TEST(CliContractTest, OptimizeRefusesADegenerateSolutionNamingTheKey) {
   const std::string mitb = uwbsar::testing::SharedDataPath("posegraph/input_MITb_g2o.g2o");
   CliRun r = Uwbsar("optimize -q " + mitb + " --out " + dir + "/out.g2o");
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_EQ(Lines(r.output), 1) << r.output;
+  EXPECT_EQ(uwbsar::testing::LineCount(r.output), 1) << r.output;
   EXPECT_TRUE(Has(r.output, "uwbsar: error: 11 of 20 loops rejected")) << r.output;
   EXPECT_TRUE(Has(r.output, "backend.min_loop_support: 0")) << r.output;
   EXPECT_FALSE(fs::exists(dir + "/out.g2o"));
   // The key it names gives a usable result.
-  WriteFile(dir + "/isolated.yaml", "backend:\n  min_loop_support: 0\n");
+  uwbsar::testing::WriteTextFile(dir + "/isolated.yaml", "backend:\n  min_loop_support: 0\n");
   r = Uwbsar("--config " + dir + "/isolated.yaml optimize -q " + mitb + " --init chordal --out " +
              dir + "/out.g2o");
   EXPECT_EQ(r.exit_code, 0) << r.output;
@@ -64,21 +50,11 @@ TEST(CliContractTest, OptimizeRefusesADegenerateSolutionNamingTheKey) {
 // nothing imaged, refused with one line that names the key to change.
 TEST(CliContractTest, ImageOfALogThatDoesNotFitNamesTheKey) {
   const std::string dir = TempDir("image");
-  std::string log;
-  for (int i = 0; i <= 30; ++i) {
-    log += "odom " + std::to_string(1000000000LL + i * 20000000LL) + " " +
-           std::to_string(i * 0.01) + " 0 0\n";
-  }
-  for (int i = 0; i < 25; ++i) {
-    log += "scan " + std::to_string(1010000000LL + i * 20000000LL) + " 0 1152";
-    for (int k = 0; k < 1152; ++k) log += (k == 200 ? " 1.0" : " 0");
-    log += "\n";
-  }
-  WriteFile(dir + "/run.log", log);
+  uwbsar::testing::WriteTextFile(dir + "/run.log", uwbsar::testing::TinyTextLog(1152));
   const CliRun r = Uwbsar("image --log " + dir + "/run.log --out " + dir + "/out", false);
   EXPECT_EQ(r.exit_code, 3) << r.output;
   const CliRun e = Uwbsar("image -q --log " + dir + "/run.log --out " + dir + "/out");
-  EXPECT_EQ(Lines(e.output), 1) << e.output;
+  EXPECT_EQ(uwbsar::testing::LineCount(e.output), 1) << e.output;
   EXPECT_TRUE(Has(e.output, "none of the 25 scans could be imaged")) << e.output;
   EXPECT_TRUE(Has(e.output, "radars[].num_samples")) << e.output;
   EXPECT_FALSE(fs::exists(dir + "/out/strip_float.tif"));
@@ -104,7 +80,7 @@ TEST(CliContractTest, EveryMissingInputFileIsExit3) {
         "merge " + none + " " + none + "2 --out " + dir + "/m"}) {
     const CliRun r = Uwbsar(args);
     EXPECT_EQ(r.exit_code, 3) << args << ": " << r.output;
-    EXPECT_EQ(Lines(r.output), 1) << args << ": " << r.output;
+    EXPECT_EQ(uwbsar::testing::LineCount(r.output), 1) << args << ": " << r.output;
     EXPECT_TRUE(Has(r.output, "uwbsar: error: ")) << args << ": " << r.output;
     EXPECT_TRUE(Has(r.output, none)) << args << ": " << r.output;
   }
@@ -119,7 +95,7 @@ TEST(CliContractTest, OneErrorStyleAndUnknownSubcommandNamed) {
   EXPECT_EQ(r.exit_code, 3) << r.output;  // the missing --config is met first
   r = Uwbsar("image --no-such-flag");
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_EQ(Lines(r.output), 1) << r.output;
+  EXPECT_EQ(uwbsar::testing::LineCount(r.output), 1) << r.output;
   EXPECT_EQ(r.output.rfind("uwbsar: error: ", 0), 0u) << r.output;
   EXPECT_TRUE(Has(r.output, "--no-such-flag")) << r.output;
   r = Uwbsar("");
@@ -127,7 +103,7 @@ TEST(CliContractTest, OneErrorStyleAndUnknownSubcommandNamed) {
   EXPECT_EQ(r.output.rfind("uwbsar: error: ", 0), 0u) << r.output;
   r = Uwbsar("demo --seed -1");
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_EQ(Lines(r.output), 1) << r.output;
+  EXPECT_EQ(uwbsar::testing::LineCount(r.output), 1) << r.output;
   EXPECT_EQ(r.output.rfind("uwbsar: error: ", 0), 0u) << r.output;
 }
 
@@ -141,11 +117,11 @@ TEST(CliContractTest, VersionFromTheProject) {
 // the later file's keys win, the others' stay; before or after the subcommand.
 TEST(CliContractTest, RepeatedConfigFilesMergeInOrder) {
   const std::string dir = TempDir("merge_config");
-  WriteFile(dir + "/robot.yaml",
-            "slam:\n  occupied_fraction: 0.5\n  occupancy_resolution_m: 0.1\n"
-            "backend:\n  calibration_scale_mean: 0.01\n");
-  WriteFile(dir + "/calibration.yaml",
-            "# uwbsar calibrate\nbackend:\n  calibration_scale_mean: 0.02\n");
+  uwbsar::testing::WriteTextFile(dir + "/robot.yaml",
+                                 "slam:\n  occupied_fraction: 0.5\n  occupancy_resolution_m: 0.1\n"
+                                 "backend:\n  calibration_scale_mean: 0.01\n");
+  uwbsar::testing::WriteTextFile(dir + "/calibration.yaml",
+                                 "# uwbsar calibrate\nbackend:\n  calibration_scale_mean: 0.02\n");
   for (const std::string& args :
        {"--config " + dir + "/robot.yaml --config " + dir + "/calibration.yaml config",
         "--config " + dir + "/robot.yaml config --config " + dir + "/calibration.yaml"}) {
@@ -156,7 +132,7 @@ TEST(CliContractTest, RepeatedConfigFilesMergeInOrder) {
     EXPECT_TRUE(Has(r.output, "calibration_scale_mean: 0.02\n")) << r.output;
   }
   // Each file is still checked: an unknown key names its file and line.
-  WriteFile(dir + "/bad.yaml", "slam:\n  occupied_fractoin: 0.5\n");
+  uwbsar::testing::WriteTextFile(dir + "/bad.yaml", "slam:\n  occupied_fractoin: 0.5\n");
   const CliRun r = Uwbsar("--config " + dir + "/robot.yaml --config " + dir + "/bad.yaml config");
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_TRUE(Has(r.output, "bad.yaml:2")) << r.output;
@@ -172,7 +148,7 @@ TEST(CliContractTest, ConfigPrintsShortestRoundTripNumbers) {
   EXPECT_TRUE(Has(r.output, "occupancy_resolution_m: 0.05\n")) << r.output;
   EXPECT_FALSE(Has(r.output, "9999999")) << r.output;
   EXPECT_FALSE(Has(r.output, "0000001")) << r.output;
-  WriteFile(dir + "/all.yaml", r.output);
+  uwbsar::testing::WriteTextFile(dir + "/all.yaml", r.output);
   const CliRun again = Uwbsar("--config " + dir + "/all.yaml config");
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_EQ(again.output, r.output);
@@ -181,8 +157,9 @@ TEST(CliContractTest, ConfigPrintsShortestRoundTripNumbers) {
 // `loops --out`, `match --out` and `optimize` did not say what they wrote.
 TEST(CliContractTest, EveryCommandListsWhatItWrote) {
   const std::string dir = TempDir("listing");
-  WriteFile(dir + "/graph.g2o",
-            "VERTEX_SE2 0 0 0 0\nVERTEX_SE2 1 1 0 0\nEDGE_SE2 0 1 1 0 0 1 0 0 1 0 1\n");
+  uwbsar::testing::WriteTextFile(
+      dir + "/graph.g2o",
+      "VERTEX_SE2 0 0 0 0\nVERTEX_SE2 1 1 0 0\nEDGE_SE2 0 1 1 0 0 1 0 0 1 0 1\n");
   CliRun r = Uwbsar("optimize " + dir + "/graph.g2o --out " + dir + "/out.g2o --tum " + dir +
                     "/out.tum --png " + dir + "/out.png");
   ASSERT_EQ(r.exit_code, 0) << r.output;

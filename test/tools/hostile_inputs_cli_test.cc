@@ -22,22 +22,8 @@ namespace fs = std::filesystem;
 using uwbsar::testing::CliRun;
 using uwbsar::testing::Uwbsar;
 
-/// A fresh folder of this process (ctest runs the tests of a suite in parallel processes).
 std::string TempDir(const std::string& name) {
-  const auto dir =
-      fs::temp_directory_path() / ("uwbsar_hostile_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir.string();
-}
-
-void WriteFile(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
-
-/// The number of lines of `text` (a message is one line).
-int Lines(const std::string& text) {
-  int n = 0;
-  for (char c : text) n += c == '\n';
-  return n;
+  return uwbsar::testing::FreshFolder("uwbsar_hostile", name);
 }
 
 const std::string kMap = std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_hall/seed_hall.yaml";
@@ -55,16 +41,18 @@ void WriteDotImage(const std::string& path, int cols, int rows) {
 TEST(HostileInputsCliTest, CompareRefusesAGridResolutionAndTheOccupancyGridItImplies) {
   const std::string dir = TempDir("compare");
   WriteDotImage(dir + "/sar.png", 2000, 1000);
-  WriteFile(dir + "/huge.yaml", "image: sar.png\nx0_m: 0\ny0_m: 0\nresolution_m: 1e7\n");
+  uwbsar::testing::WriteTextFile(dir + "/huge.yaml",
+                                 "image: sar.png\nx0_m: 0\ny0_m: 0\nresolution_m: 1e7\n");
   CliRun r = Uwbsar("compare " + dir + "/huge.yaml " + kMap + " --out " + dir + "/out");
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("huge.yaml:4: grid key 'resolution_m' is 1e+07 m per pixel, outside "
                           "[1e-06, 10]"),
             std::string::npos)
       << r.output;
-  EXPECT_EQ(Lines(r.output), 1) << r.output;
+  EXPECT_EQ(uwbsar::testing::LineCount(r.output), 1) << r.output;
   // 1 m per pixel: 2 km x 1 km, 40000 x 20000 cells of 5 cm (8e8), over the 5e7 budget.
-  WriteFile(dir + "/metre.yaml", "image: sar.png\nx0_m: 0\ny0_m: 0\nresolution_m: 1.0\n");
+  uwbsar::testing::WriteTextFile(dir + "/metre.yaml",
+                                 "image: sar.png\nx0_m: 0\ny0_m: 0\nresolution_m: 1.0\n");
   r = Uwbsar("compare " + dir + "/metre.yaml " + kMap + " --out " + dir + "/out");
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("metre.yaml: grid key 'resolution_m' (1 m x 2000 x 1000 pixels: "
@@ -73,7 +61,7 @@ TEST(HostileInputsCliTest, CompareRefusesAGridResolutionAndTheOccupancyGridItImp
                           "limits.max_map_image_pixels (5e+07)"),
             std::string::npos)
       << r.output;
-  EXPECT_EQ(Lines(r.output), 1) << r.output;
+  EXPECT_EQ(uwbsar::testing::LineCount(r.output), 1) << r.output;
   EXPECT_FALSE(fs::exists(dir + "/out"));
 }
 
@@ -102,13 +90,13 @@ TEST(HostileInputsCliTest, MapRefusesSilentOrOverflowingRadars) {
       << r.output;
   EXPECT_NE(r.output.find("(topic /UWBradar"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find(": sample 0 is 3e+38"), std::string::npos) << r.output;
-  EXPECT_EQ(Lines(r.output), 1) << r.output;
+  EXPECT_EQ(uwbsar::testing::LineCount(r.output), 1) << r.output;
 }
 
 // `image --log` of an empty log exited 0 with a 1 x 1 strip (item 14).
 TEST(HostileInputsCliTest, ImageOfAnEmptyLogIsRefused) {
   const std::string dir = TempDir("empty_log");
-  WriteFile(dir + "/empty.log", "");
+  uwbsar::testing::WriteTextFile(dir + "/empty.log", "");
   const CliRun r = Uwbsar("image --log " + dir + "/empty.log --out " + dir + "/out");
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("empty.log: no scans (no 'scan' records): nothing to image"),
@@ -144,7 +132,7 @@ TEST_F(HostileCalibrateCliTest, AnOdometryResetIsRefusedAndNothingWritten) {
             std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("a reset or two runs in one recording"), std::string::npos) << r.output;
-  EXPECT_EQ(Lines(r.output), 1) << r.output;
+  EXPECT_EQ(uwbsar::testing::LineCount(r.output), 1) << r.output;
   EXPECT_FALSE(fs::exists(dir_ + "/reset.yaml"));
 }
 
@@ -168,7 +156,7 @@ TEST_F(HostileCalibrateCliTest, GroundTruthThatDoesNotMoveOrGoesBackIsRefused) {
                           "segments where the odometry travels"),
             std::string::npos)
       << r.output;
-  EXPECT_EQ(Lines(r.output), 1) << r.output;
+  EXPECT_EQ(uwbsar::testing::LineCount(r.output), 1) << r.output;
   r = Uwbsar("calibrate " + good_ + " --ground-truth " + dir_ + "/back.tum");
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("back.tum: stamps go back at sample 6"), std::string::npos) << r.output;
@@ -192,8 +180,9 @@ TEST_F(HostileCalibrateCliTest, QuietPrintsOnlyTheCalibration) {
 // -q did not quiet optimize either.
 TEST(HostileInputsCliTest, QuietQuietsOptimize) {
   const std::string dir = TempDir("quiet_optimize");
-  WriteFile(dir + "/graph.g2o",
-            "VERTEX_SE2 0 0 0 0\nVERTEX_SE2 1 1 0 0\nEDGE_SE2 0 1 1 0 0 1 0 0 1 0 1\n");
+  uwbsar::testing::WriteTextFile(
+      dir + "/graph.g2o",
+      "VERTEX_SE2 0 0 0 0\nVERTEX_SE2 1 1 0 0\nEDGE_SE2 0 1 1 0 0 1 0 0 1 0 1\n");
   CliRun r = Uwbsar("optimize -q " + dir + "/graph.g2o --out " + dir + "/out.g2o");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.output, "");
@@ -298,7 +287,7 @@ TEST(HostileInputsCliTest, SymlinkLoopsAndHugeRegionIndicesAreBadInput) {
   EXPECT_NE(r.output.find("D2147483648.png: region index '2147483648' is too large"),
             std::string::npos)
       << r.output;
-  EXPECT_EQ(Lines(r.output), 1) << r.output;
+  EXPECT_EQ(uwbsar::testing::LineCount(r.output), 1) << r.output;
 }
 
 // --config naming a folder was exit 2 (a command-line error) while /dev/zero was 3.
@@ -319,19 +308,21 @@ TEST(HostileInputsCliTest, AConfigThatIsAFolderOrADeviceIsBadInput) {
 TEST(HostileInputsCliTest, DuplicateKeysSecondDocumentsAndLeadingZerosAreRefused) {
   const std::string dir = TempDir("yaml");
   WriteDotImage(dir + "/sar.png", 200, 100);
-  WriteFile(dir + "/dup.yaml",
-            "image: sar.png\nx0_m: 0\ny0_m: 0\nresolution_m: 0.01\nresolution_m: 0.02\n");
+  uwbsar::testing::WriteTextFile(
+      dir + "/dup.yaml",
+      "image: sar.png\nx0_m: 0\ny0_m: 0\nresolution_m: 0.01\nresolution_m: 0.02\n");
   CliRun r = Uwbsar("compare " + dir + "/dup.yaml " + kMap + " --out " + dir + "/out");
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_EQ(r.output, "uwbsar: error: " + dir +
                           "/dup.yaml:5: duplicate key 'resolution_m' (first at line 4)\n");
-  WriteFile(dir + "/two.yaml", "imaging:\n  pixel_size_m: 0.005\n---\nimaging:\n  mode: x\n");
+  uwbsar::testing::WriteTextFile(dir + "/two.yaml",
+                                 "imaging:\n  pixel_size_m: 0.005\n---\nimaging:\n  mode: x\n");
   r = Uwbsar("--config " + dir + "/two.yaml config");
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_EQ(r.output, "uwbsar: error: " + dir +
                           "/two.yaml:3: a second YAML document (after '---'); a file holds one "
                           "document\n");
-  WriteFile(dir + "/octal.yaml", "imaging:\n  num_threads: 010\n");
+  uwbsar::testing::WriteTextFile(dir + "/octal.yaml", "imaging:\n  num_threads: 010\n");
   r = Uwbsar("--config " + dir + "/octal.yaml config");
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("octal.yaml:2: 'imaging.num_threads' has value '010' with a leading "
