@@ -110,7 +110,7 @@ namespace {
 nlohmann::json WriteLocalizeFiles(const LocalizeRun& run, const std::string& out_dir) {
   const auto trajectory = run.Trajectory(false);
   std::vector<std::pair<double, Pose2>> tum;
-  // From the first fix on (README): before it the robot was not placed in the map, and a
+  // From the first fix on (docs/cli.md): before it the robot was not placed in the map, and a
   // pose back-corrected from a later fix is not one a live robot would have had.
   for (const auto& [t, p] : trajectory) {
     if (t >= run.first_fix_stamp_ns) tum.push_back({NsToSeconds(t), p});

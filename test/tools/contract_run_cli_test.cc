@@ -70,7 +70,7 @@ std::string* CliContractRunTest::dir_ = nullptr;
 CliRun* CliContractRunTest::demo_ = nullptr;
 CliRun* CliContractRunTest::bag_ = nullptr;
 
-// README: demo writes every output of `map`; it wrote no session.uwbsar, so `--resume
+// README, docs/cli.md: demo writes every output of `map`; it wrote no session.uwbsar, so `--resume
 // out/demo` failed. The summary of a plain map and of a resumed one have the same shape.
 TEST_F(CliContractRunTest, DemoSavesItsSessionAndSummariesShareOneShape) {
   EXPECT_TRUE(fs::exists(*dir_ + "/demo/session.uwbsar"));
