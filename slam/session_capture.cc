@@ -66,7 +66,8 @@ SessionData CaptureSession(const MapRun& run) {
 
 void SaveSessionWithOutputs(MapOutputStage* stage, const MapRun& run) {
   stage->SetExtraOutputs([&run](const std::string& dir) {
-    WriteSession(dir + "/" + kSessionFileName, CaptureSession(run));
+    WriteSession(dir + "/" + kSessionFileName, CaptureSession(run),
+                 run.slam->config().session.lossless_tiles);
     return std::vector<std::string>{kSessionFileName};
   });
 }

@@ -249,7 +249,7 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
   for (const SessionKeyframe& k : session.keyframes)
     if (k.fixed) fixed.push_back(k.id);
   WriteTextAtomic(path("graph.g2o"), G2oText(poses, edges, fixed));
-  WriteSession(path(kSessionFileName), session);
+  WriteSession(path(kSessionFileName), session, config.session.lossless_tiles);
 
   nlohmann::json& s = result.summary;
   s = extra;

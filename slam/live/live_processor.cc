@@ -138,8 +138,8 @@ void Processor::Snapshot() {
                    std::chrono::duration<double>(SteadyClock::now() - lock_start).count());
     }
     MapOutputStage stage(options_.out_dir);
-    stage.SetExtraOutputs([&session](const std::string& dir) {
-      WriteSession(dir + "/" + kSessionFileName, session);
+    stage.SetExtraOutputs([&session, this](const std::string& dir) {
+      WriteSession(dir + "/" + kSessionFileName, session, config_.session.lossless_tiles);
       return std::vector<std::string>{kSessionFileName};
     });
     last_outputs_ = stage.Commit(state);

@@ -3,6 +3,7 @@
 #include <zstd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -95,6 +96,55 @@ cv::Mat DecodeMat(const std::vector<unsigned char>& blob, const std::string& wha
     for (std::size_t b = 0; b < elem; ++b) m.data[i * elem + b] = shuffled[b * count + i];
   }
   return m;
+}
+
+std::vector<unsigned char> EncodeTile(const cv::Mat& tile, bool lossless, int zstd_level) {
+  if (lossless || tile.empty()) return EncodeMat(tile, zstd_level);
+  if (tile.type() != CV_32FC1) throw std::logic_error("EncodeTile: a tile is CV_32FC1");
+  double max_value = 0.0;
+  cv::minMaxLoc(tile, nullptr, &max_value);
+  const float step = max_value > 0.0 ? static_cast<float>(max_value / kTileLevels) : 1.0f;
+  cv::Mat levels(tile.rows, tile.cols, CV_16UC1);
+  for (int r = 0; r < tile.rows; ++r) {
+    const float* x = tile.ptr<float>(r);
+    std::uint16_t* q = levels.ptr<std::uint16_t>(r);
+    for (int c = 0; c < tile.cols; ++c) {
+      const long level = x[c] > 0.0f ? std::lround(x[c] / step) : 0;
+      q[c] = static_cast<std::uint16_t>(x[c] > 0.0f ? std::clamp(level, 1L, long{kTileLevels}) : 0);
+    }
+  }
+  std::vector<unsigned char> inner = EncodeMat(levels, zstd_level);
+  std::vector<unsigned char> out(inner.begin(), inner.begin() + 12);  // the header
+  const unsigned char* step_bytes = reinterpret_cast<const unsigned char*>(&step);
+  out.insert(out.end(), step_bytes, step_bytes + sizeof(step));
+  out.insert(out.end(), inner.begin() + 12, inner.end());
+  return out;
+}
+
+cv::Mat DecodeTile(const std::vector<unsigned char>& blob, const std::string& what,
+                   const MatBudget& budget) {
+  std::int32_t header[3] = {0, 0, 0};
+  if (blob.size() >= sizeof(header)) std::memcpy(header, blob.data(), sizeof(header));
+  MatBudget tile_budget = budget;
+  if (header[2] != CV_16UC1) {
+    tile_budget.types = {CV_32FC1};
+    return DecodeMat(blob, what, tile_budget);
+  }
+  float step = 0.0f;
+  if (blob.size() < sizeof(header) + sizeof(step)) {
+    throw InputError(what + ": damaged blob (no step)");
+  }
+  std::memcpy(&step, blob.data() + sizeof(header), sizeof(step));
+  if (!std::isfinite(step) || step <= 0.0f) {
+    throw InputError(what + ": damaged blob (step " + std::to_string(step) + ")");
+  }
+  std::vector<unsigned char> inner(blob.begin(), blob.begin() + sizeof(header));
+  inner.insert(inner.end(), blob.begin() + sizeof(header) + sizeof(step), blob.end());
+  tile_budget.types = {CV_16UC1};
+  const cv::Mat levels = DecodeMat(inner, what, tile_budget);
+  cv::Mat tile;
+  levels.convertTo(tile, CV_32F, step);
+  return tile;
 }
 
 std::vector<unsigned char> EncodeKeypoints(const std::vector<cv::KeyPoint>& keypoints,

@@ -91,7 +91,7 @@ void WriteTrajectories(SqliteDb& db, const SessionData& d) {
 }
 
 /// The keyframes table and each keyframe's rows of the features table, one per detector.
-void WriteKeyframes(SqliteDb& db, const SessionData& d) {
+void WriteKeyframes(SqliteDb& db, const SessionData& d, bool lossless_tiles) {
   SqliteStatement s(db,
                     "INSERT INTO keyframes VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
                     "?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
@@ -112,7 +112,7 @@ void WriteKeyframes(SqliteDb& db, const SessionData& d) {
     s.Bind(i++, k.detected_grid.x0_m);
     s.Bind(i++, k.detected_grid.y0_m);
     s.Bind(i++, k.detected_grid.resolution_m);
-    s.BindBlob(i++, session::EncodeMat(k.detected, kZstdLevel));
+    s.BindBlob(i++, session::EncodeTile(k.detected, lossless_tiles, kZstdLevel));
     const ImageGrid& g = k.features.grid;
     s.Bind(i++, g.x0_m);
     s.Bind(i++, g.y0_m);
@@ -162,14 +162,14 @@ void WriteOdometry(SqliteDb& db, const SessionData& d) {
   }
 }
 
-void WriteAll(SqliteDb& db, const SessionData& d) {
+void WriteAll(SqliteDb& db, const SessionData& d, bool lossless_tiles) {
   db.Exec("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF;");
   db.Exec(kSchema);
   db.Exec(session::kLoopTablesSchema);
   db.Exec("BEGIN");
   WriteMeta(db, d);
   WriteTrajectories(db, d);
-  WriteKeyframes(db, d);
+  WriteKeyframes(db, d, lossless_tiles);
   WriteEdges(db, d);
   session::WriteLoopTables(db, d);
   WriteOdometry(db, d);
@@ -185,13 +185,13 @@ std::string Meta(SqliteDb& db, const std::string& key) {
 
 }  // namespace
 
-void WriteSession(const std::string& path, const SessionData& data) {
+void WriteSession(const std::string& path, const SessionData& data, bool lossless_tiles) {
   const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
   std::error_code ec;
   fs::remove(tmp, ec);
   try {
     SqliteDb db(tmp, /*create=*/true, /*name_in_errors=*/path);
-    WriteAll(db, data);
+    WriteAll(db, data, lossless_tiles);
   } catch (...) {
     fs::remove(tmp, ec);
     throw;
@@ -230,7 +230,8 @@ SessionData ReadSession(const std::string& path, const SystemConfig* config) {
   // Version 1 lacks the edges' calibration columns (its odometry edges are then solved
   // uncalibrated, as they were), versions 1 and 2 the trajectories' fingerprints (""), versions
   // 1 to 3 the loop_matches table (their loops' akaze_good and orb_good columns stand for it).
-  if (version != "1" && version != "2" && version != "3" &&
+  // Version 4 and older hold float32 tiles only (version 5 also compact ones).
+  if (version != "1" && version != "2" && version != "3" && version != "4" &&
       version != std::to_string(kSessionFormatVersion)) {
     throw InputError(path + ": session format version " + version.substr(0, 40) +
                      ", this uwbsar reads 1 to " + std::to_string(kSessionFormatVersion));

@@ -2,7 +2,8 @@
 // opens without uwbsar (`sqlite3 session.uwbsar .tables`). Tables: meta (format, version,
 // config YAML, config fingerprint), trajectories, keyframes (poses, tile, feature grid),
 // features (AKAZE/ORB keypoints and descriptors), edges (pose graph with information),
-// loops and odometry. Tiles and descriptors are stored losslessly (blob_codec.h).
+// loops and odometry. Descriptors are stored losslessly, tiles compact or losslessly
+// (session.lossless_tiles; blob_codec.h).
 #pragma once
 
 #include <string>
@@ -18,7 +19,8 @@ constexpr const char* kSessionFileName = "session.uwbsar";
 /// Writes `data` to `path` atomically: into `path`.tmp-<pid> first, renamed at the end.
 /// Throws std::runtime_error when the folder cannot be written, e.g. "<path>: cannot write: no
 /// space left on device" on a full disk (an I/O failure, exit 1; the temporary file removed).
-void WriteSession(const std::string& path, const SessionData& data);
+/// `lossless_tiles` (session.lossless_tiles): tiles as float32; else compact (EncodeTile).
+void WriteSession(const std::string& path, const SessionData& data, bool lossless_tiles = false);
 
 /// A folder holding session.uwbsar, or the file itself.
 std::string ResolveSessionPath(const std::string& dir_or_file);

@@ -84,9 +84,8 @@ SessionKeyframe ReadKeyframeRow(const TableReader& t, const SessionData& d,
   k.detected_grid.y0_m = t.Real("tile_y0_m", -kMaxCoordinateM, kMaxCoordinateM);
   k.detected_grid.resolution_m = Resolution(t, "tile_resolution_m");
   MatBudget tile_budget;
-  tile_budget.types = {CV_32FC1};
   tile_budget.max_pixels = limits.max_tile_pixels;
-  k.detected = DecodeMat(t.Blob("tile"), t.Where("tile"), tile_budget);
+  k.detected = DecodeTile(t.Blob("tile"), t.Where("tile"), tile_budget);
   if (k.detected.empty()) t.Refuse("tile", "is empty");
   if (!cv::checkRange(k.detected)) t.Refuse("tile", "has non-finite pixels");
   k.detected_grid.rows = k.detected.rows;
