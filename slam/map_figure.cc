@@ -13,8 +13,7 @@ namespace uwbsar::slam {
 
 const FigureColour FigurePalette::kSlam{"sky blue", cv::Scalar(233, 180, 86), "#56B4E9"};
 const FigureColour FigurePalette::kOdometry{"vermillion", cv::Scalar(0, 94, 213), "#D55E00"};
-const FigureColour FigurePalette::kGroundTruth{"bluish green", cv::Scalar(115, 158, 0),
-                                               "#009E73"};
+const FigureColour FigurePalette::kGroundTruth{"bluish green", cv::Scalar(115, 158, 0), "#009E73"};
 const FigureColour FigurePalette::kLoop{"yellow", cv::Scalar(66, 228, 240), "#F0E442"};
 
 const FigureColour& FigurePalette::Run(std::size_t n) {
@@ -101,14 +100,18 @@ struct Pen {
 };
 
 /// Start (filled circle) and end (filled square) of a path, outlined so they show on any map.
+/// The circle is the larger, so a path that ends where it started shows both.
 void DrawMarker(cv::Mat* image, cv::Point at, bool start, const cv::Scalar& colour, int size) {
+  const int outline = std::max(1, size / 4);
   if (start) {
-    cv::circle(*image, at, size, colour, cv::FILLED, cv::LINE_AA);
-    cv::circle(*image, at, size, kInk, std::max(1, size / 4), cv::LINE_AA);
+    const int radius = size * 3 / 2;
+    cv::circle(*image, at, radius, colour, cv::FILLED, cv::LINE_AA);
+    cv::circle(*image, at, radius, kInk, outline, cv::LINE_AA);
   } else {
-    const cv::Rect box(at.x - size, at.y - size, 2 * size + 1, 2 * size + 1);
+    const int half = std::max(2, size * 3 / 4);
+    const cv::Rect box(at.x - half, at.y - half, 2 * half + 1, 2 * half + 1);
     cv::rectangle(*image, box, colour, cv::FILLED);
-    cv::rectangle(*image, box, kInk, std::max(1, size / 4));
+    cv::rectangle(*image, box, kInk, outline);
   }
 }
 
@@ -215,8 +218,7 @@ cv::Mat RenderMapFigure(const MapFigure& f, MapFigureLayout* layout_out) {
   const int bar_y = title_y + pen.line();
   cv::rectangle(figure, cv::Rect(left, bar_y - text_h / 2 - line_px, bar_px, 2 * line_px), kInk,
                 cv::FILLED);
-  pen.Write(&figure, "scale: " + TickLabel(bar_m, bar_m) + " m",
-            {left + bar_px + pad, bar_y});
+  pen.Write(&figure, "scale: " + TickLabel(bar_m, bar_m) + " m", {left + bar_px + pad, bar_y});
 
   // The panel: legend, then the colour bar of the raster's scale and the unobserved grey.
   const int px0 = left + g.cols + 2 * pad;
@@ -239,7 +241,8 @@ cv::Mat RenderMapFigure(const MapFigure& f, MapFigureLayout* layout_out) {
   y += pen.line() / 2 + pad;
   cv::Mat ramp(bar_h, 1, CV_8UC1);
   for (int r = 0; r < bar_h; ++r) {
-    ramp.at<unsigned char>(r) = static_cast<unsigned char>(255 - (255 * r) / std::max(1, bar_h - 1));
+    ramp.at<unsigned char>(r) =
+        static_cast<unsigned char>(255 - (255 * r) / std::max(1, bar_h - 1));
   }
   cv::Mat ramp_bgr;
   cv::resize(Colorize(ramp, f.colormap), ramp_bgr, cv::Size(swatch_w, bar_h), 0, 0,
@@ -247,8 +250,8 @@ cv::Mat RenderMapFigure(const MapFigure& f, MapFigureLayout* layout_out) {
   layout.colour_bar = cv::Rect(px0, y, swatch_w, bar_h);
   ramp_bgr.copyTo(figure(layout.colour_bar));
   cv::rectangle(figure, cv::Rect(px0 - 1, y - 1, swatch_w + 2, bar_h + 2), kInk, 1);
-  for (const auto& [fraction, label] : std::vector<std::pair<double, std::string>>{
-           {1.0, ">= 1"}, {0.5, "0.5"}, {0.0, "0"}}) {
+  for (const auto& [fraction, label] :
+       std::vector<std::pair<double, std::string>>{{1.0, ">= 1"}, {0.5, "0.5"}, {0.0, "0"}}) {
     const int r = y + static_cast<int>(std::lround((1.0 - fraction) * (bar_h - 1)));
     cv::line(figure, {px0 + swatch_w, r}, {px0 + swatch_w + tick_px, r}, kInk, pen.thickness);
     pen.Write(&figure, label, {px0 + swatch_w + tick_px + pad / 2, r + text_h / 2});

@@ -55,10 +55,10 @@ struct FigurePath {
 struct MapFigure {
   cv::Mat map_bgr;  ///< CV_8UC3, one pixel per cell of `grid` (ScaledMapImage)
   ImageGrid grid;
-  std::string frame = "world";  ///< named in the axis labels
-  std::string colormap;         ///< what ScaledMapImage used, for the colour bar
-  std::vector<FigurePath> paths;                       ///< drawn in order
-  std::vector<std::pair<Point2, Point2>> loops;        ///< drawn above every path
+  std::string frame = "world";                   ///< named in the axis labels
+  std::string colormap;                          ///< what ScaledMapImage used, for the colour bar
+  std::vector<FigurePath> paths;                 ///< drawn in order
+  std::vector<std::pair<Point2, Point2>> loops;  ///< drawn above every path
   std::string loop_label = "accepted loop";
 };
 

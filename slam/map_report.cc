@@ -134,10 +134,11 @@ cv::Mat MapReportFigure(const MapState& run, const MapTrajectories& trajectories
   figure.grid = grid;
   figure.colormap = slam.config->enhance.colormap;
   if (!trajectories.ground_truth.empty()) {
-    figure.paths.push_back({"ground truth", FigurePalette::kGroundTruth,
-                            PlotPoints(trajectories.ground_truth, 1)});
+    figure.paths.push_back(
+        {"ground truth", FigurePalette::kGroundTruth, PlotPoints(trajectories.ground_truth, 1)});
   }
-  figure.paths.push_back({"odometry", FigurePalette::kOdometry, PlotPoints(trajectories.odometry, 1)});
+  figure.paths.push_back(
+      {"odometry", FigurePalette::kOdometry, PlotPoints(trajectories.odometry, 1)});
   figure.paths.push_back({"SLAM", FigurePalette::kSlam, PlotPoints(trajectories.slam, 1)});
   figure.loops = AcceptedLoopSegments(slam);
   return RenderMapFigure(figure);
@@ -158,8 +159,8 @@ RunReport BuildMapReport(const MapState& run, const MapOutputs& outputs,
       {"odometry", FigurePalette::kOdometry.css, PlotPoints(trajectories.odometry)});
   report.trajectories.push_back({"SLAM", FigurePalette::kSlam.css, PlotPoints(trajectories.slam)});
   report.loop_segments = AcceptedLoopSegments(slam);
-  report.tables.push_back(StageTimingTable(slam.times, run.processing_s,
-                                           slam.config->slam.keyframe_thread));
+  report.tables.push_back(
+      StageTimingTable(slam.times, run.processing_s, slam.config->slam.keyframe_thread));
   report.tables.push_back(LoopTable(slam));
   return report;
 }

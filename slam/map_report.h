@@ -3,11 +3,10 @@
 // (slam/map_figure.h; docs/figures.md says what the figures show).
 #pragma once
 
+#include <opencv2/core.hpp>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <opencv2/core.hpp>
 
 #include "slam/map_outputs.h"
 #include "slam/report_html.h"

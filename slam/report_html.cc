@@ -137,8 +137,8 @@ std::string TrajectorySvg(const RunReport& r) {
   // Loops after (above) every path, markers above both.
   for (const auto& seg : r.loop_segments) {
     std::snprintf(buf, sizeof(buf),
-                  "<line class=\"loop\" x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" ", X(seg.first.x_m),
-                  Y(seg.first.y_m), X(seg.second.x_m), Y(seg.second.y_m));
+                  "<line class=\"loop\" x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" ",
+                  X(seg.first.x_m), Y(seg.first.y_m), X(seg.second.x_m), Y(seg.second.y_m));
     svg << buf << "stroke=\"" << FigurePalette::kLoop.css << "\" stroke-width=\"1.5\"/>\n";
   }
   for (const auto& t : r.trajectories) {
@@ -167,8 +167,8 @@ std::string TrajectorySvg(const RunReport& r) {
     const auto& [label, colour] = entries[i];
     if (label == "start" && colour.empty()) {
       std::snprintf(buf, sizeof(buf),
-                    "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"5\" fill=\"#ccc\" stroke=\"#000\"/>", ex + 12,
-                    ey - 4);
+                    "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"5\" fill=\"#ccc\" stroke=\"#000\"/>",
+                    ex + 12, ey - 4);
     } else if (colour.empty()) {
       std::snprintf(buf, sizeof(buf),
                     "<rect x=\"%.1f\" y=\"%.1f\" width=\"9\" height=\"9\" fill=\"#ccc\" "
@@ -197,7 +197,8 @@ namespace {
 /// The parts of `r` (summary, figures, trajectory plot, tables, then its sections), their
 /// headings at level `h` (a section's own heading one level up).
 void RenderParts(const RunReport& r, int h, bool top_level, std::ostringstream& html) {
-  const std::string open = "<h" + std::to_string(h) + ">", close = "</h" + std::to_string(h) + ">\n";
+  const std::string open = "<h" + std::to_string(h) + ">",
+                    close = "</h" + std::to_string(h) + ">\n";
   if (!r.summary.empty()) {
     html << open << "Summary" << close
          << (top_level ? "<table id=\"summary\">\n" : "<table class=\"summary\">\n");

@@ -15,11 +15,11 @@
 #include "imaging/enhance.h"
 #include "imaging/image_io.h"
 #include "slam/app_config.h"
+#include "slam/map_figure.h"
 #include "slam/map_job.h"
+#include "slam/map_report.h"
 #include "slam/navigation_map.h"
 #include "slam/output_folder.h"
-#include "slam/map_figure.h"
-#include "slam/map_report.h"
 #include "slam/report_html.h"
 #include "slam/session/session_file.h"
 #include "slam/session/session_merge.h"
@@ -93,7 +93,8 @@ nlohmann::json WriteRun(const SessionData& session, const Config& config, int id
   std::vector<Point2> points;
   for (std::size_t i = 0; i < traj.size(); ++i) {
     tum.push_back({NsToSeconds(traj[i].first), traj[i].second});
-    if (i % 5 == 0 || i + 1 == traj.size()) points.push_back({traj[i].second.x_m, traj[i].second.y_m});
+    if (i % 5 == 0 || i + 1 == traj.size())
+      points.push_back({traj[i].second.x_m, traj[i].second.y_m});
   }
   const std::string name = "trajectory_" + std::to_string(id) + ".tum";
   WriteTum(path(name), tum);
@@ -224,17 +225,18 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
                         {{"runs", std::to_string(runs.size())},
                          {"keyframes", std::to_string(session.keyframes.size())},
                          {"loops accepted", std::to_string(accepted)}});
-  report.images.push_back({std::string("All runs in the map frame, each in its colour. ") +
-                               kMapFigureCaption,
-                           EncodePng(SessionFigure(session, config, raster, grid))});
+  report.images.push_back(
+      {std::string("All runs in the map frame, each in its colour. ") + kMapFigureCaption,
+       EncodePng(SessionFigure(session, config, raster, grid))});
   report.tables = timing;
   if (report.tables.empty()) {
     report.tables.push_back({"Time", {"what", "seconds"}, {}, "No timings were recorded."});
   }
   report.tables.back().note +=
       (report.tables.back().note.empty() ? "" : " ") +
-      std::string("Runs joined by earlier commands were timed there: their own report.html "
-                  "holds their stage times.");
+      std::string(
+          "Runs joined by earlier commands were timed there: their own report.html "
+          "holds their stage times.");
   report.tables.push_back(SessionLoopTable(session));
   WriteTextAtomic(path("report.html"), RenderReportHtml(report));
   WriteTextAtomic(path("summary.json"), s.dump(2) + "\n");

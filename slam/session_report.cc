@@ -80,8 +80,8 @@ ReportTable SessionLoopTable(const SessionData& session) {
     for (std::string cell :
          {v ? Fixed(l.T_ij.x_m, 3) : "", v ? Fixed(l.T_ij.y_m, 3) : "",
           v ? Fixed(l.T_ij.yaw_rad * 180 / M_PI, 2) : "", std::string(v ? "accepted" : "rejected"),
-          std::string(v ? (l.accepted ? "accepted" : "rejected") : ""),
-          v ? Fixed(l.chi2, 3) : "", l.reason}) {
+          std::string(v ? (l.accepted ? "accepted" : "rejected") : ""), v ? Fixed(l.chi2, 3) : "",
+          l.reason}) {
       row.push_back(std::move(cell));
     }
     table.rows.push_back(std::move(row));
@@ -97,8 +97,8 @@ std::vector<std::pair<Point2, Point2>> SessionLoopSegments(const SessionData& se
     const SessionKeyframe* b = session.Find(l.query_id);
     if (!l.accepted || a == nullptr || b == nullptr) continue;
     if (run >= 0 && (a->trajectory != run || b->trajectory != run)) continue;
-    out.push_back({{a->T_map_anchor.x_m, a->T_map_anchor.y_m},
-                   {b->T_map_anchor.x_m, b->T_map_anchor.y_m}});
+    out.push_back(
+        {{a->T_map_anchor.x_m, a->T_map_anchor.y_m}, {b->T_map_anchor.x_m, b->T_map_anchor.y_m}});
   }
   return out;
 }
@@ -155,15 +155,14 @@ RunReport SessionRunSection(const SessionData& session, const Config& config, in
     figure.grid = grid;
     figure.frame = "map";
     figure.colormap = config.enhance.colormap;
-    figure.paths.push_back({"odometry (placed at its first keyframe)", FigurePalette::kOdometry,
-                            Points(odometry, 1)});
+    figure.paths.push_back(
+        {"odometry (placed at its first keyframe)", FigurePalette::kOdometry, Points(odometry, 1)});
     figure.paths.push_back({"SLAM", FigurePalette::kSlam, Points(corrected, 1)});
     figure.loops = section.loop_segments;
     figure.loop_label = "accepted loop within the run";
-    section.images.push_back(
-        {"Run " + std::to_string(run) + ": the map of its own keyframes (" + kMapFigureCaption +
-             ")",
-         EncodePng(RenderMapFigure(figure))});
+    section.images.push_back({"Run " + std::to_string(run) + ": the map of its own keyframes (" +
+                                  kMapFigureCaption + ")",
+                              EncodePng(RenderMapFigure(figure))});
   }
   section.trajectories.push_back({"odometry", FigurePalette::kOdometry.css, Points(odometry, 5)});
   section.trajectories.push_back({"SLAM", FigurePalette::kSlam.css, Points(corrected, 5)});

@@ -65,9 +65,8 @@ void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
            "graph",
            slam::Fixed(merge_s, 3)}},
          ""}};
-    const slam::SessionOutputs outputs =
-        slam::CommitSessionOutputs(&stage, merged, config, {}, extra,
-                                   "uwbsar merge: " + opts->a + " + " + opts->b, timing);
+    const slam::SessionOutputs outputs = slam::CommitSessionOutputs(
+        &stage, merged, config, {}, extra, "uwbsar merge: " + opts->a + " + " + opts->b, timing);
     if (globals.quiet) return;
     std::printf(
         "merged: %zu + %zu keyframes, %d loops between the sessions (%d rejected by the "

@@ -56,9 +56,8 @@ void WriteResumedMap(const slam::SavedSession& saved, const slam::MapRun& run,
          slam::Fixed(join_s, 3)}},
        ""}};
   // Staged and committed as one set, like the plain map's outputs.
-  const slam::SessionOutputs outputs =
-      slam::CommitSessionOutputs(stage, merged, config, ground_truth, extra,
-                                 "uwbsar map --resume: " + run.input, timing);
+  const slam::SessionOutputs outputs = slam::CommitSessionOutputs(
+      stage, merged, config, ground_truth, extra, "uwbsar map --resume: " + run.input, timing);
   if (globals.quiet) return;
   std::printf("mapped %.1f s of log in %.2f s: %zu keyframes\n", run.log_duration_s(),
               run.processing_s, run.slam->keyframes().size());
