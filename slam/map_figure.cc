@@ -134,7 +134,7 @@ cv::Mat RenderMapFigure(const MapFigure& f, MapFigureLayout* layout_out) {
                      static_cast<int>(std::lround(g.YToRow(p.y_m))));
   };
   for (const FigurePath& path : f.paths) {
-    for (std::size_t i = 1; i < path.points.size(); ++i) {
+    for (std::size_t i = 1; path.line && i < path.points.size(); ++i) {
       cv::line(plot, pixel(path.points[i - 1]), pixel(path.points[i]), path.colour.bgr, line_px,
                cv::LINE_AA);
     }
@@ -170,6 +170,7 @@ cv::Mat RenderMapFigure(const MapFigure& f, MapFigureLayout* layout_out) {
   std::vector<LegendRow> legend;
   for (const FigurePath& p : f.paths) legend.push_back({p.label, p.colour.bgr, 0});
   if (!f.loops.empty()) legend.push_back({f.loop_label, FigurePalette::kLoop.bgr, 0});
+  for (const auto& [text, colour] : f.raster_legend) legend.push_back({text, colour, 0});
   legend.push_back({"start", cv::Scalar(200, 200, 200), 1});
   legend.push_back({"end", cv::Scalar(200, 200, 200), 2});
   const int swatch_w = 3 * pen.line() / 2;
@@ -179,7 +180,7 @@ cv::Mat RenderMapFigure(const MapFigure& f, MapFigureLayout* layout_out) {
     panel_w = std::max(panel_w, swatch_w + pad + pen.Measure(r.text).width);
   }
   panel_w = std::max(panel_w, pen.Measure("not observed").width + swatch_w + pad);
-  const int bar_h = std::max(4 * pen.line(), std::min(g.rows, 10 * pen.line()));
+  const int bar_h = f.colour_bar ? std::max(4 * pen.line(), std::min(g.rows, 10 * pen.line())) : 0;
   const int panel_h = static_cast<int>(legend.size() + 3) * pen.line() + bar_h + 2 * pen.line();
 
   const int left = pad + y_label_w + tick_px + pad;
@@ -227,7 +228,7 @@ cv::Mat RenderMapFigure(const MapFigure& f, MapFigureLayout* layout_out) {
     const cv::Point swatch(px0 + swatch_w / 2, y);
     if (row.kind == 0) {
       cv::rectangle(figure, cv::Rect(px0, y - pen.line() / 4, swatch_w, pen.line() / 2),
-                    kUnobservedBgr, cv::FILLED);
+                    f.background, cv::FILLED);
       cv::line(figure, {px0 + 2, y}, {px0 + swatch_w - 2, y}, row.colour, line_px, cv::LINE_AA);
       layout.legend_swatches.push_back(swatch);
     } else {
@@ -236,29 +237,31 @@ cv::Mat RenderMapFigure(const MapFigure& f, MapFigureLayout* layout_out) {
     pen.Write(&figure, row.text, {px0 + swatch_w + pad, y + text_h / 2});
     y += pen.line();
   }
-  y += pen.line() / 2;
-  pen.Write(&figure, bar_title, {px0, y + text_h / 2});
-  y += pen.line() / 2 + pad;
-  cv::Mat ramp(bar_h, 1, CV_8UC1);
-  for (int r = 0; r < bar_h; ++r) {
-    ramp.at<unsigned char>(r) =
-        static_cast<unsigned char>(255 - (255 * r) / std::max(1, bar_h - 1));
+  if (f.colour_bar) {
+    y += pen.line() / 2;
+    pen.Write(&figure, bar_title, {px0, y + text_h / 2});
+    y += pen.line() / 2 + pad;
+    cv::Mat ramp(bar_h, 1, CV_8UC1);
+    for (int r = 0; r < bar_h; ++r) {
+      ramp.at<unsigned char>(r) =
+          static_cast<unsigned char>(255 - (255 * r) / std::max(1, bar_h - 1));
+    }
+    cv::Mat ramp_bgr;
+    cv::resize(Colorize(ramp, f.colormap), ramp_bgr, cv::Size(swatch_w, bar_h), 0, 0,
+               cv::INTER_NEAREST);
+    layout.colour_bar = cv::Rect(px0, y, swatch_w, bar_h);
+    ramp_bgr.copyTo(figure(layout.colour_bar));
+    cv::rectangle(figure, cv::Rect(px0 - 1, y - 1, swatch_w + 2, bar_h + 2), kInk, 1);
+    for (const auto& [fraction, label] :
+         std::vector<std::pair<double, std::string>>{{1.0, ">= 1"}, {0.5, "0.5"}, {0.0, "0"}}) {
+      const int r = y + static_cast<int>(std::lround((1.0 - fraction) * (bar_h - 1)));
+      cv::line(figure, {px0 + swatch_w, r}, {px0 + swatch_w + tick_px, r}, kInk, pen.thickness);
+      pen.Write(&figure, label, {px0 + swatch_w + tick_px + pad / 2, r + text_h / 2});
+    }
+    y += bar_h + pen.line() / 2;
+    cv::rectangle(figure, cv::Rect(px0, y, swatch_w, pen.line() / 2), kUnobservedBgr, cv::FILLED);
+    pen.Write(&figure, "not observed", {px0 + swatch_w + pad, y + text_h / 2 + pen.line() / 4});
   }
-  cv::Mat ramp_bgr;
-  cv::resize(Colorize(ramp, f.colormap), ramp_bgr, cv::Size(swatch_w, bar_h), 0, 0,
-             cv::INTER_NEAREST);
-  layout.colour_bar = cv::Rect(px0, y, swatch_w, bar_h);
-  ramp_bgr.copyTo(figure(layout.colour_bar));
-  cv::rectangle(figure, cv::Rect(px0 - 1, y - 1, swatch_w + 2, bar_h + 2), kInk, 1);
-  for (const auto& [fraction, label] :
-       std::vector<std::pair<double, std::string>>{{1.0, ">= 1"}, {0.5, "0.5"}, {0.0, "0"}}) {
-    const int r = y + static_cast<int>(std::lround((1.0 - fraction) * (bar_h - 1)));
-    cv::line(figure, {px0 + swatch_w, r}, {px0 + swatch_w + tick_px, r}, kInk, pen.thickness);
-    pen.Write(&figure, label, {px0 + swatch_w + tick_px + pad / 2, r + text_h / 2});
-  }
-  y += bar_h + pen.line() / 2;
-  cv::rectangle(figure, cv::Rect(px0, y, swatch_w, pen.line() / 2), kUnobservedBgr, cv::FILLED);
-  pen.Write(&figure, "not observed", {px0 + swatch_w + pad, y + text_h / 2 + pen.line() / 4});
 
   if (layout_out != nullptr) *layout_out = layout;
   return figure;

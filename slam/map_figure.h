@@ -50,6 +50,7 @@ struct FigurePath {
   FigureColour colour;
   std::vector<Point2> points;  ///< in the figure's frame, in time order
   bool markers = true;         ///< start (circle) and end (square) markers
+  bool line = true;            ///< false: markers only (the line is in the raster already)
 };
 
 struct MapFigure {
@@ -60,6 +61,11 @@ struct MapFigure {
   std::vector<FigurePath> paths;                 ///< drawn in order
   std::vector<std::pair<Point2, Point2>> loops;  ///< drawn above every path
   std::string loop_label = "accepted loop";
+  /// Legend lines for what the raster holds already (e.g. a pose-graph plot's edges), after
+  /// the paths' and the loops'.
+  std::vector<std::pair<std::string, cv::Scalar>> raster_legend;
+  bool colour_bar = true;                  ///< false for a raster that is not a SAR map
+  cv::Scalar background = kUnobservedBgr;  ///< behind the legend's line swatches, as in the raster
 };
 
 /// Where RenderMapFigure put things (for tests and captions).

@@ -104,7 +104,9 @@ std::string TrajectorySvg(const RunReport& r) {
                 "stroke=\"#000\"/>\n",
                 left, top, plot_w, plot_h);
   svg << buf;
-  const double step = NiceStep(std::max(hi_x - lo_x, plot_h / scale), 8.0);
+  // Equal scales, but each axis its own tick step: a flat plot still gets several y ticks.
+  const double step = NiceStep(hi_x - lo_x, 8.0);
+  const double y_step = NiceStep(plot_h / scale, std::max(3.0, 8.0 * plot_h / plot_w));
   for (double v = std::ceil(lo_x / step) * step; v <= hi_x; v += step) {
     std::snprintf(buf, sizeof(buf),
                   "<line class=\"tick\" x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" "
@@ -113,12 +115,13 @@ std::string TrajectorySvg(const RunReport& r) {
     svg << buf << Tick(v, step) << "</text>\n";
   }
   const double y_hi = y_mid + 0.5 * plot_h / scale;
-  for (double v = std::ceil((y_mid - 0.5 * plot_h / scale) / step) * step; v <= y_hi; v += step) {
+  for (double v = std::ceil((y_mid - 0.5 * plot_h / scale) / y_step) * y_step; v <= y_hi;
+       v += y_step) {
     std::snprintf(buf, sizeof(buf),
                   "<line class=\"tick\" x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" "
                   "stroke=\"#000\"/><text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">",
                   left - 5, Y(v), left, Y(v), left - 8, Y(v) + 4);
-    svg << buf << Tick(v, step) << "</text>\n";
+    svg << buf << Tick(v, y_step) << "</text>\n";
   }
   std::snprintf(buf, sizeof(buf),
                 "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">x (m)</text>"
