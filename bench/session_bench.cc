@@ -1,4 +1,4 @@
-// Sessions (saved maps: docs/formats.md) on the long scenarios of README "Sessions": a saved
+// Sessions (saved maps: docs/formats.md) on the long scenarios of docs/measurements.md: a saved
 // map of run A, then run B of the same building (scene seed 1, noise seed s + 1 for A's
 // s = 1, 3, 5; odometry starting at zero: its start pose unknown) joined to it (`map B
 // --resume A`, the same MergeSessions as `merge`) and localised in it (`localize B --map A`).

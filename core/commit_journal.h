@@ -1,4 +1,4 @@
-// Publishing a set of files into a folder as one commit (README "What uwbsar refuses", the
+// Publishing a set of files into a folder as one commit (docs/refusals.md, the
 // session rule): a folder holds either the old complete result or the new complete one, never
 // a mix, whatever kills the process and whenever.
 //

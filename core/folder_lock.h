@@ -1,4 +1,4 @@
-// One writer per folder (README "What uwbsar refuses", the session rule): a command that
+// One writer per folder (docs/refusals.md, the session rule): a command that
 // writes an output folder holds an exclusive lock on it for its whole run, and a command that
 // reads a saved session holds a shared lock on the session's folder, so that no second process
 // can write a folder being written or read. The lock is flock(2) on `DIR/.uwbsar.lock`: the

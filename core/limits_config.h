@@ -8,7 +8,7 @@
 
 namespace uwbsar {
 
-/// Budgets on the sizes the other settings imply (README "What uwbsar refuses"): the
+/// Budgets on the sizes the other settings imply (docs/refusals.md): the
 /// configuration is refused before any work starts when a setting would exceed them, and
 /// input files declaring larger images are refused before they are decoded.
 struct LimitsConfig {

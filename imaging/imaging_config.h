@@ -31,7 +31,7 @@ struct EnumNames<ImagingMethod> {
 /// imaging.ffbp.*: fast factorised back-projection (Ulander, Hellsten and Stenstroem 2003).
 /// Scans are imaged in sub-apertures of base_scans on local polar grids, merged merge_factor at
 /// a time for `levels` levels, and the top sub-apertures are interpolated onto the tile. The
-/// defaults were chosen by measurement (README, "Imaging").
+/// defaults were chosen by measurement (docs/measurements.md, "Imaging").
 struct FfbpConfig {
   int base_scans = 8;    ///< scans of one radar imaged directly on a polar grid
   int merge_factor = 2;  ///< sub-apertures merged into one per level

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
@@ -263,6 +264,17 @@ OccupancyGrid LoadOccupancyGrid(const std::string& yaml_path, double max_image_p
     pixels_out->max_value = max_value;
   }
   return grid;
+}
+
+std::vector<std::int8_t> GridCellsBottomUp(const OccupancyGrid& grid) {
+  std::vector<std::int8_t> cells(grid.cells.size());
+  const std::size_t cols = static_cast<std::size_t>(grid.cols);
+  for (int row = 0; row < grid.rows; ++row) {
+    const std::size_t from = static_cast<std::size_t>(row) * cols;
+    const std::size_t to = static_cast<std::size_t>(grid.rows - 1 - row) * cols;
+    std::memcpy(cells.data() + to, grid.cells.data() + from, cols);
+  }
+  return cells;
 }
 
 }  // namespace uwbsar

@@ -54,6 +54,10 @@ struct OccupancyGrid {
   bool CellOf(const Point2& p_world, int* row, int* col) const;
 };
 
+/// The cells of `grid` in nav_msgs/OccupancyGrid order: row-major starting at the
+/// origin cell (the bottom row first), where uwbsar's grid stores the top row first.
+std::vector<std::int8_t> GridCellsBottomUp(const OccupancyGrid& grid);
+
 /// map_server YAML keys (ROS 1 map_server and Nav2 map_io semantics).
 struct MapMetadata {
   std::string image_path;        ///< resolved against the YAML file's folder

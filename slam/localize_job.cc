@@ -21,6 +21,7 @@
 #include "slam/map_outputs.h"
 #include "slam/output_folder.h"
 #include "slam/progress.h"
+#include "slam/results_timeline.h"
 
 namespace uwbsar::slam {
 namespace {
@@ -109,7 +110,7 @@ namespace {
 nlohmann::json WriteLocalizeFiles(const LocalizeRun& run, const std::string& out_dir) {
   const auto trajectory = run.Trajectory(false);
   std::vector<std::pair<double, Pose2>> tum;
-  // From the first fix on (README): before it the robot was not placed in the map, and a
+  // From the first fix on (docs/cli.md): before it the robot was not placed in the map, and a
   // pose back-corrected from a later fix is not one a live robot would have had.
   for (const auto& [t, p] : trajectory) {
     if (t >= run.first_fix_stamp_ns) tum.push_back({NsToSeconds(t), p});
@@ -171,12 +172,18 @@ nlohmann::json WriteLocalizeFiles(const LocalizeRun& run, const std::string& out
 
 }  // namespace
 
-nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& out_dir) {
+nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& out_dir,
+                                    const SessionData* map, const Config* config) {
   MapOutputStage stage(out_dir);
   nlohmann::json summary;
   stage.CommitWritten([&](const std::string& dir) {
     summary = WriteLocalizeFiles(run, dir);
-    return std::vector<std::string>{"trajectory.tum", "localize.csv"};
+    std::vector<std::string> names = {"trajectory.tum", "localize.csv"};
+    if (map != nullptr && config != nullptr && config->slam.results_mcap) {
+      WriteLocalizeResultsMcap(dir + "/" + kResultsMcapName, run, *map, *config);
+      names.push_back(kResultsMcapName);
+    }
+    return names;
   });
   return summary;
 }

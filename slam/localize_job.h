@@ -57,8 +57,11 @@ LocalizeRun LocalizeSimulation(const SessionData& map, const Config& config,
 
 /// trajectory.tum, localize.csv and summary.json (last) into out_dir, staged and committed as
 /// one set under out_dir's lock (slam/map_outputs.h MapOutputStage), replacing an earlier
-/// run's outputs; returns the summary. The commands refuse a map's folder first
-/// (slam/saved_session.h RefuseMapFolderForLocalize).
-nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& out_dir);
+/// run's outputs; returns the summary. With the saved `map` and a `config` asking for it
+/// (slam.results_mcap), also results.mcap (slam/results_timeline.h). The commands refuse a
+/// map's folder first (slam/saved_session.h RefuseMapFolderForLocalize).
+nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& out_dir,
+                                    const SessionData* map = nullptr,
+                                    const Config* config = nullptr);
 
 }  // namespace uwbsar::slam

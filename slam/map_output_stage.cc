@@ -96,6 +96,7 @@ const std::vector<std::string>& AllMapOutputNames() {
                                                  "map.png",
                                                  "map.yaml",
                                                  "map.pgm",
+                                                 "results.mcap",
                                                  "report.html",
                                                  "ground_truth.tum",
                                                  "map_exact_float.tif",

@@ -31,6 +31,7 @@
 #include "slam/map_report.h"
 #include "slam/navigation_map.h"
 #include "slam/report_html.h"
+#include "slam/results_timeline.h"
 
 namespace uwbsar::slam {
 namespace fs = std::filesystem;
@@ -155,6 +156,7 @@ MapTrajectories WriteTrajectories(const MapState& run, const fs::path& stage, Ma
 
 /// The global map's extent and size, for summary.json.
 struct MapExtent {
+  SarMosaic mosaic;  ///< the rendered map (results.mcap shows it too)
   ImageGrid grid;
   std::size_t blocks = 0;
   std::size_t memory_bytes = 0;
@@ -183,6 +185,7 @@ MapExtent WriteMapAndOccupancy(const MapState& run, const StampedPoses& trajecto
   MapExtent extent;
   cv::Mat observed;
   const cv::Mat map = global.Render(&extent.grid, &observed);
+  extent.mosaic = {map, observed, extent.grid};
   WriteFloatTiff(staged("map_float.tif"), map);
   WriteTextAtomic(staged("map_grid.yaml"),
                   GridYaml(extent.grid, "map_float.tif and map.png", "map_float.tif"));
@@ -236,7 +239,8 @@ nlohmann::json SummaryJson(const MapState& run, const MapOutputs& outputs,
                  {"optimization", t.optimization_s},
                  {"total", run.processing_s}};
   const OptimizeResult& opt = slam.last_optimization;
-  s["optimization"] = {{"converged", opt.converged},
+  s["optimization"] = {{"solves", slam.num_solves},
+                       {"converged", opt.converged},
                        {"termination", opt.termination},
                        {"iterations", opt.iterations},
                        {"final_cost", opt.final_cost}};
@@ -290,6 +294,11 @@ MapOutputs MapOutputStage::CommitState(const MapState& run, const MapRun* exact_
   const MapTrajectories trajectories = WriteTrajectories(run, stage, &result, &names);
   const MapExtent extent = WriteMapAndOccupancy(run, trajectories.slam, stage, &names);
   result.summary = SummaryJson(run, result, extent);
+  if (run.slam.config->slam.results_mcap) {
+    WriteRunResultsMcap((stage / kResultsMcapName).string(), run.slam, run.ground_truth,
+                        extent.mosaic);
+    names.push_back(kResultsMcapName);
+  }
   // report.html shows map.png's raster, framed and annotated (slam/map_figure.h).
   const std::string figure =
       EncodePng(MapReportFigure(run, trajectories, extent.raster, extent.grid));

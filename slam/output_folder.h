@@ -1,4 +1,4 @@
-// Output locations are checked before any work (README "What uwbsar refuses"): an output
+// Output locations are checked before any work (docs/refusals.md): an output
 // that cannot be written is bad input (InputError, exit 3) naming the path; a write that
 // fails later (disk full) is an I/O failure (exit 1) naming the path and the cause.
 #pragma once

@@ -1,5 +1,5 @@
-// A saved map read by a command that joins, localises in or merges it (README "What uwbsar
-// refuses", the session rule): read under a shared lock on its folder, held for the whole
+// A saved map read by a command that joins, localises in or merges it (docs/refusals.md, the
+// session rule): read under a shared lock on its folder, held for the whole
 // run, so that no other process can replace it meanwhile; the checks that keep a saved map
 // from being replaced, mixed or joined twice; and the identity of a recording.
 #pragma once

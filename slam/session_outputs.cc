@@ -21,6 +21,7 @@
 #include "slam/navigation_map.h"
 #include "slam/output_folder.h"
 #include "slam/report_html.h"
+#include "slam/results_timeline.h"
 #include "slam/session/session_file.h"
 #include "slam/session/session_merge.h"
 #include "slam/session_mosaic.h"
@@ -198,8 +199,13 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
              FigurePalette::kLoop.bgr, 1, cv::LINE_AA);
   }
   WriteImageAtomic(path("map.png"), png);
-  WriteOccupancyGrid(path("map.yaml"), "map.pgm", SessionNavigationGrid(session, config));
+  const OccupancyGrid navigation = SessionNavigationGrid(session, config);
+  WriteOccupancyGrid(path("map.yaml"), "map.pgm", navigation);
   result.files.push_back(out_dir + "/map.pgm");
+  if (config.slam.results_mcap) {
+    WriteSessionResultsMcap(path(kResultsMcapName), session, config, navigation,
+                            {map, observed, grid}, ground_truth);
+  }
   std::vector<PoseGraphEdge> edges;
   std::vector<int> fixed;
   for (const SessionEdge& e : session.edges) edges.push_back(e.edge);

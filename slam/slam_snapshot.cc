@@ -1,5 +1,7 @@
 #include "slam/slam_snapshot.h"
 
+#include <algorithm>
+
 namespace uwbsar::slam {
 
 const MatchResult& LoopRecord::Match(DetectorKind kind) const {
@@ -26,6 +28,23 @@ std::vector<std::pair<TimestampNs, Pose2>> SlamSnapshot::CorrectedTrajectory() c
     out.push_back({e.stamp_ns, CorrectionAt(e.stamp_ns) * e.T_world_robot});
   }
   return out;
+}
+
+SlamSnapshot SlamSnapshot::AfterSolve(std::size_t i) const {
+  const SolveRecord& solve = solves.at(i);
+  SlamSnapshot s;
+  s.config = config;
+  s.sensors = sensors;
+  const std::size_t n = std::min(solve.num_keyframes, tiles.size());
+  s.tiles.assign(tiles.begin(), tiles.begin() + static_cast<std::ptrdiff_t>(n));
+  for (std::size_t k = 0; k < n && k < solve.poses.size(); ++k) {
+    s.poses[tiles[k].id] = solve.poses[k];
+  }
+  s.odometry.assign(odometry.begin(), odometry.begin() + static_cast<std::ptrdiff_t>(std::min(
+                                                             solve.num_odometry, odometry.size())));
+  s.loops.assign(loops.begin(), loops.begin() + static_cast<std::ptrdiff_t>(
+                                                    std::min(solve.num_loops, loops.size())));
+  return s;
 }
 
 }  // namespace uwbsar::slam

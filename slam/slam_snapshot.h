@@ -59,6 +59,15 @@ struct StageTimes {
   double optimization_s = 0.0;  ///< pose-graph solves
 };
 
+/// The graph after one solve, kept with slam.results_mcap: results.mcap replays the map and
+/// path as they were after each solve. The first num_keyframes tiles, num_odometry odometry
+/// samples and num_loops loop records existed then.
+struct SolveRecord {
+  TimestampNs stamp_ns = 0;  ///< the latest odometry sample handed over by then
+  std::size_t num_keyframes = 0, num_odometry = 0, num_loops = 0;
+  std::vector<Pose2> poses;  ///< optimised T_world_anchor of keyframes [0, num_keyframes)
+};
+
 /// The correction T_world_corrected * T_world_odom^-1 at a time, interpolated between the
 /// keyframes around it; `stamp(i)`, `anchor(i)` and `pose(i)` (the optimised anchor) of
 /// keyframe i of `n`, in time order. Shared by SlamSystem and SlamSnapshot.
@@ -106,6 +115,8 @@ struct SlamSnapshot {
   FrontendStats frontend_stats;
   StageTimes times;
   OptimizeResult last_optimization;
+  int num_solves = 0;               ///< pose-graph solves so far
+  std::vector<SolveRecord> solves;  ///< every solve, in order (slam.results_mcap; else empty)
 
   /// The detectors the loops were validated with (place_recognition.validation.detectors;
   /// the default pair without a configuration).
@@ -113,6 +124,9 @@ struct SlamSnapshot {
   /// As SlamSystem::CorrectionAt / CorrectedTrajectory, from the copy.
   Pose2 CorrectionAt(TimestampNs stamp_ns) const;
   std::vector<std::pair<TimestampNs, Pose2>> CorrectedTrajectory() const;
+  /// The state as it was after solves[i]: the keyframes, odometry and loops of then, at that
+  /// solve's poses (the tiles' images shared).
+  SlamSnapshot AfterSolve(std::size_t i) const;
 };
 
 }  // namespace uwbsar::slam

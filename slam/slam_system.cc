@@ -217,6 +217,20 @@ void SlamSystem::Optimize() {
   const auto start = Clock::now();
   last_optimization_ = graph_->Optimize();
   for (const auto& [id, pose] : graph_->GetPoses()) recognizer_->UpdatePose(id, pose);
+  ++num_solves_;
+  if (config_.slam.results_mcap) {
+    SolveRecord solve;
+    solve.stamp_ns = odometry_.empty() ? 0 : odometry_.back().stamp_ns;
+    if (!keyframes_.empty())
+      solve.stamp_ns = std::max(solve.stamp_ns, keyframes_.back().keyframe.stamp_ns);
+    solve.num_keyframes = keyframes_.size();
+    solve.num_odometry = odometry_.size();
+    solve.num_loops = loops_.size();
+    solve.poses.reserve(keyframes_.size());
+    for (const KeyframeRecord& k : keyframes_)
+      solve.poses.push_back(graph_->GetPose(k.keyframe.id));
+    solves_.push_back(std::move(solve));
+  }
   {
     std::lock_guard<std::mutex> lock(stats_mutex_);
     keyframe_times_.optimization_s += SecondsSince(start);
@@ -277,6 +291,8 @@ SlamSnapshot SlamSystem::Capture() const {
   s.frontend_stats = frontend_stats();
   s.times = times();
   s.last_optimization = last_optimization_;
+  s.solves = solves_;
+  s.num_solves = num_solves_;
   return s;
 }
 

@@ -130,6 +130,8 @@ class SlamSystem {
   std::vector<LoopRecord> loops_;                // GUARDED_BY(state_mutex_)
   std::vector<OdometryEntry> odometry_;          // GUARDED_BY(state_mutex_)
   OptimizeResult last_optimization_;             // GUARDED_BY(state_mutex_)
+  std::vector<SolveRecord> solves_;              // GUARDED_BY(state_mutex_)
+  int num_solves_ = 0;                           // GUARDED_BY(state_mutex_)
   bool graph_dirty_ = false;                     // GUARDED_BY(state_mutex_)
   int keyframes_since_solve_ = 0;                // GUARDED_BY(state_mutex_)
   mutable std::mutex state_mutex_;

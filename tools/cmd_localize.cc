@@ -5,6 +5,7 @@
 #include "slam/app_config.h"
 #include "slam/localize_job.h"
 #include "slam/map_outputs.h"
+#include "slam/results_timeline.h"
 #include "slam/saved_session.h"
 #include "slam/session/session_file.h"
 #include "tools/commands.h"
@@ -29,7 +30,7 @@ void AddLocalizeCommand(CLI::App& app, const GlobalOptions& globals) {
     slam::RefuseMapFolderForLocalize(opts->out_dir);
     const slam::SavedSession map = slam::OpenSavedSession(opts->map, config);
     const slam::LocalizeRun run = slam::LocalizeBag(map.data, config, opts->bag, !globals.quiet);
-    const nlohmann::json s = slam::WriteLocalizeOutputs(run, opts->out_dir);
+    const nlohmann::json s = slam::WriteLocalizeOutputs(run, opts->out_dir, &map.data, &config);
     if (globals.quiet) return;
     std::printf(
         "localised %.1f s of log in %.2f s: %zu keyframes (%d tracking, %d lost, %d "
@@ -43,7 +44,9 @@ void AddLocalizeCommand(CLI::App& app, const GlobalOptions& globals) {
     } else {
       std::printf("never placed in the map: lost\n");
     }
-    PrintWrittenFolder(opts->out_dir, {"trajectory.tum", "localize.csv", "summary.json"}, globals);
+    std::vector<std::string> written = {"trajectory.tum", "localize.csv", "summary.json"};
+    if (config.slam.results_mcap) written.insert(written.end() - 1, slam::kResultsMcapName);
+    PrintWrittenFolder(opts->out_dir, written, globals);
   });
 }
 

@@ -1,7 +1,6 @@
 #include "drivers/dds/ros2_convert.h"
 
 #include <cmath>
-#include <cstring>
 
 namespace uwbsar::dds {
 
@@ -60,17 +59,6 @@ bool OdometryFromDds(const nav_msgs_msg_dds__Odometry_& msg, OdometrySample* out
   out->linear_velocity_mps = v.linear_.x_;
   out->angular_velocity_radps = v.angular_.z_;
   return true;
-}
-
-std::vector<std::int8_t> GridCellsBottomUp(const OccupancyGrid& grid) {
-  std::vector<std::int8_t> cells(grid.cells.size());
-  const std::size_t cols = static_cast<std::size_t>(grid.cols);
-  for (int row = 0; row < grid.rows; ++row) {
-    const std::size_t from = static_cast<std::size_t>(row) * cols;
-    const std::size_t to = static_cast<std::size_t>(grid.rows - 1 - row) * cols;
-    std::memcpy(cells.data() + to, grid.cells.data() + from, cols);
-  }
-  return cells;
 }
 
 }  // namespace uwbsar::dds

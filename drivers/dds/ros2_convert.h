@@ -27,8 +27,4 @@ geometry_msgs_msg_dds__Pose_ PoseToDds(const Pose2& pose);
 /// False with `why` set when a value is not finite or the quaternion is zero.
 bool OdometryFromDds(const nav_msgs_msg_dds__Odometry_& msg, OdometrySample* out, std::string* why);
 
-/// The cells of `grid` in nav_msgs/OccupancyGrid order: row-major starting at the
-/// origin cell (the bottom row first), where uwbsar's grid stores the top row first.
-std::vector<std::int8_t> GridCellsBottomUp(const OccupancyGrid& grid);
-
 }  // namespace uwbsar::dds

@@ -46,6 +46,42 @@ void Write(CdrWriter& w, const Quaternion& q) {
   w.Write(q.w);
 }
 
+void Write(CdrWriter& w, const RosPose& p) {
+  Write(w, p.position);
+  Write(w, p.orientation);
+}
+
+void Write(CdrWriter& w, const ColorRgba& c) {
+  for (float v : {c.r, c.g, c.b, c.a}) w.Write(v);
+}
+
+void Write(CdrWriter& w, const Marker& m) {
+  Write(w, m.header);
+  w.WriteString(m.ns);
+  w.Write(m.id);
+  w.Write(m.type);
+  w.Write(m.action);
+  Write(w, m.pose);
+  Write(w, m.scale);
+  Write(w, m.color);
+  w.Write(std::int32_t{0});   // lifetime.sec: forever
+  w.Write(std::uint32_t{0});  // lifetime.nanosec
+  w.Write(std::uint8_t{0});   // frame_locked
+  w.WriteSequenceLength(m.points.size());
+  for (const Vector3& p : m.points) Write(w, p);
+  w.WriteSequenceLength(0);  // colors: all m.color
+  w.WriteString("");         // texture_resource
+  Write(w, RosHeader{});     // texture (sensor_msgs/CompressedImage): header, format, data
+  w.WriteString("");
+  w.WriteSequenceLength(0);
+  w.WriteSequenceLength(0);  // uv_coordinates
+  w.WriteString(m.text);
+  w.WriteString("");         // mesh_resource
+  w.WriteString("");         // mesh_file.filename
+  w.WriteSequenceLength(0);  // mesh_file.data
+  w.Write(std::uint8_t{0});  // mesh_use_embedded_materials
+}
+
 }  // namespace
 
 void DecodeCdr(const std::uint8_t* data, std::size_t size, Float32MultiArray* msg) {
@@ -147,6 +183,45 @@ void EncodeCdr(const TfMessage& msg, std::vector<std::uint8_t>* out) {
     Write(w, t.translation);
     Write(w, t.rotation);
   }
+}
+
+void EncodeCdr(const OccupancyGridMessage& msg, std::vector<std::uint8_t>* out) {
+  CdrWriter w(out);
+  Write(w, msg.header);
+  w.Write(msg.map_load_time.sec);
+  w.Write(msg.map_load_time.nanosec);
+  w.Write(msg.resolution);
+  w.Write(msg.width);
+  w.Write(msg.height);
+  Write(w, msg.origin);
+  w.WriteSequence(msg.data);
+}
+
+void EncodeCdr(const PathMessage& msg, std::vector<std::uint8_t>* out) {
+  CdrWriter w(out);
+  Write(w, msg.header);
+  w.WriteSequenceLength(msg.poses.size());
+  for (const PoseStamped& p : msg.poses) {
+    Write(w, p.header);
+    Write(w, p.pose);
+  }
+}
+
+void EncodeCdr(const ImageMessage& msg, std::vector<std::uint8_t>* out) {
+  CdrWriter w(out);
+  Write(w, msg.header);
+  w.Write(msg.height);
+  w.Write(msg.width);
+  w.WriteString(msg.encoding);
+  w.Write(msg.is_bigendian);
+  w.Write(msg.step);
+  w.WriteSequence(msg.data);
+}
+
+void EncodeCdr(const MarkerArray& msg, std::vector<std::uint8_t>* out) {
+  CdrWriter w(out);
+  w.WriteSequenceLength(msg.markers.size());
+  for (const Marker& m : msg.markers) Write(w, m);
 }
 
 double YawFromQuaternion(const Quaternion& q) {

@@ -23,6 +23,10 @@ void EncodeCdr(const Float32MultiArray& msg, std::vector<std::uint8_t>* out);
 void EncodeCdr(const Odometry& msg, std::vector<std::uint8_t>* out);
 void EncodeCdr(const LaserScan& msg, std::vector<std::uint8_t>* out);
 void EncodeCdr(const TfMessage& msg, std::vector<std::uint8_t>* out);
+void EncodeCdr(const OccupancyGridMessage& msg, std::vector<std::uint8_t>* out);
+void EncodeCdr(const PathMessage& msg, std::vector<std::uint8_t>* out);
+void EncodeCdr(const ImageMessage& msg, std::vector<std::uint8_t>* out);
+void EncodeCdr(const MarkerArray& msg, std::vector<std::uint8_t>* out);
 
 /// The `ros2msg` text of a known type with its dependencies appended in the
 /// rosbag2/MCAP convention ("=====...\nMSG: pkg/Type\n..."); empty if unknown.

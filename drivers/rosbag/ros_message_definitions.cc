@@ -37,6 +37,31 @@ const std::map<std::string, std::string>& Bodies() {
        "std_msgs/Header header\nstring child_frame_id\ngeometry_msgs/Transform transform\n"},
       {"geometry_msgs/Transform",
        "geometry_msgs/Vector3 translation\ngeometry_msgs/Quaternion rotation\n"},
+      {"nav_msgs/msg/OccupancyGrid",
+       "std_msgs/Header header\nnav_msgs/MapMetaData info\nint8[] data\n"},
+      {"nav_msgs/MapMetaData",
+       "builtin_interfaces/Time map_load_time\nfloat32 resolution\nuint32 width\nuint32 height\n"
+       "geometry_msgs/Pose origin\n"},
+      {"nav_msgs/msg/Path", "std_msgs/Header header\ngeometry_msgs/PoseStamped[] poses\n"},
+      {"geometry_msgs/PoseStamped", "std_msgs/Header header\ngeometry_msgs/Pose pose\n"},
+      {"sensor_msgs/msg/Image",
+       "std_msgs/Header header\nuint32 height\nuint32 width\nstring encoding\n"
+       "uint8 is_bigendian\nuint32 step\nuint8[] data\n"},
+      {"visualization_msgs/msg/MarkerArray", "visualization_msgs/Marker[] markers\n"},
+      {"visualization_msgs/Marker",
+       "int32 LINE_LIST=5\nint32 SPHERE_LIST=7\nint32 ADD=0\nint32 DELETEALL=3\n"
+       "std_msgs/Header header\nstring ns\nint32 id\nint32 type\nint32 action\n"
+       "geometry_msgs/Pose pose\ngeometry_msgs/Vector3 scale\nstd_msgs/ColorRGBA color\n"
+       "builtin_interfaces/Duration lifetime\nbool frame_locked\ngeometry_msgs/Point[] points\n"
+       "std_msgs/ColorRGBA[] colors\nstring texture_resource\n"
+       "sensor_msgs/CompressedImage texture\nvisualization_msgs/UVCoordinate[] uv_coordinates\n"
+       "string text\nstring mesh_resource\nvisualization_msgs/MeshFile mesh_file\n"
+       "bool mesh_use_embedded_materials\n"},
+      {"std_msgs/ColorRGBA", "float32 r\nfloat32 g\nfloat32 b\nfloat32 a\n"},
+      {"builtin_interfaces/Duration", "int32 sec\nuint32 nanosec\n"},
+      {"sensor_msgs/CompressedImage", "std_msgs/Header header\nstring format\nuint8[] data\n"},
+      {"visualization_msgs/UVCoordinate", "float32 u\nfloat32 v\n"},
+      {"visualization_msgs/MeshFile", "string filename\nuint8[] data\n"},
   };
   return bodies;
 }
@@ -54,6 +79,19 @@ const std::map<std::string, std::vector<std::string>>& Dependencies() {
       {"tf2_msgs/msg/TFMessage",
        {"geometry_msgs/TransformStamped", "std_msgs/Header", "builtin_interfaces/Time",
         "geometry_msgs/Transform", "geometry_msgs/Vector3", "geometry_msgs/Quaternion"}},
+      {"nav_msgs/msg/OccupancyGrid",
+       {"std_msgs/Header", "builtin_interfaces/Time", "nav_msgs/MapMetaData", "geometry_msgs/Pose",
+        "geometry_msgs/Point", "geometry_msgs/Quaternion"}},
+      {"nav_msgs/msg/Path",
+       {"std_msgs/Header", "builtin_interfaces/Time", "geometry_msgs/PoseStamped",
+        "geometry_msgs/Pose", "geometry_msgs/Point", "geometry_msgs/Quaternion"}},
+      {"sensor_msgs/msg/Image", {"std_msgs/Header", "builtin_interfaces/Time"}},
+      {"visualization_msgs/msg/MarkerArray",
+       {"visualization_msgs/Marker", "std_msgs/Header", "builtin_interfaces/Time",
+        "geometry_msgs/Pose", "geometry_msgs/Point", "geometry_msgs/Quaternion",
+        "geometry_msgs/Vector3", "std_msgs/ColorRGBA", "builtin_interfaces/Duration",
+        "sensor_msgs/CompressedImage", "visualization_msgs/UVCoordinate",
+        "visualization_msgs/MeshFile"}},
   };
   return deps;
 }

@@ -48,6 +48,11 @@ struct SlamConfig {
                                          ///< real clutter occupied)
   double occupancy_reference_percentile = 99.0;  ///< reference level: this percentile of
                                                  ///< the observed map pixels
+  bool results_mcap = true;  ///< map, demo, map --resume and localize also write results.mcap
+                             ///< (slam/results_mcap.h); a mapping run then keeps the keyframe
+                             ///< poses of every solve (24 bytes per keyframe and solve)
+  double results_mcap_sar_max_pixels = 4e6;  ///< its SAR mosaic is averaged down to at most
+                                             ///< this many pixels (a 20 m x 20 m map at 1 cm)
 
   template <class V>
   void Visit(V& v) {
@@ -63,6 +68,8 @@ struct SlamConfig {
     v("navigation", navigation);
     v("occupied_fraction", occupied_fraction);
     v("occupancy_reference_percentile", occupancy_reference_percentile);
+    v("results_mcap", results_mcap);
+    v("results_mcap_sar_max_pixels", results_mcap_sar_max_pixels);
   }
 };
 /// Semantic checks of slam.* (the rules joining it to radars[] are in ValidateSystemConfig); throws

@@ -49,6 +49,8 @@ void Validate(const SlamConfig& s, const std::string& src) {
           k + "ridge_support_fraction", "must be in [0, 1]");
   Require(s.occupancy_reference_percentile > 0 && s.occupancy_reference_percentile <= 100, src,
           "slam.occupancy_reference_percentile", "must be in (0, 100]");
+  Require(s.results_mcap_sar_max_pixels >= 1, src, "slam.results_mcap_sar_max_pixels",
+          "must be >= 1");
 }
 
 namespace {

@@ -18,7 +18,11 @@ Processor::Processor(const Config& config, const LiveRunOptions& options, Dispat
   if (localize_map) {
     localize_ = std::make_unique<LocalizePipeline>(*localize_map, config, run_.input);
   } else {
-    run_.slam = std::make_shared<SlamSystem>(config);
+    // Live mode records its own bag and publishes over ROS 2; results.mcap is an offline
+    // output, and its per-solve history would grow with the hours driven.
+    Config slam_config = config;
+    slam_config.slam.results_mcap = false;
+    run_.slam = std::make_shared<SlamSystem>(slam_config);
   }
   start_ = SteadyClock::now();
 }

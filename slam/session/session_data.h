@@ -1,4 +1,4 @@
-// What a saved session holds (README "Session file"): every keyframe with its
+// What a saved session holds (docs/formats.md, "Session file"): every keyframe with its
 // poses, its detected tile (what the global map is made of) and its features per detector
 // (what place recognition matches), the pose graph's edges with their information, the
 // loop records, the odometry of each trajectory and the configuration it was made with.

@@ -1,4 +1,4 @@
-// The session file `session.uwbsar` (README "Session file"): an sqlite3 database that
+// The session file `session.uwbsar` (docs/formats.md, "Session file"): an sqlite3 database that
 // opens without uwbsar (`sqlite3 session.uwbsar .tables`). Tables: meta (format, version,
 // config YAML, config fingerprint), trajectories, keyframes (poses, tile, feature grid),
 // features (AKAZE/ORB keypoints and descriptors), edges (pose graph with information),

@@ -4,8 +4,8 @@
 // 5 mm, column 0 = x 0, row 0 = y +3 m) with the paper's enhancement (positive image, blur
 // sigma 2 px, min-max to 8 bit over the strip), and compared with it figure by figure:
 // The real strip is in the robot's odometry frame at its start; where that start lies in the
-// LiDAR map is what `uwbsar compare` measures for the real strip (ICP, README "The real map
-// against LiDAR": T_lidar_sar = (0.182 m, 0 m, 2.19 deg)). The simulated run starts there and
+// LiDAR map is what `uwbsar compare` measures for the real strip (ICP, docs/real-data.md "The real
+// map against LiDAR": T_lidar_sar = (0.182 m, 0 m, 2.19 deg)). The simulated run starts there and
 // is imaged in its own start frame, as the real one was.
 //  - wall ridges: the row of largest mean intensity (mean over all columns) in the upper
 //    and in the lower half, as y in metres;
@@ -216,7 +216,7 @@ TEST_F(SimVsReal, FiguresOfBothImages) {
   // wall/clutter 2.91, wall contrast 0.96, clutter contrast 2.32, bright 0.0012, NCC 0.488).
   // The simulated walls stay more speckled than the real ones (each 5 cm cell draws one
   // exponential RCS) and fewer pixels are bright (a few point targets and corners take
-  // the top of the 8-bit range); see README "The simulator against the real strip".
+  // the top of the 8-bit range); see docs/real-data.md.
   EXPECT_GT(sim.wall_to_clutter, 3.1);  // 3.34, real 4.80
   EXPECT_LT(sim.wall_to_clutter, real.wall_to_clutter);
   EXPECT_GT(sim.wall_contrast, real.wall_contrast);  // 0.94, real 0.55

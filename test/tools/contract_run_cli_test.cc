@@ -1,11 +1,13 @@
 // The CLI contract (issue 29) on real runs: `demo` saves its session (so `--resume` extends
 // it), one summary.json shape, localize's trajectory from the first fix, progress on every
 // long command (UWBSAR_PROGRESS=1 draws it without a terminal), -v's per-stage log, every
-// command lists what it wrote, a failed map leaves no folder it created. One demo and one
+// command lists what it wrote, a failed map leaves no folder it created, and the results.mcap
+// of map, map --resume and localize read back with the Python mcap readers. One demo and one
 // simulated bag serve every test (seconds each).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -68,7 +70,7 @@ std::string* CliContractRunTest::dir_ = nullptr;
 CliRun* CliContractRunTest::demo_ = nullptr;
 CliRun* CliContractRunTest::bag_ = nullptr;
 
-// README: demo writes every output of `map`; it wrote no session.uwbsar, so `--resume
+// README, docs/cli.md: demo writes every output of `map`; it wrote no session.uwbsar, so `--resume
 // out/demo` failed. The summary of a plain map and of a resumed one have the same shape.
 TEST_F(CliContractRunTest, DemoSavesItsSessionAndSummariesShareOneShape) {
   EXPECT_TRUE(fs::exists(*dir_ + "/demo/session.uwbsar"));
@@ -109,7 +111,8 @@ TEST_F(CliContractRunTest, LocalizeTrajectoryStartsAtTheFirstFix) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(Has(r.output, "% of ")) << r.output;                                // progress
   EXPECT_TRUE(Has(r.output, "uwbsar: debug: stage localisation: ")) << r.output;  // -v
-  EXPECT_TRUE(Has(r.output, "wrote " + out + ": trajectory.tum, localize.csv, summary.json"))
+  EXPECT_TRUE(
+      Has(r.output, "wrote " + out + ": trajectory.tum, localize.csv, results.mcap, summary.json"))
       << r.output;
   const nlohmann::json s = Json(out + "/summary.json");
   ASSERT_FALSE(s["first_fix"].is_null()) << s.dump();
@@ -179,6 +182,37 @@ TEST(CliContractMapTest, FailedMapLeavesNoFolderItCreated) {
     EXPECT_TRUE(fs::is_directory(dir + "/existing")) << bag;
   }
   fs::remove_all(dir);
+}
+
+// Foxglove / RViz users open results.mcap: checked with the independent Python `mcap` and
+// `mcap-ros2-support` readers (test/tools/check_results_mcap.py): schemas, one /map per
+// solve with the last equal to map.pgm, paths ending where the .tum files end, /tf in order.
+TEST_F(CliContractRunTest, ResultsMcapOfMapResumeAndLocalizeReadBackInPython) {
+  const char* venv = std::getenv("UWBSAR_VENV");
+  if (venv == nullptr) GTEST_SKIP() << "UWBSAR_VENV is not set (make test sets it)";
+  const std::string check =
+      std::string(venv) + "/bin/python " + UWBSAR_SOURCE_DIR + "/test/tools/check_results_mcap.py ";
+  const CliRun run = uwbsar::testing::RunCommand(check + "run " + *dir_ + "/demo");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  const CliRun resumed_map =
+      Uwbsar("map " + *dir_ + "/bag2 --resume " + *dir_ + "/demo --out " + *dir_ + "/joined");
+  ASSERT_EQ(resumed_map.exit_code, 0) << resumed_map.output;
+  EXPECT_TRUE(Has(resumed_map.output, "results.mcap")) << resumed_map.output;
+  const CliRun session = uwbsar::testing::RunCommand(check + "session " + *dir_ + "/joined");
+  EXPECT_EQ(session.exit_code, 0) << session.output;
+  const CliRun localized = Uwbsar("localize " + *dir_ + "/bag2 --map " + *dir_ + "/demo --out " +
+                                  *dir_ + "/localized_mcap");
+  ASSERT_EQ(localized.exit_code, 0) << localized.output;
+  const CliRun localize =
+      uwbsar::testing::RunCommand(check + "localize " + *dir_ + "/localized_mcap");
+  EXPECT_EQ(localize.exit_code, 0) << localize.output;
+  // slam.results_mcap: false leaves it out.
+  const std::string no_mcap = *dir_ + "/no_mcap.yaml";
+  std::ofstream(no_mcap) << "slam:\n  results_mcap: false\n";
+  const CliRun off = Uwbsar("--config " + no_mcap + " localize " + *dir_ + "/bag2 --map " + *dir_ +
+                            "/demo --out " + *dir_ + "/localized_plain");
+  ASSERT_EQ(off.exit_code, 0) << off.output;
+  EXPECT_FALSE(fs::exists(*dir_ + "/localized_plain/results.mcap"));
 }
 
 }  // namespace

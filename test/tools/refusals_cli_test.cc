@@ -1,4 +1,4 @@
-// What `uwbsar` refuses (README "What uwbsar refuses"): global options after the
+// What `uwbsar` refuses (docs/refusals.md): global options after the
 // subcommand, YAML of the wrong shape, out-of-range values, outputs that cannot be written,
 // failures that leave nothing behind, and -q that quiets every command.
 #include <gtest/gtest.h>
@@ -86,7 +86,7 @@ TEST(CliRefusalTest, OutOfRangeValuesAreRefused) {
     EXPECT_EQ(r.exit_code, 2) << duration << ": " << r.output;
   }
   EXPECT_EQ(Uwbsar("run --emulate --out " + dir + "/r --speed nan").exit_code, 2);
-  // A text-log record with trailing fields is malformed (README: text logs).
+  // A text-log record with trailing fields is malformed (docs/formats.md: text logs).
   WriteFile(dir + "/run.log", "odom 100 0 0 0\nodom 200 0.1 0 0 extra\n");
   const CliRun r = Uwbsar("image --log " + dir + "/run.log --out " + dir + "/img");
   EXPECT_EQ(r.exit_code, 3) << r.output;

@@ -296,7 +296,7 @@ ErrorStats Stats(std::vector<double> v) {
 
 // A radar scan's stamp is its acquisition time on the emulator (taken on
 // the same host clock), not its arrival: the filtered error is printed next to the raw
-// arrival's (README table), idle and, in .ci/run, under uwbsar_load.
+// arrival's (docs/live.md table), idle and, in .ci/run, under uwbsar_load.
 TEST(LiveRunTest, RadarStampsFollowTheAcquisitionTimesNotTheArrivals) {
   UWBSAR_NEED_SEED_LAB_MAP();
   Config config;

@@ -1,4 +1,4 @@
-// A saved map is never lost (README "What uwbsar refuses", the session rule), tried as a
+// A saved map is never lost (docs/refusals.md, the session rule), tried as a
 // careless user would: a resume that does not connect, a kill -9 or Ctrl-C at every step of
 // the commit, a second process on the same folder, localising into a map's folder, the same
 // recording joined twice, a plain run into a map's folder. After each, the saved map is
