@@ -85,10 +85,10 @@ TEST_F(SessionCliTest, ResumeIntoAPlainMapsFolderReplacesItsOutputsAsOneSet) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::set<std::string> names;
   for (const auto& e : fs::directory_iterator(out)) names.insert(e.path().filename().string());
-  const std::set<std::string> expected = {".uwbsar.lock",   "trajectory_0.tum", "trajectory_1.tum",
-                                          "map.png",        "map_float.tif",    "map_grid.yaml",
-                                          "map.yaml",       "map.pgm",          "graph.g2o",
-                                          "session.uwbsar", "report.html",      "summary.json"};
+  const std::set<std::string> expected = {
+      ".uwbsar.lock",  "trajectory_0.tum", "trajectory_1.tum", "map.png",   "map_float.tif",
+      "map_grid.yaml", "map.yaml",         "map.pgm",          "graph.g2o", "session.uwbsar",
+      "report.html",   "summary.json",     "results.mcap"};
   EXPECT_EQ(names, expected);
   EXPECT_EQ(Json(out + "/summary.json")["runs"].size(), 2u);
 }
