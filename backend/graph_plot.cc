@@ -6,7 +6,7 @@
 namespace uwbsar {
 
 cv::Mat PlotPoseGraph(const std::map<int, Pose2>& poses, const std::vector<PoseGraphEdge>& edges,
-                      const std::vector<EdgeReport>& reports, int size_px) {
+                      const std::vector<EdgeReport>& reports, int size_px, ImageGrid* grid) {
   double lo_x = 1e300, hi_x = -1e300, lo_y = 1e300, hi_y = -1e300;
   for (const auto& [id, p] : poses) {
     lo_x = std::min(lo_x, p.x_m);
@@ -14,7 +14,10 @@ cv::Mat PlotPoseGraph(const std::map<int, Pose2>& poses, const std::vector<PoseG
     lo_y = std::min(lo_y, p.y_m);
     hi_y = std::max(hi_y, p.y_m);
   }
-  if (poses.empty()) return cv::Mat(size_px, size_px, CV_8UC3, cv::Scalar(255, 255, 255));
+  if (poses.empty()) {
+    if (grid != nullptr) *grid = ImageGrid{0.0, 0.0, 1.0, size_px, size_px};
+    return cv::Mat(size_px, size_px, CV_8UC3, cv::Scalar(255, 255, 255));
+  }
   const int margin = 10;
   const double span = std::max({hi_x - lo_x, hi_y - lo_y, 1e-6});
   const double scale = (size_px - 2 * margin) / span;
@@ -25,21 +28,29 @@ cv::Mat PlotPoseGraph(const std::map<int, Pose2>& poses, const std::vector<PoseG
     return cv::Point(static_cast<int>(margin + (p.x_m - lo_x) * scale),
                      static_cast<int>(margin + (hi_y - p.y_m) * scale));
   };
-  // Loops first so that the trajectory stays visible on top; rejected loops last.
+  // The odometry chain first, loops above it (a loop is the thing to see), rejected loops
+  // last. Okabe-Ito blue and vermillion: told apart with the common colour-vision deficiencies.
   for (int pass = 0; pass < 3; ++pass) {
     for (std::size_t i = 0; i < edges.size(); ++i) {
       const PoseGraphEdge& e = edges[i];
       const bool rejected = i < reports.size() && reports[i].rejected;
       if (e.kind == EdgeKind::kWall) continue;  // short sideways ties along the path
-      const int wanted = e.kind == EdgeKind::kOdometry ? 1 : (rejected ? 2 : 0);
+      const int wanted = e.kind == EdgeKind::kOdometry ? 0 : (rejected ? 2 : 1);
       if (wanted != pass) continue;
       const auto a = poses.find(e.from_id), b = poses.find(e.to_id);
       if (a == poses.end() || b == poses.end()) continue;
-      const cv::Scalar colour = pass == 1   ? cv::Scalar(0, 0, 0)
-                                : pass == 2 ? cv::Scalar(0, 0, 230)
-                                            : cv::Scalar(80, 190, 80);
-      cv::line(image, pixel(a->second), pixel(b->second), colour, 1, cv::LINE_AA);
+      const cv::Scalar colour = pass == 0   ? kGraphOdometryBgr
+                                : pass == 1 ? kGraphLoopBgr
+                                            : kGraphRejectedLoopBgr;
+      cv::line(image, pixel(a->second), pixel(b->second), colour, pass == 0 ? 1 : 2, cv::LINE_AA);
     }
+  }
+  if (grid != nullptr) {
+    grid->resolution_m = 1.0 / scale;
+    grid->x0_m = lo_x - margin / scale;
+    grid->y0_m = hi_y + margin / scale;
+    grid->rows = rows;
+    grid->cols = cols;
   }
   return image;
 }

@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <opencv2/imgcodecs.hpp>
@@ -28,6 +27,7 @@
 #include "imaging/image_io.h"
 #include "slam/app_config.h"
 #include "slam/imaging_job.h"
+#include "slam/map_figure.h"
 #include "slam/map_report.h"
 #include "slam/navigation_map.h"
 #include "slam/report_html.h"
@@ -45,28 +45,13 @@ std::vector<std::pair<double, Pose2>> InSeconds(
   return out;
 }
 
-/// map.png: the mean detected map, clipped at its 99.5th percentile, colour-mapped,
-/// with the optimised trajectory (white), odometry (grey) and accepted loops (cyan).
-cv::Mat RenderMapPng(const cv::Mat& map, const cv::Mat& observed, const ImageGrid& grid,
-                     const SlamSnapshot& slam,
-                     const std::vector<std::pair<TimestampNs, Pose2>>& traj,
-                     const std::string& colormap) {
-  std::vector<float> values;
-  for (int r = 0; r < map.rows; ++r) {
-    for (int c = 0; c < map.cols; ++c) {
-      if (observed.at<unsigned char>(r, c)) values.push_back(map.at<float>(r, c));
-    }
-  }
-  float top = 1.0f;
-  if (!values.empty()) {
-    const std::size_t k = static_cast<std::size_t>(0.995 * static_cast<double>(values.size() - 1));
-    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
-    top = std::max(values[k], 1e-12f);
-  }
-  cv::Mat gray;
-  map.convertTo(gray, CV_8U, 255.0 / top);
-  cv::Mat png = Colorize(gray, colormap);
-  png.setTo(cv::Scalar(40, 40, 40), ~observed);
+/// map.png: the bare raster (ScaledMapImage) under the odometry (vermillion), the optimised
+/// trajectory (sky blue) and, above both, the accepted loops (yellow); FigurePalette's
+/// colours, so that map.png and the report's figure agree. Its pixels stay on map_grid.yaml's
+/// grid: the axes, legend and colour bar are in the report's figure only.
+cv::Mat RenderMapPng(const cv::Mat& raster, const ImageGrid& grid, const SlamSnapshot& slam,
+                     const std::vector<std::pair<TimestampNs, Pose2>>& traj) {
+  cv::Mat png = raster.clone();
   auto pixel = [&](const Pose2& p) {
     return cv::Point(static_cast<int>(std::lround(grid.XToCol(p.x_m))),
                      static_cast<int>(std::lround(grid.YToRow(p.y_m))));
@@ -74,17 +59,17 @@ cv::Mat RenderMapPng(const cv::Mat& map, const cv::Mat& observed, const ImageGri
   const auto& odom = slam.odometry;
   for (std::size_t i = 1; i < odom.size(); ++i) {
     cv::line(png, pixel(odom[i - 1].T_world_robot), pixel(odom[i].T_world_robot),
-             cv::Scalar(150, 150, 150), 1, cv::LINE_AA);
+             FigurePalette::kOdometry.bgr, 1, cv::LINE_AA);
   }
   for (std::size_t i = 1; i < traj.size(); ++i) {
-    cv::line(png, pixel(traj[i - 1].second), pixel(traj[i].second), cv::Scalar(255, 255, 255), 2,
+    cv::line(png, pixel(traj[i - 1].second), pixel(traj[i].second), FigurePalette::kSlam.bgr, 2,
              cv::LINE_AA);
   }
   const auto& poses = slam.poses;
   for (const LoopRecord& loop : slam.loops) {
     if (!loop.accepted()) continue;
     cv::line(png, pixel(poses.at(loop.match_id)), pixel(poses.at(loop.query_id)),
-             cv::Scalar(255, 255, 0), 1, cv::LINE_AA);
+             FigurePalette::kLoop.bgr, 1, cv::LINE_AA);
   }
   return png;
 }
@@ -119,13 +104,6 @@ std::string LoopsCsv(const SlamSnapshot& slam) {
         << (l.edge_index >= 0 ? Fixed(l.chi2, 3) : "") << "\n";
   }
   return csv.str();
-}
-
-std::string ReadFileBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 }  // namespace
@@ -182,6 +160,7 @@ struct MapExtent {
   ImageGrid grid;
   std::size_t blocks = 0;
   std::size_t memory_bytes = 0;
+  cv::Mat raster;  ///< map.png without its paths (for the report's figure)
 };
 
 /// The global map from the optimised keyframes: map_float.tif, map_grid.yaml, map.png, and
@@ -210,8 +189,8 @@ MapExtent WriteMapAndOccupancy(const MapState& run, const StampedPoses& trajecto
   WriteFloatTiff(staged("map_float.tif"), map);
   WriteTextAtomic(staged("map_grid.yaml"),
                   GridYaml(extent.grid, "map_float.tif and map.png", "map_float.tif"));
-  WriteImageAtomic(staged("map.png"), RenderMapPng(map, observed, extent.grid, slam, trajectory,
-                                                   config.enhance.colormap));
+  extent.raster = ScaledMapImage(map, observed, config.enhance.colormap);
+  WriteImageAtomic(staged("map.png"), RenderMapPng(extent.raster, extent.grid, slam, trajectory));
   // map.pgm is the navigation grid; the paper's intensity rule stays with `compare`, which
   // applies it to map_grid.yaml.
   WriteOccupancyGrid(staged("map.yaml"), "map.pgm", RunNavigationGrid(slam, trajectory));
@@ -320,10 +299,11 @@ MapOutputs MapOutputStage::CommitState(const MapState& run, const MapRun* exact_
                         extent.mosaic);
     names.push_back(kResultsMcapName);
   }
-  // report.html is built from the staged files, so it shows exactly what was written.
+  // report.html shows map.png's raster, framed and annotated (slam/map_figure.h).
+  const std::string figure =
+      EncodePng(MapReportFigure(run, trajectories, extent.raster, extent.grid));
   WriteTextAtomic((stage / "report.html").string(),
-                  RenderReportHtml(BuildMapReport(run, result, trajectories,
-                                                  ReadFileBytes((stage / "map.png").string()))));
+                  RenderReportHtml(BuildMapReport(run, result, trajectories, figure)));
   names.push_back("report.html");
   // ground_truth.tum is listed here so that MapOutputs::files keeps its order.
   if (!run.ground_truth.empty()) names.push_back("ground_truth.tum");

@@ -3,6 +3,9 @@
 #include <cmath>
 #include <iomanip>
 #include <sstream>
+#include <tuple>
+
+#include "slam/map_figure.h"
 
 namespace uwbsar::slam {
 namespace {
@@ -32,33 +35,33 @@ std::vector<std::pair<std::string, std::string>> ReportSummary(const MapState& r
   return summary;
 }
 
-/// Every fifth pose of `traj` as a plot point.
-std::vector<Point2> PlotPoints(const StampedPoses& traj) {
+/// Every `every`-th pose of `traj` as a plot point, and the last (where the end marker goes).
+std::vector<Point2> PlotPoints(const StampedPoses& traj, std::size_t every = 5) {
   std::vector<Point2> out;
-  for (std::size_t i = 0; i < traj.size(); i += 5) {
+  for (std::size_t i = 0; i < traj.size(); i += every) {
     out.push_back({traj[i].second.x_m, traj[i].second.y_m});
+  }
+  if (!traj.empty() && (traj.size() - 1) % every != 0) {
+    out.push_back({traj.back().second.x_m, traj.back().second.y_m});
   }
   return out;
 }
 
-ReportTable TimingTable(const MapState& run) {
-  const StageTimes& t = run.slam.times;
-  ReportTable timing{"Time per stage", {"stage", "seconds", "share"}, {}};
-  for (const auto& [name, secs] :
-       std::vector<std::pair<std::string, double>>{{"imaging", t.imaging_s},
-                                                   {"features", t.features_s},
-                                                   {"matching", t.matching_s},
-                                                   {"optimization", t.optimization_s}}) {
-    timing.rows.push_back(
-        {name, Fixed(secs, 3),
-         Fixed(run.processing_s > 0 ? 100 * secs / run.processing_s : 0, 1) + " %"});
+/// The accepted loops as segments between their keyframes' optimised poses.
+std::vector<std::pair<Point2, Point2>> AcceptedLoopSegments(const SlamSnapshot& slam) {
+  std::vector<std::pair<Point2, Point2>> out;
+  for (const LoopRecord& l : slam.loops) {
+    if (!l.accepted()) continue;
+    const Pose2& a = slam.poses.at(l.match_id);
+    const Pose2& b = slam.poses.at(l.query_id);
+    out.push_back({{a.x_m, a.y_m}, {b.x_m, b.y_m}});
   }
-  return timing;
+  return out;
 }
 
 ReportTable LoopTable(const SlamSnapshot& slam) {
   const std::vector<DetectorKind> detectors = slam.LoopDetectors();
-  ReportTable loops{"Loop candidates", {"query", "match"}, {}};
+  ReportTable loops{"Loop candidates", {"query", "match"}, {}, ""};
   for (DetectorKind d : detectors) loops.header.push_back(std::string(DetectorName(d)) + " good");
   for (const char* c : {"x (m)", "y (m)", "yaw (deg)", "validator", "backend", "reason"})
     loops.header.push_back(c);
@@ -81,6 +84,32 @@ ReportTable LoopTable(const SlamSnapshot& slam) {
 
 }  // namespace
 
+ReportTable StageTimingTable(const StageTimes& t, double wall_s, bool keyframe_thread,
+                             const std::string& title) {
+  const char* keyframe = keyframe_thread ? "keyframe" : "feeding";
+  ReportTable timing{title, {"stage", "thread", "seconds", "% of wall time"}, {}, ""};
+  auto share = [&](double secs) { return Fixed(wall_s > 0 ? 100 * secs / wall_s : 0, 1) + " %"; };
+  for (const auto& [name, thread, secs] : std::vector<std::tuple<std::string, const char*, double>>{
+           {"imaging", "feeding", t.imaging_s},
+           {"features", keyframe, t.features_s},
+           {"matching", keyframe, t.matching_s},
+           {"optimization", keyframe, t.optimization_s}}) {
+    timing.rows.push_back({name, thread, Fixed(secs, 3), share(secs)});
+  }
+  const double sum = t.imaging_s + t.features_s + t.matching_s + t.optimization_s;
+  timing.rows.push_back({"sum of the stages", "", Fixed(sum, 3), share(sum)});
+  timing.rows.push_back({"wall time (the whole run)", "", Fixed(wall_s, 3), share(wall_s)});
+  timing.note =
+      keyframe_thread
+          ? "The stages overlap: the feeding thread images scans while the keyframe thread "
+            "extracts features, matches and optimises, so their seconds may add up to more "
+            "than the wall time. Each share is that stage's seconds over the wall time, not a "
+            "part of a whole; the wall time also holds reading the log and waiting."
+          : "All stages ran on the feeding thread (slam.keyframe_thread: false), one after "
+            "another; the wall time also holds reading the log, the shares are of the wall time.";
+  return timing;
+}
+
 std::string Fixed(double v, int digits) {
   std::ostringstream out;
   out << std::fixed << std::setprecision(digits) << v;
@@ -97,29 +126,41 @@ LoopCounts CountLoops(const SlamSnapshot& slam) {
   return counts;
 }
 
+cv::Mat MapReportFigure(const MapState& run, const MapTrajectories& trajectories,
+                        const cv::Mat& map_bgr, const ImageGrid& grid) {
+  const SlamSnapshot& slam = run.slam;
+  MapFigure figure;
+  figure.map_bgr = map_bgr;
+  figure.grid = grid;
+  figure.colormap = slam.config->enhance.colormap;
+  if (!trajectories.ground_truth.empty()) {
+    figure.paths.push_back(
+        {"ground truth", FigurePalette::kGroundTruth, PlotPoints(trajectories.ground_truth, 1)});
+  }
+  figure.paths.push_back(
+      {"odometry", FigurePalette::kOdometry, PlotPoints(trajectories.odometry, 1)});
+  figure.paths.push_back({"SLAM", FigurePalette::kSlam, PlotPoints(trajectories.slam, 1)});
+  figure.loops = AcceptedLoopSegments(slam);
+  return RenderMapFigure(figure);
+}
+
 RunReport BuildMapReport(const MapState& run, const MapOutputs& outputs,
-                         const MapTrajectories& trajectories, const std::string& map_png) {
+                         const MapTrajectories& trajectories, const std::string& figure_png) {
   const SlamSnapshot& slam = run.slam;
   RunReport report;
   report.title = "uwbsar map: " + run.input;
   report.summary = ReportSummary(run, outputs);
-  report.images.push_back(
-      {"SAR map with the optimised trajectory (white), odometry (grey) and "
-       "accepted loops (cyan)",
-       map_png});
+  report.images.push_back({kMapFigureCaption, figure_png});
   if (!run.ground_truth.empty()) {
     report.trajectories.push_back(
-        {"ground truth", "#222222", PlotPoints(trajectories.ground_truth)});
+        {"ground truth", FigurePalette::kGroundTruth.css, PlotPoints(trajectories.ground_truth)});
   }
-  report.trajectories.push_back({"odometry", "#e76f51", PlotPoints(trajectories.odometry)});
-  report.trajectories.push_back({"SLAM", "#264653", PlotPoints(trajectories.slam)});
-  for (const LoopRecord& l : slam.loops) {
-    if (!l.accepted()) continue;
-    const Pose2& a = slam.poses.at(l.match_id);
-    const Pose2& b = slam.poses.at(l.query_id);
-    report.loop_segments.push_back({{a.x_m, a.y_m}, {b.x_m, b.y_m}});
-  }
-  report.tables.push_back(TimingTable(run));
+  report.trajectories.push_back(
+      {"odometry", FigurePalette::kOdometry.css, PlotPoints(trajectories.odometry)});
+  report.trajectories.push_back({"SLAM", FigurePalette::kSlam.css, PlotPoints(trajectories.slam)});
+  report.loop_segments = AcceptedLoopSegments(slam);
+  report.tables.push_back(
+      StageTimingTable(slam.times, run.processing_s, slam.config->slam.keyframe_thread));
   report.tables.push_back(LoopTable(slam));
   return report;
 }

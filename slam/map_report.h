@@ -1,7 +1,9 @@
 // report.html of `uwbsar map` (map_outputs.h): the page's content built from a captured
-// run, the trajectories and loop counts already written, and the staged map.png.
+// run, the trajectories and loop counts already written, and the annotated map figure
+// (slam/map_figure.h; docs/figures.md says what the figures show).
 #pragma once
 
+#include <opencv2/core.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,10 +32,28 @@ struct LoopCounts {
 };
 LoopCounts CountLoops(const SlamSnapshot& slam);
 
-/// The report of `state`: key figures (with `outputs`' ATEs when it has them), map.png
-/// (`map_png` holds the file's bytes), the trajectories, timing and loop tables.
+/// The caption of a report's map figure.
+inline const char* const kMapFigureCaption =
+    "The SAR map (map.png's raster, linear intensity over its 99.5th percentile) with axes in "
+    "metres, a scale bar, the colour bar, the paths with start (circle) and end (square) "
+    "markers, and accepted loops drawn above the paths (legend on the right)";
+
+/// The annotated figure of `state`'s map (slam/map_figure.h): `map_bgr` is map.png's bare
+/// raster on `grid`, under ground truth (when the run has it), odometry, SLAM and the loops.
+cv::Mat MapReportFigure(const MapState& state, const MapTrajectories& trajectories,
+                        const cv::Mat& map_bgr, const ImageGrid& grid);
+
+/// The report of `state`: key figures (with `outputs`' ATEs when it has them), the map
+/// figure (`figure_png`: MapReportFigure encoded as PNG), the trajectories, timing and loop
+/// tables.
 RunReport BuildMapReport(const MapState& state, const MapOutputs& outputs,
-                         const MapTrajectories& trajectories, const std::string& map_png);
+                         const MapTrajectories& trajectories, const std::string& figure_png);
+
+/// Seconds per stage (StageTimes) with the thread each ran on, their sum, the `wall_s` of
+/// the run and each as a share of it, with a note that the stages overlap when
+/// `keyframe_thread` put features, matching and optimisation on a thread of their own.
+ReportTable StageTimingTable(const StageTimes& times, double wall_s, bool keyframe_thread,
+                             const std::string& title = "Time per stage");
 
 /// `v` with `digits` digits after the point (as the report and loops.csv print numbers).
 std::string Fixed(double v, int digits);

@@ -6,6 +6,7 @@
 #include "backend/graph_plot.h"
 #include "core/shortest_number.h"
 #include "imaging/image_io.h"
+#include "slam/map_figure.h"
 #include "slam/output_folder.h"
 
 namespace uwbsar::slam {
@@ -56,6 +57,31 @@ std::string DegenerateSolution(const OptimizeResult& r, const BackendConfig& bac
   return why;
 }
 
+/// The pose-graph plot framed like the map figures: axes in metres of the graph's frame, a
+/// scale bar, a legend of the edge colours, and the first and last poses (by id) marked.
+/// Loops are drawn above the chain (backend/graph_plot.h).
+cv::Mat GraphFigure(const PoseGraph& graph) {
+  const std::map<int, Pose2> poses = graph.GetPoses();
+  MapFigure figure;
+  figure.map_bgr = PlotPoseGraph(poses, graph.Edges(), graph.EdgeReports(), 1000, &figure.grid);
+  figure.frame = "graph";
+  figure.colour_bar = false;
+  figure.background = cv::Scalar(255, 255, 255);
+  if (!poses.empty()) {
+    const Pose2& first = poses.begin()->second;
+    const Pose2& last = poses.rbegin()->second;
+    // The chain is in the raster; the path only marks its first and last pose (by id).
+    figure.paths.push_back({"odometry chain",
+                            {"black", kGraphOdometryBgr, "#000000"},
+                            {{first.x_m, first.y_m}, {last.x_m, last.y_m}},
+                            true,
+                            false});
+  }
+  figure.raster_legend = {{"accepted loop", kGraphLoopBgr},
+                          {"rejected loop", kGraphRejectedLoopBgr}};
+  return RenderMapFigure(figure);
+}
+
 void WriteOptimizeOutputs(const OptimizeJobOptions& options, const PoseGraph& graph) {
   if (!options.out_g2o.empty()) WriteG2o(options.out_g2o, graph, options.drop_rejected);
   if (!options.out_tum.empty()) {
@@ -63,10 +89,7 @@ void WriteOptimizeOutputs(const OptimizeJobOptions& options, const PoseGraph& gr
     for (const auto& [id, pose] : graph.GetPoses()) trajectory.push_back({id, pose});
     WriteTum(options.out_tum, trajectory);
   }
-  if (!options.out_png.empty()) {
-    WriteImageAtomic(options.out_png,
-                     PlotPoseGraph(graph.GetPoses(), graph.Edges(), graph.EdgeReports()));
-  }
+  if (!options.out_png.empty()) WriteImageAtomic(options.out_png, GraphFigure(graph));
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // report.html: one self-contained page (images inlined as base64, plots as
 // inline SVG, no scripts, no external resources) that a person opens in a
 // browser to judge a mapping run: the map, the trajectory against ground
-// truth, the loop table and the timing breakdown.
+// truth, the loop table and the timing breakdown (docs/figures.md says what each shows).
 #pragma once
 
 #include <string>
@@ -16,11 +16,12 @@ struct ReportTable {
   std::string title;
   std::vector<std::string> header;
   std::vector<std::vector<std::string>> rows;
+  std::string note;  ///< printed under the table (what the numbers do not say themselves)
 };
 
 struct ReportTrajectory {
   std::string label;
-  std::string colour;  ///< CSS colour
+  std::string colour;  ///< CSS colour (FigurePalette's, slam/map_figure.h)
   std::vector<Point2> points;
 };
 
@@ -31,6 +32,9 @@ struct RunReport {
   std::vector<ReportTrajectory> trajectories;
   std::vector<std::pair<Point2, Point2>> loop_segments;  ///< accepted loops, drawn
   std::vector<ReportTable> tables;
+  /// Parts of the page with the same content, each under its title after the tables (one
+  /// per run of a joined session).
+  std::vector<RunReport> sections;
 };
 
 /// Renders the report as HTML text.

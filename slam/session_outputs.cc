@@ -15,7 +15,9 @@
 #include "imaging/enhance.h"
 #include "imaging/image_io.h"
 #include "slam/app_config.h"
+#include "slam/map_figure.h"
 #include "slam/map_job.h"
+#include "slam/map_report.h"
 #include "slam/navigation_map.h"
 #include "slam/output_folder.h"
 #include "slam/report_html.h"
@@ -23,20 +25,11 @@
 #include "slam/session/session_file.h"
 #include "slam/session/session_merge.h"
 #include "slam/session_mosaic.h"
+#include "slam/session_report.h"
 #include "slam/slam_snapshot.h"
 
 namespace uwbsar::slam {
 namespace {
-
-/// One colour per run (BGR for map.png, CSS for report.html): white, orange, green, magenta.
-const cv::Scalar kBgr[] = {{255, 255, 255}, {0, 140, 255}, {80, 220, 80}, {255, 80, 255}};
-const char* kCss[] = {"#264653", "#e76f51", "#2a9d8f", "#9b5de5"};
-
-std::string Fixed(double v, int digits) {
-  std::ostringstream out;
-  out << std::fixed << std::setprecision(digits) << v;
-  return out.str();
-}
 
 std::vector<int> TrajectoryIds(const SessionData& s) {
   std::vector<int> ids;
@@ -44,13 +37,6 @@ std::vector<int> TrajectoryIds(const SessionData& s) {
     if (std::find(ids.begin(), ids.end(), k.trajectory) == ids.end()) ids.push_back(k.trajectory);
   }
   return ids;
-}
-
-std::string ReadBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 void Pair(const std::vector<std::pair<TimestampNs, Pose2>>& est,
@@ -91,42 +77,25 @@ cv::Point Pixel(const ImageGrid& grid, const Pose2& p) {
                    static_cast<int>(std::lround(grid.YToRow(p.y_m))));
 }
 
-/// The mosaic for map.png: scaled so that the 99.5th percentile of the observed pixels is
-/// white, coloured, unobserved pixels dark grey.
-cv::Mat MosaicPng(const cv::Mat& map, const cv::Mat& observed, const std::string& colormap) {
-  std::vector<float> values;
-  for (int r = 0; r < map.rows; ++r)
-    for (int c = 0; c < map.cols; ++c)
-      if (observed.at<unsigned char>(r, c)) values.push_back(map.at<float>(r, c));
-  float top = 1.0f;
-  if (!values.empty()) {
-    const auto k = static_cast<std::ptrdiff_t>(0.995 * static_cast<double>(values.size() - 1));
-    std::nth_element(values.begin(), values.begin() + k, values.end());
-    top = std::max(values[static_cast<std::size_t>(k)], 1e-12f);
-  }
-  cv::Mat gray;
-  map.convertTo(gray, CV_8U, 255.0 / top);
-  cv::Mat png = Colorize(gray, colormap);
-  png.setTo(cv::Scalar(40, 40, 40), ~observed);
-  return png;
-}
-
-/// Run `id` (the n-th): its trajectory drawn on `png` and into `report` in the run's
-/// colour, trajectory_<id>.tum written, ATE against its ground truth if any. Returns the
-/// run's entry of summary.json.
-nlohmann::json WriteRun(const SessionData& session, int id, std::size_t n, const ImageGrid& grid,
+/// Run `id` (the n-th): its trajectory drawn on `png` in FigurePalette::Run(n) and into
+/// `report` (the plot and the run's own section), trajectory_<id>.tum written, ATE against
+/// its ground truth if any. Returns the run's entry of summary.json.
+nlohmann::json WriteRun(const SessionData& session, const Config& config, int id, std::size_t n,
+                        const ImageGrid& grid,
                         const std::map<int, std::vector<OdometrySample>>& ground_truth,
                         const OutputPaths& path, cv::Mat* png, RunReport* report) {
   const auto traj = CorrectedTrajectory(session, id);
+  const FigureColour& colour = FigurePalette::Run(n);
   for (std::size_t i = 1; i < traj.size(); ++i) {
-    cv::line(*png, Pixel(grid, traj[i - 1].second), Pixel(grid, traj[i].second), kBgr[n % 4], 2,
+    cv::line(*png, Pixel(grid, traj[i - 1].second), Pixel(grid, traj[i].second), colour.bgr, 2,
              cv::LINE_AA);
   }
   std::vector<std::pair<double, Pose2>> tum;
   std::vector<Point2> points;
   for (std::size_t i = 0; i < traj.size(); ++i) {
     tum.push_back({NsToSeconds(traj[i].first), traj[i].second});
-    if (i % 5 == 0) points.push_back({traj[i].second.x_m, traj[i].second.y_m});
+    if (i % 5 == 0 || i + 1 == traj.size())
+      points.push_back({traj[i].second.x_m, traj[i].second.y_m});
   }
   const std::string name = "trajectory_" + std::to_string(id) + ".tum";
   WriteTum(path(name), tum);
@@ -136,31 +105,17 @@ nlohmann::json WriteRun(const SessionData& session, int id, std::size_t n, const
   int keyframes = 0;
   for (const SessionKeyframe& k : session.keyframes) keyframes += k.trajectory == id;
   nlohmann::json rj = {{"id", id}, {"input", input}, {"keyframes", keyframes}, {"tum", name}};
-  report->trajectories.push_back({"run " + std::to_string(id), kCss[n % 4], points});
+  report->trajectories.push_back({"run " + std::to_string(id), colour.css, points});
+  AteResult ate;
   auto gt = ground_truth.find(id);
   if (gt != ground_truth.end()) {
-    const AteResult ate = TrajectoryError(traj, gt->second);
+    ate = TrajectoryError(traj, gt->second);
     rj["ate"] = AteJson(ate);
     report->summary.push_back({"ATE RMSE run " + std::to_string(id) + " (own alignment)",
                                Fixed(ate.rmse_m * 100, 2) + " cm"});
   }
+  report->sections.push_back(SessionRunSection(session, config, id, ate));
   return rj;
-}
-
-/// The accepted loops between placed keyframes, drawn cyan on `png` and into `report`;
-/// returns their number.
-int DrawAcceptedLoops(const SessionData& session, const std::map<int, Pose2>& poses,
-                      const ImageGrid& grid, cv::Mat* png, RunReport* report) {
-  int accepted = 0;
-  for (const SessionLoop& l : session.loops) {
-    if (!l.accepted || !poses.count(l.match_id) || !poses.count(l.query_id)) continue;
-    ++accepted;
-    const Pose2& a = poses.at(l.match_id);
-    const Pose2& b = poses.at(l.query_id);
-    cv::line(*png, Pixel(grid, a), Pixel(grid, b), cv::Scalar(255, 255, 0), 1, cv::LINE_AA);
-    report->loop_segments.push_back({{a.x_m, a.y_m}, {b.x_m, b.y_m}});
-  }
-  return accepted;
 }
 
 }  // namespace
@@ -213,7 +168,8 @@ AteResult CommonFrameError(const SessionData& session,
 SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& config,
                                    const std::string& out_dir,
                                    const std::map<int, std::vector<OdometrySample>>& ground_truth,
-                                   const nlohmann::json& extra, const std::string& title) {
+                                   const nlohmann::json& extra, const std::string& title,
+                                   const std::vector<ReportTable>& timing) {
   EnsureDirectory(out_dir);
   SessionOutputs result;
   const OutputPaths path{out_dir, &result.files};
@@ -225,16 +181,23 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
   WriteTextAtomic(path("map_grid.yaml"),
                   GridYaml(grid, "map_float.tif and map.png", "map_float.tif", "map"));
 
-  // map.png: the mosaic, each run's corrected trajectory in its colour, accepted loops cyan.
-  cv::Mat png = MosaicPng(map, observed, config.enhance.colormap);
+  // map.png: the mosaic, each run's corrected trajectory in its colour, accepted loops above.
+  const cv::Mat raster = ScaledMapImage(map, observed, config.enhance.colormap);
+  cv::Mat png = raster.clone();
   RunReport report;
   report.title = title;
   const std::vector<int> runs = TrajectoryIds(session);
   nlohmann::json runs_json = nlohmann::json::array();
   for (std::size_t n = 0; n < runs.size(); ++n) {
-    runs_json.push_back(WriteRun(session, runs[n], n, grid, ground_truth, path, &png, &report));
+    runs_json.push_back(
+        WriteRun(session, config, runs[n], n, grid, ground_truth, path, &png, &report));
   }
-  const int accepted = DrawAcceptedLoops(session, poses, grid, &png, &report);
+  report.loop_segments = SessionLoopSegments(session);
+  const int accepted = static_cast<int>(report.loop_segments.size());
+  for (const auto& [a, b] : report.loop_segments) {
+    cv::line(png, Pixel(grid, {a.x_m, a.y_m, 0.0}), Pixel(grid, {b.x_m, b.y_m, 0.0}),
+             FigurePalette::kLoop.bgr, 1, cv::LINE_AA);
+  }
   WriteImageAtomic(path("map.png"), png);
   const OccupancyGrid navigation = SessionNavigationGrid(session, config);
   WriteOccupancyGrid(path("map.yaml"), "map.pgm", navigation);
@@ -269,9 +232,18 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
                          {"keyframes", std::to_string(session.keyframes.size())},
                          {"loops accepted", std::to_string(accepted)}});
   report.images.push_back(
-      {"SAR map with each run's trajectory (white, orange, green, magenta) and "
-       "accepted loops (cyan)",
-       ReadBytes(out_dir + "/map.png")});
+      {std::string("All runs in the map frame, each in its colour. ") + kMapFigureCaption,
+       EncodePng(SessionFigure(session, config, raster, grid))});
+  report.tables = timing;
+  if (report.tables.empty()) {
+    report.tables.push_back({"Time", {"what", "seconds"}, {}, "No timings were recorded."});
+  }
+  report.tables.back().note +=
+      (report.tables.back().note.empty() ? "" : " ") +
+      std::string(
+          "Runs joined by earlier commands were timed there: their own report.html "
+          "holds their stage times.");
+  report.tables.push_back(SessionLoopTable(session));
   WriteTextAtomic(path("report.html"), RenderReportHtml(report));
   WriteTextAtomic(path("summary.json"), s.dump(2) + "\n");
   return result;
@@ -280,10 +252,11 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
 SessionOutputs CommitSessionOutputs(MapOutputStage* stage, const SessionData& session,
                                     const Config& config,
                                     const std::map<int, std::vector<OdometrySample>>& ground_truth,
-                                    const nlohmann::json& extra, const std::string& title) {
+                                    const nlohmann::json& extra, const std::string& title,
+                                    const std::vector<ReportTable>& timing) {
   SessionOutputs out;
   out.files = stage->CommitWritten([&](const std::string& dir) {
-    out = WriteSessionOutputs(session, config, dir, ground_truth, extra, title);
+    out = WriteSessionOutputs(session, config, dir, ground_truth, extra, title, timing);
     std::vector<std::string> names;
     for (const std::string& f : out.files) {
       names.push_back(std::filesystem::path(f).filename().string());

@@ -1,8 +1,10 @@
 // The outputs of a session with several runs in one map frame (`uwbsar map --resume`,
 // `uwbsar merge`): map.png (the mosaic with each run's trajectory in its own colour and the
 // accepted loops), map_float.tif + map_grid.yaml, map.pgm + map.yaml, trajectory_<run>.tum
-// per run (in the map frame), graph.g2o, session.uwbsar, report.html and summary.json
-// (last). Every file is written to a temporary name and renamed.
+// per run (in the map frame), graph.g2o, session.uwbsar, report.html (as full as a plain
+// map's: the annotated figures, the timings, the loop table and one section per run with
+// its own figure; slam/session_report.h) and summary.json (last). Every file is written to
+// a temporary name and renamed.
 #pragma once
 
 #include <map>
@@ -14,6 +16,7 @@
 #include "core/types.h"
 #include "slam/app_config.h"
 #include "slam/map_outputs.h"
+#include "slam/report_html.h"
 #include "slam/session/session_data.h"
 #include "slam/session/session_merge.h"
 
@@ -27,11 +30,14 @@ struct SessionOutputs {
 /// Writes the outputs of `session` into `out_dir` (created when missing). `ground_truth`
 /// (optional) by trajectory id: that run's ATE goes into the summary, and the ATE of all
 /// runs together after one common alignment ("ate_common"). `extra` is merged into
-/// summary.json (e.g. the merge report).
+/// summary.json (e.g. the merge report). `title` heads report.html; `timing`: the tables of
+/// what this command timed (StageTimingTable of a resumed run, the merge), shown before the
+/// loop table.
 SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& config,
                                    const std::string& out_dir,
                                    const std::map<int, std::vector<OdometrySample>>& ground_truth,
-                                   const nlohmann::json& extra, const std::string& title);
+                                   const nlohmann::json& extra, const std::string& title,
+                                   const std::vector<ReportTable>& timing = {});
 
 /// WriteSessionOutputs into `stage`'s staging folder, committed into its DIR as one set
 /// (slam/map_outputs.h MapOutputStage::CommitWritten): a failure leaves DIR as it was.
@@ -39,7 +45,8 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
 SessionOutputs CommitSessionOutputs(MapOutputStage* stage, const SessionData& session,
                                     const Config& config,
                                     const std::map<int, std::vector<OdometrySample>>& ground_truth,
-                                    const nlohmann::json& extra, const std::string& title);
+                                    const nlohmann::json& extra, const std::string& title,
+                                    const std::vector<ReportTable>& timing = {});
 
 /// The ATE of several runs after one SE(2) alignment of all of them together (the common
 /// frame), pairing poses by nearest stamp per run as TrajectoryError does.

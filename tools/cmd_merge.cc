@@ -1,9 +1,11 @@
 // `uwbsar merge SESSION_A SESSION_B --out DIR`: two sessions of the same building joined by
 // loops found between them (slam/session/session_merge.h), written as one map.
+#include <chrono>
 #include <cstdio>
 
 #include "core/errors.h"
 #include "slam/app_config.h"
+#include "slam/map_report.h"
 #include "slam/progress.h"
 #include "slam/saved_session.h"
 #include "slam/session/session_file.h"
@@ -42,6 +44,7 @@ void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
     const SessionData& b = saved_b.data;
     MergeReport report;
     SessionData merged;
+    const auto merge_start = std::chrono::steady_clock::now();
     {
       slam::ProgressBar bar(!globals.quiet, "of the second session's keyframes matched");
       merged = MergeSessions(a, b, config, &report, [&bar](double f) { bar.Update(f); });
@@ -49,12 +52,21 @@ void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
     if (!report.connected) {
       throw InputError(opts->b + " cannot be merged into " + opts->a + ": " + report.reason);
     }
+    const double merge_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - merge_start).count();
     nlohmann::json extra;
     extra["input"] = opts->a + " + " + opts->b;
     extra["inputs"] = {opts->a, opts->b};
     extra["merge"] = slam::MergeReportJson(report);
+    const std::vector<slam::ReportTable> timing = {
+        {"Time to merge",
+         {"step", "seconds"},
+         {{"matching the second session to the first, placing it and optimising the joined "
+           "graph",
+           slam::Fixed(merge_s, 3)}},
+         ""}};
     const slam::SessionOutputs outputs = slam::CommitSessionOutputs(
-        &stage, merged, config, {}, extra, "uwbsar merge: " + opts->a + " + " + opts->b);
+        &stage, merged, config, {}, extra, "uwbsar merge: " + opts->a + " + " + opts->b, timing);
     if (globals.quiet) return;
     std::printf(
         "merged: %zu + %zu keyframes, %d loops between the sessions (%d rejected by the "

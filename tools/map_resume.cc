@@ -1,10 +1,12 @@
 #include "tools/map_resume.h"
 
+#include <chrono>
 #include <cstdio>
 
 #include "core/errors.h"
 #include "slam/app_config.h"
 #include "slam/map_outputs.h"
+#include "slam/map_report.h"
 #include "slam/session/session_file.h"
 #include "slam/session/session_merge.h"
 #include "slam/session_capture.h"
@@ -28,7 +30,10 @@ void WriteResumedMap(const slam::SavedSession& saved, const slam::MapRun& run,
                      const GlobalOptions& globals) {
   const Config& config = run.slam->config();
   MergeReport report;
+  const auto join_start = std::chrono::steady_clock::now();
   const SessionData merged = MergeSessions(saved.data, slam::CaptureSession(run), config, &report);
+  const double join_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - join_start).count();
   if (!report.connected) {
     throw InputError(run.input + ": does not connect to the saved map " + saved.path + " (" +
                      report.reason + "); nothing written. Map it on its own: uwbsar map " +
@@ -40,9 +45,19 @@ void WriteResumedMap(const slam::SavedSession& saved, const slam::MapRun& run,
   extra["input"] = run.input;
   extra["processing_s"] = run.processing_s;
   extra["merge"] = slam::MergeReportJson(report);
+  // The report times what this command did: the new run's stages, then the join.
+  const std::vector<slam::ReportTable> timing = {
+      slam::StageTimingTable(run.slam->times(), run.processing_s, config.slam.keyframe_thread,
+                             "Time per stage of run " + std::to_string(report.trajectory_offset) +
+                                 " (mapped by this command)"),
+      {"Time to join the saved map",
+       {"step", "seconds"},
+       {{"matching the run to the saved map, placing it and optimising the joined graph",
+         slam::Fixed(join_s, 3)}},
+       ""}};
   // Staged and committed as one set, like the plain map's outputs.
   const slam::SessionOutputs outputs = slam::CommitSessionOutputs(
-      stage, merged, config, ground_truth, extra, "uwbsar map --resume: " + run.input);
+      stage, merged, config, ground_truth, extra, "uwbsar map --resume: " + run.input, timing);
   if (globals.quiet) return;
   std::printf("mapped %.1f s of log in %.2f s: %zu keyframes\n", run.log_duration_s(),
               run.processing_s, run.slam->keyframes().size());

@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
@@ -24,6 +25,17 @@ using testing::Json;
 using testing::Lines;
 using testing::SessionCliTest;
 using testing::Uwbsar;
+
+std::string Text(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+std::size_t Occurrences(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
 
 TEST_F(SessionCliTest, MapWritesAnSqliteSession) {
   const std::string path = Map("a") + "/session.uwbsar";
@@ -47,6 +59,15 @@ TEST_F(SessionCliTest, ResumeJoinsTheRevisitAsASecondRun) {
                         "session.uwbsar", "map_grid.yaml", "map.yaml", "graph.g2o"}) {
     EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
   }
+  // The report is as full as a plain map's: this run's stage times, the loop table, and a
+  // section per run, the saved map's run 0 with its own figure too.
+  const std::string html = Text(out + "/report.html");
+  for (const char* part :
+       {"<h2>Time per stage of run 1 (mapped by this command)</h2>", "The stages overlap",
+        "<h2>Loop candidates</h2>", "<h2>Run 0: ", "<h2>Run 1: "}) {
+    EXPECT_NE(html.find(part), std::string::npos) << part;
+  }
+  EXPECT_EQ(Occurrences(html, "data:image/png;base64,"), 3u);  // all runs, run 0, run 1
   // The joined session reads back: a revisit localises in it.
   const CliRun again =
       Uwbsar("localize " + Bag("b") + " --map " + out + " --out " + *dir_ + "/again");
@@ -83,6 +104,18 @@ TEST_F(SessionCliTest, LocalizePlacesTheRevisitWithoutChangingTheMap) {
   EXPECT_TRUE(fs::exists(out + "/localize.csv"));
   EXPECT_TRUE(fs::exists(out + "/trajectory.tum"));
   EXPECT_EQ(fs::last_write_time(Map("a") + "/session.uwbsar"), before);
+}
+
+TEST_F(SessionCliTest, MergeReportHasTheMergeTimeTheLoopTableAndEachRun) {
+  const std::string out = *dir_ + "/m_ab";
+  const CliRun r = Uwbsar("-q merge " + Map("a") + " " + Map("b") + " --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string html = Text(out + "/report.html");
+  for (const char* part : {"<h2>Time to merge</h2>", "their own report.html",
+                           "<h2>Loop candidates</h2>", "<h2>Run 0: ", "<h2>Run 1: "}) {
+    EXPECT_NE(html.find(part), std::string::npos) << part;
+  }
+  EXPECT_EQ(Occurrences(html, "data:image/png;base64,"), 3u);
 }
 
 TEST_F(SessionCliTest, MergeRefusesSessionsThatNoLoopConnects) {
