@@ -244,6 +244,13 @@ nlohmann::json SummaryJson(const MapState& run, const MapOutputs& outputs,
                        {"termination", opt.termination},
                        {"iterations", opt.iterations},
                        {"final_cost", opt.final_cost}};
+  // The base calibration the run applied (`uwbsar calibrate`; all 0: uncalibrated), so that a
+  // figure says whether it was calibrated.
+  const BackendConfig& backend = slam.config->backend;
+  s["odometry_calibration"] = {
+      {"scale", backend.calibration_scale_mean},
+      {"heading_drift_rad_per_m", backend.calibration_heading_drift_mean_rad_per_m},
+      {"rotation", backend.calibration_rotation_mean}};
   s["map"] = {{"resolution_m", extent.grid.resolution_m},
               {"rows", extent.grid.rows},
               {"cols", extent.grid.cols},

@@ -82,6 +82,7 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
         "give another --out, --resume " + opts->out_dir +
             " to extend it, or --overwrite to "
             "replace it");
+    PrintOdometryCalibration(config, globals);
     rosbag::BagReadOptions read_options;
     read_options.skip_damaged_chunks = opts->skip_damaged;
     slam::MapRun run = slam::MapBag(config, opts->bag, !globals.quiet, read_options);

@@ -102,6 +102,7 @@ void PrintRunResult(const slam::LiveRunResult& result, const std::string& out_di
 
 void Run(const RunOptions& opts, const GlobalOptions& globals) {
   Config config = LoadConfigFor(globals);
+  PrintOdometryCalibration(config, globals);
   // SIGINT/SIGTERM finish the run cleanly (core/interrupt_cleanup.h's watcher calls this;
   // the plain handler serves callers that did not install the watcher).
   SetInterruptHandler([] { g_stop = true; });

@@ -78,6 +78,24 @@ void PrintWrittenFolder(const std::string& dir, const std::vector<std::string>& 
   std::printf("wrote %s: %s\n", dir.c_str(), names.c_str());
 }
 
+void PrintOdometryCalibration(const Config& config, const GlobalOptions& globals) {
+  if (globals.quiet) return;
+  const BackendConfig& b = config.backend;
+  if (b.calibration_scale_mean == 0.0 && b.calibration_heading_drift_mean_rad_per_m == 0.0 &&
+      b.calibration_rotation_mean == 0.0) {
+    std::printf(
+        "odometry calibration: none (the base's measured one, from `uwbsar calibrate` on a run "
+        "with ground truth, is given with --config)\n");
+    return;
+  }
+  std::printf(
+      "odometry calibration: distance scale %+.3f %%, heading drift %+.5f rad/m, rotation scale "
+      "%+.3f %% (backend.calibration_*_mean)%s\n",
+      100.0 * b.calibration_scale_mean, b.calibration_heading_drift_mean_rad_per_m,
+      100.0 * b.calibration_rotation_mean,
+      b.odometry_calibration ? ", refined while loops constrain it" : "");
+}
+
 void AddConfigCommand(CLI::App& app, const GlobalOptions& globals) {
   CLI::App* cmd = app.add_subcommand("config", "Print the effective configuration as YAML");
   cmd->callback([&globals] { std::cout << ConfigToYaml(LoadConfigFor(globals)) << "\n"; });

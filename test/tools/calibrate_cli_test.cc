@@ -1,6 +1,6 @@
 // `uwbsar calibrate` as a user meets it: a simulated run with ground truth gives the simulated
 // base's distance scale and a configuration file that loads; a bag without ground truth, or
-// with too little of it, is refused with one line.
+// with too little of it, is refused with one line; `map` says which calibration it applies.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "test/cli_runner.h"
@@ -58,6 +59,26 @@ TEST_F(CalibrateCliTest, ASimulatedRunGivesTheBasesScaleAndAConfigurationThatLoa
   EXPECT_NEAR(ValueAfter(loaded.output, "calibration_scale_mean:"), scale, 1e-5);
   EXPECT_GT(ValueAfter(loaded.output, "calibration_scale_sigma:"), 0.0009);
   EXPECT_LT(ValueAfter(loaded.output, "calibration_scale_sigma:"), 0.02);
+}
+
+// Issue 32: `map` says which calibration it applies, and summary.json records it.
+TEST_F(CalibrateCliTest, MapSaysWhichCalibrationItApplies) {
+  const std::string calibration = dir_ + "/calibration_for_map.yaml";
+  ASSERT_EQ(Uwbsar("-q calibrate " + dir_ + "/bag --out " + calibration).exit_code, 0);
+  const CliRun plain = Uwbsar("map " + dir_ + "/bag --out " + dir_ + "/plain");
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_NE(plain.output.find("odometry calibration: none"), std::string::npos) << plain.output;
+  const CliRun calibrated =
+      Uwbsar("--config " + calibration + " map " + dir_ + "/bag --out " + dir_ + "/calibrated");
+  ASSERT_EQ(calibrated.exit_code, 0) << calibrated.output;
+  const double scale_percent =
+      ValueAfter(calibrated.output, "odometry calibration: distance scale");
+  EXPECT_NEAR(scale_percent, 100.0 * (1.0 / 1.005 - 1.0), 0.15) << calibrated.output;
+  std::ifstream summary_file(dir_ + "/calibrated/summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(summary_file);
+  EXPECT_NEAR(summary["odometry_calibration"]["scale"].get<double>(), scale_percent / 100.0, 1e-5);
+  std::ifstream plain_file(dir_ + "/plain/summary.json");
+  EXPECT_EQ(nlohmann::json::parse(plain_file)["odometry_calibration"]["scale"].get<double>(), 0.0);
 }
 
 TEST_F(CalibrateCliTest, NoGroundTruthOrTooLittleIsRefusedWithOneLine) {
