@@ -46,7 +46,7 @@ struct SessionConfig {
   /// session.uwbsar holds each keyframe's tile as float32 (true: lossless, about 630 KiB per
   /// keyframe) or in 1023 linear levels of the tile's maximum (false: about 90 KiB; the
   /// error is at most half a level, 0.26 % of the demo's reference level, and the observed
-  /// pixels are kept: session/blob_codec.h EncodeTile).
+  /// pixels are kept: slam/session/blob_codec.h EncodeTile).
   bool lossless_tiles = false;
 
   template <class V>

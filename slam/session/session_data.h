@@ -25,7 +25,7 @@ namespace uwbsar {
 /// 3: trajectories keep their recording's fingerprint; 1 and 2 still read (fingerprint "").
 /// 4: loops keep their good-match counts per detector (loop_matches table) instead of the
 /// akaze_good and orb_good columns, which versions 1 to 3 still read as AKAZE and ORB counts.
-/// 5: a tile may be compact (session/blob_codec.h EncodeTile); 1 to 4 still read (float32).
+/// 5: a tile may be compact (slam/session/blob_codec.h EncodeTile); 1 to 4 still read (float32).
 constexpr int kSessionFormatVersion = 5;
 
 struct SessionKeyframe {
