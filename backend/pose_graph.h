@@ -31,7 +31,8 @@
 // Odometry edges are never rejected. With odometry_calibration, the odometry edges of each
 // trajectory (AddOdometryEdge's `trajectory`) share a calibration block
 // (backend/odometry_calibration.h) with a weak prior at zero; it is free only while an
-// accepted loop or wall edge touches the trajectory, and constant at zero otherwise. The gauge is
+// accepted loop touches the trajectory, and constant at the prior's mean otherwise (wall edges
+// alone do not free it: they see the heading drift, never the turns' scale). The gauge is
 // held by the nodes marked fixed, or by the first node added when none is.
 //
 // Incremental use: the Ceres problem lives as long as the graph; AddNode/AddEdge
@@ -68,8 +69,11 @@ namespace uwbsar {
 /// kWall: the sideways offset between two keyframes of one straight stretch, measured by their
 /// wall profiles (frontend/wall_profile.h); its information constrains (almost) only that
 /// direction. It is robust and rejected by its chi2 like a loop, but never held back for
-/// support, never counted or blamed as a loop, and it frees its trajectory's odometry
-/// calibration as a loop does (it observes the heading drift between loops).
+/// support, never counted or blamed as a loop. It does not free its trajectory's odometry
+/// calibration: it observes the heading drift on straight stretches but not the turns' scale,
+/// which only a loop ties to it (freed by wall edges alone, the drift was corrected and the
+/// turns' error kept, and a loop-less lap moved away from the truth). Once a loop has freed
+/// the calibration, it measures the drift between the loops.
 enum class EdgeKind { kOdometry, kLoop, kWall };
 
 /// "odometry", "loop", "wall": the names the session file and the reports use.
