@@ -35,18 +35,6 @@ std::vector<std::pair<std::string, std::string>> ReportSummary(const MapState& r
   return summary;
 }
 
-/// Every `every`-th pose of `traj` as a plot point, and the last (where the end marker goes).
-std::vector<Point2> PlotPoints(const StampedPoses& traj, std::size_t every = 5) {
-  std::vector<Point2> out;
-  for (std::size_t i = 0; i < traj.size(); i += every) {
-    out.push_back({traj[i].second.x_m, traj[i].second.y_m});
-  }
-  if (!traj.empty() && (traj.size() - 1) % every != 0) {
-    out.push_back({traj.back().second.x_m, traj.back().second.y_m});
-  }
-  return out;
-}
-
 /// The accepted loops as segments between their keyframes' optimised poses.
 std::vector<std::pair<Point2, Point2>> AcceptedLoopSegments(const SlamSnapshot& slam) {
   std::vector<std::pair<Point2, Point2>> out;
@@ -83,6 +71,17 @@ ReportTable LoopTable(const SlamSnapshot& slam) {
 }
 
 }  // namespace
+
+std::vector<Point2> PlotPoints(const StampedPoses& traj, std::size_t every) {
+  std::vector<Point2> out;
+  for (std::size_t i = 0; i < traj.size(); i += every) {
+    out.push_back({traj[i].second.x_m, traj[i].second.y_m});
+  }
+  if (!traj.empty() && (traj.size() - 1) % every != 0) {
+    out.push_back({traj.back().second.x_m, traj.back().second.y_m});
+  }
+  return out;
+}
 
 ReportTable StageTimingTable(const StageTimes& t, double wall_s, bool keyframe_thread,
                              const std::string& title) {

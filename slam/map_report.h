@@ -55,6 +55,10 @@ RunReport BuildMapReport(const MapState& state, const MapOutputs& outputs,
 ReportTable StageTimingTable(const StageTimes& times, double wall_s, bool keyframe_thread,
                              const std::string& title = "Time per stage");
 
+/// Every `every`-th pose of `traj` as a plot point, and the last (where the end marker goes).
+std::vector<Point2> PlotPoints(const std::vector<std::pair<TimestampNs, Pose2>>& traj,
+                               std::size_t every = 5);
+
 /// `v` with `digits` digits after the point (as the report and loops.csv print numbers).
 std::string Fixed(double v, int digits);
 

@@ -24,19 +24,6 @@ int RunOf(const SessionData& s, int keyframe) {
   return k == nullptr ? -1 : k->trajectory;
 }
 
-/// Every `every`-th point of a trajectory, and its last (where the end marker goes).
-std::vector<Point2> Points(const std::vector<std::pair<TimestampNs, Pose2>>& traj,
-                           std::size_t every) {
-  std::vector<Point2> out;
-  for (std::size_t i = 0; i < traj.size(); i += every) {
-    out.push_back({traj[i].second.x_m, traj[i].second.y_m});
-  }
-  if (!traj.empty() && (traj.size() - 1) % every != 0) {
-    out.push_back({traj.back().second.x_m, traj.back().second.y_m});
-  }
-  return out;
-}
-
 /// Run `run`'s odometry in the map frame, placed where its first keyframe was optimised to:
 /// how far the uncorrected odometry drifts from the corrected path.
 std::vector<std::pair<TimestampNs, Pose2>> PlacedOdometry(const SessionData& s, int run) {
@@ -113,7 +100,7 @@ cv::Mat SessionFigure(const SessionData& session, const Config& config, const cv
   const std::vector<int> runs = RunIds(session);
   for (std::size_t n = 0; n < runs.size(); ++n) {
     figure.paths.push_back({"run " + std::to_string(runs[n]), FigurePalette::Run(n),
-                            Points(CorrectedTrajectory(session, runs[n]), 1)});
+                            PlotPoints(CorrectedTrajectory(session, runs[n]), 1)});
   }
   figure.loops = SessionLoopSegments(session);
   return RenderMapFigure(figure);
@@ -155,17 +142,18 @@ RunReport SessionRunSection(const SessionData& session, const Config& config, in
     figure.grid = grid;
     figure.frame = "map";
     figure.colormap = config.enhance.colormap;
-    figure.paths.push_back(
-        {"odometry (placed at its first keyframe)", FigurePalette::kOdometry, Points(odometry, 1)});
-    figure.paths.push_back({"SLAM", FigurePalette::kSlam, Points(corrected, 1)});
+    figure.paths.push_back({"odometry (placed at its first keyframe)", FigurePalette::kOdometry,
+                            PlotPoints(odometry, 1)});
+    figure.paths.push_back({"SLAM", FigurePalette::kSlam, PlotPoints(corrected, 1)});
     figure.loops = section.loop_segments;
     figure.loop_label = "accepted loop within the run";
     section.images.push_back({"Run " + std::to_string(run) + ": the map of its own keyframes (" +
                                   kMapFigureCaption + ")",
                               EncodePng(RenderMapFigure(figure))});
   }
-  section.trajectories.push_back({"odometry", FigurePalette::kOdometry.css, Points(odometry, 5)});
-  section.trajectories.push_back({"SLAM", FigurePalette::kSlam.css, Points(corrected, 5)});
+  section.trajectories.push_back(
+      {"odometry", FigurePalette::kOdometry.css, PlotPoints(odometry, 5)});
+  section.trajectories.push_back({"SLAM", FigurePalette::kSlam.css, PlotPoints(corrected, 5)});
   return section;
 }
 
