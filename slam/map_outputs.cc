@@ -302,9 +302,17 @@ MapOutputs MapOutputStage::CommitState(const MapState& run, const MapRun* exact_
   const MapExtent extent = WriteMapAndOccupancy(run, trajectories.slam, stage, &names);
   result.summary = SummaryJson(run, result, extent);
   if (run.slam.config->slam.results_mcap) {
+    const auto mcap_start = std::chrono::steady_clock::now();
     WriteRunResultsMcap((stage / kResultsMcapName).string(), run.slam, run.ground_truth,
                         extent.mosaic);
     names.push_back(kResultsMcapName);
+    Log(LogLevel::kDebug,
+        "stage results.mcap: " +
+            ShortestNumber(RoundToDigits(
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - mcap_start)
+                    .count(),
+                3)) +
+            " s, " + std::to_string(run.slam.solves.size()) + " solves");
   }
   // report.html shows map.png's raster, framed and annotated (slam/map_figure.h).
   const std::string figure =

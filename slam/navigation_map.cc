@@ -21,16 +21,23 @@ double ProfileHalfWidth(const NavigationKeyframe& k, const std::vector<SensorGeo
   return reach + far + 0.1;
 }
 
-OccupancyGrid Build(std::vector<NavigationKeyframe>* keyframes, const std::vector<Pose2>& path,
-                    const std::vector<SensorGeometry>& sensors, const Config& config) {
-  const NavigationGridConfig& nav = config.slam.navigation;
-  if (nav.wall_ridges) {
-    for (NavigationKeyframe& k : *keyframes) k.ridges = KeyframeWallRidges(k, sensors, nav);
+/// The wall ridges of every keyframe (slam.navigation.wall_ridges): they depend on the tile and
+/// the robot's poses in its anchor frame only, not on where the keyframe is placed.
+void AddWallRidges(std::vector<NavigationKeyframe>* keyframes,
+                   const std::vector<SensorGeometry>& sensors, const Config& config) {
+  if (!config.slam.navigation.wall_ridges) return;
+  for (NavigationKeyframe& k : *keyframes) {
+    k.ridges = KeyframeWallRidges(k, sensors, config.slam.navigation);
   }
-  const float reference =
-      TileReferenceLevel(*keyframes, config.slam.occupancy_reference_percentile);
-  return BuildNavigationGrid(*keyframes, path, sensors, nav, config.slam.occupancy_resolution_m,
-                             reference, config.limits.max_image_pixels);
+}
+
+OccupancyGrid Build(const std::vector<NavigationKeyframe>& keyframes,
+                    const std::vector<Pose2>& path, const std::vector<SensorGeometry>& sensors,
+                    const Config& config) {
+  const float reference = TileReferenceLevel(keyframes, config.slam.occupancy_reference_percentile);
+  return BuildNavigationGrid(keyframes, path, sensors, config.slam.navigation,
+                             config.slam.occupancy_resolution_m, reference,
+                             config.limits.max_image_pixels);
 }
 
 }  // namespace
@@ -94,16 +101,14 @@ std::vector<WallRidge> KeyframeWallRidges(const NavigationKeyframe& k,
   return ridges;
 }
 
-OccupancyGrid RunNavigationGrid(const SlamSnapshot& slam,
-                                const std::vector<std::pair<TimestampNs, Pose2>>& corrected) {
+RunNavigationInputs GatherRunNavigationInputs(const SlamSnapshot& slam) {
   const auto& odometry = slam.odometry;
-  std::vector<NavigationKeyframe> keyframes;
+  RunNavigationInputs inputs;
   for (const TileSnapshot& t : slam.tiles) {
     if (!t.has_scans || t.detected.empty()) continue;
     NavigationKeyframe k;
     k.detected = &t.detected;
     k.grid = t.detected_grid;
-    k.T_map_anchor = slam.poses.at(t.id);
     const Pose2 T_anchor_world = t.T_world_anchor.Inverse();
     auto it = std::lower_bound(
         odometry.begin(), odometry.end(), t.first_scan_ns,
@@ -111,11 +116,30 @@ OccupancyGrid RunNavigationGrid(const SlamSnapshot& slam,
     for (; it != odometry.end() && it->stamp_ns <= t.last_scan_ns; ++it) {
       k.T_anchor_robot.push_back(T_anchor_world * it->T_world_robot);
     }
-    keyframes.push_back(std::move(k));
+    inputs.keyframes.push_back(std::move(k));
+    inputs.ids.push_back(t.id);
+  }
+  AddWallRidges(&inputs.keyframes, slam.sensors, *slam.config);
+  return inputs;
+}
+
+OccupancyGrid RunNavigationGrid(const SlamSnapshot& slam, const RunNavigationInputs& inputs,
+                                const std::vector<std::pair<TimestampNs, Pose2>>& corrected) {
+  std::vector<NavigationKeyframe> placed;
+  for (std::size_t i = 0; i < inputs.keyframes.size(); ++i) {
+    const auto pose = slam.poses.find(inputs.ids[i]);
+    if (pose == slam.poses.end()) continue;  // not in this state (a later keyframe)
+    placed.push_back(inputs.keyframes[i]);
+    placed.back().T_map_anchor = pose->second;
   }
   std::vector<Pose2> path;
   for (const auto& [stamp, pose] : corrected) path.push_back(pose);
-  return Build(&keyframes, path, slam.sensors, *slam.config);
+  return Build(placed, path, slam.sensors, *slam.config);
+}
+
+OccupancyGrid RunNavigationGrid(const SlamSnapshot& slam,
+                                const std::vector<std::pair<TimestampNs, Pose2>>& corrected) {
+  return RunNavigationGrid(slam, GatherRunNavigationInputs(slam), corrected);
 }
 
 OccupancyGrid SessionNavigationGrid(const SessionData& session, const Config& config) {
@@ -153,7 +177,8 @@ OccupancyGrid SessionNavigationGrid(const SessionData& session, const Config& co
   for (const RadarConfig& radar : config.radars) {
     sensors.push_back(SensorGeometry::FromConfig(radar, config.pulse));
   }
-  return Build(&keyframes, path, sensors, config);
+  AddWallRidges(&keyframes, sensors, config);
+  return Build(keyframes, path, sensors, config);
 }
 
 }  // namespace uwbsar::slam

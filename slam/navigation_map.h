@@ -26,6 +26,21 @@ std::vector<WallRidge> KeyframeWallRidges(const NavigationKeyframe& k,
 OccupancyGrid RunNavigationGrid(const SlamSnapshot& slam,
                                 const std::vector<std::pair<TimestampNs, Pose2>>& corrected);
 
+/// What the sensor model takes from a run's keyframes that does not depend on where they are
+/// placed: each keyframe with a tile and scans (tile shared with the snapshot, the robot's poses
+/// in its anchor frame while it was imaged, wall ridges) and its id, in keyframe order.
+/// Gathered once, it serves the grid after every solve (results.mcap).
+struct RunNavigationInputs {
+  std::vector<NavigationKeyframe> keyframes;  ///< T_map_anchor unset
+  std::vector<int> ids;
+};
+/// The tiles stay `slam`'s: the inputs live no longer than it.
+RunNavigationInputs GatherRunNavigationInputs(const SlamSnapshot& slam);
+/// The grid of the keyframes of `inputs` that `slam.poses` holds, placed there (`slam` may be
+/// an earlier state of the run the inputs were gathered from: SlamSnapshot::AfterSolve).
+OccupancyGrid RunNavigationGrid(const SlamSnapshot& slam, const RunNavigationInputs& inputs,
+                                const std::vector<std::pair<TimestampNs, Pose2>>& corrected);
+
 /// The grid of a session (every run in the map frame; unplaced keyframes are left out).
 OccupancyGrid SessionNavigationGrid(const SessionData& session, const Config& config);
 

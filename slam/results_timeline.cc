@@ -74,10 +74,11 @@ void WriteRunLoops(const SlamSnapshot& s, TimestampNs stamp, ResultsMcapWriter* 
   out->WriteLoops(stamp, loops, anchors);
 }
 
-/// /map, /path and /uwbsar/loops of the state `s` at `stamp`.
-void WriteRunState(const SlamSnapshot& s, TimestampNs stamp, ResultsMcapWriter* out) {
+/// /map, /path and /uwbsar/loops of the state `s` at `stamp`; `inputs` gathered from the run.
+void WriteRunState(const SlamSnapshot& s, const RunNavigationInputs& inputs, TimestampNs stamp,
+                   ResultsMcapWriter* out) {
   const StampedPoses corrected = s.CorrectedTrajectory();
-  out->WriteMap(stamp, RunNavigationGrid(s, corrected));
+  out->WriteMap(stamp, RunNavigationGrid(s, inputs, corrected));
   out->WritePath(kResultsPathTopic, stamp, Thinned(corrected));
   WriteRunLoops(s, stamp, out);
 }
@@ -92,6 +93,7 @@ void WriteRunResultsMcap(const std::string& path, const SlamSnapshot& slam,
   for (const OdometryEntry& e : slam.odometry) odom.push_back({e.stamp_ns, e.T_world_robot});
   const StampedPoses corrected = slam.CorrectedTrajectory();
   TfWriter tf{&odom, &corrected};
+  const RunNavigationInputs inputs = GatherRunNavigationInputs(slam);  // once for every solve
   const TimestampNs first = odom.front().first;
   TimestampNs last = odom.back().first;
   if (!ground_truth.empty()) {
@@ -101,14 +103,14 @@ void WriteRunResultsMcap(const std::string& path, const SlamSnapshot& slam,
   for (std::size_t i = 0; i < slam.solves.size(); ++i) {
     const SolveRecord& solve = slam.solves[i];
     tf.WriteUntil(solve.stamp_ns, &out);
-    WriteRunState(slam.AfterSolve(i), solve.stamp_ns, &out);
+    WriteRunState(slam.AfterSolve(i), inputs, solve.stamp_ns, &out);
     last = std::max(last, solve.stamp_ns);
     final_state_written = solve.num_keyframes == slam.tiles.size() &&
                           solve.num_odometry == slam.odometry.size() &&
                           solve.num_loops == slam.loops.size();
   }
   tf.WriteUntil(last, &out);
-  if (!final_state_written) WriteRunState(slam, last, &out);
+  if (!final_state_written) WriteRunState(slam, inputs, last, &out);
   out.WriteSar(last, MakeSarPreview(sar, slam.config->slam.results_mcap_sar_max_pixels));
   out.Close();
 }

@@ -43,7 +43,6 @@ void AddDemoCommand(CLI::App& app, const GlobalOptions& globals) {
     const Config config = LoadConfigFor(globals);
     slam::MapOutputStage stage(opts->out_dir);
     slam::RefuseToReplaceSavedMap(opts->out_dir, {}, false, "give another --out");
-    PrintOdometryCalibration(config, globals);
     slam::MapRun run =
         slam::MapSimulation(config, opts->map_path.empty() ? BundledMap() : opts->map_path,
                             "depart-return", opts->seed, nullptr, !globals.quiet);

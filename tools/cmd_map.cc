@@ -29,6 +29,7 @@ void PrintMapSummary(const slam::MapRun& run, const slam::MapOutputs& outputs,
     std::printf("no ground truth: ATE not computed\n");
   }
   std::printf("peak memory %.0f MiB\n", s["peak_memory_mib"].get<double>());
+  PrintOdometryCalibration(run.slam->config(), globals);
   std::printf("report: %s/report.html\n", out_dir.c_str());
   PrintWrittenFolder(out_dir, outputs.files, globals);
 }
@@ -82,7 +83,6 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
         "give another --out, --resume " + opts->out_dir +
             " to extend it, or --overwrite to "
             "replace it");
-    PrintOdometryCalibration(config, globals);
     rosbag::BagReadOptions read_options;
     read_options.skip_damaged_chunks = opts->skip_damaged;
     slam::MapRun run = slam::MapBag(config, opts->bag, !globals.quiet, read_options);

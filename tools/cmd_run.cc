@@ -102,7 +102,6 @@ void PrintRunResult(const slam::LiveRunResult& result, const std::string& out_di
 
 void Run(const RunOptions& opts, const GlobalOptions& globals) {
   Config config = LoadConfigFor(globals);
-  PrintOdometryCalibration(config, globals);
   // SIGINT/SIGTERM finish the run cleanly (core/interrupt_cleanup.h's watcher calls this;
   // the plain handler serves callers that did not install the watcher).
   SetInterruptHandler([] { g_stop = true; });
@@ -133,6 +132,7 @@ void Run(const RunOptions& opts, const GlobalOptions& globals) {
   slam::LiveRunResult result = slam::RunLive(config, std::move(options));
   if (emulation) emulation->Finish();
   if (!globals.quiet) PrintRunResult(result, opts.out_dir, globals);
+  PrintOdometryCalibration(config, globals);
 }
 
 }  // namespace

@@ -62,8 +62,9 @@ void PrintWritten(const std::vector<std::string>& files, const GlobalOptions& gl
 
 /// One line "wrote DIR: a, b, ..." (the names of `files`, paths in DIR), unless -q: the
 /// outputs of a command that fills a folder.
-/// "odometry calibration: ..." on stdout (not with -q): the base calibration the run applies
-/// (backend.calibration_*_mean, `uwbsar calibrate`), or that there is none. map, demo, run.
+/// "odometry calibration: ..." on stdout (not with -q): the base calibration the run applied
+/// (backend.calibration_*_mean, `uwbsar calibrate`), or that there is none: map, demo and run
+/// with their summary (a refusal stays one line).
 void PrintOdometryCalibration(const Config& config, const GlobalOptions& globals);
 void PrintWrittenFolder(const std::string& dir, const std::vector<std::string>& files,
                         const GlobalOptions& globals);

@@ -68,6 +68,7 @@ void WriteResumedMap(const slam::SavedSession& saved, const slam::MapRun& run,
       report.loop_edges, report.loop_edges_rejected, report.dropped);
   std::printf("%zu keyframes in the map; report: %s/report.html\n", merged.keyframes.size(),
               out_dir.c_str());
+  PrintOdometryCalibration(config, globals);
   PrintWrittenFolder(out_dir, outputs.files, globals);
 }
 
