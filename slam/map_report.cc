@@ -35,18 +35,6 @@ std::vector<std::pair<std::string, std::string>> ReportSummary(const MapState& r
   return summary;
 }
 
-/// The accepted loops as segments between their keyframes' optimised poses.
-std::vector<std::pair<Point2, Point2>> AcceptedLoopSegments(const SlamSnapshot& slam) {
-  std::vector<std::pair<Point2, Point2>> out;
-  for (const LoopRecord& l : slam.loops) {
-    if (!l.accepted()) continue;
-    const Pose2& a = slam.poses.at(l.match_id);
-    const Pose2& b = slam.poses.at(l.query_id);
-    out.push_back({{a.x_m, a.y_m}, {b.x_m, b.y_m}});
-  }
-  return out;
-}
-
 ReportTable LoopTable(const SlamSnapshot& slam) {
   const std::vector<DetectorKind> detectors = slam.LoopDetectors();
   ReportTable loops{"Loop candidates", {"query", "match"}, {}, ""};
@@ -139,7 +127,7 @@ cv::Mat MapReportFigure(const MapState& run, const MapTrajectories& trajectories
   figure.paths.push_back(
       {"odometry", FigurePalette::kOdometry, PlotPoints(trajectories.odometry, 1)});
   figure.paths.push_back({"SLAM", FigurePalette::kSlam, PlotPoints(trajectories.slam, 1)});
-  figure.loops = AcceptedLoopSegments(slam);
+  figure.loops = slam.AcceptedLoopSegments();
   return RenderMapFigure(figure);
 }
 
@@ -157,7 +145,7 @@ RunReport BuildMapReport(const MapState& run, const MapOutputs& outputs,
   report.trajectories.push_back(
       {"odometry", FigurePalette::kOdometry.css, PlotPoints(trajectories.odometry)});
   report.trajectories.push_back({"SLAM", FigurePalette::kSlam.css, PlotPoints(trajectories.slam)});
-  report.loop_segments = AcceptedLoopSegments(slam);
+  report.loop_segments = slam.AcceptedLoopSegments();
   report.tables.push_back(
       StageTimingTable(slam.times, run.processing_s, slam.config->slam.keyframe_thread));
   report.tables.push_back(LoopTable(slam));

@@ -7,6 +7,7 @@
 #include "slam/navigation_map.h"
 #include "slam/session_mosaic.h"
 #include "slam/session_outputs.h"
+#include "slam/session_report.h"
 
 namespace uwbsar::slam {
 namespace {
@@ -58,20 +59,14 @@ struct TfWriter {
   }
 };
 
-/// Accepted loops between keyframes that have poses, as lines; every keyframe's anchor.
+/// The accepted loops as lines; every keyframe's anchor.
 void WriteRunLoops(const SlamSnapshot& s, TimestampNs stamp, ResultsMcapWriter* out) {
-  std::vector<std::pair<Point2, Point2>> loops;
-  for (const LoopRecord& l : s.loops) {
-    const auto a = s.poses.find(l.match_id), b = s.poses.find(l.query_id);
-    if (!l.accepted() || a == s.poses.end() || b == s.poses.end()) continue;
-    loops.push_back({{a->second.x_m, a->second.y_m}, {b->second.x_m, b->second.y_m}});
-  }
   std::vector<Point2> anchors;
   for (const TileSnapshot& t : s.tiles) {
     const Pose2& p = s.poses.at(t.id);
     anchors.push_back({p.x_m, p.y_m});
   }
-  out->WriteLoops(stamp, loops, anchors);
+  out->WriteLoops(stamp, s.AcceptedLoopSegments(), anchors);
 }
 
 /// /map, /path and /uwbsar/loops of the state `s` at `stamp`; `inputs` gathered from the run.
@@ -140,16 +135,11 @@ void WriteSessionResultsMcap(const std::string& path, const SessionData& session
     if (t.id == newest) newest_corrected = std::move(corrected);
   }
   out.WritePath(kResultsPathTopic, first, Thinned(newest_corrected));
-  const std::map<int, Pose2> poses = session.Poses();
-  std::vector<std::pair<Point2, Point2>> loops;
-  for (const SessionLoop& l : session.loops) {
-    const auto a = poses.find(l.match_id), b = poses.find(l.query_id);
-    if (!l.accepted || a == poses.end() || b == poses.end()) continue;
-    loops.push_back({{a->second.x_m, a->second.y_m}, {b->second.x_m, b->second.y_m}});
-  }
   std::vector<Point2> anchors;
-  for (const auto& [id, p] : poses) anchors.push_back({p.x_m, p.y_m});
-  out.WriteLoops(first, loops, anchors);
+  for (const SessionKeyframe& k : session.keyframes) {
+    anchors.push_back({k.T_map_anchor.x_m, k.T_map_anchor.y_m});
+  }
+  out.WriteLoops(first, SessionLoopSegments(session), anchors);
   TfWriter tf{&odom, &newest_corrected};
   tf.WriteUntil(odom.back().first, &out);
   out.Close();

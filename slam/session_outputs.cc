@@ -31,14 +31,6 @@
 namespace uwbsar::slam {
 namespace {
 
-std::vector<int> TrajectoryIds(const SessionData& s) {
-  std::vector<int> ids;
-  for (const SessionKeyframe& k : s.keyframes) {
-    if (std::find(ids.begin(), ids.end(), k.trajectory) == ids.end()) ids.push_back(k.trajectory);
-  }
-  return ids;
-}
-
 void Pair(const std::vector<std::pair<TimestampNs, Pose2>>& est,
           const std::vector<OdometrySample>& ref, std::vector<Pose2>* e, std::vector<Pose2>* g) {
   std::vector<OdometrySample> sorted = ref;
@@ -186,7 +178,7 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
   cv::Mat png = raster.clone();
   RunReport report;
   report.title = title;
-  const std::vector<int> runs = TrajectoryIds(session);
+  const std::vector<int> runs = session.TrajectoryIds();
   nlohmann::json runs_json = nlohmann::json::array();
   for (std::size_t n = 0; n < runs.size(); ++n) {
     runs_json.push_back(

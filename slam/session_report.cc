@@ -11,14 +11,6 @@
 namespace uwbsar::slam {
 namespace {
 
-std::vector<int> RunIds(const SessionData& s) {
-  std::vector<int> ids;
-  for (const SessionKeyframe& k : s.keyframes) {
-    if (std::find(ids.begin(), ids.end(), k.trajectory) == ids.end()) ids.push_back(k.trajectory);
-  }
-  return ids;
-}
-
 int RunOf(const SessionData& s, int keyframe) {
   const SessionKeyframe* k = s.Find(keyframe);
   return k == nullptr ? -1 : k->trajectory;
@@ -97,7 +89,7 @@ cv::Mat SessionFigure(const SessionData& session, const Config& config, const cv
   figure.grid = grid;
   figure.frame = "map";
   figure.colormap = config.enhance.colormap;
-  const std::vector<int> runs = RunIds(session);
+  const std::vector<int> runs = session.TrajectoryIds();
   for (std::size_t n = 0; n < runs.size(); ++n) {
     figure.paths.push_back({"run " + std::to_string(runs[n]), FigurePalette::Run(n),
                             PlotPoints(CorrectedTrajectory(session, runs[n]), 1)});

@@ -30,6 +30,16 @@ std::vector<std::pair<TimestampNs, Pose2>> SlamSnapshot::CorrectedTrajectory() c
   return out;
 }
 
+std::vector<std::pair<Point2, Point2>> SlamSnapshot::AcceptedLoopSegments() const {
+  std::vector<std::pair<Point2, Point2>> out;
+  for (const LoopRecord& l : loops) {
+    const auto a = poses.find(l.match_id), b = poses.find(l.query_id);
+    if (!l.accepted() || a == poses.end() || b == poses.end()) continue;
+    out.push_back({{a->second.x_m, a->second.y_m}, {b->second.x_m, b->second.y_m}});
+  }
+  return out;
+}
+
 SlamSnapshot SlamSnapshot::AfterSolve(std::size_t i) const {
   const SolveRecord& solve = solves.at(i);
   SlamSnapshot s;

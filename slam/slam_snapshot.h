@@ -124,6 +124,8 @@ struct SlamSnapshot {
   /// As SlamSystem::CorrectionAt / CorrectedTrajectory, from the copy.
   Pose2 CorrectionAt(TimestampNs stamp_ns) const;
   std::vector<std::pair<TimestampNs, Pose2>> CorrectedTrajectory() const;
+  /// The accepted loops whose two keyframes have poses, as segments between those poses.
+  std::vector<std::pair<Point2, Point2>> AcceptedLoopSegments() const;
   /// The state as it was after solves[i]: the keyframes, odometry and loops of then, at that
   /// solve's poses (the tiles' images shared).
   SlamSnapshot AfterSolve(std::size_t i) const;

@@ -6,23 +6,6 @@
 #include "slam/app_config.h"
 
 namespace uwbsar::slam {
-namespace {
-
-/// The accepted loops as lines between the two keyframes' corrected anchors.
-std::vector<dds::LoopSegment> LoopSegments(const SlamSnapshot& slam) {
-  const std::map<int, Pose2>& poses = slam.poses;
-  std::vector<dds::LoopSegment> segments;
-  for (const LoopRecord& l : slam.loops) {
-    if (!l.accepted()) continue;
-    const auto a = poses.find(l.match_id), b = poses.find(l.query_id);
-    if (a == poses.end() || b == poses.end()) continue;
-    segments.push_back(
-        {Point2{a->second.x_m, a->second.y_m}, Point2{b->second.x_m, b->second.y_m}});
-  }
-  return segments;
-}
-
-}  // namespace
 
 LiveResultPublisher::LiveResultPublisher(dds::Participant& participant, const DdsConfig& config,
                                          live::FaultLog* faults, Processor* processor)
@@ -45,7 +28,7 @@ void LiveResultPublisher::PublishSnapshot(const MapState& state, const MapOutput
       }
     }
     publisher_.PublishPath(stamp, state.slam.CorrectedTrajectory());
-    publisher_.PublishLoops(stamp, LoopSegments(state.slam));
+    publisher_.PublishLoops(stamp, state.slam.AcceptedLoopSegments());
   } catch (const std::exception& e) {
     faults_->Report("ros2: publishing failed", e.what());
   }

@@ -24,6 +24,14 @@ int SessionData::MaxTrajectoryId() const {
   return m;
 }
 
+std::vector<int> SessionData::TrajectoryIds() const {
+  std::vector<int> ids;
+  for (const SessionKeyframe& k : keyframes) {
+    if (std::find(ids.begin(), ids.end(), k.trajectory) == ids.end()) ids.push_back(k.trajectory);
+  }
+  return ids;
+}
+
 std::map<int, Pose2> SessionData::Poses() const {
   std::map<int, Pose2> out;
   for (const SessionKeyframe& k : keyframes) out[k.id] = k.T_map_anchor;

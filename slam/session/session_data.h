@@ -94,6 +94,8 @@ struct SessionData {
   int MaxTrajectoryId() const;  ///< -1 when empty
   /// Optimised T_map_anchor by keyframe id.
   std::map<int, Pose2> Poses() const;
+  /// The runs that have keyframes, in the order of their first keyframe.
+  std::vector<int> TrajectoryIds() const;
 };
 
 /// `s` with dense ids: keyframes 0..n-1 in their order, trajectories 0..m-1 in theirs, and
