@@ -17,6 +17,7 @@ namespace {
 
 /// The comment that marks the next EDGE_SE2 as a wall edge (see g2o_io.h).
 constexpr const char* kWallMarker = "uwbsar:wall";
+constexpr const char* kMarginalMarker = "uwbsar:marginal";
 
 /// A rejected line; caught per line so that skip_bad_lines can go on.
 struct LineError {
@@ -105,16 +106,19 @@ G2oGraph ParseG2o(std::istream& in, const std::string& source, const G2oReadOpti
     if (!options.skip_bad_lines) throw InputError(full);
     g.skipped.push_back(full);
   };
-  bool wall_next = false;  // the previous line was `# uwbsar:wall`
+  bool wall_next = false;      // the previous line was `# uwbsar:wall`
+  bool marginal_next = false;  // ... `# uwbsar:marginal`
   while (std::getline(in, line)) {
     ++line_no;
     const std::vector<std::string> t = Tokens(line);
     if (t.empty()) continue;
     if (t[0][0] == '#') {
       wall_next = t.size() == 2 && t[0] == "#" && t[1] == kWallMarker;
+      marginal_next = t.size() == 2 && t[0] == "#" && t[1] == kMarginalMarker;
       continue;
     }
     const bool wall = std::exchange(wall_next, false);
+    const bool marginal = std::exchange(marginal_next, false);
     try {
       if (t[0] == "VERTEX_SE2") {
         G2oVertex v = ParseVertex(t);
@@ -129,6 +133,7 @@ G2oGraph ParseG2o(std::istream& in, const std::string& source, const G2oReadOpti
         G2oEdge e = ParseEdge(t);
         e.line = line_no;
         e.wall = wall;
+        e.marginal = marginal;
         g.edges.push_back(e);
       } else if (t[0] == "FIX") {
         if (t.size() < 2) throw LineError{"FIX needs at least one vertex id"};
@@ -175,6 +180,7 @@ G2oGraph ReadG2o(const std::string& path, const G2oReadOptions& options) {
 
 EdgeKind ClassifyG2oEdge(const G2oEdge& edge) {
   if (edge.wall) return EdgeKind::kWall;
+  if (edge.marginal) return EdgeKind::kMarginal;
   return std::abs(static_cast<long>(edge.to_id) - edge.from_id) == 1 ? EdgeKind::kOdometry
                                                                      : EdgeKind::kLoop;
 }
@@ -204,6 +210,7 @@ std::string G2oText(const std::map<int, Pose2>& poses, const std::vector<PoseGra
   for (const PoseGraphEdge& e : edges) {
     const Eigen::Matrix3d& I = e.information;
     if (e.kind == EdgeKind::kWall) out << "# " << kWallMarker << '\n';
+    if (e.kind == EdgeKind::kMarginal) out << "# " << kMarginalMarker << '\n';
     out << "EDGE_SE2 " << e.from_id << ' ' << e.to_id << ' ' << Fmt(e.T_from_to.x_m) << ' '
         << Fmt(e.T_from_to.y_m) << ' ' << Fmt(e.T_from_to.yaw_rad) << ' ' << Fmt(I(0, 0)) << ' '
         << Fmt(I(0, 1)) << ' ' << Fmt(I(0, 2)) << ' ' << Fmt(I(1, 1)) << ' ' << Fmt(I(1, 2)) << ' '

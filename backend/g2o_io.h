@@ -1,11 +1,10 @@
 // g2o pose-graph files (SE(2) subset): `VERTEX_SE2 id x y theta`,
 // `EDGE_SE2 i j dx dy dtheta I11 I12 I13 I22 I23 I33` (measurement = pose j in
 // the frame of i, upper triangle of the information row by row) and `FIX id...`.
-// Blank lines and lines starting with '#' are ignored, except the comment `# uwbsar:wall`:
-// uwbsar writes it right before the EDGE_SE2 of a wall-profile edge (EdgeKind::kWall), so
-// that its own reader restores the kind while other g2o tools see a plain edge. Every other
-// line is
-// checked; a bad one throws an InputError naming the file and line, or is
+// Blank lines and lines starting with '#' are ignored, except the comments `# uwbsar:wall` and
+// `# uwbsar:marginal`: uwbsar writes them right before the EDGE_SE2 of a wall-profile edge
+// (EdgeKind::kWall) or a removed node's folded edge (EdgeKind::kMarginal), so that its own reader
+// restores the kind while other g2o tools see a plain edge. Every other line is checked; a bad one throws an InputError naming the file and line, or is
 // skipped and reported when skip_bad_lines is set (the rest is still loaded).
 #pragma once
 
@@ -32,7 +31,8 @@ struct G2oEdge {
   Pose2 T_from_to;
   Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
   int line = 0;
-  bool wall = false;  ///< preceded by the `# uwbsar:wall` comment
+  bool wall = false;      ///< preceded by the `# uwbsar:wall` comment
+  bool marginal = false;  ///< preceded by the `# uwbsar:marginal` comment
 };
 
 struct G2oGraph {
@@ -51,7 +51,7 @@ G2oGraph ParseG2o(std::istream& in, const std::string& source_name,
 /// Throws InputError when the file cannot be opened (and on bad lines, see above).
 G2oGraph ReadG2o(const std::string& path, const G2oReadOptions& options = {});
 
-/// Edges marked `# uwbsar:wall` are wall edges; of the others, edges between consecutive ids
+/// Edges marked `# uwbsar:wall` are wall edges, `# uwbsar:marginal` marginal ones; of the others, edges between consecutive ids
 /// are odometry and all others loops (the g2o datasets' convention).
 EdgeKind ClassifyG2oEdge(const G2oEdge& edge);
 

@@ -35,7 +35,9 @@ cv::Mat PlotPoseGraph(const std::map<int, Pose2>& poses, const std::vector<PoseG
       const PoseGraphEdge& e = edges[i];
       const bool rejected = i < reports.size() && reports[i].rejected;
       if (e.kind == EdgeKind::kWall) continue;  // short sideways ties along the path
-      const int wanted = e.kind == EdgeKind::kOdometry ? 0 : (rejected ? 2 : 1);
+      // A marginal edge stands for the odometry and loops of a removed keyframe: drawn thin.
+      const bool chain = e.kind == EdgeKind::kOdometry || e.kind == EdgeKind::kMarginal;
+      const int wanted = chain ? 0 : (rejected ? 2 : 1);
       if (wanted != pass) continue;
       const auto a = poses.find(e.from_id), b = poses.find(e.to_id);
       if (a == poses.end() || b == poses.end()) continue;

@@ -33,6 +33,7 @@ PoseGraph::PoseGraph(const BackendConfig& config) : config_(config) {
   ceres::Problem::Options options;
   options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
   options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  options.enable_fast_removal = true;  // RemoveNode
   problem_ = std::make_unique<ceres::Problem>(options);
 }
 
@@ -84,6 +85,7 @@ int PoseGraph::AddEdge(const PoseGraphEdge& edge) {
   report.to_id = edge.to_id;
   report.kind = edge.kind;
   reports_.push_back(report);
+  removed_.push_back(false);
   pending_edges_.push_back(index);
   return index;
 }
@@ -169,15 +171,15 @@ void PoseGraph::InsertPending(std::vector<PendingNode> nodes, const std::vector<
         se->to->x = {T_world_to.x_m, T_world_to.y_m, T_world_to.yaw_rad};
         it->second = false;
       }
-    } else {
+    } else if (se->edge.kind != EdgeKind::kMarginal) {  // loops and walls: robust, rejectable
       se->loss = std::make_unique<ceres::LossFunctionWrapper>(nullptr, ceres::TAKE_OWNERSHIP);
     }
     if (se->calibration != nullptr) {
-      problem_->AddResidualBlock(
+      se->residual = problem_->AddResidualBlock(
           CalibratedOdometryCost::Create(se->edge.T_from_to, se->travel, se->sqrt_information),
           nullptr, se->from->x.data(), se->to->x.data(), se->calibration->x.data());
     } else {
-      problem_->AddResidualBlock(new Se2EdgeCost(se->edge.T_from_to, se->sqrt_information),
+      se->residual = problem_->AddResidualBlock(new Se2EdgeCost(se->edge.T_from_to, se->sqrt_information),
                                  se->loss.get(), se->from->x.data(), se->to->x.data());
     }
     solver_edges_.push_back(std::move(se));
@@ -335,12 +337,22 @@ std::map<int, Pose2> PoseGraph::GetPoses() const {
 
 std::vector<PoseGraphEdge> PoseGraph::Edges() const {
   std::lock_guard<std::mutex> lock(data_mutex_);
-  return edges_;
+  std::vector<PoseGraphEdge> out;
+  out.reserve(edges_.size());
+  for (std::size_t i = 0; i < edges_.size(); ++i) {
+    if (!removed_[i]) out.push_back(edges_[i]);
+  }
+  return out;
 }
 
 std::vector<EdgeReport> PoseGraph::EdgeReports() const {
   std::lock_guard<std::mutex> lock(data_mutex_);
-  return reports_;
+  std::vector<EdgeReport> out;
+  out.reserve(reports_.size());
+  for (std::size_t i = 0; i < reports_.size(); ++i) {
+    if (!removed_[i]) out.push_back(reports_[i]);
+  }
+  return out;
 }
 
 std::vector<int> PoseGraph::FixedNodes() const {
@@ -360,7 +372,7 @@ int PoseGraph::NumNodes() const {
 
 int PoseGraph::NumEdges() const {
   std::lock_guard<std::mutex> lock(data_mutex_);
-  return static_cast<int>(edges_.size());
+  return static_cast<int>(std::count(removed_.begin(), removed_.end(), false));
 }
 
 }  // namespace uwbsar

@@ -74,11 +74,23 @@ namespace uwbsar {
 /// which only a loop ties to it (freed by wall edges alone, the drift was corrected and the
 /// turns' error kept, and a loop-less lap moved away from the truth). Once a loop has freed
 /// the calibration, it measures the drift between the loops.
-enum class EdgeKind { kOdometry, kLoop, kWall };
+/// kMarginal: what a removed node's edges said about its neighbours (PoseGraph::RemoveNode),
+/// folded into one edge; plain least squares, never rejected, never counted as a loop.
+enum class EdgeKind { kOdometry, kLoop, kWall, kMarginal };
 
-/// "odometry", "loop", "wall": the names the session file and the reports use.
+/// "odometry", "loop", "wall", "marginal": the names the session file and the reports use.
 inline const char* EdgeKindName(EdgeKind kind) {
-  return kind == EdgeKind::kLoop ? "loop" : kind == EdgeKind::kWall ? "wall" : "odometry";
+  switch (kind) {
+    case EdgeKind::kLoop:
+      return "loop";
+    case EdgeKind::kWall:
+      return "wall";
+    case EdgeKind::kMarginal:
+      return "marginal";
+    case EdgeKind::kOdometry:
+      break;
+  }
+  return "odometry";
 }
 
 struct PoseGraphEdge {
@@ -170,6 +182,20 @@ class PoseGraph {
   /// Inserts what was added since the last call and solves (see the file comment).
   OptimizeResult Optimize();
 
+  /// Folds node `id` out of the graph, as a reduced pose graph does with a keyframe the map no
+  /// longer needs (Johannsson, Kaess, Fallon and Leonard, "Temporally scalable visual SLAM using
+  /// a reduced pose graph", ICRA 2013). Its odometry, marginal and accepted loop edges are
+  /// composed through the neighbour they tie it to most strongly (the hub): every other
+  /// neighbour gets one kMarginal edge to the hub whose measurement is their relative pose at
+  /// the last solution and whose covariance is the composition of the two edges' (a marginal
+  /// edge already between the two absorbs it: informations add). Rejected loops and wall edges
+  /// of the node are dropped. The node and its edges leave the graph: Edges() and EdgeReports()
+  /// no longer list them, and the other edges keep their indices. The solution is unchanged
+  /// (every new edge has zero error at it). Returns the hub's id (-1 when the node had no
+  /// neighbour left) and, in `T_hub_node`, the node's pose in the hub's frame at the last
+  /// solution. Throws InputError for an unknown, fixed or never-solved node.
+  int RemoveNode(int id, Pose2* T_hub_node = nullptr);
+
   bool HasNode(int id) const;
   /// Current estimate of a node; throws std::out_of_range on an unknown id.
   Pose2 GetPose(int id) const;
@@ -218,6 +244,8 @@ class PoseGraph {
   double TotalChi2() const;         ///< accepted edges and the free blocks' priors
   void TrialSolveHeldBackLoops(OptimizeResult* result);
   double HalfChi2Sum(bool accepted_only) const;
+  // backend/pose_graph_reduction.cc
+  void EraseSolverNode(int id);
 
   const BackendConfig config_;
 
@@ -229,6 +257,7 @@ class PoseGraph {
   std::map<int, Pose2> estimates_;
   std::vector<PoseGraphEdge> edges_;
   std::vector<EdgeReport> reports_;
+  std::vector<bool> removed_;  // by edge index: an edge of a removed node (RemoveNode)
   std::vector<int> fixed_ids_;
   std::map<int, std::array<double, 3>> calibrations_out_;
   std::vector<PendingNode> pending_nodes_;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <ceres/loss_function.h>
+#include <ceres/problem.h>
 
 #include <array>
 #include <memory>
@@ -33,7 +34,8 @@ struct PoseGraph::SolverEdge {
   Eigen::Matrix3d sqrt_information;
   SolverNode* from = nullptr;
   SolverNode* to = nullptr;
-  CalibrationBlock* calibration = nullptr;  // calibrated odometry edges only
+  ceres::ResidualBlockId residual = nullptr;  // in the problem (RemoveNode takes it out)
+  CalibrationBlock* calibration = nullptr;    // calibrated odometry edges only
   OdometryTravel travel;                    // the robot's path and turn (calibrated edges)
   // Loops only: the loss is swapped between robust, none and "switched off" without
   // touching the problem's structure (the wrapper is owned here, not by the problem).

@@ -265,6 +265,8 @@ void ReadEdges(SqliteDb& db, SessionData* d) {
       e.edge.kind = EdgeKind::kLoop;
     } else if (kind == EdgeKindName(EdgeKind::kWall)) {
       e.edge.kind = EdgeKind::kWall;
+    } else if (kind == EdgeKindName(EdgeKind::kMarginal)) {
+      e.edge.kind = EdgeKind::kMarginal;
     } else {
       t.Refuse("kind", "'" + kind.substr(0, 40) + "' is not an edge kind");
     }
