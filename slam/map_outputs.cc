@@ -65,10 +65,8 @@ cv::Mat RenderMapPng(const cv::Mat& raster, const ImageGrid& grid, const SlamSna
     cv::line(png, pixel(traj[i - 1].second), pixel(traj[i].second), FigurePalette::kSlam.bgr, 2,
              cv::LINE_AA);
   }
-  const auto& poses = slam.poses;
-  for (const LoopRecord& loop : slam.loops) {
-    if (!loop.accepted()) continue;
-    cv::line(png, pixel(poses.at(loop.match_id)), pixel(poses.at(loop.query_id)),
+  for (const auto& [a, b] : slam.AcceptedLoopSegments()) {
+    cv::line(png, pixel(Pose2{a.x_m, a.y_m, 0.0}), pixel(Pose2{b.x_m, b.y_m, 0.0}),
              FigurePalette::kLoop.bgr, 1, cv::LINE_AA);
   }
   return png;

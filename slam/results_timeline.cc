@@ -100,7 +100,7 @@ void WriteRunResultsMcap(const std::string& path, const SlamSnapshot& slam,
     tf.WriteUntil(solve.stamp_ns, &out);
     WriteRunState(slam.AfterSolve(i), inputs, solve.stamp_ns, &out);
     last = std::max(last, solve.stamp_ns);
-    final_state_written = solve.num_keyframes == slam.tiles.size() &&
+    final_state_written = solve.ids.size() == slam.tiles.size() && slam.retired.empty() &&
                           solve.num_odometry == slam.odometry.size() &&
                           solve.num_loops == slam.loops.size();
   }

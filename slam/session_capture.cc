@@ -1,5 +1,6 @@
 #include "slam/session_capture.h"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "slam/app_config_io.h"
@@ -7,6 +8,13 @@
 #include "slam/session/session_file.h"
 
 namespace uwbsar::slam {
+namespace {
+
+// With session.odometry_spacing_m: a sample is kept after this turn or this time as well.
+constexpr double kOdometryKeepTurnRad = M_PI / 180.0;
+constexpr TimestampNs kOdometryKeepIntervalNs = 1'000'000'000;
+
+}  // namespace
 
 SessionData CaptureSession(const MapRun& run) {
   const SlamSystem& slam = *run.slam;
@@ -47,6 +55,9 @@ SessionData CaptureSession(const MapRun& run) {
     d.edges.push_back({edges[i], i < reports.size() && reports[i].rejected});
   }
   for (const LoopRecord& l : slam.loops()) {
+    // A retired keyframe's loops went into the marginal edges with it: the session keeps the
+    // loops between the keyframes it holds.
+    if (!poses.count(l.query_id) || !poses.count(l.match_id)) continue;
     SessionLoop s;
     s.query_id = l.query_id;
     s.match_id = l.match_id;
@@ -58,7 +69,20 @@ SessionData CaptureSession(const MapRun& run) {
     s.reason = l.validation.reason;
     d.loops.push_back(std::move(s));
   }
-  for (const OdometryEntry& e : slam.odometry()) {
+  // Thinned (session.odometry_spacing_m): a stop or a turn on the spot still leaves samples.
+  const double spacing_m = slam.config().session.odometry_spacing_m;
+  const std::vector<OdometryEntry>& odometry = slam.odometry();
+  for (std::size_t i = 0; i < odometry.size(); ++i) {
+    const OdometryEntry& e = odometry[i];
+    if (spacing_m > 0 && !d.odometry.empty() && i + 1 < odometry.size()) {
+      const SessionOdometry& last = d.odometry.back();
+      const bool moved = e.path_m - last.path_m >= spacing_m;
+      const bool turned =
+          std::abs(NormalizeAngle(e.T_world_robot.yaw_rad - last.T_odom_robot.yaw_rad)) >=
+          kOdometryKeepTurnRad;
+      const bool waited = e.stamp_ns - last.stamp_ns >= kOdometryKeepIntervalNs;
+      if (!moved && !turned && !waited) continue;
+    }
     d.odometry.push_back({0, e.stamp_ns, e.T_world_robot, e.path_m});
   }
   return d;

@@ -60,13 +60,48 @@ struct StageTimes {
 };
 
 /// The graph after one solve, kept with slam.results_mcap: results.mcap replays the map and
-/// path as they were after each solve. The first num_keyframes tiles, num_odometry odometry
-/// samples and num_loops loop records existed then.
+/// path as they were after each solve. The keyframes `ids` (those still kept then), the first
+/// num_odometry odometry samples and num_loops loop records existed then.
 struct SolveRecord {
   TimestampNs stamp_ns = 0;  ///< the latest odometry sample handed over by then
-  std::size_t num_keyframes = 0, num_odometry = 0, num_loops = 0;
-  std::vector<Pose2> poses;  ///< optimised T_world_anchor of keyframes [0, num_keyframes)
+  std::size_t num_odometry = 0, num_loops = 0;
+  std::vector<int> ids;      ///< the keyframes in the graph then, in order
+  std::vector<Pose2> poses;  ///< their optimised T_world_anchor
 };
+
+/// A keyframe as the trajectory's correction needs it: when it was, where odometry put its
+/// anchor and where the map puts it now. Kept keyframes and retired ones (slam/place_views.h)
+/// alike: a retired keyframe follows the node it was folded into.
+struct TrajectoryAnchor {
+  int id = 0;
+  TimestampNs stamp_ns = 0;
+  Pose2 T_odom_anchor;   ///< odometry pose of the tile frame
+  Pose2 T_world_anchor;  ///< optimised
+};
+
+/// A keyframe the map retired (slam/place_views.h): what places its run's trajectory.
+struct RetiredKeyframe {
+  int id = 0;
+  TimestampNs stamp_ns = 0;
+  Pose2 T_odom_anchor;  ///< odometry pose of the tile frame
+  Pose2 T_odom_robot;   ///< odometry pose of the robot at stamp_ns
+  double path_begin_m = 0.0, path_end_m = 0.0;
+  int hub_id = -1;      ///< the node it was folded into (PoseGraph::RemoveNode); -1: none
+  Pose2 T_hub_anchor;   ///< its pose in the hub's frame then (absolute when hub_id is -1)
+};
+
+/// The optimised pose of every retired keyframe from the poses of the kept ones: through its
+/// hub, or its hub's hub when that was retired later. Retired keyframes whose chain reaches no
+/// pose in `poses` are left out.
+std::map<int, Pose2> RetiredPoses(const std::vector<RetiredKeyframe>& retired,
+                                  const std::map<int, Pose2>& poses);
+
+/// `kept` and `retired` merged into one list in time order.
+std::vector<TrajectoryAnchor> MergeAnchors(std::vector<TrajectoryAnchor> kept,
+                                           const std::vector<TrajectoryAnchor>& retired);
+
+/// The correction T_world_corrected * T_world_odom^-1 at a time from anchors in time order.
+Pose2 CorrectionAt(const std::vector<TrajectoryAnchor>& anchors, TimestampNs stamp_ns);
 
 /// The correction T_world_corrected * T_world_odom^-1 at a time, interpolated between the
 /// keyframes around it; `stamp(i)`, `anchor(i)` and `pose(i)` (the optimised anchor) of
@@ -106,8 +141,10 @@ Pose2 InterpolatedCorrection(std::size_t n, const Stamp& stamp, const Anchor& an
 struct SlamSnapshot {
   const Config* config = nullptr;  ///< the SlamSystem's (lives as long as it does)
   std::vector<SensorGeometry> sensors;
-  std::vector<TileSnapshot> tiles;  ///< keyframes in order
+  std::vector<TileSnapshot> tiles;  ///< keyframes in order (those the map keeps)
   std::map<int, Pose2> poses;       ///< optimised T_world_anchor by keyframe id
+  std::vector<TrajectoryAnchor> retired;  ///< retired keyframes (slam/place_views.h), in time
+                                          ///< order, at their optimised poses
   std::vector<PoseGraphEdge> edges;
   std::vector<int> fixed_ids;
   std::vector<LoopRecord> loops;
@@ -121,13 +158,15 @@ struct SlamSnapshot {
   /// The detectors the loops were validated with (place_recognition.validation.detectors;
   /// the default pair without a configuration).
   std::vector<DetectorKind> LoopDetectors() const;
+  /// Kept and retired keyframes in time order (what the correction interpolates).
+  std::vector<TrajectoryAnchor> Anchors() const;
   /// As SlamSystem::CorrectionAt / CorrectedTrajectory, from the copy.
   Pose2 CorrectionAt(TimestampNs stamp_ns) const;
   std::vector<std::pair<TimestampNs, Pose2>> CorrectedTrajectory() const;
   /// The accepted loops whose two keyframes have poses, as segments between those poses.
   std::vector<std::pair<Point2, Point2>> AcceptedLoopSegments() const;
-  /// The state as it was after solves[i]: the keyframes, odometry and loops of then, at that
-  /// solve's poses (the tiles' images shared).
+  /// The state as it was after solves[i]: the keyframes (of those still kept), odometry and
+  /// loops of then, at that solve's poses (the tiles' images shared).
   SlamSnapshot AfterSolve(std::size_t i) const;
 };
 

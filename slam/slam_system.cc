@@ -4,11 +4,13 @@
 #include <chrono>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <set>
 
 #include "core/errors.h"
 #include "core/log.h"
 #include "imaging/enhance.h"
 #include "slam/app_config.h"
+#include "slam/place_views.h"
 
 namespace uwbsar::slam {
 namespace {
@@ -76,12 +78,16 @@ void SlamSystem::Finish() {
   WaitIdle();
   std::lock_guard<std::mutex> lock(state_mutex_);
   if (graph_->NumNodes() > 0) Optimize();
-  // Final state of every loop edge.
+  // Final state of every loop edge still in the graph (a retired keyframe's loops keep the
+  // state they had when it was folded in: accepted).
+  std::map<int, const EdgeReport*> by_index;
   const std::vector<EdgeReport> reports = graph_->EdgeReports();
+  for (const EdgeReport& r : reports) by_index[r.index] = &r;
   for (LoopRecord& loop : loops_) {
-    if (loop.edge_index < 0 || loop.edge_index >= static_cast<int>(reports.size())) continue;
-    loop.rejected_by_backend = reports[loop.edge_index].rejected;
-    loop.chi2 = reports[loop.edge_index].chi2;
+    auto r = by_index.find(loop.edge_index);
+    if (r == by_index.end()) continue;
+    loop.rejected_by_backend = r->second->rejected;
+    loop.chi2 = r->second->chi2;
   }
 }
 
@@ -153,7 +159,11 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
   // Wall edges wait for the next solve a loop asks for (or Finish): solving for them alone
   // would take the place of the solve right after a ring closure, which the keyframes after it
   // need to find their own loops (their search radius is smallest then).
-  for (const PoseGraphEdge& wall : walls) graph_->AddEdge(wall);
+  for (const PoseGraphEdge& wall : walls) {
+    // A wall partner retired meanwhile (another run's, never this run's recent ones) is gone.
+    if (graph_->HasNode(wall.from_id) && graph_->HasNode(wall.to_id)) graph_->AddEdge(wall);
+  }
+  awaiting_retirement_check_.push_back(keyframe.id);
   record.keyframe = std::move(keyframe);
   keyframes_.push_back(std::move(record));
   ++keyframes_since_solve_;
@@ -189,11 +199,11 @@ void SlamSystem::AddLoop(const LoopAttempt& attempt, int keyframe_id) {
   loop.by_radar = attempt.by_radar;
   loop.matches = attempt.matches;
   loop.validation = attempt.validation;
-  for (auto& [kind, m] : loop.matches) {  // only the decision is kept
-    m.matches.clear();
-    m.inlier.clear();
-    m.inliers_a.clear();
-    m.inliers_b.clear();
+  for (auto& [kind, m] : loop.matches) {  // only the decision is kept (memory released: a
+    std::vector<cv::DMatch>().swap(m.matches);  // long run holds thousands of loop records)
+    std::vector<unsigned char>().swap(m.inlier);
+    std::vector<cv::Point2d>().swap(m.inliers_a);
+    std::vector<cv::Point2d>().swap(m.inliers_b);
   }
   if (loop.validation.accepted) {
     PoseGraphEdge edge;
@@ -216,6 +226,7 @@ void SlamSystem::AddLoop(const LoopAttempt& attempt, int keyframe_id) {
 void SlamSystem::Optimize() {
   const auto start = Clock::now();
   last_optimization_ = graph_->Optimize();
+  RetireRevisitedViews();
   for (const auto& [id, pose] : graph_->GetPoses()) recognizer_->UpdatePose(id, pose);
   ++num_solves_;
   if (config_.slam.results_mcap) {
@@ -223,12 +234,14 @@ void SlamSystem::Optimize() {
     solve.stamp_ns = odometry_.empty() ? 0 : odometry_.back().stamp_ns;
     if (!keyframes_.empty())
       solve.stamp_ns = std::max(solve.stamp_ns, keyframes_.back().keyframe.stamp_ns);
-    solve.num_keyframes = keyframes_.size();
     solve.num_odometry = odometry_.size();
     solve.num_loops = loops_.size();
+    solve.ids.reserve(keyframes_.size());
     solve.poses.reserve(keyframes_.size());
-    for (const KeyframeRecord& k : keyframes_)
+    for (const KeyframeRecord& k : keyframes_) {
+      solve.ids.push_back(k.keyframe.id);
       solve.poses.push_back(graph_->GetPose(k.keyframe.id));
+    }
     solves_.push_back(std::move(solve));
   }
   {
@@ -239,13 +252,94 @@ void SlamSystem::Optimize() {
   keyframes_since_solve_ = 0;
 }
 
+void SlamSystem::RetireRevisitedViews() {
+  const PlaceViewsConfig& config = config_.slam.place_views;
+  std::vector<int> queue;
+  queue.swap(awaiting_retirement_check_);
+  if (config.max_per_place <= 0 || queue.empty()) return;
+  // Only a keyframe a loop ties to the map (accepted at this solution) says where it is well
+  // enough to stand for a place.
+  std::set<int> tied;
+  for (const EdgeReport& r : graph_->EdgeReports()) {
+    if (r.kind != EdgeKind::kLoop || r.rejected) continue;
+    tied.insert(r.from_id);
+    tied.insert(r.to_id);
+  }
+  const std::vector<int> fixed = graph_->FixedNodes();
+  const std::map<int, Pose2> poses = graph_->GetPoses();
+  std::vector<PlaceView> views;
+  views.reserve(keyframes_.size());
+  for (const KeyframeRecord& r : keyframes_) {
+    const Keyframe& k = r.keyframe;
+    const Pose2& T_world_anchor = poses.at(k.id);
+    PlaceView v;
+    v.id = k.id;
+    v.anchor_world = {T_world_anchor.x_m, T_world_anchor.y_m};
+    // The anchor keeps the odometry frame's orientation: the map's correction turns the robot
+    // by as much as it turns the anchor.
+    v.robot_heading_rad =
+        NormalizeAngle(T_world_anchor.yaw_rad - k.T_world_anchor.yaw_rad + k.T_world_robot.yaw_rad);
+    v.path_mid_m = 0.5 * (k.path_begin_m + k.path_end_m);
+    v.stamp = k.stamp_ns;
+    v.retirable = std::find(fixed.begin(), fixed.end(), k.id) == fixed.end();
+    views.push_back(v);
+  }
+  for (const int id : queue) {
+    if (!tied.count(id)) continue;
+    auto query = std::find_if(views.begin(), views.end(), [&](const PlaceView& v) { return v.id == id; });
+    if (query == views.end()) continue;
+    const std::optional<int> victim = KeyframeToRetire(views, *query, config);
+    if (!victim) continue;
+    Retire(*victim);
+    views.erase(std::find_if(views.begin(), views.end(),
+                             [&](const PlaceView& v) { return v.id == *victim; }));
+  }
+}
+
+void SlamSystem::Retire(int id) {
+  auto it = std::find_if(keyframes_.begin(), keyframes_.end(),
+                         [&](const KeyframeRecord& r) { return r.keyframe.id == id; });
+  RetiredKeyframe r;
+  r.id = id;
+  r.stamp_ns = it->keyframe.stamp_ns;
+  r.T_odom_anchor = it->keyframe.T_world_anchor;
+  r.T_odom_robot = it->keyframe.T_world_robot;
+  r.path_begin_m = it->keyframe.path_begin_m;
+  r.path_end_m = it->keyframe.path_end_m;
+  const Pose2 T_world_anchor = graph_->GetPose(id);
+  r.hub_id = graph_->RemoveNode(id, &r.T_hub_anchor);
+  if (r.hub_id < 0) r.T_hub_anchor = T_world_anchor;
+  recognizer_->Remove(id);
+  keyframes_.erase(it);
+  retired_.push_back(r);
+}
+
 std::map<int, Pose2> SlamSystem::KeyframePoses() const { return graph_->GetPoses(); }
 
+std::vector<TrajectoryAnchor> SlamSystem::Anchors() const {
+  const std::map<int, Pose2> poses = graph_->GetPoses();
+  std::vector<TrajectoryAnchor> kept;
+  kept.reserve(keyframes_.size());
+  for (const KeyframeRecord& r : keyframes_) {
+    kept.push_back({r.keyframe.id, r.keyframe.stamp_ns, r.keyframe.T_world_anchor,
+                    poses.at(r.keyframe.id)});
+  }
+  const std::map<int, Pose2> folded = RetiredPoses(retired_, poses);
+  std::vector<TrajectoryAnchor> retired;
+  retired.reserve(retired_.size());
+  for (const RetiredKeyframe& r : retired_) {
+    auto p = folded.find(r.id);
+    if (p != folded.end()) retired.push_back({r.id, r.stamp_ns, r.T_odom_anchor, p->second});
+  }
+  std::stable_sort(retired.begin(), retired.end(),
+                   [](const TrajectoryAnchor& a, const TrajectoryAnchor& b) {
+                     return a.stamp_ns < b.stamp_ns;
+                   });
+  return MergeAnchors(std::move(kept), retired);
+}
+
 Pose2 SlamSystem::CorrectionAt(TimestampNs stamp_ns) const {
-  return InterpolatedCorrection(
-      keyframes_.size(), [&](std::size_t i) { return keyframes_[i].keyframe.stamp_ns; },
-      [&](std::size_t i) -> const Pose2& { return keyframes_[i].keyframe.T_world_anchor; },
-      [&](std::size_t i) { return graph_->GetPose(keyframes_[i].keyframe.id); }, stamp_ns);
+  return uwbsar::slam::CorrectionAt(Anchors(), stamp_ns);
 }
 
 std::unique_lock<std::mutex> SlamSystem::LockForKeyframeWork() {
@@ -284,6 +378,9 @@ SlamSnapshot SlamSystem::Capture() const {
     s.tiles.push_back(std::move(t));
   }
   s.poses = graph_->GetPoses();
+  for (const TrajectoryAnchor& a : Anchors()) {
+    if (!s.poses.count(a.id)) s.retired.push_back(a);
+  }
   s.edges = graph_->Edges();
   s.fixed_ids = graph_->FixedNodes();
   s.loops = loops_;
@@ -297,10 +394,11 @@ SlamSnapshot SlamSystem::Capture() const {
 }
 
 std::vector<std::pair<TimestampNs, Pose2>> SlamSystem::CorrectedTrajectory() const {
+  const std::vector<TrajectoryAnchor> anchors = Anchors();
   std::vector<std::pair<TimestampNs, Pose2>> out;
   out.reserve(odometry_.size());
   for (const OdometryEntry& e : odometry_) {
-    out.push_back({e.stamp_ns, CorrectionAt(e.stamp_ns) * e.T_world_robot});
+    out.push_back({e.stamp_ns, uwbsar::slam::CorrectionAt(anchors, e.stamp_ns) * e.T_world_robot});
   }
   return out;
 }

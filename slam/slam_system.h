@@ -65,7 +65,10 @@ class SlamSystem {
   std::unique_lock<std::mutex> LockState() const { return std::unique_lock(state_mutex_); }
 
   const Config& config() const { return config_; }
+  /// The keyframes the map keeps, in order (a revisit retires old views: slam/place_views.h).
   const std::vector<KeyframeRecord>& keyframes() const { return keyframes_; }
+  /// The keyframes retired so far, in the order they were retired.
+  const std::vector<RetiredKeyframe>& retired() const { return retired_; }
   const std::vector<LoopRecord>& loops() const { return loops_; }
   /// The frontend's counters as of the last Add* call returned (any thread).
   FrontendStats frontend_stats() const;
@@ -77,8 +80,11 @@ class SlamSystem {
   /// The keyframes' cached AKAZE/ORB features (same rules as keyframes()).
   const PlaceRecognizer& recognizer() const { return *recognizer_; }
 
-  /// Optimised T_world_anchor of every keyframe (odometry before the first solve).
+  /// Optimised T_world_anchor of every kept keyframe (odometry before the first solve).
   std::map<int, Pose2> KeyframePoses() const;
+  /// Kept and retired keyframes in time order at their optimised poses (what the trajectory's
+  /// correction interpolates).
+  std::vector<TrajectoryAnchor> Anchors() const;
   /// The odometry trajectory as the frontend used it (jumps corrected), every sample
   /// handed to the keyframe thread (up to the last keyframe while running; all after Finish).
   const std::vector<OdometryEntry>& odometry() const { return odometry_; }
@@ -111,6 +117,11 @@ class SlamSystem {
   /// Records a match attempt and adds its loop edge if validated; caller holds state_mutex_.
   void AddLoop(const LoopAttempt& attempt, int keyframe_id);
   void Optimize();  ///< caller holds state_mutex_
+  /// After a solve: each keyframe added since the last one that a loop ties to the map retires
+  /// the oldest view of its place when the place has too many (slam/place_views.h); caller
+  /// holds state_mutex_.
+  void RetireRevisitedViews();
+  void Retire(int id);
   /// state_mutex_ for the keyframe thread, recording how long it waited.
   std::unique_lock<std::mutex> LockForKeyframeWork();
 
@@ -127,6 +138,8 @@ class SlamSystem {
   std::unique_ptr<PlaceRecognizer> recognizer_;  // keyframe thread only
   WallEdgeFinder wall_edges_;                    // keyframe thread only
   std::vector<KeyframeRecord> keyframes_;        // GUARDED_BY(state_mutex_)
+  std::vector<RetiredKeyframe> retired_;         // GUARDED_BY(state_mutex_)
+  std::vector<int> awaiting_retirement_check_;   // GUARDED_BY(state_mutex_): since last solve
   std::vector<LoopRecord> loops_;                // GUARDED_BY(state_mutex_)
   std::vector<OdometryEntry> odometry_;          // GUARDED_BY(state_mutex_)
   OptimizeResult last_optimization_;             // GUARDED_BY(state_mutex_)

@@ -1,5 +1,7 @@
 // uwbsar: pose-graph SLAM with UWB synthetic-aperture radar. See README.md.
 #include <CLI/CLI.hpp>
+#include <malloc.h>
+
 #include <cstring>
 #include <exception>
 #include <iostream>
@@ -45,6 +47,11 @@ int main(int argc, char** argv) {
   using namespace uwbsar;
   using namespace uwbsar::tools;
   InstallInterruptCleanup();  // before any thread starts: they inherit the blocked signals
+  // Two malloc arenas, not glibc's default of eight per core: the keyframe thread frees the
+  // tiles the feeding thread allocated, and with an arena per thread the freed megabytes stayed
+  // scattered over arenas, so that resident memory grew with the hours driven (office ring, ten
+  // laps: peak 415-478 MiB with the default, 362 MiB with two; no time lost).
+  mallopt(M_ARENA_MAX, 2);
   CLI::App app{
       "uwbsar - pose-graph SLAM with UWB synthetic-aperture radar.\n"
       "Exit codes: 0 success, 1 internal or I/O failure or a degenerate result (the message\n"

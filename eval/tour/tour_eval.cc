@@ -97,6 +97,11 @@ TourEvaluation EvaluateTour(const MapRun& run, double overlap_m) {
     true_anchor[k.keyframe.id] = TruePoseAt(run.ground_truth, k.keyframe.stamp_ns) * T_robot_anchor;
     path_m[k.keyframe.id] = k.keyframe.path_begin_m;
   }
+  for (const RetiredKeyframe& k : slam.retired()) {  // revisits retire old views
+    const Pose2 T_robot_anchor = k.T_odom_robot.Inverse() * k.T_odom_anchor;
+    true_anchor[k.id] = TruePoseAt(run.ground_truth, k.stamp_ns) * T_robot_anchor;
+    path_m[k.id] = k.path_begin_m;
+  }
   e.keyframes = static_cast<int>(slam.keyframes().size());
 
   std::map<int, bool> query_overlap, query_recalled;  // per query keyframe with true overlap

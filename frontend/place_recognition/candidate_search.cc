@@ -30,6 +30,15 @@ void KeyframeIndex::Upsert(int id, const Point2& position_world, double path_beg
   cells_[key].push_back(id);
 }
 
+void KeyframeIndex::Remove(int id) {
+  auto it = entries_.find(id);
+  if (it == entries_.end()) return;
+  std::vector<int>& cell = cells_[it->second.cell];
+  cell.erase(std::remove(cell.begin(), cell.end(), id), cell.end());
+  if (cell.empty()) cells_.erase(it->second.cell);
+  entries_.erase(it);
+}
+
 std::vector<KeyframeIndex::Hit> KeyframeIndex::Within(const Point2& p, double radius_m) const {
   std::vector<Hit> out;
   if (!(radius_m >= 0) || !std::isfinite(p.x_m) || !std::isfinite(p.y_m)) return out;

@@ -22,6 +22,8 @@ class KeyframeIndex {
 
   /// Adds or moves keyframe `id` (e.g. after the pose graph corrected it).
   void Upsert(int id, const Point2& position_world, double path_begin_m);
+  /// Forgets keyframe `id` (a retired keyframe); nothing happens for an unknown id.
+  void Remove(int id);
   bool Contains(int id) const { return entries_.count(id) > 0; }
   std::size_t size() const { return entries_.size(); }
 

@@ -218,6 +218,11 @@ void PlaceRecognizer::UpdatePose(int id, const Pose2& T_world_anchor) {
   index_.Upsert(id, CentreInWorld(*it->second), it->second->path_begin_m);
 }
 
+void PlaceRecognizer::Remove(int id) {
+  database_.erase(id);
+  index_.Remove(id);
+}
+
 const KeyframeFeatures* PlaceRecognizer::Find(int id) const {
   auto it = database_.find(id);
   return it == database_.end() ? nullptr : it->second.get();

@@ -134,6 +134,8 @@ class PlaceRecognizer {
 
   /// Moves a stored keyframe after the pose graph corrected it.
   void UpdatePose(int id, const Pose2& T_world_anchor);
+  /// Forgets a keyframe the map retired: it is no longer a candidate (unknown ids are ignored).
+  void Remove(int id);
   const KeyframeFeatures* Find(int id) const;
   std::size_t size() const { return database_.size(); }
 

@@ -17,6 +17,7 @@
 #include "imaging/enhance_config.h"
 #include "imaging/imaging_config.h"
 #include "imaging/pulse_config.h"
+#include "slam/config/place_views_config.h"
 
 namespace uwbsar {
 
@@ -53,6 +54,7 @@ struct SlamConfig {
                              ///< poses of every solve (24 bytes per keyframe and solve)
   double results_mcap_sar_max_pixels = 4e6;  ///< its SAR mosaic is averaged down to at most
                                              ///< this many pixels (a 20 m x 20 m map at 1 cm)
+  PlaceViewsConfig place_views;  ///< keyframes bounded by area (slam/place_views.h)
 
   template <class V>
   void Visit(V& v) {
@@ -70,6 +72,7 @@ struct SlamConfig {
     v("occupancy_reference_percentile", occupancy_reference_percentile);
     v("results_mcap", results_mcap);
     v("results_mcap_sar_max_pixels", results_mcap_sar_max_pixels);
+    v("place_views", place_views);
   }
 };
 /// Semantic checks of slam.* (the rules joining it to radars[] are in ValidateSystemConfig); throws

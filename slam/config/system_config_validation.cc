@@ -51,6 +51,14 @@ void Validate(const SlamConfig& s, const std::string& src) {
           "slam.occupancy_reference_percentile", "must be in (0, 100]");
   Require(s.results_mcap_sar_max_pixels >= 1, src, "slam.results_mcap_sar_max_pixels",
           "must be >= 1");
+  const PlaceViewsConfig& v = s.place_views;
+  const std::string pv = "slam.place_views.";
+  Require(v.max_per_place >= 0, src, pv + "max_per_place", "must be >= 0");
+  Require(v.radius_m > 0 && v.radius_m <= 100, src, pv + "radius_m", "must be in (0, 100]");
+  Require(v.heading_deg > 0 && v.heading_deg <= 180, src, pv + "heading_deg",
+          "must be in (0, 180]");
+  Require(v.min_separation_m >= 0 && v.min_separation_m <= 1e6, src, pv + "min_separation_m",
+          "must be in [0, 1e6]");
 }
 
 namespace {

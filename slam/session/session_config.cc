@@ -17,6 +17,8 @@ void Validate(const SessionConfig& s, const std::string& src) {
   Require(s.localize_lost_after_m > 0, src, "session.localize_lost_after_m", "must be > 0");
   Require(s.localize_window_keyframes >= 2, src, "session.localize_window_keyframes",
           "must be >= 2");
+  Require(s.odometry_spacing_m >= 0 && s.odometry_spacing_m <= 100, src,
+          "session.odometry_spacing_m", "must be in [0, 100]");
 }
 
 }  // namespace uwbsar

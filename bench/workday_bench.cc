@@ -1,0 +1,230 @@
+// Workday benchmark (issue "a working day on one building"): the same place driven again and
+// again in one run, streamed from the simulator into SlamSystem in memory. Memory, session size
+// and time per metre must follow the area mapped, not the hours driven (slam/place_views.h).
+//
+//   BM_WorkdayOfficeRing: the office ring (config/maps/office: 14,9 -> 4,9 -> 4,4 -> 16,4 ->
+//     16,9 -> 14,9, 34 m) driven 10 times, seed 3.
+//   BM_WorkdayFloor50: floor50's 1 km route driven 5 times (forward, back, forward, back,
+//     forward: the route does not end where it starts), seed 1.
+//
+// Run by hand (the ring about 2 minutes, floor50 about an hour on 2 cores; not part of CI):
+//   build/bin/uwbsar_bench --benchmark_filter=Workday
+// A table on stdout gives, per lap, the SLAM time per metre by stage, keyframes kept and
+// retired, loops accepted, VmRSS, the session's size if saved then, and the lap's ATE.
+#include <benchmark/benchmark.h>
+
+#include <malloc.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "slam/app_config.h"
+#include "slam/map_job.h"
+#include "slam/session/session_file.h"
+#include "slam/session_capture.h"
+
+namespace uwbsar {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string MapFile(const std::string& name) {
+  return std::string(UWBSAR_SOURCE_DIR) + "/config/maps/" + name;
+}
+
+double ResidentMiB() {
+  std::ifstream status("/proc/self/status");
+  std::string key;
+  while (status >> key) {
+    if (key == "VmRSS:") {
+      double kib = 0.0;
+      status >> kib;
+      return kib / 1024.0;
+    }
+    status.ignore(1 << 12, '\n');
+  }
+  return 0.0;
+}
+
+/// The waypoints of `laps` passes of `lap` (each pass reversed after a forward one when
+/// `alternate`), as a route file in a temporary folder.
+std::string WriteRoute(const std::vector<Point2>& lap, int laps, bool alternate,
+                       const std::string& name) {
+  const fs::path path = fs::temp_directory_path() / ("uwbsar_workday_" + name + ".txt");
+  std::ofstream out(path);
+  out << lap.front().x_m << ' ' << lap.front().y_m << '\n';
+  for (int k = 0; k < laps; ++k) {
+    std::vector<Point2> pass = lap;
+    if (alternate && k % 2 == 1) pass.assign(lap.rbegin(), lap.rend());
+    for (std::size_t i = 1; i < pass.size(); ++i) out << pass[i].x_m << ' ' << pass[i].y_m << '\n';
+  }
+  return path.string();
+}
+
+std::vector<Point2> ReadWaypoints(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<Point2> out;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    Point2 p;
+    if (std::sscanf(line.c_str(), "%lf %lf", &p.x_m, &p.y_m) == 2) out.push_back(p);
+  }
+  return out;
+}
+
+struct LapSample {
+  double path_m = 0.0;
+  TimestampNs stamp_ns = 0;
+  slam::StageTimes times;
+  std::size_t keyframes = 0, retired = 0;
+  int accepted = 0;
+  double rss_mib = 0.0;
+  double session_mib = 0.0;
+};
+
+double Total(const slam::StageTimes& t) {
+  return t.imaging_s + t.features_s + t.matching_s + t.optimization_s;
+}
+
+/// Maps `route`, sampling at every lap boundary (`lap_m` of odometry path); every keyframe's
+/// true anchor is kept as it appears, so loops to keyframes retired later can still be judged.
+slam::MapRun RunLaps(const Config& config, const std::string& map, const std::string& route,
+                     std::uint64_t seed, double lap_m, std::vector<LapSample>* laps,
+                     std::map<int, Pose2>* true_anchor) {
+  std::vector<OdometrySample> truth;
+  long long truth_seen = 0;
+  const fs::path session = fs::temp_directory_path() / "uwbsar_workday_session.uwbsar";
+  slam::MapRun run = slam::MapSimulation(config, map, route, seed, [&](slam::MapRun* r) {
+    for (const OdometrySample& g : r->ground_truth) {
+      if (truth_seen++ % 4 == 0) truth.push_back(g);  // 50 Hz of the 200 Hz truth
+    }
+    r->ground_truth.clear();
+    const auto state = r->slam->LockState();
+    const auto& odometry = r->slam->odometry();
+    if (odometry.empty() || truth.empty()) return;
+    for (const slam::KeyframeRecord& k : r->slam->keyframes()) {
+      if (true_anchor->count(k.keyframe.id)) continue;
+      auto it = std::lower_bound(
+          truth.begin(), truth.end(), k.keyframe.stamp_ns,
+          [](const OdometrySample& g, TimestampNs t) { return g.stamp_ns < t; });
+      if (it == truth.end()) --it;
+      (*true_anchor)[k.keyframe.id] =
+          it->T_world_robot * (k.keyframe.T_world_robot.Inverse() * k.keyframe.T_world_anchor);
+    }
+    const double path_m = odometry.back().path_m;
+    if (path_m < lap_m * static_cast<double>(laps->size() + 1)) return;
+    LapSample s;
+    s.path_m = path_m;
+    s.stamp_ns = odometry.back().stamp_ns;
+    s.times = r->slam->times();
+    s.keyframes = r->slam->keyframes().size();
+    s.retired = r->slam->retired().size();
+    for (const slam::LoopRecord& l : r->slam->loops()) s.accepted += l.validation.accepted;
+    s.rss_mib = ResidentMiB();
+    WriteSession(session.string(), slam::CaptureSession(*r));
+    s.session_mib = static_cast<double>(fs::file_size(session)) / (1 << 20);
+    laps->push_back(s);
+  });
+  fs::remove(session);
+  run.ground_truth = std::move(truth);
+  return run;
+}
+
+/// Accepted loops, and those more than 0.2 m or 5 deg from the truth.
+std::pair<int, int> CountLoops(const slam::MapRun& run, const std::map<int, Pose2>& true_anchor) {
+  int accepted = 0, false_accepted = 0;
+  for (const slam::LoopRecord& l : run.slam->loops()) {
+    if (!l.accepted()) continue;
+    ++accepted;
+    auto a = true_anchor.find(l.match_id), b = true_anchor.find(l.query_id);
+    if (a == true_anchor.end() || b == true_anchor.end()) continue;
+    const Pose2 truth = Between(a->second, b->second);
+    const Pose2& T = l.validation.constraint.T_ij;
+    false_accepted += std::hypot(T.x_m - truth.x_m, T.y_m - truth.y_m) > 0.2 ||
+                      std::abs(NormalizeAngle(T.yaw_rad - truth.yaw_rad)) > 5.0 * M_PI / 180.0;
+  }
+  return {accepted, false_accepted};
+}
+
+void RunWorkday(benchmark::State& state, const std::string& map, const std::string& route,
+                std::uint64_t seed, int num_laps) {
+  const Config config;
+  mallopt(M_ARENA_MAX, 2);  // as the uwbsar program does (tools/main.cc)
+  for (auto _ : state) {
+    // The lap's length: the route's polyline over the number of laps (corners are rounded when
+    // driven, so a lap's sample comes a little after its end).
+    const std::vector<Point2> w = ReadWaypoints(route);
+    double route_m = 0.0;
+    for (std::size_t i = 1; i < w.size(); ++i)
+      route_m += std::hypot(w[i].x_m - w[i - 1].x_m, w[i].y_m - w[i - 1].y_m);
+    const double lap_m = 0.98 * route_m / num_laps;
+    std::vector<LapSample> laps;
+    std::map<int, Pose2> true_anchor;
+    const slam::MapRun run = RunLaps(config, map, route, seed, lap_m, &laps, &true_anchor);
+    if (laps.size() < 2) {
+      state.SkipWithError("fewer than two laps sampled");
+      return;
+    }
+    const std::vector<std::pair<TimestampNs, Pose2>> corrected = run.slam->CorrectedTrajectory();
+    std::printf("%4s %8s %8s %8s %8s %8s %8s %6s %7s %7s %8s %8s %7s\n", "lap", "path_m",
+                "ms/m", "imaging", "features", "matching", "optimise", "kept", "retired",
+                "loops", "RSS_MiB", "sess_MiB", "ate_cm");
+    LapSample previous;
+    std::vector<double> ms_per_m, ate_cm;
+    for (std::size_t i = 0; i < laps.size(); ++i) {
+      const LapSample& s = laps[i];
+      const double m = s.path_m - previous.path_m;
+      std::vector<std::pair<TimestampNs, Pose2>> lap;
+      for (const auto& p : corrected) {
+        if (p.first > previous.stamp_ns && p.first <= s.stamp_ns) lap.push_back(p);
+      }
+      const double ate = slam::TrajectoryError(lap, run.ground_truth).rmse_m * 100.0;
+      ms_per_m.push_back((Total(s.times) - Total(previous.times)) / m * 1e3);
+      ate_cm.push_back(ate);
+      std::printf("%4zu %8.1f %8.1f %8.1f %8.1f %8.2f %8.2f %6zu %7zu %7d %8.0f %8.2f %7.2f\n",
+                  i + 1, s.path_m, ms_per_m.back(),
+                  (s.times.imaging_s - previous.times.imaging_s) / m * 1e3,
+                  (s.times.features_s - previous.times.features_s) / m * 1e3,
+                  (s.times.matching_s - previous.times.matching_s) / m * 1e3,
+                  (s.times.optimization_s - previous.times.optimization_s) / m * 1e3, s.keyframes,
+                  s.retired, s.accepted, s.rss_mib, s.session_mib, ate);
+      previous = s;
+    }
+    const auto [accepted, false_accepted] = CountLoops(run, true_anchor);
+    state.counters["laps"] = static_cast<double>(laps.size());
+    state.counters["travel_m"] = laps.back().path_m;
+    state.counters["peak_rss_MiB"] = slam::PeakMemoryMiB();
+    state.counters["rss_last_over_first_lap"] = laps.back().rss_mib / laps.front().rss_mib;
+    state.counters["session_last_over_first_lap"] =
+        laps.back().session_mib / laps.front().session_mib;
+    state.counters["ms_per_m_last_over_first_lap"] = ms_per_m.back() / ms_per_m.front();
+    state.counters["keyframes_kept"] = static_cast<double>(run.slam->keyframes().size());
+    state.counters["keyframes_retired"] = static_cast<double>(run.slam->retired().size());
+    state.counters["loops_accepted"] = accepted;
+    state.counters["false_loops_accepted"] = false_accepted;
+    state.counters["ate_cm"] = slam::TrajectoryError(corrected, run.ground_truth).rmse_m * 100.0;
+    state.counters["first_lap_ate_cm"] = ate_cm.front();
+    state.counters["last_lap_ate_cm"] = ate_cm.back();
+  }
+}
+
+void BM_WorkdayOfficeRing(benchmark::State& state) {
+  const std::vector<Point2> ring = {{14, 9}, {4, 9}, {4, 4}, {16, 4}, {16, 9}, {14, 9}};
+  RunWorkday(state, MapFile("office/office.yaml"), WriteRoute(ring, 10, false, "office"), 3, 10);
+}
+BENCHMARK(BM_WorkdayOfficeRing)->Unit(benchmark::kSecond)->Iterations(1);
+
+void BM_WorkdayFloor50(benchmark::State& state) {
+  const std::vector<Point2> lap = ReadWaypoints(MapFile("floor50/route_1km.txt"));
+  RunWorkday(state, MapFile("floor50/floor50.yaml"), WriteRoute(lap, 5, true, "floor50"), 1, 5);
+}
+BENCHMARK(BM_WorkdayFloor50)->Unit(benchmark::kSecond)->Iterations(1);
+
+}  // namespace
+}  // namespace uwbsar

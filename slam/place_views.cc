@@ -1,0 +1,42 @@
+#include "slam/place_views.h"
+
+#include <algorithm>
+#include <cmath>
+
+
+namespace uwbsar {
+
+std::vector<const PlaceView*> ViewsOfPlace(const std::vector<PlaceView>& kept,
+                                           const PlaceView& query,
+                                           const PlaceViewsConfig& config) {
+  const double heading_rad = config.heading_deg * M_PI / 180.0;
+  std::vector<const PlaceView*> out;
+  for (const PlaceView& v : kept) {
+    if (v.id == query.id) continue;
+    if (std::hypot(v.anchor_world.x_m - query.anchor_world.x_m,
+                   v.anchor_world.y_m - query.anchor_world.y_m) > config.radius_m)
+      continue;
+    if (std::abs(NormalizeAngle(v.robot_heading_rad - query.robot_heading_rad)) > heading_rad)
+      continue;
+    if (v.trajectory == query.trajectory &&
+        std::abs(v.path_mid_m - query.path_mid_m) < config.min_separation_m)
+      continue;
+    out.push_back(&v);
+  }
+  std::sort(out.begin(), out.end(),
+            [](const PlaceView* a, const PlaceView* b) { return a->stamp < b->stamp; });
+  return out;
+}
+
+std::optional<int> KeyframeToRetire(const std::vector<PlaceView>& kept, const PlaceView& query,
+                                    const PlaceViewsConfig& config) {
+  if (config.max_per_place <= 0) return std::nullopt;
+  const std::vector<const PlaceView*> views = ViewsOfPlace(kept, query, config);
+  if (static_cast<int>(views.size()) + 1 <= config.max_per_place) return std::nullopt;
+  for (const PlaceView* v : views) {
+    if (v->retirable && v->stamp < query.stamp) return v->id;
+  }
+  return std::nullopt;
+}
+
+}  // namespace uwbsar
