@@ -176,7 +176,8 @@ void CountHeldBytes(const slam::MapRun& run, benchmark::State& state) {
   double detected_bytes = 0.0, profile_bytes = 0.0;
   std::set<const RangeProfile*> profiles;
   for (const slam::KeyframeRecord& k : run.slam->keyframes()) {
-    detected_bytes += static_cast<double>(k.detected.total() * k.detected.elemSize());
+    const cv::Mat detected = k.detected.Load();
+    detected_bytes += static_cast<double>(detected.total() * detected.elemSize());
     for (const ImagedScan& scan : k.keyframe.scans) {
       if (scan.profile && profiles.insert(scan.profile.get()).second) {
         profile_bytes += static_cast<double>(

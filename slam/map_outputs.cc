@@ -170,7 +170,7 @@ MapExtent WriteMapAndOccupancy(const MapState& run, const StampedPoses& trajecto
   auto staged = [&](const char* name) { return (stage / name).string(); };
   GlobalMap global(config.slam.map_resolution_m);
   for (const TileSnapshot& k : slam.tiles) {
-    global.AddTile(k.detected, k.detected_grid, slam.poses.at(k.id));
+    global.AddTile(k.detected.Load(), k.detected_grid, slam.poses.at(k.id));
   }
   // A keyframe placed kilometres away (a wild odometry jump) must not allocate gigabytes.
   if (!(global.RenderPixels() <= config.limits.max_image_pixels)) {

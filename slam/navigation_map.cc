@@ -104,10 +104,12 @@ std::vector<WallRidge> KeyframeWallRidges(const NavigationKeyframe& k,
 RunNavigationInputs GatherRunNavigationInputs(const SlamSnapshot& slam) {
   const auto& odometry = slam.odometry;
   RunNavigationInputs inputs;
+  inputs.tiles.reserve(slam.tiles.size());  // keyframes point into it: never reallocated
   for (const TileSnapshot& t : slam.tiles) {
     if (!t.has_scans || t.detected.empty()) continue;
     NavigationKeyframe k;
-    k.detected = &t.detected;
+    inputs.tiles.push_back(t.detected.Load());
+    k.detected = &inputs.tiles.back();
     k.grid = t.detected_grid;
     const Pose2 T_anchor_world = t.T_world_anchor.Inverse();
     auto it = std::lower_bound(

@@ -31,10 +31,11 @@ OccupancyGrid RunNavigationGrid(const SlamSnapshot& slam,
 /// in its anchor frame while it was imaged, wall ridges) and its id, in keyframe order.
 /// Gathered once, it serves the grid after every solve (results.mcap).
 struct RunNavigationInputs {
-  std::vector<NavigationKeyframe> keyframes;  ///< T_map_anchor unset
+  std::vector<NavigationKeyframe> keyframes;  ///< T_map_anchor unset; `detected` -> tiles
   std::vector<int> ids;
+  std::vector<cv::Mat> tiles;  ///< the tiles read back (slam/session/tile_store.h), held here
 };
-/// The tiles stay `slam`'s: the inputs live no longer than it.
+/// The tiles are read back once and held by the inputs (do not copy them: keyframes point in).
 RunNavigationInputs GatherRunNavigationInputs(const SlamSnapshot& slam);
 /// The grid of the keyframes of `inputs` that `slam.poses` holds, placed there (`slam` may be
 /// an earlier state of the run the inputs were gathered from: SlamSnapshot::AfterSolve).

@@ -43,7 +43,7 @@ SessionData CaptureSession(const MapRun& run) {
     s.path_begin_m = k.path_begin_m;
     s.path_end_m = k.path_end_m;
     s.fixed = std::find(fixed.begin(), fixed.end(), k.id) != fixed.end();
-    s.detected = r.detected;
+    s.detected = r.detected.Load();
     s.detected_grid = r.detected_grid;
     s.features = *f;
     s.features.T_world_anchor = s.T_map_anchor;

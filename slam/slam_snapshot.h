@@ -18,6 +18,7 @@
 #include "frontend/odometry_buffer.h"
 #include "frontend/place_recognition/place_recognizer.h"
 #include "slam/app_config.h"
+#include "slam/session/tile_store.h"
 
 namespace uwbsar::slam {
 
@@ -44,7 +45,7 @@ struct TileSnapshot {
   int id = 0;
   TimestampNs stamp_ns = 0;
   Pose2 T_world_anchor;  ///< odometry pose of the tile frame
-  cv::Mat detected;      ///< shared, read-only (see above)
+  TileRef detected;      ///< shared, read-only (see above); Load() reads it back
   ImageGrid detected_grid;
   bool has_scans = false;  ///< first/last_scan_ns are valid
   TimestampNs first_scan_ns = 0, last_scan_ns = 0;

@@ -45,6 +45,7 @@ SlamSystem::SlamSystem(const Config& config)
       graph_(std::make_unique<PoseGraph>(config.backend)),
       recognizer_(std::make_unique<PlaceRecognizer>(PlaceRecognizerConfig(config))),
       wall_edges_(config.place_recognition.wall_profiles),
+      tiles_(static_cast<std::size_t>(config.limits.tile_cache_mb * 1024.0 * 1024.0)),
       worker_(config.slam.keyframe_thread, config.slam.keyframe_queue_size,
               [this](Work&& work) { Process(std::move(work)); }) {
   frontend_->SetOdometryObserver(
@@ -140,9 +141,10 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
   const PlaceRecognitionResult found = recognizer_->Process(keyframe, estimate);
   const auto start = Clock::now();
   KeyframeRecord record;
-  MakeDetected(keyframe, config_, &record.detected, &record.detected_grid);
-  const std::vector<PoseGraphEdge> walls =
-      wall_edges_.Add(keyframe, record.detected, record.detected_grid);
+  cv::Mat detected;
+  MakeDetected(keyframe, config_, &detected, &record.detected_grid);
+  const std::vector<PoseGraphEdge> walls = wall_edges_.Add(keyframe, detected, record.detected_grid);
+  record.detected = tiles_.Put(detected);  // out of core from here on
   if (!config_.slam.keep_tile_images) keyframe.image.release();
   keyframe.sensor_tiles.clear();           // per-radar images: only their features are kept
   if (!config_.slam.keep_scan_profiles) {  // the poses stay: they place the scans in time

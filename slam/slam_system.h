@@ -30,6 +30,7 @@
 #include "frontend/place_recognition/place_recognizer.h"
 #include "slam/app_config.h"
 #include "slam/ordered_worker.h"
+#include "slam/session/tile_store.h"
 #include "slam/slam_snapshot.h"
 #include "slam/wall_edges.h"
 
@@ -38,7 +39,8 @@ namespace uwbsar::slam {
 /// A keyframe as SLAM keeps it (its features live in the PlaceRecognizer).
 struct KeyframeRecord {
   Keyframe keyframe;        ///< tile image dropped after use unless slam.keep_tile_images
-  cv::Mat detected;         ///< detected tile (positive / magnitude, blurred) at map resolution
+  TileRef detected;         ///< detected tile (positive / magnitude, blurred) at map resolution,
+                            ///< in the tile cache file (slam/session/tile_store.h)
   ImageGrid detected_grid;  ///< its geometry in the anchor frame
 };
 
@@ -137,6 +139,7 @@ class SlamSystem {
   std::unique_ptr<PoseGraph> graph_;             // GUARDED_BY(state_mutex_), solves included
   std::unique_ptr<PlaceRecognizer> recognizer_;  // keyframe thread only
   WallEdgeFinder wall_edges_;                    // keyframe thread only
+  TileStore tiles_;                              // thread-safe (detected tiles out of core)
   std::vector<KeyframeRecord> keyframes_;        // GUARDED_BY(state_mutex_)
   std::vector<RetiredKeyframe> retired_;         // GUARDED_BY(state_mutex_)
   std::vector<int> awaiting_retirement_check_;   // GUARDED_BY(state_mutex_): since last solve
