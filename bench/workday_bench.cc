@@ -130,6 +130,10 @@ slam::MapRun RunLaps(const Config& config, const std::string& map, const std::st
     WriteSession(session.string(), slam::CaptureSession(*r));
     s.session_mib = static_cast<double>(fs::file_size(session)) / (1 << 20);
     laps->push_back(s);
+    // As it goes (a long run read while it runs): the final table adds time and ATE per lap.
+    std::fprintf(stderr, "lap %zu done: %.1f m, %zu kept, %zu retired, %d loops, %.0f MiB, "
+                 "session %.2f MiB, SLAM %.1f s\n", laps->size(), s.path_m, s.keyframes,
+                 s.retired, s.accepted, s.rss_mib, s.session_mib, Total(s.times));
   });
   fs::remove(session);
   run.ground_truth = std::move(truth);

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <set>
@@ -133,6 +136,13 @@ void SlamSystem::Process(Work&& work) {
     odometry_.insert(odometry_.end(), work.odometry.begin(), work.odometry.end());
   }
   for (Keyframe& k : work.keyframes) AddKeyframe(std::move(k));
+#ifdef __GLIBC__
+  // Hand the pages of the keyframe's freed images (a full-resolution tile, its range profiles)
+  // back to the system: glibc keeps freed memory inside its heaps, and resident memory then
+  // followed the largest burst of keyframes in flight rather than what the map holds (office
+  // ring, ten laps: peak heap 233 MiB, resident 393 MiB). A few milliseconds per keyframe.
+  if (!work.keyframes.empty()) malloc_trim(0);
+#endif
 }
 
 void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
