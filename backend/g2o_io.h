@@ -4,8 +4,9 @@
 // Blank lines and lines starting with '#' are ignored, except the comments `# uwbsar:wall` and
 // `# uwbsar:marginal`: uwbsar writes them right before the EDGE_SE2 of a wall-profile edge
 // (EdgeKind::kWall) or a removed node's folded edge (EdgeKind::kMarginal), so that its own reader
-// restores the kind while other g2o tools see a plain edge. Every other line is checked; a bad one throws an InputError naming the file and line, or is
-// skipped and reported when skip_bad_lines is set (the rest is still loaded).
+// restores the kind while other g2o tools see a plain edge. Every other line is checked; a bad one
+// throws an InputError naming the file and line, or is skipped and reported when skip_bad_lines is
+// set (the rest is still loaded).
 #pragma once
 
 #include <Eigen/Core>
@@ -51,8 +52,8 @@ G2oGraph ParseG2o(std::istream& in, const std::string& source_name,
 /// Throws InputError when the file cannot be opened (and on bad lines, see above).
 G2oGraph ReadG2o(const std::string& path, const G2oReadOptions& options = {});
 
-/// Edges marked `# uwbsar:wall` are wall edges, `# uwbsar:marginal` marginal ones; of the others, edges between consecutive ids
-/// are odometry and all others loops (the g2o datasets' convention).
+/// Edges marked `# uwbsar:wall` are wall edges, `# uwbsar:marginal` marginal ones; of the others,
+/// edges between consecutive ids are odometry and all others loops (the g2o datasets' convention).
 EdgeKind ClassifyG2oEdge(const G2oEdge& edge);
 
 /// Adds the vertices (with their file poses as initial estimates), FIX lines and edges to

@@ -179,8 +179,9 @@ void PoseGraph::InsertPending(std::vector<PendingNode> nodes, const std::vector<
           CalibratedOdometryCost::Create(se->edge.T_from_to, se->travel, se->sqrt_information),
           nullptr, se->from->x.data(), se->to->x.data(), se->calibration->x.data());
     } else {
-      se->residual = problem_->AddResidualBlock(new Se2EdgeCost(se->edge.T_from_to, se->sqrt_information),
-                                 se->loss.get(), se->from->x.data(), se->to->x.data());
+      se->residual =
+          problem_->AddResidualBlock(new Se2EdgeCost(se->edge.T_from_to, se->sqrt_information),
+                                     se->loss.get(), se->from->x.data(), se->to->x.data());
     }
     solver_edges_.push_back(std::move(se));
   }

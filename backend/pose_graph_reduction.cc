@@ -85,7 +85,8 @@ int PoseGraph::RemoveNode(int id, Pose2* T_hub_node) {
   for (const NodeEdge& t : ties) {
     auto [it, inserted] = by_neighbour.emplace(t.neighbour, t);
     if (inserted) continue;
-    it->second.T_node_neighbour = FuseRelativePoses(it->second.T_node_neighbour, t.T_node_neighbour);
+    it->second.T_node_neighbour =
+        FuseRelativePoses(it->second.T_node_neighbour, t.T_node_neighbour);
     it->second.strength = it->second.T_node_neighbour.covariance.inverse().determinant();
   }
   int hub = -1;

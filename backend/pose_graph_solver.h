@@ -36,7 +36,7 @@ struct PoseGraph::SolverEdge {
   SolverNode* to = nullptr;
   ceres::ResidualBlockId residual = nullptr;  // in the problem (RemoveNode takes it out)
   CalibrationBlock* calibration = nullptr;    // calibrated odometry edges only
-  OdometryTravel travel;                    // the robot's path and turn (calibrated edges)
+  OdometryTravel travel;                      // the robot's path and turn (calibrated edges)
   // Loops only: the loss is swapped between robust, none and "switched off" without
   // touching the problem's structure (the wrapper is owned here, not by the problem).
   std::unique_ptr<ceres::LossFunctionWrapper> loss;

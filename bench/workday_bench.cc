@@ -12,7 +12,6 @@
 // A table on stdout gives, per lap, the SLAM time per metre by stage, keyframes kept and
 // retired, loops accepted, VmRSS, the session's size if saved then, and the lap's ATE.
 #include <benchmark/benchmark.h>
-
 #include <malloc.h>
 
 #include <cmath>
@@ -110,9 +109,9 @@ slam::MapRun RunLaps(const Config& config, const std::string& map, const std::st
     if (odometry.empty() || truth.empty()) return;
     for (const slam::KeyframeRecord& k : r->slam->keyframes()) {
       if (true_anchor->count(k.keyframe.id)) continue;
-      auto it = std::lower_bound(
-          truth.begin(), truth.end(), k.keyframe.stamp_ns,
-          [](const OdometrySample& g, TimestampNs t) { return g.stamp_ns < t; });
+      auto it =
+          std::lower_bound(truth.begin(), truth.end(), k.keyframe.stamp_ns,
+                           [](const OdometrySample& g, TimestampNs t) { return g.stamp_ns < t; });
       if (it == truth.end()) --it;
       (*true_anchor)[k.keyframe.id] =
           it->T_world_robot * (k.keyframe.T_world_robot.Inverse() * k.keyframe.T_world_anchor);
@@ -131,9 +130,11 @@ slam::MapRun RunLaps(const Config& config, const std::string& map, const std::st
     s.session_mib = static_cast<double>(fs::file_size(session)) / (1 << 20);
     laps->push_back(s);
     // As it goes (a long run read while it runs): the final table adds time and ATE per lap.
-    std::fprintf(stderr, "lap %zu done: %.1f m, %zu kept, %zu retired, %d loops, %.0f MiB, "
-                 "session %.2f MiB, SLAM %.1f s\n", laps->size(), s.path_m, s.keyframes,
-                 s.retired, s.accepted, s.rss_mib, s.session_mib, Total(s.times));
+    std::fprintf(stderr,
+                 "lap %zu done: %.1f m, %zu kept, %zu retired, %d loops, %.0f MiB, "
+                 "session %.2f MiB, SLAM %.1f s\n",
+                 laps->size(), s.path_m, s.keyframes, s.retired, s.accepted, s.rss_mib,
+                 s.session_mib, Total(s.times));
   });
   fs::remove(session);
   run.ground_truth = std::move(truth);
@@ -176,9 +177,9 @@ void RunWorkday(benchmark::State& state, const std::string& map, const std::stri
       return;
     }
     const std::vector<std::pair<TimestampNs, Pose2>> corrected = run.slam->CorrectedTrajectory();
-    std::printf("%4s %8s %8s %8s %8s %8s %8s %6s %7s %7s %8s %8s %7s\n", "lap", "path_m",
-                "ms/m", "imaging", "features", "matching", "optimise", "kept", "retired",
-                "loops", "RSS_MiB", "sess_MiB", "ate_cm");
+    std::printf("%4s %8s %8s %8s %8s %8s %8s %6s %7s %7s %8s %8s %7s\n", "lap", "path_m", "ms/m",
+                "imaging", "features", "matching", "optimise", "kept", "retired", "loops",
+                "RSS_MiB", "sess_MiB", "ate_cm");
     LapSample previous;
     std::vector<double> ms_per_m, ate_cm;
     for (std::size_t i = 0; i < laps.size(); ++i) {

@@ -3,12 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-
 namespace uwbsar {
 
 std::vector<const PlaceView*> ViewsOfPlace(const std::vector<PlaceView>& kept,
-                                           const PlaceView& query,
-                                           const PlaceViewsConfig& config) {
+                                           const PlaceView& query, const PlaceViewsConfig& config) {
   const double heading_rad = config.heading_deg * M_PI / 180.0;
   std::vector<const PlaceView*> out;
   for (const PlaceView& v : kept) {

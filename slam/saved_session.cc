@@ -1,11 +1,13 @@
 #include "slam/saved_session.h"
 
+#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
 
 #include "core/commit_journal.h"
 #include "core/errors.h"
+#include "core/log.h"
 #include "drivers/rosbag/bag_reader.h"
 #include "slam/session/session_file.h"
 
@@ -44,7 +46,13 @@ SavedSession OpenSavedSession(const std::string& dir_or_file, const Config& conf
   const std::string dir = FolderOf(path);
   if (!fs::is_directory(dir, ec)) throw InputError(path + ": no session file there");
   FolderLock lock = LockForReading(dir, path);
+  const auto start = std::chrono::steady_clock::now();
   SessionData data = ReadSession(path, &config);
+  Log(LogLevel::kDebug,
+      "session read: " + path + ", " + std::to_string(data.keyframes.size()) + " keyframes in " +
+          std::to_string(
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()) +
+          " s");
   return SavedSession{path, dir, std::move(lock), std::move(data)};
 }
 

@@ -39,9 +39,9 @@ std::map<int, Pose2> RetiredPoses(const std::vector<RetiredKeyframe>& retired,
 std::vector<TrajectoryAnchor> MergeAnchors(std::vector<TrajectoryAnchor> kept,
                                            const std::vector<TrajectoryAnchor>& retired) {
   kept.insert(kept.end(), retired.begin(), retired.end());
-  std::stable_sort(kept.begin(), kept.end(), [](const TrajectoryAnchor& a, const TrajectoryAnchor& b) {
-    return a.stamp_ns < b.stamp_ns;
-  });
+  std::stable_sort(
+      kept.begin(), kept.end(),
+      [](const TrajectoryAnchor& a, const TrajectoryAnchor& b) { return a.stamp_ns < b.stamp_ns; });
   return kept;
 }
 

@@ -87,8 +87,8 @@ struct RetiredKeyframe {
   Pose2 T_odom_anchor;  ///< odometry pose of the tile frame
   Pose2 T_odom_robot;   ///< odometry pose of the robot at stamp_ns
   double path_begin_m = 0.0, path_end_m = 0.0;
-  int hub_id = -1;      ///< the node it was folded into (PoseGraph::RemoveNode); -1: none
-  Pose2 T_hub_anchor;   ///< its pose in the hub's frame then (absolute when hub_id is -1)
+  int hub_id = -1;     ///< the node it was folded into (PoseGraph::RemoveNode); -1: none
+  Pose2 T_hub_anchor;  ///< its pose in the hub's frame then (absolute when hub_id is -1)
 };
 
 /// The optimised pose of every retired keyframe from the poses of the kept ones: through its
@@ -142,8 +142,8 @@ Pose2 InterpolatedCorrection(std::size_t n, const Stamp& stamp, const Anchor& an
 struct SlamSnapshot {
   const Config* config = nullptr;  ///< the SlamSystem's (lives as long as it does)
   std::vector<SensorGeometry> sensors;
-  std::vector<TileSnapshot> tiles;  ///< keyframes in order (those the map keeps)
-  std::map<int, Pose2> poses;       ///< optimised T_world_anchor by keyframe id
+  std::vector<TileSnapshot> tiles;        ///< keyframes in order (those the map keeps)
+  std::map<int, Pose2> poses;             ///< optimised T_world_anchor by keyframe id
   std::vector<TrajectoryAnchor> retired;  ///< retired keyframes (slam/place_views.h), in time
                                           ///< order, at their optimised poses
   std::vector<PoseGraphEdge> edges;

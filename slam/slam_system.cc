@@ -153,7 +153,8 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
   KeyframeRecord record;
   cv::Mat detected;
   MakeDetected(keyframe, config_, &detected, &record.detected_grid);
-  const std::vector<PoseGraphEdge> walls = wall_edges_.Add(keyframe, detected, record.detected_grid);
+  const std::vector<PoseGraphEdge> walls =
+      wall_edges_.Add(keyframe, detected, record.detected_grid);
   record.detected = tiles_.Put(detected);  // out of core from here on
   if (!config_.slam.keep_tile_images) keyframe.image.release();
   keyframe.sensor_tiles.clear();           // per-radar images: only their features are kept
@@ -211,7 +212,7 @@ void SlamSystem::AddLoop(const LoopAttempt& attempt, int keyframe_id) {
   loop.by_radar = attempt.by_radar;
   loop.matches = attempt.matches;
   loop.validation = attempt.validation;
-  for (auto& [kind, m] : loop.matches) {  // only the decision is kept (memory released: a
+  for (auto& [kind, m] : loop.matches) {        // only the decision is kept (memory released: a
     std::vector<cv::DMatch>().swap(m.matches);  // long run holds thousands of loop records)
     std::vector<unsigned char>().swap(m.inlier);
     std::vector<cv::Point2d>().swap(m.inliers_a);
@@ -298,7 +299,8 @@ void SlamSystem::RetireRevisitedViews() {
   }
   for (const int id : queue) {
     if (!tied.count(id)) continue;
-    auto query = std::find_if(views.begin(), views.end(), [&](const PlaceView& v) { return v.id == id; });
+    auto query =
+        std::find_if(views.begin(), views.end(), [&](const PlaceView& v) { return v.id == id; });
     if (query == views.end()) continue;
     const std::optional<int> victim = KeyframeToRetire(views, *query, config);
     if (!victim) continue;
@@ -333,8 +335,8 @@ std::vector<TrajectoryAnchor> SlamSystem::Anchors() const {
   std::vector<TrajectoryAnchor> kept;
   kept.reserve(keyframes_.size());
   for (const KeyframeRecord& r : keyframes_) {
-    kept.push_back({r.keyframe.id, r.keyframe.stamp_ns, r.keyframe.T_world_anchor,
-                    poses.at(r.keyframe.id)});
+    kept.push_back(
+        {r.keyframe.id, r.keyframe.stamp_ns, r.keyframe.T_world_anchor, poses.at(r.keyframe.id)});
   }
   const std::map<int, Pose2> folded = RetiredPoses(retired_, poses);
   std::vector<TrajectoryAnchor> retired;
@@ -343,10 +345,9 @@ std::vector<TrajectoryAnchor> SlamSystem::Anchors() const {
     auto p = folded.find(r.id);
     if (p != folded.end()) retired.push_back({r.id, r.stamp_ns, r.T_odom_anchor, p->second});
   }
-  std::stable_sort(retired.begin(), retired.end(),
-                   [](const TrajectoryAnchor& a, const TrajectoryAnchor& b) {
-                     return a.stamp_ns < b.stamp_ns;
-                   });
+  std::stable_sort(
+      retired.begin(), retired.end(),
+      [](const TrajectoryAnchor& a, const TrajectoryAnchor& b) { return a.stamp_ns < b.stamp_ns; });
   return MergeAnchors(std::move(kept), retired);
 }
 

@@ -1,7 +1,7 @@
 // uwbsar: pose-graph SLAM with UWB synthetic-aperture radar. See README.md.
-#include <CLI/CLI.hpp>
 #include <malloc.h>
 
+#include <CLI/CLI.hpp>
 #include <cstring>
 #include <exception>
 #include <iostream>

@@ -85,14 +85,13 @@ SegmentCanvas ValidateSegmentCanvas(const SystemConfig& c, const std::string& sr
 /// checks, so every size here is positive.
 void ValidateLimits(const SystemConfig& c, const std::string& src) {
   const LimitsConfig& l = c.limits;
-  for (const auto& [key, value] :
-       {std::make_pair("max_tile_pixels", l.max_tile_pixels),
-        std::make_pair("max_imaging_memory_mb", l.max_imaging_memory_mb),
-        std::make_pair("max_keyframes_per_m", l.max_keyframes_per_m),
-        std::make_pair("max_range_samples", l.max_range_samples),
-        std::make_pair("max_image_pixels", l.max_image_pixels),
-        std::make_pair("max_map_image_pixels", l.max_map_image_pixels),
-        std::make_pair("tile_cache_mb", l.tile_cache_mb)}) {
+  for (const auto& [key, value] : {std::make_pair("max_tile_pixels", l.max_tile_pixels),
+                                   std::make_pair("max_imaging_memory_mb", l.max_imaging_memory_mb),
+                                   std::make_pair("max_keyframes_per_m", l.max_keyframes_per_m),
+                                   std::make_pair("max_range_samples", l.max_range_samples),
+                                   std::make_pair("max_image_pixels", l.max_image_pixels),
+                                   std::make_pair("max_map_image_pixels", l.max_map_image_pixels),
+                                   std::make_pair("tile_cache_mb", l.tile_cache_mb)}) {
     Require(value > 0, src, std::string("limits.") + key, "must be > 0");
   }
   ValidateRangeSamples(c, src);

@@ -26,7 +26,7 @@ constexpr std::size_t kPage = 4096;
 struct Storage {
   std::mutex mutex;
   std::FILE* file = nullptr;
-  std::size_t end = 0;                        // file size
+  std::size_t end = 0;                              // file size
   std::map<std::size_t, std::size_t> free_extents;  // offset -> size, adjacent ones merged
   std::size_t live = 0;
   std::size_t cache_bytes = 0, cached = 0;
@@ -102,7 +102,7 @@ struct Extent {
   std::shared_ptr<Storage> storage;
   std::uint64_t key = 0;
   std::size_t offset = 0, size = 0;  // the tile's bytes
-  std::size_t reserved = 0;           // the extent's (whole pages)
+  std::size_t reserved = 0;          // the extent's (whole pages)
 
   ~Extent() {
     std::lock_guard<std::mutex> lock(storage->mutex);

@@ -89,7 +89,8 @@ TEST(PoseGraphReductionTest, RemovingANodeKeepsTheSolutionAndFoldsItsEdges) {
   const std::map<int, Pose2> before = graph.GetPoses();
   const int edges_before = graph.NumEdges();
 
-  // A node on the chain (odometry in and out) folds exactly to first order: a tenth of a millimetre.
+  // A node on the chain (odometry in and out) folds exactly to first order: a tenth of a
+  // millimetre.
   graph.RemoveNode(12);
   graph.Optimize();
   for (const auto& [id, p] : graph.GetPoses()) {
@@ -102,7 +103,7 @@ TEST(PoseGraphReductionTest, RemovingANodeKeepsTheSolutionAndFoldsItsEdges) {
   const std::map<int, Pose2> solved = graph.GetPoses();
   Pose2 T_hub_node;
   const int hub = graph.RemoveNode(7, &T_hub_node);  // odometry 6-7, 7-8 and the loop 7-2
-  EXPECT_TRUE(hub == 6 || hub == 8) << hub;  // odometry ties it more strongly than the loop
+  EXPECT_TRUE(hub == 6 || hub == 8) << hub;          // odometry ties it more strongly than the loop
   EXPECT_FALSE(graph.HasNode(7));
   EXPECT_EQ(graph.NumNodes(), 18);
   EXPECT_EQ(graph.NumEdges(), edges_before - 2);  // three edges in, two folded ones out

@@ -32,7 +32,7 @@ TEST(PlaceViewsTest, ARevisitRetiresTheOldestViewBeyondTheLimit) {
   config.max_per_place = 1;
   EXPECT_EQ(ViewsOfPlace(kept, kept[2], config).size(), 2u);
   EXPECT_EQ(KeyframeToRetire(kept, kept[2], config), 1);  // one at a time, oldest first
-  config.max_per_place = 0;  // keep everything
+  config.max_per_place = 0;                               // keep everything
   EXPECT_EQ(KeyframeToRetire(kept, kept[2], config), std::nullopt);
 }
 

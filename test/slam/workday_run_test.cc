@@ -67,7 +67,8 @@ RunFigures Figures(const slam::MapRun& run) {
                         std::abs(NormalizeAngle(T.yaw_rad - truth.yaw_rad)) > 5.0 * M_PI / 180.0;
   }
   std::vector<std::pair<TimestampNs, Pose2>> odometry;
-  for (const OdometryEntry& e : run.slam->odometry()) odometry.push_back({e.stamp_ns, e.T_world_robot});
+  for (const OdometryEntry& e : run.slam->odometry())
+    odometry.push_back({e.stamp_ns, e.T_world_robot});
   f.ate_m = slam::TrajectoryError(run.slam->CorrectedTrajectory(), run.ground_truth).rmse_m;
   f.odometry_ate_m = slam::TrajectoryError(odometry, run.ground_truth).rmse_m;
   return f;
@@ -100,9 +101,8 @@ TEST(WorkdayRunTest, ThreeLapsKeepAboutOneLapOfKeyframesAndLoseNoAccuracy) {
   WriteSession(path, slam::CaptureSession(a));
   const SessionData read = ReadSession(path);
   EXPECT_EQ(read.keyframes.size(), fa.kept);
-  EXPECT_TRUE(std::any_of(read.edges.begin(), read.edges.end(), [](const SessionEdge& e) {
-    return e.edge.kind == EdgeKind::kMarginal;
-  }));
+  EXPECT_TRUE(std::any_of(read.edges.begin(), read.edges.end(),
+                          [](const SessionEdge& e) { return e.edge.kind == EdgeKind::kMarginal; }));
   for (const SessionLoop& l : read.loops) {
     EXPECT_NE(read.Find(l.query_id), nullptr);
     EXPECT_NE(read.Find(l.match_id), nullptr);

@@ -50,7 +50,8 @@ TEST(TileStoreTest, TheFileFollowsTheTilesKeptNotTheTilesEverStored) {
     EXPECT_EQ(MaxDifference(r.Load(), RandomTile(100, 100, 100 + i)), 0.0);
   }
   EXPECT_LT(store.file_bytes(), ten + ten / 5);  // freed extents were reused
-  for (int i = 0; i < 10; ++i) EXPECT_EQ(MaxDifference(kept[i].Load(), RandomTile(100, 100, i)), 0.0);
+  for (int i = 0; i < 10; ++i)
+    EXPECT_EQ(MaxDifference(kept[i].Load(), RandomTile(100, 100, i)), 0.0);
 }
 
 TEST(TileStoreTest, ReferencesOutliveTheStoreAndThreadsShareIt) {
