@@ -1,6 +1,8 @@
 #include "slam/session_capture.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include "slam/app_config_io.h"
@@ -49,6 +51,27 @@ SessionData CaptureSession(const MapRun& run) {
     s.features.T_world_anchor = s.T_map_anchor;
     d.keyframes.push_back(std::move(s));
   }
+  // Retired keyframes follow a kept one: a hub retired later is followed to the one it follows.
+  std::map<int, const RetiredKeyframe*> retired;
+  for (const RetiredKeyframe& r : slam.retired()) retired[r.id] = &r;
+  for (const RetiredKeyframe& r : slam.retired()) {
+    SessionAnchor a;
+    a.id = r.id;
+    a.trajectory = 0;
+    a.stamp_ns = r.stamp_ns;
+    a.T_odom_anchor = r.T_odom_anchor;
+    a.hub_id = r.hub_id;
+    a.T_hub_anchor = r.T_hub_anchor;
+    for (auto hub = retired.find(a.hub_id); hub != retired.end(); hub = retired.find(a.hub_id)) {
+      a.T_hub_anchor = hub->second->T_hub_anchor * a.T_hub_anchor;
+      a.hub_id = hub->second->hub_id;
+    }
+    if (a.hub_id >= 0 && !poses.count(a.hub_id)) continue;  // never: hubs are kept or retired
+    d.anchors.push_back(a);
+  }
+  std::stable_sort(
+      d.anchors.begin(), d.anchors.end(),
+      [](const SessionAnchor& x, const SessionAnchor& y) { return x.stamp_ns < y.stamp_ns; });
   const std::vector<PoseGraphEdge> edges = slam.graph().Edges();
   const std::vector<EdgeReport> reports = slam.graph().EdgeReports();
   for (std::size_t i = 0; i < edges.size(); ++i) {

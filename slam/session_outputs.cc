@@ -114,21 +114,25 @@ nlohmann::json WriteRun(const SessionData& session, const Config& config, int id
 
 std::vector<std::pair<TimestampNs, Pose2>> CorrectedTrajectory(const SessionData& session,
                                                                int trajectory) {
-  std::vector<const SessionKeyframe*> run;
+  // The run's kept keyframes and the ones the map retired (anchors), in time order.
+  std::vector<TrajectoryAnchor> run;
   for (const SessionKeyframe& k : session.keyframes) {
-    if (k.trajectory == trajectory) run.push_back(&k);
+    if (k.trajectory == trajectory)
+      run.push_back({k.id, k.stamp_ns, k.T_odom_anchor, k.T_map_anchor});
   }
-  std::stable_sort(run.begin(), run.end(), [](const SessionKeyframe* a, const SessionKeyframe* b) {
-    return a->stamp_ns < b->stamp_ns;
-  });
+  if (!session.anchors.empty()) {
+    const std::map<int, Pose2> poses = session.Poses();
+    for (const SessionAnchor& a : session.anchors) {
+      if (a.trajectory != trajectory) continue;
+      if (const std::optional<Pose2> p = a.MapPose(poses))
+        run.push_back({a.id, a.stamp_ns, a.T_odom_anchor, *p});
+    }
+  }
+  run = MergeAnchors(std::move(run), {});
   std::vector<std::pair<TimestampNs, Pose2>> out;
   for (const SessionOdometry& o : session.odometry) {
     if (o.trajectory != trajectory) continue;
-    const Pose2 correction = InterpolatedCorrection(
-        run.size(), [&](std::size_t i) { return run[i]->stamp_ns; },
-        [&](std::size_t i) -> const Pose2& { return run[i]->T_odom_anchor; },
-        [&](std::size_t i) { return run[i]->T_map_anchor; }, o.stamp_ns);
-    out.push_back({o.stamp_ns, correction * o.T_odom_robot});
+    out.push_back({o.stamp_ns, CorrectionAt(run, o.stamp_ns) * o.T_odom_robot});
   }
   return out;
 }

@@ -14,7 +14,15 @@ const SessionKeyframe* SessionData::Find(int id) const {
 int SessionData::MaxKeyframeId() const {
   int m = -1;
   for (const SessionKeyframe& k : keyframes) m = std::max(m, k.id);
+  for (const SessionAnchor& a : anchors) m = std::max(m, a.id);
   return m;
+}
+
+std::optional<Pose2> SessionAnchor::MapPose(const std::map<int, Pose2>& poses) const {
+  if (hub_id < 0) return T_hub_anchor;
+  const auto it = poses.find(hub_id);
+  if (it == poses.end()) return std::nullopt;
+  return it->second * T_hub_anchor;
 }
 
 int SessionData::MaxTrajectoryId() const {
@@ -73,6 +81,12 @@ SessionData WithDenseIds(const SessionData& s) {
     l.match_id = keyframe_of(l.match_id);
   }
   for (SessionOdometry& o : out.odometry) o.trajectory = trajectory_of(o.trajectory);
+  int next = static_cast<int>(keyframe.size());  // anchors after the keyframes
+  for (SessionAnchor& a : out.anchors) {
+    a.id = next++;
+    if (a.hub_id >= 0) a.hub_id = keyframe_of(a.hub_id);
+    a.trajectory = trajectory_of(a.trajectory);
+  }
   return out;
 }
 

@@ -8,6 +8,7 @@
 
 #include <map>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,7 +27,8 @@ namespace uwbsar {
 /// 4: loops keep their good-match counts per detector (loop_matches table) instead of the
 /// akaze_good and orb_good columns, which versions 1 to 3 still read as AKAZE and ORB counts.
 /// 5: a tile may be compact (slam/session/blob_codec.h EncodeTile); 1 to 4 still read (float32).
-constexpr int kSessionFormatVersion = 5;
+/// 6: the anchors table (keyframes the map retired, slam.place_views); 1 to 5 still read (none).
+constexpr int kSessionFormatVersion = 6;
 
 struct SessionKeyframe {
   int id = 0;          ///< unique in the session (graph node id)
@@ -42,6 +44,20 @@ struct SessionKeyframe {
   KeyframeFeatures features;  ///< per detector (validation.detectors when it was made; AKAZE
                               ///< and ORB in every session before them) at the feature
                               ///< resolution (own grid)
+};
+
+/// A keyframe the map retired (slam.place_views): no tile, no features, no node; what places its
+/// run's trajectory between the keyframes kept (session_outputs.h CorrectedTrajectory).
+struct SessionAnchor {
+  int id = 0;  ///< unique in the session, never a keyframe's
+  int trajectory = 0;
+  TimestampNs stamp_ns = 0;
+  Pose2 T_odom_anchor;  ///< the tile frame in its run's odometry frame
+  int hub_id = -1;      ///< the kept keyframe it follows; -1: T_hub_anchor is in the map frame
+  Pose2 T_hub_anchor;   ///< its pose in the hub's frame
+
+  /// Its pose in the map frame, from the keyframes' (`poses` by id).
+  std::optional<Pose2> MapPose(const std::map<int, Pose2>& poses) const;
 };
 
 struct SessionLoop {
@@ -88,9 +104,10 @@ struct SessionData {
   std::vector<SessionEdge> edges;
   std::vector<SessionLoop> loops;
   std::vector<SessionOdometry> odometry;  ///< by trajectory, then in time
+  std::vector<SessionAnchor> anchors;     ///< by trajectory, then in time
 
   const SessionKeyframe* Find(int id) const;
-  int MaxKeyframeId() const;    ///< -1 when empty
+  int MaxKeyframeId() const;    ///< -1 when empty (anchors' ids included: never reused)
   int MaxTrajectoryId() const;  ///< -1 when empty
   /// Optimised T_map_anchor by keyframe id.
   std::map<int, Pose2> Poses() const;

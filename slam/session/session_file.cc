@@ -45,6 +45,10 @@ CREATE TABLE edges (
 CREATE TABLE odometry (
   trajectory INTEGER NOT NULL, stamp_ns INTEGER NOT NULL, x_m REAL, y_m REAL, yaw_rad REAL,
   path_m REAL);
+CREATE TABLE anchors (
+  id INTEGER PRIMARY KEY, trajectory INTEGER NOT NULL, stamp_ns INTEGER NOT NULL,
+  odom_x_m REAL, odom_y_m REAL, odom_yaw_rad REAL, hub_id INTEGER NOT NULL,
+  x_m REAL, y_m REAL, yaw_rad REAL);
 )sql";
 
 std::vector<unsigned char> InformationBlob(const Eigen::Matrix3d& m) {
@@ -162,6 +166,24 @@ void WriteOdometry(SqliteDb& db, const SessionData& d) {
   }
 }
 
+/// The anchors table (keyframes the map retired).
+void WriteAnchors(SqliteDb& db, const SessionData& d) {
+  SqliteStatement s(db, "INSERT INTO anchors VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  for (const SessionAnchor& a : d.anchors) {
+    s.Bind(1, a.id);
+    s.Bind(2, a.trajectory);
+    s.Bind(3, static_cast<std::int64_t>(a.stamp_ns));
+    s.Bind(4, a.T_odom_anchor.x_m);
+    s.Bind(5, a.T_odom_anchor.y_m);
+    s.Bind(6, a.T_odom_anchor.yaw_rad);
+    s.Bind(7, a.hub_id);
+    s.Bind(8, a.T_hub_anchor.x_m);
+    s.Bind(9, a.T_hub_anchor.y_m);
+    s.Bind(10, a.T_hub_anchor.yaw_rad);
+    s.Run();
+  }
+}
+
 void WriteAll(SqliteDb& db, const SessionData& d, bool lossless_tiles) {
   db.Exec("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF;");
   db.Exec(kSchema);
@@ -173,6 +195,7 @@ void WriteAll(SqliteDb& db, const SessionData& d, bool lossless_tiles) {
   WriteEdges(db, d);
   session::WriteLoopTables(db, d);
   WriteOdometry(db, d);
+  WriteAnchors(db, d);
   db.Exec("COMMIT");
 }
 
@@ -230,8 +253,9 @@ SessionData ReadSession(const std::string& path, const SystemConfig* config) {
   // Version 1 lacks the edges' calibration columns (its odometry edges are then solved
   // uncalibrated, as they were), versions 1 and 2 the trajectories' fingerprints (""), versions
   // 1 to 3 the loop_matches table (their loops' akaze_good and orb_good columns stand for it).
-  // Version 4 and older hold float32 tiles only (version 5 also compact ones).
-  if (version != "1" && version != "2" && version != "3" && version != "4" &&
+  // Version 4 and older hold float32 tiles only (version 5 also compact ones); version 5 and
+  // older have no anchors table (every keyframe was kept).
+  if (version != "1" && version != "2" && version != "3" && version != "4" && version != "5" &&
       version != std::to_string(kSessionFormatVersion)) {
     throw InputError(path + ": session format version " + version.substr(0, 40) +
                      ", this uwbsar reads 1 to " + std::to_string(kSessionFormatVersion));

@@ -49,6 +49,11 @@ SessionData Renumbered(const SessionData& b, int id_offset, int trajectory_offse
     l.match_id += id_offset;
   }
   for (SessionOdometry& o : out.odometry) o.trajectory += trajectory_offset;
+  for (SessionAnchor& a : out.anchors) {
+    a.id += id_offset;
+    if (a.hub_id >= 0) a.hub_id += id_offset;
+    a.trajectory += trajectory_offset;
+  }
   return out;
 }
 
@@ -193,6 +198,10 @@ void StoreJoined(const PoseGraph& graph, const SessionData& b, const std::vector
     out->loops.push_back(l);
   }
   out->odometry.insert(out->odometry.end(), b.odometry.begin(), b.odometry.end());
+  for (SessionAnchor a : b.anchors) {  // b's, placed in a's frame
+    if (a.hub_id < 0) a.T_hub_anchor = r->T_mapA_mapB * a.T_hub_anchor;
+    out->anchors.push_back(a);
+  }
 }
 
 }  // namespace

@@ -305,6 +305,34 @@ void ReadOdometry(SqliteDb& db, SessionData* d) {
                    });
 }
 
+/// The anchors table (format version 6): keyframes the map retired, by trajectory and time.
+void ReadAnchors(SqliteDb& db, SessionData* d) {
+  if (d->format_version < 6) return;
+  TableReader t(db, "anchors",
+                {"id", "trajectory", "stamp_ns", "odom_x_m", "odom_y_m", "odom_yaw_rad", "hub_id",
+                 "x_m", "y_m", "yaw_rad"});
+  std::set<int> ids;
+  for (const SessionKeyframe& k : d->keyframes) ids.insert(k.id);
+  const std::set<int> keyframes = ids;
+  while (t.Next()) {
+    SessionAnchor a;
+    a.id = t.Id("id");
+    if (!ids.insert(a.id).second) t.Refuse("id", std::to_string(a.id) + " is already used");
+    a.trajectory = TrajectoryRef(t, "trajectory", *d);
+    a.stamp_ns = static_cast<TimestampNs>(t.Integer("stamp_ns", 0, kMaxStamp));
+    a.T_odom_anchor = ReadPose(t, "odom_");
+    a.hub_id = static_cast<int>(t.Integer("hub_id", -1, INT_MAX));
+    if (a.hub_id >= 0 && !keyframes.count(a.hub_id))
+      t.Refuse("hub_id", std::to_string(a.hub_id) + " is not a keyframe");
+    a.T_hub_anchor = ReadPose(t, "");
+    d->anchors.push_back(a);
+  }
+  std::stable_sort(d->anchors.begin(), d->anchors.end(),
+                   [](const SessionAnchor& a, const SessionAnchor& b) {
+                     return std::tie(a.trajectory, a.stamp_ns) < std::tie(b.trajectory, b.stamp_ns);
+                   });
+}
+
 }  // namespace
 
 int KeyframeRef(const TableReader& t, const std::string& column, const std::set<int>& keyframes) {
@@ -319,6 +347,7 @@ void ReadSessionTables(SqliteDb& db, const LimitsConfig& limits, SessionData* d)
   ReadEdges(db, d);
   ReadLoopTables(db, d);
   ReadOdometry(db, d);
+  ReadAnchors(db, d);
 }
 
 }  // namespace uwbsar::session

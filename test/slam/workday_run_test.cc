@@ -14,6 +14,7 @@
 #include "slam/map_job.h"
 #include "slam/session/session_file.h"
 #include "slam/session_capture.h"
+#include "slam/session_outputs.h"
 #include "slam/slam_system.h"
 
 namespace uwbsar {
@@ -107,6 +108,14 @@ TEST(WorkdayRunTest, ThreeLapsKeepAboutOneLapOfKeyframesAndLoseNoAccuracy) {
     EXPECT_NE(read.Find(l.query_id), nullptr);
     EXPECT_NE(read.Find(l.match_id), nullptr);
   }
+  // The retired keyframes come back as anchors, so the saved run's trajectory (what a later
+  // `map --resume` or `merge` writes for it) is as corrected as the run's own.
+  EXPECT_EQ(read.anchors.size(), fa.retired);
+  const double saved_ate_m =
+      slam::TrajectoryError(slam::CorrectedTrajectory(read, 0), a.ground_truth).rmse_m;
+  std::printf("saved run's trajectory: ATE %.2f cm (the run's %.2f cm)\n", saved_ate_m * 100,
+              fa.ate_m * 100);
+  EXPECT_LE(saved_ate_m, fa.ate_m + 0.002);
   std::filesystem::remove(path);
 }
 

@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <functional>
 #include <string>
 
@@ -153,6 +154,25 @@ TEST_F(SessionHostileTest, LoopToAMissingKeyframeIsRefused) {
   Sql("UPDATE loops SET match_id = 7");
   EXPECT_EQ(ErrorOf([&] { ReadSession(path_); }),
             path_ + ": loops row 1: match_id 7 is not a keyframe");
+}
+
+TEST_F(SessionHostileTest, AnchorsAreReadAndOneFollowingNoKeyframeIsRefused) {
+  // A retired keyframe (slam.place_views) following keyframe 1, and one in the map frame.
+  Sql("INSERT INTO anchors VALUES (50, 0, 1700000000000000000, 1, 2, 0.1, 1, 0.5, 0, 0); "
+      "INSERT INTO anchors VALUES (51, 0, 1700000001000000000, 2, 2, 0.1, -1, 3, 4, 0.2)");
+  const SessionData d = ReadSession(path_);
+  ASSERT_EQ(d.anchors.size(), 2u);
+  EXPECT_EQ(d.anchors[0].hub_id, 1);
+  const std::map<int, Pose2> poses = d.Poses();
+  EXPECT_NEAR(d.anchors[0].MapPose(poses)->x_m, (poses.at(1) * Pose2{0.5, 0, 0}).x_m, 1e-12);
+  EXPECT_NEAR(d.anchors[1].MapPose(poses)->y_m, 4.0, 1e-12);
+  EXPECT_EQ(d.MaxKeyframeId(), 51);  // a join numbers its keyframes past the anchors
+  Sql("UPDATE anchors SET hub_id = 7 WHERE id = 50");
+  EXPECT_EQ(ErrorOf([&] { ReadSession(path_); }),
+            path_ + ": anchors row 1: hub_id 7 is not a keyframe");
+  Sql("UPDATE anchors SET hub_id = 1, id = 1 WHERE id = 50");
+  EXPECT_EQ(ErrorOf([&] { ReadSession(path_); }),
+            path_ + ": anchors row 1: id 1 is already used");
 }
 
 TEST_F(SessionHostileTest, IdBeyondIntMaxIsRefusedNotWrapped) {
