@@ -10,6 +10,7 @@ namespace {
 // Seed streams: the environment uses its own (sim_environment.cc).
 constexpr std::uint64_t kOdometryStream = 1;
 constexpr std::uint64_t kLaserStream = 2;
+constexpr std::uint64_t kGyroStream = 3;
 constexpr std::uint64_t kRadarStream = 16;  // + sensor id
 
 long long CountFor(double duration_s, double rate_hz) {
@@ -40,7 +41,7 @@ SimStream::SimStream(const SimSettings& config, const SimScenario& scenario, std
       start_ns_(SecondsToNs(config.simulator.start_time_s)),
       laser_caster_(scenario.environment->grid()),
       odometry_(config.simulator.odometry, scenario.trajectory.At(0.0),
-                DeriveSeed(seed, kOdometryStream)) {
+                DeriveSeed(seed, kOdometryStream), DeriveSeed(seed, kGyroStream)) {
   for (const RadarConfig& radar : config.radars) {
     const SensorGeometry sensor = SensorGeometry::FromConfig(radar, config.pulse);
     T_robot_sensor_.push_back(sensor.T_robot_sensor);

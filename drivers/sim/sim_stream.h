@@ -16,12 +16,12 @@
 #include <vector>
 
 #include "core/types.h"
+#include "drivers/sim/base_odometry.h"
 #include "drivers/sim/laser_simulator.h"
 #include "drivers/sim/radar_simulator.h"
 #include "drivers/sim/sim_environment.h"
 #include "drivers/sim/sim_settings.h"
 #include "drivers/sim/trajectory.h"
-#include "drivers/sim/wheel_odometry.h"
 
 namespace uwbsar::sim {
 
@@ -29,7 +29,7 @@ struct SimMessage {
   enum class Kind { kGroundTruth, kOdometry, kRadarScan, kLaserScan };
   Kind kind = Kind::kGroundTruth;
   TimestampNs stamp_ns = 0;
-  OdometrySample pose;  ///< kGroundTruth: the true pose and velocities; kOdometry: wheel odometry
+  OdometrySample pose;  ///< kGroundTruth: the true pose and velocities; kOdometry: the base's
   RadarScan scan;       ///< kRadarScan; scan.sensor_id indexes Config::radars
   SimLaserScan laser;   ///< kLaserScan
 };
@@ -83,7 +83,7 @@ class SimStream {
   std::vector<std::unique_ptr<RadarSimulator>> radars_;
   std::vector<Pose2> T_robot_sensor_;
   GridRayCaster laser_caster_;
-  WheelOdometrySimulator odometry_;
+  BaseOdometrySimulator odometry_;
   Clock ground_truth_clock_, odometry_clock_, radar_clock_, laser_clock_;
   int next_radar_ = 0;  ///< radars of the current frame already emitted
 };

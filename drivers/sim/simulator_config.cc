@@ -55,6 +55,20 @@ void Validate(const SimulatorConfig& s, const std::string& src) {
           "must be in (-0.5, 0.5)");
   Require(o.wheel_slip_std >= 0 && o.wheel_slip_std < 1, src, k + "odometry.wheel_slip_std",
           "must be in [0, 1)");
+  Require(o.profile == "kobuki_gyro" || o.profile == "wheel", src, k + "odometry.profile",
+          "must be kobuki_gyro or wheel");
+  const SimGyroConfig& g = o.gyro;
+  const std::string kg = k + "odometry.gyro.";
+  Require(g.rate_noise_density_dps_per_sqrt_hz >= 0 && g.rate_noise_density_dps_per_sqrt_hz < 10,
+          src, kg + "rate_noise_density_dps_per_sqrt_hz", "must be in [0, 10)");
+  Require(g.turn_on_bias_std_dps >= 0 && g.turn_on_bias_std_dps < 100, src,
+          kg + "turn_on_bias_std_dps", "must be in [0, 100)");
+  Require(g.bias_walk_dps_per_sqrt_s >= 0 && g.bias_walk_dps_per_sqrt_s < 10, src,
+          kg + "bias_walk_dps_per_sqrt_s", "must be in [0, 10)");
+  Require(std::abs(g.scale_error) < 0.5, src, kg + "scale_error", "must be in (-0.5, 0.5)");
+  Require(g.range_dps > 0 && g.range_dps <= 10000, src, kg + "range_dps", "must be in (0, 10000]");
+  Require(g.angle_resolution_deg >= 0 && g.angle_resolution_deg <= 10, src,
+          kg + "angle_resolution_deg", "must be in [0, 10]");
   const SimLaserConfig& l = s.laser;
   Require(!l.topic.empty(), src, k + "laser.topic", "must not be empty");
   Require(l.rate_hz > 0 && l.rate_hz <= 1000, src, k + "laser.rate_hz", "must be in (0, 1000]");

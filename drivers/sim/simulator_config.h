@@ -86,10 +86,40 @@ struct SimRadarConfig {
   }
 };
 
-/// Simulated wheel odometry: encoder ticks with systematic and random errors, integrated
-/// like the base does (Kobuki figures by default).
+/// Simulated yaw-rate gyro of the base (drivers/sim/gyro_model.h). Defaults: the Kobuki's
+/// published specification (factory calibrated, 1 axis, 110 deg/s; heading in 0.01 deg), and
+/// where it is silent the datasheet of its gyro chip, ST L3G4200D (Doc ID 17116): sources and
+/// derivations in config/default.yaml, simulator.odometry.gyro.
+struct SimGyroConfig {
+  double rate_noise_density_dps_per_sqrt_hz = 0.03;  ///< white rate noise (L3G4200D Rn)
+  double turn_on_bias_std_dps = 0.03;  ///< bias left after the factory calibration, drawn per
+                                       ///< run: the zero-rate drift of 0.03 dps/degC for 1 degC
+  double bias_walk_dps_per_sqrt_s = 0.0005;  ///< random walk of the bias: 0.03 dps (1 degC of
+                                             ///< zero-rate drift) in one hour
+  double scale_error = 0.0003;  ///< the gyro over-reports rates by this fraction: sensitivity
+                                ///< drift of 2 % over 65 degC, for 1 degC
+  double range_dps = 110.0;     ///< faster rates saturate at this (Kobuki: 110 deg/s)
+  double angle_resolution_deg = 0.01;  ///< the base reports its heading in these steps (0: none)
+
+  template <class V>
+  void Visit(V& v) {
+    v("rate_noise_density_dps_per_sqrt_hz", rate_noise_density_dps_per_sqrt_hz);
+    v("turn_on_bias_std_dps", turn_on_bias_std_dps);
+    v("bias_walk_dps_per_sqrt_s", bias_walk_dps_per_sqrt_s);
+    v("scale_error", scale_error);
+    v("range_dps", range_dps);
+    v("angle_resolution_deg", angle_resolution_deg);
+  }
+};
+
+/// Simulated odometry of the base: wheel encoder ticks with systematic and random errors,
+/// integrated like the base does (Kobuki figures by default); with the kobuki_gyro profile the
+/// heading comes from the gyro and the wheels give only the distance, as kobuki_node's /odom
+/// does by default (use_imu_heading).
 struct SimOdometryConfig {
-  std::string topic = "/odom";  ///< nav_msgs/Odometry topic of wheel odometry
+  std::string profile = "kobuki_gyro";  ///< kobuki_gyro: heading from the gyro, distance from
+                                        ///< the wheels; wheel: both from the wheels
+  std::string topic = "/odom";          ///< nav_msgs/Odometry topic of wheel odometry
   std::string ground_truth_topic = "/ground_truth/odom";  ///< topic of the true poses
 
   double rate_hz = 50.0;                  ///< wheel odometry rate
@@ -108,9 +138,11 @@ struct SimOdometryConfig {
                                           ///< assumed: turns are under-reported
   double wheel_slip_std = 0.01;           ///< random error of each wheel's travel per step,
                                           ///< as a fraction of that travel
+  SimGyroConfig gyro;                     ///< the gyro of the kobuki_gyro profile
 
   template <class V>
   void Visit(V& v) {
+    v("profile", profile);
     v("topic", topic);
     v("ground_truth_topic", ground_truth_topic);
     v("rate_hz", rate_hz);
@@ -122,6 +154,7 @@ struct SimOdometryConfig {
     v("wheel_scale_asymmetry", wheel_scale_asymmetry);
     v("wheelbase_error", wheelbase_error);
     v("wheel_slip_std", wheel_slip_std);
+    v("gyro", gyro);
   }
 };
 

@@ -33,6 +33,7 @@ OdometrySample WheelOdometrySimulator::Step(TimestampNs stamp_ns, const RobotSta
   }
   // The base's integration with its nominal wheelbase (midpoint rule).
   const double d = 0.5 * (measured[0] + measured[1]);
+  last_distance_m_ = d;
   const double dyaw = (measured[1] - measured[0]) / config_.wheelbase_m;
   const double mid = pose_.yaw_rad + 0.5 * dyaw;
   pose_.x_m += d * std::cos(mid);

@@ -27,6 +27,9 @@ class WheelOdometrySimulator {
   /// the base's odometry: integrated pose and the velocities of the last step.
   OdometrySample Step(TimestampNs stamp_ns, const RobotState& truth);
 
+  /// The distance the base measured over the last step (mean of both wheels), m.
+  double last_distance_m() const { return last_distance_m_; }
+
  private:
   SimOdometryConfig config_;
   std::mt19937_64 rng_;
@@ -37,6 +40,7 @@ class WheelOdometrySimulator {
   double wheel_travel_m_[2] = {0.0, 0.0};  ///< measured travel (left, right), before ticks
   std::int64_t ticks_[2] = {0, 0};
   Pose2 pose_;
+  double last_distance_m_ = 0.0;
 };
 
 }  // namespace uwbsar::sim
