@@ -15,8 +15,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <map>
 #include <functional>
+#include <map>
 #include <string>
 
 #include "core/errors.h"
@@ -171,8 +171,7 @@ TEST_F(SessionHostileTest, AnchorsAreReadAndOneFollowingNoKeyframeIsRefused) {
   EXPECT_EQ(ErrorOf([&] { ReadSession(path_); }),
             path_ + ": anchors row 1: hub_id 7 is not a keyframe");
   Sql("UPDATE anchors SET hub_id = 1, id = 1 WHERE id = 50");
-  EXPECT_EQ(ErrorOf([&] { ReadSession(path_); }),
-            path_ + ": anchors row 1: id 1 is already used");
+  EXPECT_EQ(ErrorOf([&] { ReadSession(path_); }), path_ + ": anchors row 1: id 1 is already used");
 }
 
 TEST_F(SessionHostileTest, IdBeyondIntMaxIsRefusedNotWrapped) {
