@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/resident_memory.h"
 #include "slam/app_config.h"
 #include "slam/map_job.h"
 
@@ -26,21 +27,6 @@ namespace {
 
 std::string Floor50File(const std::string& name) {
   return std::string(UWBSAR_SOURCE_DIR) + "/config/maps/floor50/" + name;
-}
-
-/// Current resident set size (VmRSS of /proc/self/status) in MiB; 0 if unreadable.
-double ResidentMiB() {
-  std::ifstream status("/proc/self/status");
-  std::string key;
-  while (status >> key) {
-    if (key == "VmRSS:") {
-      double kib = 0.0;
-      status >> kib;
-      return kib / 1024.0;
-    }
-    status.ignore(1 << 12, '\n');
-  }
-  return 0.0;
 }
 
 /// The state of the run when the odometry path first reached a whole metre.

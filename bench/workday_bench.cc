@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/resident_memory.h"
 #include "slam/app_config.h"
 #include "slam/map_job.h"
 #include "slam/session/session_file.h"
@@ -34,20 +35,6 @@ namespace fs = std::filesystem;
 
 std::string MapFile(const std::string& name) {
   return std::string(UWBSAR_SOURCE_DIR) + "/config/maps/" + name;
-}
-
-double ResidentMiB() {
-  std::ifstream status("/proc/self/status");
-  std::string key;
-  while (status >> key) {
-    if (key == "VmRSS:") {
-      double kib = 0.0;
-      status >> kib;
-      return kib / 1024.0;
-    }
-    status.ignore(1 << 12, '\n');
-  }
-  return 0.0;
 }
 
 /// The waypoints of `laps` passes of `lap` (each pass reversed after a forward one when
