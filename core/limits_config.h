@@ -22,8 +22,8 @@ struct LimitsConfig {
   double max_image_pixels = 2.0e8;      ///< a whole-run image: `image` strips, `map --exact`
   double max_map_image_pixels = 5.0e7;  ///< declared size of an image read from a file (map_server
                                         ///< maps for simulate / compare / export-pcd, float maps)
-  double tile_cache_mb = 256.0;  ///< detected tiles kept decoded in memory; the others wait in
-                                 ///< an anonymous temporary file (slam/session/tile_store.h)
+  double tile_cache_mb = 64.0;  ///< detected tiles kept decoded in memory; the others wait in
+                                ///< an anonymous temporary file (slam/session/tile_store.h)
 
   template <class V>
   void Visit(V& v) {

@@ -37,8 +37,11 @@ struct SlamConfig {
   bool keyframe_thread = true;       ///< keyframe work (features, matching, solves) on its own
                                      ///< thread, so scan imaging never waits for it; the result
                                      ///< is the same either way (false: all on the caller's thread)
-  int keyframe_queue_size = 16;      ///< keyframes waiting for that thread; when full, the
-                                     ///< feeding thread waits (bounds memory in offline runs)
+  int keyframe_queue_size = 4;       ///< keyframes waiting for that thread; when full, the
+                                     ///< feeding thread waits. Each holds its full-resolution
+                                     ///< tile and range profiles (15-20 MB): with 16, a bag read
+                                     ///< faster than features are made held 300 MB more than
+                                     ///< the map (office ring, ten laps: 644 -> see docs)
   double occupancy_resolution_m = 0.05;  ///< cell size of map.pgm (map_server format)
   NavigationGridConfig navigation;       ///< map.pgm: the navigation grid's sensor model
   double occupied_fraction = 0.6;        ///< the paper's rule (`compare`): a cell is occupied

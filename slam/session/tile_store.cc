@@ -154,10 +154,8 @@ TileRef TileStore::Put(const cv::Mat& tile) {
     }
     written += static_cast<std::size_t>(n);
   }
-  {
-    std::lock_guard<std::mutex> lock(storage_->mutex);
-    storage_->Remember(extent->key, tile);  // the newest tile is read again soonest
-  }
+  // Not cached: mapping never reads a tile back (its wall profile and features are made
+  // before it is stored); the map's outputs and snapshots fill the cache as they read.
   ref.extent_ = std::move(extent);
   return ref;
 }
