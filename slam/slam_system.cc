@@ -345,10 +345,7 @@ std::vector<TrajectoryAnchor> SlamSystem::Anchors() const {
     auto p = folded.find(r.id);
     if (p != folded.end()) retired.push_back({r.id, r.stamp_ns, r.T_odom_anchor, p->second});
   }
-  std::stable_sort(
-      retired.begin(), retired.end(),
-      [](const TrajectoryAnchor& a, const TrajectoryAnchor& b) { return a.stamp_ns < b.stamp_ns; });
-  return MergeAnchors(std::move(kept), retired);
+  return MergeAnchors(std::move(kept), retired);  // sorts both by time
 }
 
 Pose2 SlamSystem::CorrectionAt(TimestampNs stamp_ns) const {
