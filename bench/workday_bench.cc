@@ -9,13 +9,15 @@
 //
 // Run by hand (the ring about 2 minutes, floor50 about an hour on 2 cores; not part of CI):
 //   build/bin/uwbsar_bench --benchmark_filter=Workday
-// A table on stdout gives, per lap, the SLAM time per metre by stage, keyframes kept and
-// retired, loops accepted, VmRSS, the session's size if saved then, and the lap's ATE.
+// A table on stdout gives, per lap, the SLAM time per metre by stage (wall clock), the process's
+// CPU time per metre (steady under a changing load), keyframes kept and retired, loops
+// accepted, VmRSS, the session's size if saved then, and the lap's ATE.
 #include <benchmark/benchmark.h>
 #include <malloc.h>
 
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -72,7 +74,16 @@ struct LapSample {
   int accepted = 0;
   double rss_mib = 0.0;
   double session_mib = 0.0;
+  double process_cpu_s = 0.0;  ///< CPU time of the whole process (simulator included)
 };
+
+/// CPU seconds the process has used: unlike the stage times (wall clock), it does not move with
+/// the machine's load, so a long run's first and last laps compare on a shared machine.
+double ProcessCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 double Total(const slam::StageTimes& t) {
   return t.imaging_s + t.features_s + t.matching_s + t.optimization_s;
@@ -113,15 +124,16 @@ slam::MapRun RunLaps(const Config& config, const std::string& map, const std::st
     s.retired = r->slam->retired().size();
     for (const slam::LoopRecord& l : r->slam->loops()) s.accepted += l.validation.accepted;
     s.rss_mib = ResidentMiB();
+    s.process_cpu_s = ProcessCpuSeconds();
     WriteSession(session.string(), slam::CaptureSession(*r));
     s.session_mib = static_cast<double>(fs::file_size(session)) / (1 << 20);
     laps->push_back(s);
     // As it goes (a long run read while it runs): the final table adds time and ATE per lap.
     std::fprintf(stderr,
                  "lap %zu done: %.1f m, %zu kept, %zu retired, %d loops, %.0f MiB, "
-                 "session %.2f MiB, SLAM %.1f s\n",
+                 "session %.2f MiB, SLAM %.1f s, CPU %.0f s\n",
                  laps->size(), s.path_m, s.keyframes, s.retired, s.accepted, s.rss_mib,
-                 s.session_mib, Total(s.times));
+                 s.session_mib, Total(s.times), s.process_cpu_s);
   });
   fs::remove(session);
   run.ground_truth = std::move(truth);
@@ -164,11 +176,11 @@ void RunWorkday(benchmark::State& state, const std::string& map, const std::stri
       return;
     }
     const std::vector<std::pair<TimestampNs, Pose2>> corrected = run.slam->CorrectedTrajectory();
-    std::printf("%4s %8s %8s %8s %8s %8s %8s %6s %7s %7s %8s %8s %7s\n", "lap", "path_m", "ms/m",
-                "imaging", "features", "matching", "optimise", "kept", "retired", "loops",
-                "RSS_MiB", "sess_MiB", "ate_cm");
+    std::printf("%4s %8s %8s %8s %8s %8s %8s %8s %6s %7s %7s %8s %8s %7s\n", "lap", "path_m",
+                "ms/m", "imaging", "features", "matching", "optimise", "cpu_ms/m", "kept",
+                "retired", "loops", "RSS_MiB", "sess_MiB", "ate_cm");
     LapSample previous;
-    std::vector<double> ms_per_m, ate_cm;
+    std::vector<double> ms_per_m, cpu_ms_per_m, ate_cm;
     for (std::size_t i = 0; i < laps.size(); ++i) {
       const LapSample& s = laps[i];
       const double m = s.path_m - previous.path_m;
@@ -178,14 +190,15 @@ void RunWorkday(benchmark::State& state, const std::string& map, const std::stri
       }
       const double ate = slam::TrajectoryError(lap, run.ground_truth).rmse_m * 100.0;
       ms_per_m.push_back((Total(s.times) - Total(previous.times)) / m * 1e3);
+      cpu_ms_per_m.push_back((s.process_cpu_s - previous.process_cpu_s) / m * 1e3);
       ate_cm.push_back(ate);
-      std::printf("%4zu %8.1f %8.1f %8.1f %8.1f %8.2f %8.2f %6zu %7zu %7d %8.0f %8.2f %7.2f\n",
-                  i + 1, s.path_m, ms_per_m.back(),
-                  (s.times.imaging_s - previous.times.imaging_s) / m * 1e3,
-                  (s.times.features_s - previous.times.features_s) / m * 1e3,
-                  (s.times.matching_s - previous.times.matching_s) / m * 1e3,
-                  (s.times.optimization_s - previous.times.optimization_s) / m * 1e3, s.keyframes,
-                  s.retired, s.accepted, s.rss_mib, s.session_mib, ate);
+      std::printf(
+          "%4zu %8.1f %8.1f %8.1f %8.1f %8.2f %8.2f %8.1f %6zu %7zu %7d %8.0f %8.2f %7.2f\n", i + 1,
+          s.path_m, ms_per_m.back(), (s.times.imaging_s - previous.times.imaging_s) / m * 1e3,
+          (s.times.features_s - previous.times.features_s) / m * 1e3,
+          (s.times.matching_s - previous.times.matching_s) / m * 1e3,
+          (s.times.optimization_s - previous.times.optimization_s) / m * 1e3, cpu_ms_per_m.back(),
+          s.keyframes, s.retired, s.accepted, s.rss_mib, s.session_mib, ate);
       previous = s;
     }
     const auto [accepted, false_accepted] = CountLoops(run, true_anchor);
@@ -196,6 +209,7 @@ void RunWorkday(benchmark::State& state, const std::string& map, const std::stri
     state.counters["session_last_over_first_lap"] =
         laps.back().session_mib / laps.front().session_mib;
     state.counters["ms_per_m_last_over_first_lap"] = ms_per_m.back() / ms_per_m.front();
+    state.counters["cpu_ms_per_m_last_over_first_lap"] = cpu_ms_per_m.back() / cpu_ms_per_m.front();
     state.counters["keyframes_kept"] = static_cast<double>(run.slam->keyframes().size());
     state.counters["keyframes_retired"] = static_cast<double>(run.slam->retired().size());
     state.counters["loops_accepted"] = accepted;
