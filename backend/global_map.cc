@@ -27,6 +27,18 @@ void GlobalMap::BlockSpan::Include(const BlockSpan& other) {
   Include(other.bc1, other.br1);
 }
 
+GlobalMap::BlockSet GlobalMap::BlockSpan::Keys() const {
+  BlockSet keys;
+  for (long long br = br0; br <= br1; ++br) {
+    for (long long bc = bc0; bc <= bc1; ++bc) keys.insert({bc, br});
+  }
+  return keys;
+}
+
+void GlobalMap::EraseBlocks(const BlockSet& blocks) {
+  for (const BlockKey& key : blocks) blocks_.erase(key);
+}
+
 // Lattice pixel (c, r) has its centre at world (c * res, -r * res); block (bc, br)
 // holds lattice pixels [bc * B, bc * B + B) x [br * B, br * B + B).
 GlobalMap::BlockSpan GlobalMap::TileBlocks(const ImageGrid& grid, const Pose2& T_world_tile) const {
@@ -63,7 +75,8 @@ GlobalMap::BlockSpan GlobalMap::AllocatedBlocks() const {
   return span;
 }
 
-void GlobalMap::AddTile(const cv::Mat& tile, const ImageGrid& grid, const Pose2& T_world_tile) {
+void GlobalMap::AddTile(const cv::Mat& tile, const ImageGrid& grid, const Pose2& T_world_tile,
+                        const BlockSet* only) {
   CV_Assert(tile.type() == CV_32FC1 && tile.rows == grid.rows && tile.cols == grid.cols);
   if (tile.empty()) return;
   const BlockSpan span = TileBlocks(grid, T_world_tile);
@@ -76,6 +89,7 @@ void GlobalMap::AddTile(const cv::Mat& tile, const ImageGrid& grid, const Pose2&
   observed.convertTo(ones, CV_32F, 1.0 / 255.0);
   for (long long br = span.br0; br <= span.br1; ++br) {
     for (long long bc = span.bc0; bc <= span.bc1; ++bc) {
+      if (only && !only->count({bc, br})) continue;
       // World of block pixel (u, v): x = (bc B + u) res, y = -(br B + v) res.
       // Tile metric p = T_tile_world * world; tile pixel col = (p.x - x0) / res_t,
       // row = (y0 - p.y) / res_t.

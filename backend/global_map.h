@@ -8,6 +8,7 @@
 
 #include <climits>
 #include <map>
+#include <set>
 #include <opencv2/core.hpp>
 #include <utility>
 
@@ -22,9 +23,16 @@ class GlobalMap {
   /// `resolution_m`: pixel size of the canvas; `block_px`: block side in pixels.
   explicit GlobalMap(double resolution_m, int block_px = 256);
 
+  using BlockKey = std::pair<long long, long long>;  ///< (block column, block row)
+  using BlockSet = std::set<BlockKey>;
+
   /// Adds a non-negative CV_32FC1 tile whose pixels live on `grid` in the frame
   /// T_world_tile (bilinear resampling). Pixels that are exactly 0 count as unobserved.
-  void AddTile(const cv::Mat& tile, const ImageGrid& grid, const Pose2& T_world_tile);
+  /// With `only`, the tile is added to those blocks alone (IncrementalMosaic redoes a few).
+  void AddTile(const cv::Mat& tile, const ImageGrid& grid, const Pose2& T_world_tile,
+               const BlockSet* only = nullptr);
+  /// Forgets `blocks` (their sums and weights), as if no tile had reached them.
+  void EraseBlocks(const BlockSet& blocks);
 
   /// Dense mean image over the bounding box of the allocated blocks (CV_32FC1;
   /// unobserved pixels are 0), and its grid in the world frame.
@@ -38,6 +46,8 @@ class GlobalMap {
     bool empty() const { return bc0 > bc1; }
     void Include(long long bc, long long br);
     void Include(const BlockSpan& other);
+    /// The blocks of the rectangle, as keys.
+    BlockSet Keys() const;
   };
   /// The blocks a tile on `grid` at T_world_tile reaches (those AddTile visits), computed
   /// without adding it: a caller can budget a whole mosaic before making it.
@@ -62,8 +72,6 @@ class GlobalMap {
     cv::Mat sum;     ///< CV_32FC1
     cv::Mat weight;  ///< CV_32FC1: number of tiles that observed the pixel
   };
-  using BlockKey = std::pair<long long, long long>;  ///< (block column, block row)
-
   BlockSpan AllocatedBlocks() const;
 
   double resolution_m_;

@@ -11,10 +11,14 @@
 //   build/bin/uwbsar_bench --benchmark_filter=Workday
 // A table on stdout gives, per lap, the SLAM time per metre by stage (wall clock), the process's
 // CPU time per metre (steady under a changing load), keyframes kept and retired, loops
-// accepted, VmRSS, the session's size if saved then, and the lap's ATE.
+// accepted, VmRSS, the session's size if saved then, the lap's ATE, and the map a live run
+// would write: the slowest kept-mosaic update of the lap (one every 3 m, as a 10 s snapshot)
+// against rendering every tile at the lap's end.
 #include <benchmark/benchmark.h>
 #include <malloc.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -24,6 +28,8 @@
 #include <string>
 #include <vector>
 
+#include "backend/global_map.h"
+#include "backend/incremental_mosaic.h"
 #include "bench/resident_memory.h"
 #include "slam/app_config.h"
 #include "slam/map_job.h"
@@ -74,8 +80,27 @@ struct LapSample {
   int accepted = 0;
   double rss_mib = 0.0;
   double session_mib = 0.0;
-  double process_cpu_s = 0.0;  ///< CPU time of the whole process (simulator included)
+  double process_cpu_s = 0.0;         ///< CPU time of the whole process (simulator included)
+  int snapshots = 0;                  ///< live-like map updates during the lap
+  double mosaic_update_ms_max = 0.0;  ///< slowest kept-mosaic update of the lap
+  double mosaic_full_ms = 0.0;        ///< the whole map rendered from every tile at the lap's end
 };
+
+/// A live run's map snapshot every this many metres (10 s at 0.3 m/s).
+constexpr double kSnapshotEveryM = 3.0;
+
+std::vector<MosaicTile> MosaicTiles(const slam::MapState& state) {
+  std::vector<MosaicTile> tiles;
+  for (const slam::TileSnapshot& k : state.slam.tiles) {
+    tiles.push_back(
+        {k.id, state.slam.poses.at(k.id), k.detected_grid, [&k] { return k.detected.Load(); }});
+  }
+  return tiles;
+}
+
+double MillisecondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
 
 /// CPU seconds the process has used: unlike the stage times (wall clock), it does not move with
 /// the machine's load, so a long run's first and last laps compare on a shared machine.
@@ -96,6 +121,9 @@ slam::MapRun RunLaps(const Config& config, const std::string& map, const std::st
                      std::map<int, Pose2>* true_anchor) {
   std::vector<OdometrySample> truth;
   long long truth_seen = 0;
+  IncrementalMosaic mosaic(config.slam.map_resolution_m, config.slam.mosaic_redraw_px);
+  double next_snapshot_m = kSnapshotEveryM;
+  LapSample lap_snapshots;  // this lap's snapshot figures so far
   const fs::path session = fs::temp_directory_path() / "uwbsar_workday_session.uwbsar";
   slam::MapRun run = slam::MapSimulation(config, map, route, seed, [&](slam::MapRun* r) {
     for (const OdometrySample& g : r->ground_truth) {
@@ -115,8 +143,27 @@ slam::MapRun RunLaps(const Config& config, const std::string& map, const std::st
           it->T_world_robot * (k.keyframe.T_world_robot.Inverse() * k.keyframe.T_world_anchor);
     }
     const double path_m = odometry.back().path_m;
+    if (path_m >= next_snapshot_m && !r->slam->keyframes().empty()) {
+      // What a live snapshot does to the map (slam/live/live_processor.cc): the kept mosaic
+      // brought up to date, only what changed redrawn.
+      next_snapshot_m = path_m + kSnapshotEveryM;
+      const slam::MapState now = slam::CaptureMapState(*r);
+      const auto t0 = std::chrono::steady_clock::now();
+      mosaic.Update(MosaicTiles(now));
+      lap_snapshots.mosaic_update_ms_max =
+          std::max(lap_snapshots.mosaic_update_ms_max, MillisecondsSince(t0));
+      ++lap_snapshots.snapshots;
+    }
     if (path_m < lap_m * static_cast<double>(laps->size() + 1)) return;
-    LapSample s;
+    LapSample s = lap_snapshots;
+    lap_snapshots = LapSample();
+    {
+      const slam::MapState now = slam::CaptureMapState(*r);
+      const auto t0 = std::chrono::steady_clock::now();
+      GlobalMap full(config.slam.map_resolution_m);
+      for (const MosaicTile& t : MosaicTiles(now)) full.AddTile(t.load(), t.grid, t.T_world_tile);
+      s.mosaic_full_ms = MillisecondsSince(t0);
+    }
     s.path_m = path_m;
     s.stamp_ns = odometry.back().stamp_ns;
     s.times = r->slam->times();
@@ -131,9 +178,11 @@ slam::MapRun RunLaps(const Config& config, const std::string& map, const std::st
     // As it goes (a long run read while it runs): the final table adds time and ATE per lap.
     std::fprintf(stderr,
                  "lap %zu done: %.1f m, %zu kept, %zu retired, %d loops, %.0f MiB, "
-                 "session %.2f MiB, SLAM %.1f s, CPU %.0f s\n",
+                 "session %.2f MiB, SLAM %.1f s, CPU %.0f s, map update max %.0f ms of %d, "
+                 "full %.0f ms\n",
                  laps->size(), s.path_m, s.keyframes, s.retired, s.accepted, s.rss_mib,
-                 s.session_mib, Total(s.times), s.process_cpu_s);
+                 s.session_mib, Total(s.times), s.process_cpu_s, s.mosaic_update_ms_max,
+                 s.snapshots, s.mosaic_full_ms);
   });
   fs::remove(session);
   run.ground_truth = std::move(truth);
@@ -176,9 +225,9 @@ void RunWorkday(benchmark::State& state, const std::string& map, const std::stri
       return;
     }
     const std::vector<std::pair<TimestampNs, Pose2>> corrected = run.slam->CorrectedTrajectory();
-    std::printf("%4s %8s %8s %8s %8s %8s %8s %8s %6s %7s %7s %8s %8s %7s\n", "lap", "path_m",
-                "ms/m", "imaging", "features", "matching", "optimise", "cpu_ms/m", "kept",
-                "retired", "loops", "RSS_MiB", "sess_MiB", "ate_cm");
+    std::printf("%4s %8s %8s %8s %8s %8s %8s %8s %6s %7s %7s %8s %8s %7s %9s %8s\n", "lap",
+                "path_m", "ms/m", "imaging", "features", "matching", "optimise", "cpu_ms/m", "kept",
+                "retired", "loops", "RSS_MiB", "sess_MiB", "ate_cm", "map_upd_ms", "full_ms");
     LapSample previous;
     std::vector<double> ms_per_m, cpu_ms_per_m, ate_cm;
     for (std::size_t i = 0; i < laps.size(); ++i) {
@@ -193,12 +242,15 @@ void RunWorkday(benchmark::State& state, const std::string& map, const std::stri
       cpu_ms_per_m.push_back((s.process_cpu_s - previous.process_cpu_s) / m * 1e3);
       ate_cm.push_back(ate);
       std::printf(
-          "%4zu %8.1f %8.1f %8.1f %8.1f %8.2f %8.2f %8.1f %6zu %7zu %7d %8.0f %8.2f %7.2f\n", i + 1,
-          s.path_m, ms_per_m.back(), (s.times.imaging_s - previous.times.imaging_s) / m * 1e3,
+          "%4zu %8.1f %8.1f %8.1f %8.1f %8.2f %8.2f %8.1f %6zu %7zu %7d %8.0f %8.2f %7.2f %9.0f "
+          "%8.0f\n",
+          i + 1, s.path_m, ms_per_m.back(),
+          (s.times.imaging_s - previous.times.imaging_s) / m * 1e3,
           (s.times.features_s - previous.times.features_s) / m * 1e3,
           (s.times.matching_s - previous.times.matching_s) / m * 1e3,
           (s.times.optimization_s - previous.times.optimization_s) / m * 1e3, cpu_ms_per_m.back(),
-          s.keyframes, s.retired, s.accepted, s.rss_mib, s.session_mib, ate);
+          s.keyframes, s.retired, s.accepted, s.rss_mib, s.session_mib, ate, s.mosaic_update_ms_max,
+          s.mosaic_full_ms);
       previous = s;
     }
     const auto [accepted, false_accepted] = CountLoops(run, true_anchor);

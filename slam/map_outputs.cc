@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <limits>
+#include <optional>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
@@ -17,6 +18,7 @@
 
 #include "backend/g2o_io.h"
 #include "backend/global_map.h"
+#include "backend/incremental_mosaic.h"
 #include "backend/occupancy_io.h"
 #include "core/commit_journal.h"
 #include "core/errors.h"
@@ -164,14 +166,26 @@ struct MapExtent {
 /// The global map from the optimised keyframes: map_float.tif, map_grid.yaml, map.png, and
 /// the navigation grid map.yaml + map.pgm.
 MapExtent WriteMapAndOccupancy(const MapState& run, const StampedPoses& trajectory,
-                               const fs::path& stage, std::vector<std::string>* names) {
+                               const fs::path& stage, IncrementalMosaic* mosaic,
+                               std::vector<std::string>* names) {
   const SlamSnapshot& slam = run.slam;
   const Config& config = *slam.config;
   auto staged = [&](const char* name) { return (stage / name).string(); };
-  GlobalMap global(config.slam.map_resolution_m);
-  for (const TileSnapshot& k : slam.tiles) {
-    global.AddTile(k.detected.Load(), k.detected_grid, slam.poses.at(k.id));
+  std::optional<GlobalMap> fresh;
+  if (mosaic) {
+    std::vector<MosaicTile> tiles;
+    for (const TileSnapshot& k : slam.tiles) {
+      tiles.push_back({k.id, slam.poses.at(k.id), k.detected_grid,
+                       [&k] { return k.detected.Load(); }});
+    }
+    mosaic->Update(tiles);
+  } else {
+    fresh.emplace(config.slam.map_resolution_m);
+    for (const TileSnapshot& k : slam.tiles) {
+      fresh->AddTile(k.detected.Load(), k.detected_grid, slam.poses.at(k.id));
+    }
   }
+  const GlobalMap& global = mosaic ? mosaic->map() : *fresh;
   // A keyframe placed kilometres away (a wild odometry jump) must not allocate gigabytes.
   if (!(global.RenderPixels() <= config.limits.max_image_pixels)) {
     std::ostringstream what;
@@ -297,7 +311,7 @@ MapOutputs MapOutputStage::CommitState(const MapState& run, const MapRun* exact_
   const fs::path stage = stage_;
   std::vector<std::string> names;
   const MapTrajectories trajectories = WriteTrajectories(run, stage, &result, &names);
-  const MapExtent extent = WriteMapAndOccupancy(run, trajectories.slam, stage, &names);
+  const MapExtent extent = WriteMapAndOccupancy(run, trajectories.slam, stage, mosaic_, &names);
   result.summary = SummaryJson(run, result, extent);
   if (run.slam.config->slam.results_mcap) {
     const auto mcap_start = std::chrono::steady_clock::now();

@@ -16,6 +16,10 @@
 #include "core/interrupt_cleanup.h"
 #include "slam/map_job.h"
 
+namespace uwbsar {
+class IncrementalMosaic;
+}
+
 namespace uwbsar::slam {
 
 struct MapOutputs {
@@ -68,6 +72,10 @@ class MapOutputStage {
   /// folder and returns their names, committed with the rest (e.g. session.uwbsar).
   using ExtraOutputs = std::function<std::vector<std::string>(const std::string& stage_dir)>;
   void SetExtraOutputs(ExtraOutputs write) { extra_outputs_ = std::move(write); }
+  /// The global map of the next commits is `mosaic`, brought up to date (only what changed
+  /// since its last update is redrawn); owned by the caller, who keeps it between stages
+  /// (live snapshots). Without it each commit renders the map from every tile.
+  void KeepMosaic(IncrementalMosaic* mosaic) { mosaic_ = mosaic; }
   /// CaptureMapState(run), then the outputs from it (and the exact map from `run`).
   MapOutputs Commit(const MapRun& run, const MapOutputOptions& options = {});
   /// The outputs of a captured state (no exact map: that needs the scans' profiles).
@@ -86,6 +94,7 @@ class MapOutputStage {
   FolderLock lock_;
   std::unique_ptr<RemoveOnInterrupt> guard_;
   ExtraOutputs extra_outputs_;
+  IncrementalMosaic* mosaic_ = nullptr;
 };
 
 /// Every file name a uwbsar command may commit into an output folder (map, joined session,

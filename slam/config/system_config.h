@@ -26,6 +26,9 @@ struct SlamConfig {
   std::string odometry_topic = "/odom";  ///< nav_msgs/Odometry topic of wheel odometry
   std::string ground_truth_topic = "/ground_truth/odom";  ///< optional, for evaluation
   double map_resolution_m = 0.01;    ///< pixel size of the global map (map.png, map_float.tif)
+  double mosaic_redraw_px = 0.5;     ///< live snapshots redraw a keyframe's tile in the map
+                                     ///< once it moved this many map pixels (backend/
+                                     ///< incremental_mosaic.h); 0: on any move
   bool keep_tile_images = false;     ///< keep every full-resolution tile in memory after its
                                      ///< features are computed (debugging; costs ~5 MB per metre)
   bool keep_scan_profiles = false;   ///< keep every imaged scan's range profile (0.8 MB per
@@ -64,6 +67,7 @@ struct SlamConfig {
     v("odometry_topic", odometry_topic);
     v("ground_truth_topic", ground_truth_topic);
     v("map_resolution_m", map_resolution_m);
+    v("mosaic_redraw_px", mosaic_redraw_px);
     v("keep_tile_images", keep_tile_images);
     v("keep_scan_profiles", keep_scan_profiles);
     v("optimize_every_keyframes", optimize_every_keyframes);

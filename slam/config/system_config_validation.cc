@@ -11,6 +11,8 @@ using config_validation::Require;
 
 void Validate(const SlamConfig& s, const std::string& src) {
   Require(s.map_resolution_m > 0, src, "slam.map_resolution_m", "must be > 0");
+  Require(s.mosaic_redraw_px >= 0 && s.mosaic_redraw_px <= 100, src, "slam.mosaic_redraw_px",
+          "must be in [0, 100]");
   Require(s.optimize_every_keyframes >= 0, src, "slam.optimize_every_keyframes", "must be >= 0");
   Require(s.keyframe_queue_size >= 1, src, "slam.keyframe_queue_size", "must be >= 1");
   Require(!s.odometry_topic.empty(), src, "slam.odometry_topic", "must not be empty");

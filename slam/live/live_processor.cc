@@ -13,7 +13,10 @@ namespace uwbsar::slam {
 
 Processor::Processor(const Config& config, const LiveRunOptions& options, Dispatcher* dispatcher,
                      const SessionData* localize_map)
-    : config_(config), options_(options), dispatcher_(dispatcher) {
+    : config_(config),
+      options_(options),
+      dispatcher_(dispatcher),
+      mosaic_(config.slam.map_resolution_m, config.slam.mosaic_redraw_px) {
   run_.input = "live run";
   if (localize_map) {
     localize_ = std::make_unique<LocalizePipeline>(*localize_map, config, run_.input);
@@ -138,6 +141,7 @@ void Processor::Snapshot() {
                    std::chrono::duration<double>(SteadyClock::now() - lock_start).count());
     }
     MapOutputStage stage(options_.out_dir);
+    stage.KeepMosaic(&mosaic_);
     stage.SetExtraOutputs([&session, this](const std::string& dir) {
       WriteSession(dir + "/" + kSessionFileName, session, config_.session.lossless_tiles);
       return std::vector<std::string>{kSessionFileName};

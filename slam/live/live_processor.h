@@ -19,6 +19,7 @@
 #include <optional>
 #include <vector>
 
+#include "backend/incremental_mosaic.h"
 #include "slam/app_config.h"
 #include "slam/live/live_recorder.h"
 #include "slam/live/live_runner.h"
@@ -106,6 +107,8 @@ class Processor {
   double snapshot_lock_max_s_ = 0.0;
   std::vector<double> snapshot_s_;
   MapOutputs last_outputs_;
+  /// The map kept between snapshots (only the blocks of keyframes that changed are redone).
+  IncrementalMosaic mosaic_;
   std::unique_ptr<LocalizePipeline> localize_;
   nlohmann::json last_localize_summary_;
 };

@@ -9,6 +9,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "backend/incremental_mosaic.h"
 #include "drivers/sim/synthetic_run.h"
 #include "slam/app_config.h"
 #include "slam/map_outputs.h"
@@ -92,6 +96,55 @@ TEST(MapSnapshotTest, OutputsFromTheCopyEqualThoseWrittenUnderTheLockAtThatMomen
   // The test can fail: the final state wrote different files.
   EXPECT_FALSE(Bytes(dir / "old_way" / "odometry.tum") == Bytes(dir / "final" / "odometry.tum"));
   EXPECT_NE(SummaryWithoutMemory(dir / "old_way"), SummaryWithoutMemory(dir / "final"));
+}
+
+/// A live run keeps its map between snapshots (MapOutputStage::KeepMosaic) and redraws only
+/// what changed: the map it writes at the end equals one rendered from every tile.
+TEST(MapSnapshotTest, AKeptMosaicEqualsAFullRenderOfTheSameState) {
+  Config config;
+  config.slam.keyframe_thread = false;
+  config.slam.mosaic_redraw_px = 0.0;  // exact: every moved keyframe is redrawn
+  SyntheticPath path;
+  path.turn_radius_m = 1.5;
+  path.length_m = 12.0;
+  path.speed_mps = 0.5;
+  std::vector<Scatterer> scene = WallScatterers({-3, -3}, {3, -3}, 0.02, 0.05);
+  for (int i = 0; i < 12; ++i) scene.push_back({{-2.5 + 0.45 * i, i % 2 ? 2.6 : -0.3}, 1.0});
+  SimFeed feed{SimulateRun(config, path, scene, EchoModel{}, 5)};
+  slam::MapRun run;
+  run.input = "synthetic circle";
+  run.slam = std::make_shared<slam::SlamSystem>(config);
+
+  const fs::path dir = fs::temp_directory_path() / "uwbsar_map_snapshot_kept_mosaic";
+  fs::remove_all(dir);
+  IncrementalMosaic mosaic(config.slam.map_resolution_m, config.slam.mosaic_redraw_px);
+  std::size_t keyframes_at_first = 0;
+  for (std::size_t part = 1; part <= 3; ++part) {
+    feed.To(*run.slam, feed.run.scans.size() * part / 3);
+    if (part == 3) run.slam->Finish();
+    slam::MapState state;
+    {
+      const auto lock = run.slam->LockState();
+      state = slam::CaptureMapState(run);
+    }
+    if (part == 1) keyframes_at_first = state.slam.tiles.size();
+    slam::MapOutputStage stage((dir / "kept").string());
+    stage.KeepMosaic(&mosaic);
+    stage.Commit(state);
+  }
+  ASSERT_GE(keyframes_at_first, 2u);
+  ASSERT_GT(run.slam->keyframes().size(), keyframes_at_first);
+  slam::WriteMapOutputs(run, (dir / "full").string());
+  const cv::Mat kept = cv::imread((dir / "kept" / "map_float.tif").string(), cv::IMREAD_UNCHANGED);
+  const cv::Mat full = cv::imread((dir / "full" / "map_float.tif").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_FALSE(full.empty());
+  ASSERT_EQ(kept.size(), full.size());
+  double full_max = 0.0;
+  cv::minMaxLoc(full, nullptr, &full_max);
+  EXPECT_GT(full_max, 0.0);
+  EXPECT_LT(cv::norm(kept, full, cv::NORM_INF), 1e-4 * full_max);
+  EXPECT_EQ(Bytes(dir / "kept" / "map_grid.yaml"), Bytes(dir / "full" / "map_grid.yaml"));
+  fs::remove_all(dir);
 }
 
 }  // namespace
