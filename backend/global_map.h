@@ -8,8 +8,8 @@
 
 #include <climits>
 #include <map>
-#include <set>
 #include <opencv2/core.hpp>
+#include <set>
 #include <utility>
 
 #include "core/pose2.h"

@@ -25,10 +25,10 @@ struct MosaicTile {
 
 /// What an update redid.
 struct MosaicUpdate {
-  std::size_t added = 0;    ///< keyframes new to the map
-  std::size_t removed = 0;  ///< keyframes gone from it
-  std::size_t moved = 0;    ///< keyframes redrawn at a new pose
-  std::size_t tiles_drawn = 0;   ///< tiles read back and drawn (into some of their blocks)
+  std::size_t added = 0;          ///< keyframes new to the map
+  std::size_t removed = 0;        ///< keyframes gone from it
+  std::size_t moved = 0;          ///< keyframes redrawn at a new pose
+  std::size_t tiles_drawn = 0;    ///< tiles read back and drawn (into some of their blocks)
   std::size_t blocks_redone = 0;  ///< blocks cleared and drawn again
 };
 

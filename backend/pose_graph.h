@@ -186,14 +186,15 @@ class PoseGraph {
   /// longer needs (Johannsson, Kaess, Fallon and Leonard, "Temporally scalable visual SLAM using
   /// a reduced pose graph", ICRA 2013). Its odometry, marginal and accepted loop edges are
   /// composed through the neighbour they tie it to most strongly (the hub): every other
-  /// neighbour gets one kMarginal edge to the hub whose measurement is their relative pose at
-  /// the last solution and whose covariance is the composition of the two edges' (a marginal
-  /// edge already between the two absorbs it: informations add). Rejected loops and wall edges
-  /// of the node are dropped. The node and its edges leave the graph: Edges() and EdgeReports()
-  /// no longer list them, and the other edges keep their indices. The solution is unchanged
-  /// (every new edge has zero error at it). Returns the hub's id (-1 when the node had no
-  /// neighbour left) and, in `T_hub_node`, the node's pose in the hub's frame at the last
-  /// solution. Throws InputError for an unknown, fixed or never-solved node.
+  /// neighbour gets one kMarginal edge to the hub whose measurement composes the two edges'
+  /// measurements and whose covariance composes theirs (a marginal edge already between the
+  /// two absorbs it: informations add). A fixed node (a frozen saved map) folds into its
+  /// strongest fixed neighbour through their exact relative pose, and leaves FixedNodes().
+  /// Rejected loops and wall edges of the node are dropped. The node and its edges leave the
+  /// graph: Edges() and EdgeReports() no longer list them, and the other edges keep their
+  /// indices. Returns the hub's id (-1 when the node had no neighbour left) and, in
+  /// `T_hub_node`, the node's pose in the hub's frame at the last solution. Throws InputError
+  /// for an unknown or never-solved node, and for a fixed one with no fixed neighbour.
   int RemoveNode(int id, Pose2* T_hub_node = nullptr);
 
   bool HasNode(int id) const;

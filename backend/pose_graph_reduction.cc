@@ -54,8 +54,10 @@ int PoseGraph::RemoveNode(int id, Pose2* T_hub_node) {
   auto node = solver_nodes_.find(id);
   if (node == solver_nodes_.end())
     throw InputError("pose graph: cannot remove unknown node " + std::to_string(id));
-  if (problem_->IsParameterBlockConstant(node->second->x.data()))
-    throw InputError("pose graph: cannot remove fixed node " + std::to_string(id));
+  const auto is_fixed = [this](int n) {
+    return problem_->IsParameterBlockConstant(solver_nodes_.at(n)->x.data());
+  };
+  const bool fixed = is_fixed(id);
   if (!solved_once_)
     throw InputError("pose graph: cannot remove node " + std::to_string(id) + " before a solve");
 
@@ -89,13 +91,21 @@ int PoseGraph::RemoveNode(int id, Pose2* T_hub_node) {
         FuseRelativePoses(it->second.T_node_neighbour, t.T_node_neighbour);
     it->second.strength = it->second.T_node_neighbour.covariance.inverse().determinant();
   }
+  // A fixed node (a frozen saved map) folds into a fixed neighbour: both stay where they are,
+  // so the step between them is exact, and what the node's edges said about a free neighbour
+  // carries over unchanged.
   int hub = -1;
   double best = -1.0;
   for (const auto& [n, t] : by_neighbour) {
+    if (fixed && !is_fixed(n)) continue;
     if (t.strength > best) {
       best = t.strength;
       hub = n;
     }
+  }
+  if (fixed && hub < 0 && !by_neighbour.empty()) {
+    throw InputError("pose graph: cannot remove fixed node " + std::to_string(id) +
+                     ": no fixed neighbour to fold it into");
   }
   const Pose2 T_world_node = PoseOf(node->second->x);
   if (hub >= 0 && T_hub_node != nullptr)
@@ -103,7 +113,10 @@ int PoseGraph::RemoveNode(int id, Pose2* T_hub_node) {
 
   std::vector<PoseGraphEdge> folded;
   if (hub >= 0) {
-    const RelativePose node_hub = by_neighbour.at(hub).T_node_neighbour;
+    const RelativePose node_hub =
+        fixed ? RelativePose{Between(T_world_node, PoseOf(solver_nodes_.at(hub)->x)),
+                             Eigen::Matrix3d::Zero()}
+              : by_neighbour.at(hub).T_node_neighbour;
     for (const auto& [n, t] : by_neighbour) {
       if (n == hub) continue;
       // neighbour -> node -> hub.
@@ -130,6 +143,10 @@ int PoseGraph::RemoveNode(int id, Pose2* T_hub_node) {
     }
   }
   EraseSolverNode(id);
+  if (fixed) {
+    std::lock_guard<std::mutex> lock(data_mutex_);
+    fixed_ids_.erase(std::remove(fixed_ids_.begin(), fixed_ids_.end(), id), fixed_ids_.end());
+  }
   for (SolverEdge* se : absorbed) problem_->RemoveResidualBlock(se->residual);
   {
     std::lock_guard<std::mutex> lock(data_mutex_);

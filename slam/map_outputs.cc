@@ -10,9 +10,9 @@
 #include <filesystem>
 #include <iomanip>
 #include <limits>
-#include <optional>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -175,8 +175,8 @@ MapExtent WriteMapAndOccupancy(const MapState& run, const StampedPoses& trajecto
   if (mosaic) {
     std::vector<MosaicTile> tiles;
     for (const TileSnapshot& k : slam.tiles) {
-      tiles.push_back({k.id, slam.poses.at(k.id), k.detected_grid,
-                       [&k] { return k.detected.Load(); }});
+      tiles.push_back(
+          {k.id, slam.poses.at(k.id), k.detected_grid, [&k] { return k.detected.Load(); }});
     }
     mosaic->Update(tiles);
   } else {

@@ -13,7 +13,7 @@
 #include "core/log.h"
 #include "imaging/enhance.h"
 #include "slam/app_config.h"
-#include "slam/place_views.h"
+#include "slam/session/place_views.h"
 
 namespace uwbsar::slam {
 namespace {

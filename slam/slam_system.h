@@ -67,7 +67,7 @@ class SlamSystem {
   std::unique_lock<std::mutex> LockState() const { return std::unique_lock(state_mutex_); }
 
   const Config& config() const { return config_; }
-  /// The keyframes the map keeps, in order (a revisit retires old views: slam/place_views.h).
+  /// The keyframes the map keeps, in order (a revisit retires old views: slam/session/place_views.h).
   const std::vector<KeyframeRecord>& keyframes() const { return keyframes_; }
   /// The keyframes retired so far, in the order they were retired.
   const std::vector<RetiredKeyframe>& retired() const { return retired_; }
@@ -120,7 +120,7 @@ class SlamSystem {
   void AddLoop(const LoopAttempt& attempt, int keyframe_id);
   void Optimize();  ///< caller holds state_mutex_
   /// After a solve: each keyframe added since the last one that a loop ties to the map retires
-  /// the oldest view of its place when the place has too many (slam/place_views.h); caller
+  /// the oldest view of its place when the place has too many (slam/session/place_views.h); caller
   /// holds state_mutex_.
   void RetireRevisitedViews();
   void Retire(int id);

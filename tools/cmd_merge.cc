@@ -70,9 +70,10 @@ void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
     if (globals.quiet) return;
     std::printf(
         "merged: %zu + %zu keyframes, %d loops between the sessions (%d rejected by the "
-        "backend), placed after %.2f m of the second\n",
+        "backend), placed after %.2f m of the second; %zu keyframes in the map (%d older views "
+        "retired)\n",
         a.keyframes.size(), b.keyframes.size(), report.loop_edges, report.loop_edges_rejected,
-        report.connect_path_m);
+        report.connect_path_m, merged.keyframes.size(), report.retired);
     std::printf("report: %s/report.html\n", opts->out_dir.c_str());
     PrintWrittenFolder(opts->out_dir, outputs.files, globals);
   });

@@ -1,4 +1,4 @@
-// slam.place_views.*: how many views of one place the map keeps (slam/place_views.h).
+// slam.place_views.*: how many views of one place the map keeps (slam/session/place_views.h).
 #pragma once
 
 #include <string>

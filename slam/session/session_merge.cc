@@ -8,6 +8,7 @@
 #include "core/log.h"
 #include "frontend/place_recognition/feature_matcher.h"
 #include "frontend/place_recognition/loop_validator.h"
+#include "slam/session/join_retirement.h"
 
 namespace uwbsar {
 namespace {
@@ -169,14 +170,21 @@ std::vector<int> BuildJointGraph(const SessionData& a, const SessionData& b,
   return new_edges;
 }
 
-/// `out` (a copy of the saved map) joined with `b` as `graph` solved it: every keyframe at
-/// its solved pose, the graph's edges, b's loops and the new ones (with their verdicts).
-void StoreJoined(const PoseGraph& graph, const SessionData& b, const std::vector<Hypothesis>& loops,
-                 const std::vector<int>& new_edges, MergeReport* r, SessionData* out) {
+/// `out` (a copy of the saved map) joined with `b` as `graph` solved it: every keyframe still
+/// in the graph at its solved pose, the graph's edges, b's loops and the new ones (with their
+/// verdicts at the solve, `solved`) between kept keyframes, and the anchors of both runs and of
+/// the keyframes the join retired (`retired`).
+void StoreJoined(const PoseGraph& graph, const std::vector<EdgeReport>& solved,
+                 const SessionData& b, const std::vector<Hypothesis>& loops,
+                 const std::vector<int>& new_edges, const std::vector<SessionAnchor>& retired,
+                 MergeReport* r, SessionData* out) {
   const std::map<int, Pose2> poses = graph.GetPoses();
   const std::vector<PoseGraphEdge> edges = graph.Edges();
   const std::vector<EdgeReport> reports = graph.EdgeReports();
   out->keyframes.insert(out->keyframes.end(), b.keyframes.begin(), b.keyframes.end());
+  out->keyframes.erase(std::remove_if(out->keyframes.begin(), out->keyframes.end(),
+                                      [&](const SessionKeyframe& k) { return !poses.count(k.id); }),
+                       out->keyframes.end());
   for (SessionKeyframe& k : out->keyframes) {
     k.T_map_anchor = poses.at(k.id);
     k.features.T_world_anchor = k.T_map_anchor;
@@ -185,23 +193,41 @@ void StoreJoined(const PoseGraph& graph, const SessionData& b, const std::vector
   for (std::size_t i = 0; i < edges.size(); ++i)
     out->edges.push_back({edges[i], reports[i].rejected});
   out->loops.insert(out->loops.end(), b.loops.begin(), b.loops.end());
+  std::map<int, const EdgeReport*> verdict;  // by AddEdge index
+  for (const EdgeReport& e : solved) verdict[e.index] = &e;
   for (std::size_t i = 0; i < loops.size(); ++i) {
     SessionLoop l;
     l.query_id = loops[i].b_id;
     l.match_id = loops[i].a_id;
     l.validated = true;
-    l.accepted = !reports[new_edges[i]].rejected;
+    l.accepted = !verdict.at(new_edges[i])->rejected;
     l.T_ij = loops[i].T_ij;
-    l.chi2 = reports[new_edges[i]].chi2;
+    l.chi2 = verdict.at(new_edges[i])->chi2;
     l.reason = "between sessions";
     r->loop_edges_rejected += !l.accepted;
     out->loops.push_back(l);
   }
+  // Loops to a retired keyframe go with it, as in a run's own session (CaptureSession).
+  out->loops.erase(std::remove_if(out->loops.begin(), out->loops.end(),
+                                  [&](const SessionLoop& l) {
+                                    return !poses.count(l.query_id) || !poses.count(l.match_id);
+                                  }),
+                   out->loops.end());
   out->odometry.insert(out->odometry.end(), b.odometry.begin(), b.odometry.end());
   for (SessionAnchor a : b.anchors) {  // b's, placed in a's frame
     if (a.hub_id < 0) a.T_hub_anchor = r->T_mapA_mapB * a.T_hub_anchor;
     out->anchors.push_back(a);
   }
+  out->anchors.insert(out->anchors.end(), retired.begin(), retired.end());
+  FollowRetiredHubs(&out->anchors);
+  // By run, in the order the runs joined, then in time (session_data.h).
+  std::map<int, std::size_t> order;
+  for (std::size_t i = 0; i < out->trajectories.size(); ++i) order[out->trajectories[i].id] = i;
+  std::stable_sort(out->anchors.begin(), out->anchors.end(),
+                   [&](const SessionAnchor& x, const SessionAnchor& y) {
+                     const std::size_t ox = order[x.trajectory], oy = order[y.trajectory];
+                     return ox != oy ? ox < oy : x.stamp_ns < y.stamp_ns;
+                   });
 }
 
 }  // namespace
@@ -261,7 +287,15 @@ SessionData MergeSessions(const SessionData& a_in, const SessionData& b_in,
   Log(LogLevel::kDebug, "stage merge optimisation: " + std::to_string(r.optimization.solve_time_s) +
                             " s, " + r.optimization.termination);
   r.loop_edges = static_cast<int>(loops.size());
-  StoreJoined(graph, b, loops, new_edges, &r, &out);
+  const std::vector<EdgeReport> solved = graph.EdgeReports();
+  std::vector<const SessionKeyframe*> oldest_first;
+  std::vector<int> new_ids;
+  for (const SessionKeyframe& k : a.keyframes) oldest_first.push_back(&k);
+  for (const SessionKeyframe& k : b.keyframes) oldest_first.push_back(&k), new_ids.push_back(k.id);
+  const std::vector<SessionAnchor> retired =
+      RetireRevisitedViews(oldest_first, new_ids, config.slam.place_views, &graph);
+  r.retired = static_cast<int>(retired.size());
+  StoreJoined(graph, solved, b, loops, new_edges, retired, &r, &out);
   return out;
 }
 

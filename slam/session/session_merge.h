@@ -8,7 +8,9 @@
 // disagree with it are dropped as false. Then one pose graph holds both sessions (both
 // runs' odometry and loops, the new loops between them) and is optimised: with
 // session.freeze_saved_map (the default) the saved keyframes are held where they are and the
-// new run is fitted to them; without it, both move (the saved map's gauge is kept).
+// new run is fitted to them; without it, both move (the saved map's gauge is kept). Last, the
+// new run's keyframes retire the older views of the places they revisit
+// (slam/session/join_retirement.h), so the joined map keeps what one run would.
 #pragma once
 
 #include <cstdint>
@@ -36,6 +38,7 @@ struct MergeReport {
   int id_offset = 0;             ///< added to the new session's keyframe ids
   bool renumbered = false;       ///< both sessions' ids were made dense first (kMaxJoinedId)
   int trajectory_offset = 0;     ///< added to its trajectory ids
+  int retired = 0;  ///< keyframes (of either run) the join retired (slam/session/join_retirement.h)
   OptimizeResult optimization;
 };
 

@@ -14,7 +14,8 @@ namespace {
 constexpr double kResM = 0.02;
 constexpr int kBlockPx = 32;  // small blocks: a tile reaches many of them
 
-/// Keyframe tiles 1 m apart: 1.2 m x 0.8 m of smooth positive texture with an unobserved (0) corner.
+/// Keyframe tiles 1 m apart: 1.2 m x 0.8 m of smooth positive texture with an unobserved (0)
+/// corner.
 struct Tiles {
   std::map<int, cv::Mat> images;
   std::map<int, int> loads;  ///< times each tile was read back
@@ -87,8 +88,8 @@ TEST(IncrementalMosaicTest, RedrawsOnlyWhatAppearedLeftOrMoved) {
   const std::size_t blocks = mosaic.map().num_blocks();
   source.loads.clear();
 
-  tiles[3].T_world_tile.x_m += 0.15;  // moved by a loop
-  tiles.erase(tiles.begin() + 8);     // retired
+  tiles[3].T_world_tile.x_m += 0.15;                   // moved by a loop
+  tiles.erase(tiles.begin() + 8);                      // retired
   tiles.push_back(source.Make(20, {12.5, 0.5, 0.2}));  // new, past the end
   const MosaicUpdate u = mosaic.Update(tiles);
   EXPECT_EQ(u.added, 1u);
@@ -97,7 +98,7 @@ TEST(IncrementalMosaicTest, RedrawsOnlyWhatAppearedLeftOrMoved) {
   EXPECT_GT(u.blocks_redone, 0u);
   EXPECT_LT(u.blocks_redone, blocks / 2);
   EXPECT_LT(u.tiles_drawn, tiles.size() / 2 + 1);
-  EXPECT_EQ(source.loads[0], 0);   // far from every change: never read back
+  EXPECT_EQ(source.loads[0], 0);  // far from every change: never read back
   EXPECT_EQ(source.loads[11], 0);
   EXPECT_LT(MaxDifference(mosaic.map(), FullRender(tiles)), 1e-4);
 }

@@ -1,5 +1,5 @@
-// Which keyframe a revisit retires (slam/place_views.h).
-#include "slam/place_views.h"
+// Which keyframe a revisit retires (slam/session/place_views.h).
+#include "slam/session/place_views.h"
 
 #include <gtest/gtest.h>
 

@@ -13,6 +13,7 @@
 #include "slam/app_config.h"
 #include "slam/map_job.h"
 #include "slam/scene_simulation.h"
+#include "slam/session/session_file.h"
 #include "slam/session_capture.h"
 #include "slam/session_outputs.h"
 #include "test/shared_data.h"
@@ -44,7 +45,7 @@ using ::uwbsar::testing::ShortSessionConfig;
 
 TEST(SessionMergeTest, SecondRunTurnedAndShiftedIsPlacedWithinThreeMetresWithoutFalseLoops) {
   UWBSAR_NEED_SEED_LAB_MAP();
-  const Config config_a = ShortSessionConfig();
+  Config config_a = ShortSessionConfig();
   const Config config_b = ::uwbsar::testing::TurnedRevisitConfig(config_a);
   const std::string map = ::uwbsar::testing::SeedLabLidarMap();
   const slam::MapRun a = slam::MapSimulation(config_a, map, "depart-return", 1);
@@ -52,6 +53,9 @@ TEST(SessionMergeTest, SecondRunTurnedAndShiftedIsPlacedWithinThreeMetresWithout
                                                     slam::RouteStart(config_b).Inverse());
   const SessionData sa = slam::CaptureSession(a);
   const SessionData sb = slam::CaptureSession(b);
+  // Every view kept, so that the loops between the runs stay in the joined session to be judged
+  // (a retired keyframe's loops leave with it: RevisitedViewsAreRetired... below).
+  config_a.slam.place_views.max_per_place = 0;
   MergeReport report;
   const SessionData merged = MergeSessions(sa, sb, config_a, &report);
   ASSERT_TRUE(report.connected) << report.reason;
@@ -79,13 +83,13 @@ TEST(SessionMergeTest, SecondRunTurnedAndShiftedIsPlacedWithinThreeMetresWithout
   EXPECT_LE(common.rmse_m, 0.05);
   // session.freeze_saved_map (default): the saved map does not move; the run is fitted to it.
   ASSERT_TRUE(config_a.session.freeze_saved_map);
-  for (std::size_t i = 0; i < sa.keyframes.size(); ++i) {
-    const Pose2& before = sa.keyframes[i].T_map_anchor;
-    const Pose2& after = merged.keyframes[i].T_map_anchor;
-    ASSERT_EQ(merged.keyframes[i].id, sa.keyframes[i].id);
-    EXPECT_EQ(after.x_m, before.x_m);
-    EXPECT_EQ(after.y_m, before.y_m);
-    EXPECT_EQ(after.yaw_rad, before.yaw_rad);
+  EXPECT_EQ(report.retired, 0);
+  for (const SessionKeyframe& k : sa.keyframes) {
+    const SessionKeyframe* after = merged.Find(k.id);
+    ASSERT_NE(after, nullptr);
+    EXPECT_EQ(after->T_map_anchor.x_m, k.T_map_anchor.x_m);
+    EXPECT_EQ(after->T_map_anchor.y_m, k.T_map_anchor.y_m);
+    EXPECT_EQ(after->T_map_anchor.yaw_rad, k.T_map_anchor.yaw_rad);
   }
   // Optimised together, the saved map moves, and both runs still agree within 5 cm.
   Config together = config_a;
@@ -94,8 +98,8 @@ TEST(SessionMergeTest, SecondRunTurnedAndShiftedIsPlacedWithinThreeMetresWithout
   const SessionData joint = MergeSessions(sa, sb, together, &report_together);
   ASSERT_TRUE(report_together.connected);
   double moved_m = 0.0;
-  for (std::size_t i = 0; i < sa.keyframes.size(); ++i) {
-    const Pose2 d = Between(sa.keyframes[i].T_map_anchor, joint.keyframes[i].T_map_anchor);
+  for (const SessionKeyframe& k : sa.keyframes) {
+    const Pose2 d = Between(k.T_map_anchor, joint.Find(k.id)->T_map_anchor);
     moved_m = std::max(moved_m, std::hypot(d.x_m, d.y_m));
   }
   EXPECT_GT(moved_m, 1e-4);
@@ -107,6 +111,60 @@ TEST(SessionMergeTest, SecondRunTurnedAndShiftedIsPlacedWithinThreeMetresWithout
       report.connect_path_m, report.connect_keyframe_id, report.candidates, report.validated,
       report.loop_edges, report.loop_edges_rejected, report.dropped, false_loops,
       common.rmse_m * 100, alone_a.rmse_m * 100);
+}
+
+/// The map resumed every day keeps what one run would: the new run's keyframes retire the
+/// saved views of the places they revisit (join_retirement.h), and both runs' trajectories
+/// stay corrected through the retired keyframes' anchors, also once saved and read back.
+TEST(SessionMergeTest, RevisitedViewsAreRetiredAndBothRunsStayCorrected) {
+  UWBSAR_NEED_SEED_LAB_MAP();
+  const Config config_a = ShortSessionConfig();
+  const Config config_b = ::uwbsar::testing::TurnedRevisitConfig(config_a);
+  ASSERT_EQ(config_a.slam.place_views.max_per_place, 1);
+  const std::string map = ::uwbsar::testing::SeedLabLidarMap();
+  const slam::MapRun a = slam::MapSimulation(config_a, map, "depart-return", 1);
+  const slam::MapRun b = slam::MapSimulationInScene(config_b, map, "depart-return", 1, 2,
+                                                    slam::RouteStart(config_b).Inverse());
+  const SessionData sa = slam::CaptureSession(a);
+  const SessionData sb = slam::CaptureSession(b);
+  MergeReport report;
+  const SessionData merged = MergeSessions(sa, sb, config_a, &report);
+  ASSERT_TRUE(report.connected) << report.reason;
+  EXPECT_GT(report.retired, 0);
+  EXPECT_EQ(merged.keyframes.size() + static_cast<std::size_t>(report.retired),
+            sa.keyframes.size() + sb.keyframes.size());
+  EXPECT_EQ(merged.anchors.size(),
+            sa.anchors.size() + sb.anchors.size() + static_cast<std::size_t>(report.retired));
+  // Only saved views are retired (the newer view wins), and every anchor follows a kept one.
+  int saved_retired = 0;
+  for (const SessionKeyframe& k : sa.keyframes) saved_retired += merged.Find(k.id) == nullptr;
+  EXPECT_EQ(saved_retired, report.retired);
+  for (const SessionAnchor& x : merged.anchors) {
+    EXPECT_TRUE(x.hub_id < 0 || merged.Find(x.hub_id) != nullptr) << x.id << " -> " << x.hub_id;
+  }
+  for (const SessionLoop& l : merged.loops) {
+    EXPECT_TRUE(merged.Find(l.query_id) && merged.Find(l.match_id));
+  }
+  std::map<int, std::vector<OdometrySample>> gt = {{0, a.ground_truth},
+                                                   {report.trajectory_offset, b.ground_truth}};
+  const double joined_cm = slam::CommonFrameError(merged, gt).rmse_m * 100.0;
+  Config keep_all = config_a;
+  keep_all.slam.place_views.max_per_place = 0;
+  MergeReport unused;
+  const double kept_cm =
+      slam::CommonFrameError(MergeSessions(sa, sb, keep_all, &unused), gt).rmse_m * 100.0;
+  EXPECT_LE(joined_cm, 5.0);
+  EXPECT_LE(joined_cm, kept_cm + 0.5);
+  // Saved and read back: the same trajectories.
+  const std::string path = ::testing::TempDir() + "/uwbsar_retired_join.uwbsar";
+  WriteSession(path, merged);
+  const SessionData read = ReadSession(path);
+  EXPECT_NEAR(slam::CommonFrameError(read, gt).rmse_m * 100.0, joined_cm, 0.01);
+  std::printf(
+      "join with retirement: %zu + %zu keyframes -> %zu (%d retired); ATE common frame "
+      "%.2f cm (every view kept: %.2f cm)\n",
+      sa.keyframes.size(), sb.keyframes.size(), merged.keyframes.size(), report.retired, joined_cm,
+      kept_cm);
 }
 
 TEST(SessionMergeTest, LoopsOfOneNewKeyframeShareItsInformation) {

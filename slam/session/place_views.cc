@@ -1,4 +1,4 @@
-#include "slam/place_views.h"
+#include "slam/session/place_views.h"
 
 #include <algorithm>
 #include <cmath>
