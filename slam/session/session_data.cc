@@ -37,7 +37,26 @@ std::vector<int> SessionData::TrajectoryIds() const {
   for (const SessionKeyframe& k : keyframes) {
     if (std::find(ids.begin(), ids.end(), k.trajectory) == ids.end()) ids.push_back(k.trajectory);
   }
-  return ids;
+  // A run whose every keyframe a later run retired is still placed, by its anchors: it takes
+  // its place in the order the runs joined.
+  std::vector<int> anchored;
+  for (const SessionAnchor& a : anchors) {
+    const bool known = std::find(ids.begin(), ids.end(), a.trajectory) != ids.end() ||
+                       std::find(anchored.begin(), anchored.end(), a.trajectory) != anchored.end();
+    if (!known) anchored.push_back(a.trajectory);
+  }
+  if (anchored.empty()) return ids;
+  std::vector<int> ordered;
+  for (const SessionTrajectory& t : trajectories) {
+    const bool placed = std::find(ids.begin(), ids.end(), t.id) != ids.end() ||
+                        std::find(anchored.begin(), anchored.end(), t.id) != anchored.end();
+    if (placed && std::find(ordered.begin(), ordered.end(), t.id) == ordered.end())
+      ordered.push_back(t.id);
+  }
+  for (const int id : ids) {  // keyframes of a run the trajectories table does not list
+    if (std::find(ordered.begin(), ordered.end(), id) == ordered.end()) ordered.push_back(id);
+  }
+  return ordered;
 }
 
 std::map<int, Pose2> SessionData::Poses() const {

@@ -111,7 +111,9 @@ struct SessionData {
   int MaxTrajectoryId() const;  ///< -1 when empty
   /// Optimised T_map_anchor by keyframe id.
   std::map<int, Pose2> Poses() const;
-  /// The runs that have keyframes, in the order of their first keyframe.
+  /// The runs that have keyframes, in the order of their first keyframe; with runs that only
+  /// have anchors (every keyframe retired by a later run), all of them in the trajectories'
+  /// order.
   std::vector<int> TrajectoryIds() const;
 };
 
