@@ -129,7 +129,7 @@ MapMetrics ScoreOnRunArea(const SessionData& session, int trajectory, const Conf
   const double res = config.slam.map_resolution_m;
   GlobalMap run(res);
   for (const SessionKeyframe& k : session.keyframes) {
-    if (k.trajectory == trajectory) run.AddTile(k.detected, k.detected_grid, k.T_map_anchor);
+    if (k.trajectory == trajectory) run.AddTile(k.detected.Load(), k.detected_grid, k.T_map_anchor);
   }
   ImageGrid grid, run_grid;
   cv::Mat observed, run_observed;

@@ -153,10 +153,13 @@ OccupancyGrid SessionNavigationGrid(const SessionData& session, const Config& co
     if (!added) run->second.second = it + 1;
   }
   std::vector<NavigationKeyframe> keyframes;
+  std::vector<cv::Mat> tiles;               // read back once, held while the grid is made
+  tiles.reserve(session.keyframes.size());  // keyframes point into it: never reallocated
   for (const SessionKeyframe& s : session.keyframes) {
     if (s.detected.empty()) continue;
     NavigationKeyframe k;
-    k.detected = &s.detected;
+    tiles.push_back(s.detected.Load());
+    k.detected = &tiles.back();
     k.grid = s.detected_grid;
     k.T_map_anchor = s.T_map_anchor;
     const Pose2 T_anchor_odom = s.T_odom_anchor.Inverse();

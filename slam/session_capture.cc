@@ -45,7 +45,7 @@ SessionData CaptureSession(const MapRun& run) {
     s.path_begin_m = k.path_begin_m;
     s.path_end_m = k.path_end_m;
     s.fixed = std::find(fixed.begin(), fixed.end(), k.id) != fixed.end();
-    s.detected = r.detected.Load();
+    s.detected = r.detected;  // shared, not read back: the session file is written tile by tile
     s.detected_grid = r.detected_grid;
     s.features = *f;
     s.features.T_world_anchor = s.T_map_anchor;

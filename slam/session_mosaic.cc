@@ -47,7 +47,7 @@ std::vector<RunMap> RunMosaics(const SessionData& session, double resolution_m,
   for (int id : ids) {
     GlobalMap global(resolution_m);
     for (const SessionKeyframe& k : session.keyframes) {
-      if (k.trajectory == id) global.AddTile(k.detected, k.detected_grid, k.T_map_anchor);
+      if (k.trajectory == id) global.AddTile(k.detected.Load(), k.detected_grid, k.T_map_anchor);
     }
     RunMap r;
     r.id = id;
@@ -147,7 +147,7 @@ cv::Mat RenderSessionMosaic(const SessionData& session, double resolution_m, Joi
   const auto mosaic = [&](const auto& scale_of) {
     GlobalMap global(resolution_m);
     for (const SessionKeyframe& k : session.keyframes) {
-      global.AddTile(k.detected * scale_of(k.trajectory), k.detected_grid, k.T_map_anchor);
+      global.AddTile(k.detected.Load() * scale_of(k.trajectory), k.detected_grid, k.T_map_anchor);
     }
     return global.Render(grid, observed);
   };

@@ -17,6 +17,7 @@
 #include "core/types.h"
 #include "frontend/place_recognition/place_recognizer.h"
 #include "imaging/image_grid.h"
+#include "slam/session/tile_store.h"
 
 namespace uwbsar {
 
@@ -39,8 +40,9 @@ struct SessionKeyframe {
   Pose2 T_map_anchor;   ///< optimised pose of the tile frame in the session's map frame
   double path_begin_m = 0.0, path_end_m = 0.0;  ///< its run's odometry path
   bool fixed = false;                           ///< held constant (the gauge)
-  cv::Mat detected;                             ///< CV_32FC1 detected tile, map resolution
-  ImageGrid detected_grid;                      ///< its geometry in the anchor frame
+  TileRef detected;           ///< CV_32FC1 detected tile, map resolution: a live run's stays in its
+                              ///< tile store (slam/session/tile_store.h), read back one at a time
+  ImageGrid detected_grid;    ///< its geometry in the anchor frame
   KeyframeFeatures features;  ///< per detector (validation.detectors when it was made; AKAZE
                               ///< and ORB in every session before them) at the feature
                               ///< resolution (own grid)

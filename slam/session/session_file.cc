@@ -116,7 +116,7 @@ void WriteKeyframes(SqliteDb& db, const SessionData& d, bool lossless_tiles) {
     s.Bind(i++, k.detected_grid.x0_m);
     s.Bind(i++, k.detected_grid.y0_m);
     s.Bind(i++, k.detected_grid.resolution_m);
-    s.BindBlob(i++, session::EncodeTile(k.detected, lossless_tiles, kZstdLevel));
+    s.BindBlob(i++, session::EncodeTile(k.detected.Load(), lossless_tiles, kZstdLevel));
     const ImageGrid& g = k.features.grid;
     s.Bind(i++, g.x0_m);
     s.Bind(i++, g.y0_m);

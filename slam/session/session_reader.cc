@@ -85,11 +85,12 @@ SessionKeyframe ReadKeyframeRow(const TableReader& t, const SessionData& d,
   k.detected_grid.resolution_m = Resolution(t, "tile_resolution_m");
   MatBudget tile_budget;
   tile_budget.max_pixels = limits.max_tile_pixels;
-  k.detected = DecodeTile(t.Blob("tile"), t.Where("tile"), tile_budget);
-  if (k.detected.empty()) t.Refuse("tile", "is empty");
-  if (!cv::checkRange(k.detected)) t.Refuse("tile", "has non-finite pixels");
-  k.detected_grid.rows = k.detected.rows;
-  k.detected_grid.cols = k.detected.cols;
+  const cv::Mat tile = DecodeTile(t.Blob("tile"), t.Where("tile"), tile_budget);
+  if (tile.empty()) t.Refuse("tile", "is empty");
+  if (!cv::checkRange(tile)) t.Refuse("tile", "has non-finite pixels");
+  k.detected_grid.rows = tile.rows;
+  k.detected_grid.cols = tile.cols;
+  k.detected = TileRef(tile);
   KeyframeFeatures& kf = k.features;
   kf.id = k.id;
   kf.grid.x0_m = t.Real("feature_x0_m", -kMaxCoordinateM, kMaxCoordinateM);

@@ -133,7 +133,8 @@ TEST_F(SessionFileTest, CompactTilesAreSmallAndLosslessOnesKeepTheirBytes) {
   const SessionData read = ReadSession(lossless, config_);
   ASSERT_EQ(read.keyframes.size(), saved_->keyframes.size());
   for (std::size_t i = 0; i < read.keyframes.size(); ++i) {
-    EXPECT_TRUE(SameBytes(read.keyframes[i].detected, saved_->keyframes[i].detected)) << i;
+    EXPECT_TRUE(SameBytes(read.keyframes[i].detected.Load(), saved_->keyframes[i].detected.Load()))
+        << i;
   }
   const double n = static_cast<double>(saved_->keyframes.size());
   const double compact_kib = TileBytes(Path()) / n / 1024.0;
@@ -161,7 +162,7 @@ TEST_F(SessionFileTest, RoundTripKeepsPosesTilesFeaturesAndEdges) {
     EXPECT_TRUE(SamePose(x.T_odom_anchor, y.T_odom_anchor));
     EXPECT_TRUE(SamePose(x.T_odom_robot, y.T_odom_robot));
     EXPECT_EQ(x.fixed, y.fixed);
-    ExpectCompactTile(x.detected, y.detected, "tile " + std::to_string(x.id));
+    ExpectCompactTile(x.detected.Load(), y.detected.Load(), "tile " + std::to_string(x.id));
     EXPECT_EQ(x.detected_grid.x0_m, y.detected_grid.x0_m);
     EXPECT_EQ(x.detected_grid.rows, y.detected_grid.rows);
     EXPECT_EQ(x.features.grid.cols, y.features.grid.cols);

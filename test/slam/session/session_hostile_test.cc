@@ -117,7 +117,7 @@ TEST_F(SessionHostileTest, NullOdometryIsRefused) {
 }
 
 TEST_F(SessionHostileTest, InfiniteTileIsRefused) {
-  cv::Mat tile = saved_.keyframes[1].detected.clone();
+  cv::Mat tile = saved_.keyframes[1].detected.Load().clone();
   tile.at<float>(2, 3) = std::numeric_limits<float>::infinity();
   SetBlob("tile", 1, session::EncodeMat(tile, 3));
   EXPECT_EQ(ErrorOf([&] { ReadSession(path_); }),

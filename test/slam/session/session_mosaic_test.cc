@@ -17,9 +17,9 @@ SessionKeyframe Tile(int id, int trajectory, double x0_m, float level) {
   k.id = id;
   k.trajectory = trajectory;
   k.detected_grid = ImageGrid::Covering(0.0, 2.0, 0.0, 1.0, 0.02);
-  k.detected =
-      cv::Mat(k.detected_grid.rows, k.detected_grid.cols, CV_32FC1, cv::Scalar(level / 10));
-  k.detected.rowRange(24, 26).setTo(level);
+  cv::Mat tile(k.detected_grid.rows, k.detected_grid.cols, CV_32FC1, cv::Scalar(level / 10));
+  tile.rowRange(24, 26).setTo(level);
+  k.detected = TileRef(tile);
   k.T_map_anchor = {x0_m, 0.0, 0.0};
   return k;
 }
@@ -66,8 +66,9 @@ TEST(SessionMosaicTest, ABrighterRunDoesNotHideTheOtherRunsWalls) {
 template <typename Draw>
 SessionKeyframe RandomTile(int id, int trajectory, cv::RNG* rng, Draw draw) {
   SessionKeyframe k = Tile(id, trajectory, 0.0, 1.0f);
-  for (int r = 0; r < k.detected.rows; ++r) {
-    for (int c = 0; c < k.detected.cols; ++c) k.detected.at<float>(r, c) = draw(rng);
+  cv::Mat tile = k.detected.Load();  // in memory: drawn in place
+  for (int r = 0; r < tile.rows; ++r) {
+    for (int c = 0; c < tile.cols; ++c) tile.at<float>(r, c) = draw(rng);
   }
   return k;
 }

@@ -44,8 +44,9 @@ inline SessionData TinySession() {
     s.path_begin_m = 1.0 * k;
     s.path_end_m = 1.0 * k + 1.0;
     s.fixed = k == 0;
-    s.detected = cv::Mat(8, 8, CV_32FC1);
-    cv::randu(s.detected, 0.1, 1.0);
+    cv::Mat tile(8, 8, CV_32FC1);
+    cv::randu(tile, 0.1, 1.0);
+    s.detected = TileRef(tile);
     s.detected_grid.x0_m = -0.2;
     s.detected_grid.y0_m = 0.2;
     s.detected_grid.resolution_m = 0.05;
