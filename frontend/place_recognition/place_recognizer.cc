@@ -4,6 +4,7 @@
 #include <chrono>
 #include <opencv2/imgproc.hpp>
 
+#include "frontend/place_recognition/dense_refinement.h"
 #include "frontend/place_recognition/guided_match.h"
 #include "frontend/place_recognition/radar_match.h"
 
@@ -55,6 +56,7 @@ KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe,
                              config.feature_downsampling, d.white_percentile, &k.grid);
   for (DetectorKind kind : config.place_recognition.validation.detectors)
     k.by_detector[kind] = ComputeFeatures(image, kind, d);
+  if (config.place_recognition.validation.refinement.enabled) k.image = PackForRefinement(image);
   if (config.place_recognition.per_radar.enabled) ExtractRadarFeatures(keyframe, config, &k);
   // Where the robot drove while imaging the tile: a better "position" of the tile than
   // the anchor, which sits at its first scan.
@@ -143,8 +145,8 @@ PlaceRecognitionResult PlaceRecognizer::Process(KeyframeFeatures features, doubl
     LoopAttempt attempt;
     attempt.candidate_id = id;
     attempt.matches = MatchDetectorPair(old, features, pr);
-    attempt.validation =
-        ValidateLoop(old.id, old.grid, features.id, features.grid, attempt.matches, pr.validation);
+    attempt.validation = ValidateLoop(old.id, old.grid, features.id, features.grid, attempt.matches,
+                                      pr.validation, {&old.image, &features.image});
     if (!attempt.validation.accepted && pr.per_radar.enabled && HasRadarFeatures(old, pr) &&
         HasRadarFeatures(features, pr)) {
       LoopAttempt by_radar = MatchByRadar(old, features, pr);
