@@ -118,24 +118,14 @@ double SecondPeak(const cv::Mat& s, const cv::Point& peak) {
   return second;
 }
 
-}  // namespace
-
-FeatureImage PackForRefinement(const FeatureImage& image) {
-  FeatureImage packed;
-  if (image.gray.empty() || image.mask.size() != image.gray.size()) return packed;
-  packed.gray = cv::Mat::zeros(image.gray.size(), CV_8UC1);
-  cv::max(image.gray, 1, packed.gray);
-  packed.gray.setTo(0, image.mask == 0);
-  return packed;
-}
-
-DenseRefinement RefineByCorrelation(const FeatureImage& a, const FeatureImage& b,
-                                    const PixelRigid& seed, double resolution_m,
-                                    const DenseRefinementConfig& config) {
+/// One search around `seed`; `recentre` is set to the integer peak (shift and rotation step)
+/// when the peak lies in the outer half of the window, where the surface shows only one side of
+/// its lobe.
+DenseRefinement Search(const Weighted& wa, const Weighted& wb, const PixelRigid& seed, int S,
+                       const DenseRefinementConfig& config, PixelRigid* recentre,
+                       bool* off_centre) {
   DenseRefinement out;
-  const double highpass_px = config.highpass_sigma_m / resolution_m;
-  const Weighted wa = ToWeighted(a, highpass_px), wb = ToWeighted(b, highpass_px);
-  const int S = std::max(1, static_cast<int>(std::lround(config.search_m / resolution_m)));
+  *off_centre = false;
   // The seed's overlap: its fraction of the smaller measured area, and its bounding box (kept
   // S pixels inside a, so that every shift of the template stays inside a).
   const cv::Matx23d seed_warp = Rigid(seed.rotation_deg, seed.tx_px, seed.ty_px);
@@ -184,6 +174,13 @@ DenseRefinement RefineByCorrelation(const FeatureImage& a, const FeatureImage& b
   out.peak_ncc = best;
   out.second_ncc = SecondPeak(s, best_u);
   out.peak_ratio = out.second_ncc > 0 ? out.peak_ncc / out.second_ncc : 1e9;
+  {
+    const cv::Matx23d at = AboutCentre(seed, best_k * config.step_deg, c);
+    *recentre = {at(0, 2) + best_u.x - S, at(1, 2) + best_u.y - S,
+                 seed.rotation_deg + best_k * config.step_deg};
+    *off_centre = std::abs(best_u.x - S) * 2 > S || std::abs(best_u.y - S) * 2 > S ||
+                  std::abs(best_k) * 2 > K;
+  }
   if (best_u.x == 0 || best_u.y == 0 || best_u.x == s.cols - 1 || best_u.y == s.rows - 1 ||
       (K > 0 && std::abs(best_k) == K)) {
     out.reason = "correlation peak at the edge of the search window";
@@ -206,6 +203,36 @@ DenseRefinement RefineByCorrelation(const FeatureImage& a, const FeatureImage& b
   out.transform.tx_px = peak(0, 2) + ux;
   out.transform.ty_px = peak(1, 2) + uy;
   out.found = true;
+  return out;
+}
+
+}  // namespace
+
+FeatureImage PackForRefinement(const FeatureImage& image) {
+  FeatureImage packed;
+  if (image.gray.empty() || image.mask.size() != image.gray.size()) return packed;
+  packed.gray = cv::Mat::zeros(image.gray.size(), CV_8UC1);
+  cv::max(image.gray, 1, packed.gray);
+  packed.gray.setTo(0, image.mask == 0);
+  return packed;
+}
+
+DenseRefinement RefineByCorrelation(const FeatureImage& a, const FeatureImage& b,
+                                    const PixelRigid& seed, double resolution_m,
+                                    const DenseRefinementConfig& config) {
+  const double highpass_px = config.highpass_sigma_m / resolution_m;
+  const Weighted wa = ToWeighted(a, highpass_px), wb = ToWeighted(b, highpass_px);
+  const int S = std::max(1, static_cast<int>(std::lround(config.search_m / resolution_m)));
+  PixelRigid recentre;
+  bool off_centre = false;
+  DenseRefinement out = Search(wa, wb, seed, S, config, &recentre, &off_centre);
+  if (!off_centre) return out;
+  // The peak lay in the window's outer half (or on its edge): there the surface shows one
+  // flank of the peak's lobe only, and SecondPeak would take that flank, on the window's edge,
+  // for a competitor. Search once more, centred on it.
+  const double overlap_fraction = out.overlap_fraction;
+  out = Search(wa, wb, recentre, S, config, &recentre, &off_centre);
+  out.overlap_fraction = overlap_fraction;
   return out;
 }
 

@@ -42,7 +42,9 @@ struct DenseRefinement {
 FeatureImage PackForRefinement(const FeatureImage& image);
 
 /// Correlates `b` warped by `seed` (and by the searched shifts and rotations about the centre
-/// of the overlap) with `a`, over the pixels both measured. Both images share one pixel size,
+/// of the overlap) with `a`, over the pixels both measured; when the peak lies in the window's
+/// outer half, once more around it (so a peak up to twice search_m and search_deg from the
+/// seed is found, and its lobe is seen whole). Both images share one pixel size,
 /// `resolution_m`, which turns config.search_m into pixels.
 DenseRefinement RefineByCorrelation(const FeatureImage& a, const FeatureImage& b,
                                     const PixelRigid& seed, double resolution_m,
