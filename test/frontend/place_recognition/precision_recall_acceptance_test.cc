@@ -52,6 +52,11 @@ Scores Evaluate(const Config& config, const std::vector<Keyframe>& keyframes,
     cached[k] = ExtractKeyframeFeatures(keyframes[k], config);
     centre[k] = T_world_anchor_true[k] * cached[k].centre_anchor;
   }
+  if (!cached.empty()) {  // what each keyframe keeps for the refinement
+    const cv::Mat& g = cached.front().image.gray;
+    std::printf("[B] refinement image per keyframe: %d x %d px, %.0f kB\n", g.cols, g.rows,
+                static_cast<double>(g.total() * g.elemSize()) / 1024.0);
+  }
   Scores scores;
   for (std::size_t i = 0; i < keyframes.size(); ++i) {
     for (std::size_t j = i + 1; j < keyframes.size(); ++j) {
