@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
@@ -208,13 +209,20 @@ DenseRefinement Search(const Weighted& wa, const Weighted& wb, const PixelRigid&
 
 }  // namespace
 
-FeatureImage PackForRefinement(const FeatureImage& image) {
-  FeatureImage packed;
+std::vector<unsigned char> PackForRefinement(const FeatureImage& image) {
+  std::vector<unsigned char> packed;
   if (image.gray.empty() || image.mask.size() != image.gray.size()) return packed;
-  packed.gray = cv::Mat::zeros(image.gray.size(), CV_8UC1);
-  cv::max(image.gray, 1, packed.gray);
-  packed.gray.setTo(0, image.mask == 0);
+  cv::Mat plane;
+  cv::max(image.gray, 1, plane);
+  plane.setTo(0, image.mask == 0);
+  cv::imencode(".png", plane, packed, {cv::IMWRITE_PNG_COMPRESSION, 1});
   return packed;
+}
+
+FeatureImage UnpackForRefinement(const std::vector<unsigned char>& packed) {
+  FeatureImage image;
+  if (!packed.empty()) image.gray = cv::imdecode(packed, cv::IMREAD_GRAYSCALE);
+  return image;
 }
 
 DenseRefinement RefineByCorrelation(const FeatureImage& a, const FeatureImage& b,

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "frontend/place_recognition/features.h"
 #include "frontend/place_recognition/place_recognition_config.h"
@@ -36,10 +37,13 @@ struct DenseRefinement {
   double overlap_fraction = 0.0;  ///< measured overlap at the seed, of the smaller image
 };
 
-/// The feature image in one 8-bit plane, as a keyframe keeps it for the refinement (half the
-/// memory): measured pixels at least 1, the rest 0, and no mask (RefineByCorrelation takes an
-/// empty mask to mean gray > 0).
-FeatureImage PackForRefinement(const FeatureImage& image);
+/// The feature image as a keyframe keeps it for the refinement: one 8-bit plane (measured
+/// pixels at least 1, the rest 0), PNG-compressed at the fastest level (the feature images of
+/// simulated and real tiles shrink to a third or less). Empty for an empty image.
+std::vector<unsigned char> PackForRefinement(const FeatureImage& image);
+/// The packed image back, with an empty mask (RefineByCorrelation takes it to mean gray > 0);
+/// empty when `packed` is.
+FeatureImage UnpackForRefinement(const std::vector<unsigned char>& packed);
 
 /// Correlates `b` warped by `seed` (and by the searched shifts and rotations about the centre
 /// of the overlap) with `a`, over the pixels both measured; when the peak lies in the window's

@@ -123,9 +123,21 @@ std::string JudgeRefinement(const DetectorStats& first, const DetectorStats& sec
   return "";
 }
 
-/// A pair the rule rejected although its detectors nearly agree (every difference within
-/// near_agreement_factor times its limit): correlates the images around the fused transform and
-/// accepts it at the correlation peak when JudgeRefinement finds nothing against it.
+/// The rule with the agreement limits widened to near_agreement_factor times their size: it
+/// accepts, with the fused transform as the seed, the pairs that nearly agree.
+LoopDecision NearAgreement(const DetectorStats& first, const DetectorStats& second,
+                           const LoopValidationConfig& config) {
+  LoopValidationConfig near = config;
+  const double f = config.refinement.near_agreement_factor;
+  near.max_tx_difference_px *= f;
+  near.max_ty_difference_px *= f;
+  near.max_rotation_difference_deg *= f;
+  return ApplyLoopRule(first, second, near);
+}
+
+/// A pair the rule rejected although its detectors nearly agree: correlates the images around
+/// the fused transform and accepts it at the correlation peak when JudgeRefinement finds
+/// nothing against it.
 void RefineNearAgreement(const DetectorStats& first, const DetectorStats& second,
                          double resolution_m, const LoopImages& images,
                          const LoopValidationConfig& config, LoopValidation* v) {
@@ -133,11 +145,7 @@ void RefineNearAgreement(const DetectorStats& first, const DetectorStats& second
   if (!rc.enabled || !images.i || !images.j || images.i->gray.empty() || images.j->gray.empty()) {
     return;
   }
-  LoopValidationConfig near = config;
-  near.max_tx_difference_px *= rc.near_agreement_factor;
-  near.max_ty_difference_px *= rc.near_agreement_factor;
-  near.max_rotation_difference_deg *= rc.near_agreement_factor;
-  const LoopDecision seed = ApplyLoopRule(first, second, near);
+  const LoopDecision seed = NearAgreement(first, second, config);
   if (!seed.accepted) return;  // a detector failed on its own, or they are far apart
   v->refinement_tried = true;
   v->refinement = RefineByCorrelation(
@@ -169,6 +177,16 @@ Pose2 PixelToMetricTransform(const ImageGrid& grid_a, const ImageGrid& grid_b, d
   };
   const Point2 origin = map(0.0, 0.0);
   return {origin.x_m, origin.y_m, NormalizeAngle(-rot)};
+}
+
+bool MayRefine(const DetectorMap<MatchResult>& matches, const LoopValidationConfig& config) {
+  assert(config.detectors.size() == 2);
+  if (!config.refinement.enabled) return false;
+  static const MatchResult kNotMatched;
+  const DetectorStats first = StatsOf(Of(matches, config.detectors[0], kNotMatched));
+  const DetectorStats second = StatsOf(Of(matches, config.detectors[1], kNotMatched));
+  return !ApplyLoopRule(first, second, config).accepted &&
+         NearAgreement(first, second, config).accepted;
 }
 
 int MinGoodMatches(const LoopConstraint& loop) {

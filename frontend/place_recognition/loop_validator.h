@@ -58,6 +58,11 @@ Pose2 PixelToMetricTransform(const ImageGrid& grid_a, const ImageGrid& grid_b, d
 /// The smaller of the pair's good-match counts (0 when none were kept).
 int MinGoodMatches(const LoopConstraint& loop);
 
+/// Whether ValidateLoop would refine the pair given its images: the refinement is enabled and
+/// the rule rejects the pair only because its detectors disagree by at most
+/// refinement.near_agreement_factor times the limits (so callers unpack images only then).
+bool MayRefine(const DetectorMap<MatchResult>& matches, const LoopValidationConfig& config);
+
 /// Validates the matches of config.detectors (a detector missing from `matches` counts as
 /// not matched).
 LoopValidation ValidateLoop(int id_i, const ImageGrid& grid_i, int id_j, const ImageGrid& grid_j,

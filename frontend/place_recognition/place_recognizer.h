@@ -35,9 +35,9 @@ struct KeyframeFeatures {
   /// in pixels of `grid`, class_id = sensor id.
   DetectorMap<FeatureSet> radar_by_detector;
   std::vector<double> look_anchor_rad;  ///< per sensor id: boresight at mid-tile, anchor frame
-  /// The feature image (PackForRefinement), kept for the dense refinement of near agreements
-  /// (validation.refinement.enabled); empty otherwise, and in keyframes of a saved session.
-  FeatureImage image;
+  /// The feature image, packed (PackForRefinement), kept for the dense refinement of near
+  /// agreements (validation.refinement.enabled); empty otherwise, and in a saved session's.
+  std::vector<unsigned char> refinement_image;
 
   /// The features of `kind` (an empty set when they were not computed, e.g. a saved session
   /// made with other detectors: nothing matches it).

@@ -87,16 +87,23 @@ TEST(DenseRefinementTest, PackedImageKeepsTheMaskAndTheResult) {
   FeatureImage a = Textured(3);
   a.gray(cv::Rect(0, 0, 300, 40)).setTo(0);  // measured, but dark
   a.mask(cv::Rect(0, 0, 40, 300)).setTo(0);  // not measured
-  const FeatureImage packed = PackForRefinement(a);
-  EXPECT_TRUE(packed.mask.empty());
-  EXPECT_EQ(packed.gray.at<uchar>(10, 100), 1);  // measured zero stays measured
-  EXPECT_EQ(packed.gray.at<uchar>(100, 10), 0);  // not measured
+  const std::vector<unsigned char> packed = PackForRefinement(a);
+  EXPECT_LT(packed.size(), a.gray.total());  // compressed
+  const FeatureImage unpacked = UnpackForRefinement(packed);
+  EXPECT_TRUE(unpacked.mask.empty());
+  ASSERT_EQ(unpacked.gray.size(), a.gray.size());
+  EXPECT_EQ(unpacked.gray.at<uchar>(10, 100), 1);  // measured zero stays measured
+  EXPECT_EQ(unpacked.gray.at<uchar>(100, 10), 0);  // not measured
+  EXPECT_EQ(unpacked.gray.at<uchar>(150, 150), std::max<uchar>(a.gray.at<uchar>(150, 150), 1));
+  EXPECT_TRUE(UnpackForRefinement({}).gray.empty());
+  EXPECT_TRUE(PackForRefinement(FeatureImage{}).empty());
   const PixelRigid truth{6.0, 3.0, 0.3};
   const FeatureImage b = Seen(a, truth);
   const DenseRefinement full =
       RefineByCorrelation(a, b, {8.0, 2.0, 0.0}, kResolutionM, DenseRefinementConfig{});
-  const DenseRefinement from_packed = RefineByCorrelation(
-      packed, PackForRefinement(b), {8.0, 2.0, 0.0}, kResolutionM, DenseRefinementConfig{});
+  const DenseRefinement from_packed =
+      RefineByCorrelation(unpacked, UnpackForRefinement(PackForRefinement(b)), {8.0, 2.0, 0.0},
+                          kResolutionM, DenseRefinementConfig{});
   ASSERT_TRUE(full.found && from_packed.found);
   EXPECT_NEAR(from_packed.transform.tx_px, full.transform.tx_px, 0.3);
   EXPECT_NEAR(from_packed.transform.ty_px, full.transform.ty_px, 0.3);

@@ -204,8 +204,16 @@ TEST(LoopValidatorTest, NearAgreementOfATruePairIsAcceptedAtTheCorrelationPeak) 
   LoopValidationConfig off;
   off.refinement.enabled = false;
   EXPECT_FALSE(pair.Validate(+6.0, -6.0, true, off).accepted);
-  // Far apart (beyond 1.5 x the limit) it is not tried.
+  // Far apart (beyond 1.5 x the limit) it is not tried, and callers need no images for it.
   EXPECT_FALSE(pair.Validate(+9.0, -9.0).refinement_tried);
+  auto may_refine = [&](double akaze_dx, double orb_dx) {
+    return MayRefine({{DetectorKind::kAkaze, pair.Detector(DetectorKind::kAkaze, akaze_dx, 1, 1)},
+                      {DetectorKind::kOrb, pair.Detector(DetectorKind::kOrb, orb_dx, -1, 2)}},
+                     LoopValidationConfig{});
+  };
+  EXPECT_TRUE(may_refine(+6.0, -6.0));
+  EXPECT_FALSE(may_refine(+9.0, -9.0));  // far apart
+  EXPECT_FALSE(may_refine(+2.0, -2.0));  // accepted by the rule
 }
 
 TEST(LoopValidatorTest, NearAgreementOnImagesOfDifferentPlacesIsRefused) {

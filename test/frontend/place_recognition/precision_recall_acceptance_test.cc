@@ -52,11 +52,16 @@ Scores Evaluate(const Config& config, const std::vector<Keyframe>& keyframes,
     cached[k] = ExtractKeyframeFeatures(keyframes[k], config);
     centre[k] = T_world_anchor_true[k] * cached[k].centre_anchor;
   }
-  if (!cached.empty()) {  // what each keyframe keeps for the refinement
-    const cv::Mat& g = cached.front().image.gray;
-    std::printf("[B] refinement image per keyframe: %d x %d px, %.0f kB\n", g.cols, g.rows,
-                static_cast<double>(g.total() * g.elemSize()) / 1024.0);
+  std::vector<FeatureImage> refinement_images(keyframes.size());  // unpacked, as the recognizer
+  double packed_bytes = 0.0, raw_bytes = 0.0;                     // would for a refined pair
+  for (std::size_t k = 0; k < keyframes.size(); ++k) {
+    refinement_images[k] = UnpackForRefinement(cached[k].refinement_image);
+    packed_bytes += static_cast<double>(cached[k].refinement_image.size());
+    raw_bytes += static_cast<double>(refinement_images[k].gray.total());
   }
+  std::printf("[B] refinement image per keyframe: %.0f kB packed, %.0f kB raw\n",
+              packed_bytes / 1024.0 / static_cast<double>(keyframes.size()),
+              raw_bytes / 1024.0 / static_cast<double>(keyframes.size()));
   Scores scores;
   for (std::size_t i = 0; i < keyframes.size(); ++i) {
     for (std::size_t j = i + 1; j < keyframes.size(); ++j) {
@@ -114,7 +119,7 @@ Scores Evaluate(const Config& config, const std::vector<Keyframe>& keyframes,
                                      fb.Features(DetectorKind::kAkaze), at_features.matching),
                        MatchFeatures(fa.Features(DetectorKind::kOrb),
                                      fb.Features(DetectorKind::kOrb), at_features.matching),
-                       at_features.validation, {&fa.image, &fb.image});
+                       at_features.validation, {&refinement_images[i], &refinement_images[j]});
       score("PR", v);
       if (v.refinement_tried) {
         const Pose2 e = Between(truth, v.refined ? v.constraint.T_ij : truth);
