@@ -57,7 +57,8 @@ KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe,
   for (DetectorKind kind : config.place_recognition.validation.detectors)
     k.by_detector[kind] = ComputeFeatures(image, kind, d);
   if (config.place_recognition.validation.refinement.enabled) {
-    k.refinement_image = PackForRefinement(image);
+    k.refinement_image =
+        std::make_shared<const std::vector<unsigned char>>(PackForRefinement(image));
   }
   if (config.place_recognition.per_radar.enabled) ExtractRadarFeatures(keyframe, config, &k);
   // Where the robot drove while imaging the tile: a better "position" of the tile than
@@ -151,9 +152,10 @@ PlaceRecognitionResult PlaceRecognizer::Process(KeyframeFeatures features, doubl
     // The images are unpacked only for a pair the refinement will look at.
     FeatureImage old_image;
     LoopImages images;
-    if (MayRefine(attempt.matches, pr.validation)) {
-      if (new_image.gray.empty()) new_image = UnpackForRefinement(features.refinement_image);
-      old_image = UnpackForRefinement(old.refinement_image);
+    if (features.refinement_image && old.refinement_image &&
+        MayRefine(attempt.matches, pr.validation)) {
+      if (new_image.gray.empty()) new_image = UnpackForRefinement(*features.refinement_image);
+      old_image = UnpackForRefinement(*old.refinement_image);
       images = {&old_image, &new_image};
     }
     attempt.validation = ValidateLoop(old.id, old.grid, features.id, features.grid, attempt.matches,

@@ -55,8 +55,8 @@ Scores Evaluate(const Config& config, const std::vector<Keyframe>& keyframes,
   std::vector<FeatureImage> refinement_images(keyframes.size());  // unpacked, as the recognizer
   double packed_bytes = 0.0, raw_bytes = 0.0;                     // would for a refined pair
   for (std::size_t k = 0; k < keyframes.size(); ++k) {
-    refinement_images[k] = UnpackForRefinement(cached[k].refinement_image);
-    packed_bytes += static_cast<double>(cached[k].refinement_image.size());
+    refinement_images[k] = UnpackForRefinement(*cached[k].refinement_image);
+    packed_bytes += static_cast<double>(cached[k].refinement_image->size());
     raw_bytes += static_cast<double>(refinement_images[k].gray.total());
   }
   std::printf("[B] refinement image per keyframe: %.0f kB packed, %.0f kB raw\n",
