@@ -50,6 +50,19 @@ nlohmann::json ImageMatchJson(const ImageMatch& match) {
     detectors[LowerName(kind)] = d;
   }
   out["detectors"] = detectors;
+  // The dense refinement of a near agreement (dense_refinement.h); null when not tried.
+  const LoopValidation& v = match.validation;
+  out["refinement"] = nlohmann::json();
+  if (v.refinement_tried) {
+    const DenseRefinement& r = v.refinement;
+    out["refinement"] = {
+        {"accepted", v.refined},
+        {"peak_ncc", r.peak_ncc},
+        {"second_ncc", r.second_ncc},
+        {"peak_ratio", r.peak_ratio},
+        {"overlap_fraction", r.overlap_fraction},
+        {"transform", r.found ? TransformJson(match.refinement_transform) : nlohmann::json()}};
+  }
   return out;
 }
 

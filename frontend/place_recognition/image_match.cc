@@ -100,9 +100,15 @@ ImageMatch MatchImages(const ImageFeatures& a, const ImageFeatures& b,
     return out;
   }
   // i = B, j = A: the constraint is the pose of A's frame in B's frame.
-  out.validation = ValidateLoop(2, b.grid, 1, a.grid, out.matches, pr.validation);
+  out.validation =
+      ValidateLoop(2, b.grid, 1, a.grid, out.matches, pr.validation, {&b.image, &a.image});
   if (out.validation.accepted)
     out.transform = AboutCentre(out.validation.constraint.T_ij, a.centre);
+  if (out.validation.refinement.found) {
+    const PixelRigid& r = out.validation.refinement.transform;
+    out.refinement_transform = AboutCentre(
+        PixelToMetricTransform(b.grid, a.grid, r.tx_px, r.ty_px, r.rotation_deg), a.centre);
+  }
   return out;
 }
 

@@ -56,8 +56,10 @@ CentredTransform AboutCentre(const Pose2& T_BA, const Point2& centre_a);
 struct ImageMatch {
   std::map<DetectorKind, MatchResult> matches;  ///< pixels of A (query) mapped into B (train)
   std::map<DetectorKind, CentredTransform> detector_transforms;  ///< per detector with a fit
-  LoopValidation validation;   ///< the pair's rule; constraint.T_ij = T_BA when accepted
-  CentredTransform transform;  ///< the fused transform, valid when accepted
+  LoopValidation validation;              ///< the pair's rule; constraint.T_ij = T_BA when accepted
+  CentredTransform transform;             ///< the fused transform, valid when accepted
+  CentredTransform refinement_transform;  ///< the correlation peak, valid when
+                                          ///< validation.refinement.found
   bool accepted() const { return validation.accepted; }
 };
 

@@ -45,7 +45,9 @@ struct RigidFit {
   Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
 };
 
-RigidFit FitForRotation(const std::vector<Point2>& qi, const std::vector<Point2>& qj, double yaw) {
+/// With `fixed_t` the translation is that one (a refined pair's), not the least-squares one.
+RigidFit FitForRotation(const std::vector<Point2>& qi, const std::vector<Point2>& qj, double yaw,
+                        const Eigen::Vector2d* fixed_t = nullptr) {
   const double n = static_cast<double>(qi.size());
   const double c = std::cos(yaw), s = std::sin(yaw);
   Eigen::Vector2d ci = Eigen::Vector2d::Zero(), rj = Eigen::Vector2d::Zero();
@@ -56,7 +58,7 @@ RigidFit FitForRotation(const std::vector<Point2>& qi, const std::vector<Point2>
     rj += rotated[k];
   }
   RigidFit fit;
-  fit.t = (ci - rj) / n;
+  fit.t = fixed_t ? *fixed_t : Eigen::Vector2d((ci - rj) / n);
   for (std::size_t k = 0; k < qi.size(); ++k) {
     fit.sum_sq += (Eigen::Vector2d(qi[k].x_m, qi[k].y_m) - rotated[k] - fit.t).squaredNorm();
     // d(R q + t) / d(tx, ty, yaw) = [I, perp(R q)].
@@ -90,6 +92,77 @@ bool LoopInformation(const RigidFit& fit, double n, double resolution_m,
   return true;
 }
 
+/// Empty when both detectors lie within the rule's agreement limits of the refined transform
+/// and its peak is distinct; otherwise why not.
+std::string JudgeRefinement(const DetectorStats& first, const DetectorStats& second,
+                            const DenseRefinement& r, const LoopValidationConfig& c) {
+  char buf[200];
+  if (!r.found) return r.reason;
+  if (r.peak_ncc < c.refinement.min_peak_ncc) {
+    std::snprintf(buf, sizeof(buf), "correlation peak %.3f < %.3f", r.peak_ncc,
+                  c.refinement.min_peak_ncc);
+    return buf;
+  }
+  if (r.peak_ratio < c.refinement.min_peak_ratio) {
+    std::snprintf(buf, sizeof(buf), "correlation peak not distinct (%.3f / %.3f = %.2f < %.2f)",
+                  r.peak_ncc, r.second_ncc, r.peak_ratio, c.refinement.min_peak_ratio);
+    return buf;
+  }
+  for (int k = 0; k < 2; ++k) {
+    const DetectorStats& s = k == 0 ? first : second;
+    const double dtx = std::abs(s.tx_px - r.transform.tx_px);
+    const double dty = std::abs(s.ty_px - r.transform.ty_px);
+    const double drot = std::abs(WrapDegrees(s.rotation_deg - r.transform.rotation_deg));
+    if (dtx > c.max_tx_difference_px || dty > c.max_ty_difference_px ||
+        drot > c.max_rotation_difference_deg) {
+      std::snprintf(buf, sizeof(buf), "%s off the correlation peak (%.1f px, %.1f px, %.1f deg)",
+                    DetectorName(c.detectors[k]), dtx, dty, drot);
+      return buf;
+    }
+  }
+  return "";
+}
+
+/// The rule with the agreement limits widened to near_agreement_factor times their size: it
+/// accepts, with the fused transform as the seed, the pairs that nearly agree.
+LoopDecision NearAgreement(const DetectorStats& first, const DetectorStats& second,
+                           const LoopValidationConfig& config) {
+  LoopValidationConfig near = config;
+  const double f = config.refinement.near_agreement_factor;
+  near.max_tx_difference_px *= f;
+  near.max_ty_difference_px *= f;
+  near.max_rotation_difference_deg *= f;
+  return ApplyLoopRule(first, second, near);
+}
+
+/// A pair the rule rejected although its detectors nearly agree: correlates the images around
+/// the fused transform and accepts it at the correlation peak when JudgeRefinement finds
+/// nothing against it.
+void RefineNearAgreement(const DetectorStats& first, const DetectorStats& second,
+                         double resolution_m, const LoopImages& images,
+                         const LoopValidationConfig& config, LoopValidation* v) {
+  const DenseRefinementConfig& rc = config.refinement;
+  if (!rc.enabled || !images.i || !images.j || images.i->gray.empty() || images.j->gray.empty()) {
+    return;
+  }
+  const LoopDecision seed = NearAgreement(first, second, config);
+  if (!seed.accepted) return;  // a detector failed on its own, or they are far apart
+  v->refinement_tried = true;
+  v->refinement = RefineByCorrelation(
+      *images.i, *images.j, {seed.tx_px, seed.ty_px, seed.rotation_deg}, resolution_m, rc);
+  const std::string why = JudgeRefinement(first, second, v->refinement, config);
+  if (!why.empty()) {
+    v->decision.reason += "; refinement: " + why;
+    return;
+  }
+  v->refined = true;
+  v->decision.accepted = true;
+  v->decision.reason.clear();
+  v->decision.tx_px = v->refinement.transform.tx_px;
+  v->decision.ty_px = v->refinement.transform.ty_px;
+  v->decision.rotation_deg = v->refinement.transform.rotation_deg;
+}
+
 }  // namespace
 
 Pose2 PixelToMetricTransform(const ImageGrid& grid_a, const ImageGrid& grid_b, double tx_px,
@@ -106,6 +179,16 @@ Pose2 PixelToMetricTransform(const ImageGrid& grid_a, const ImageGrid& grid_b, d
   return {origin.x_m, origin.y_m, NormalizeAngle(-rot)};
 }
 
+bool MayRefine(const DetectorMap<MatchResult>& matches, const LoopValidationConfig& config) {
+  assert(config.detectors.size() == 2);
+  if (!config.refinement.enabled) return false;
+  static const MatchResult kNotMatched;
+  const DetectorStats first = StatsOf(Of(matches, config.detectors[0], kNotMatched));
+  const DetectorStats second = StatsOf(Of(matches, config.detectors[1], kNotMatched));
+  return !ApplyLoopRule(first, second, config).accepted &&
+         NearAgreement(first, second, config).accepted;
+}
+
 int MinGoodMatches(const LoopConstraint& loop) {
   if (loop.good_matches.empty()) return 0;
   int n = loop.good_matches.begin()->second;
@@ -115,13 +198,16 @@ int MinGoodMatches(const LoopConstraint& loop) {
 
 LoopValidation ValidateLoop(int id_i, const ImageGrid& grid_i, int id_j, const ImageGrid& grid_j,
                             const DetectorMap<MatchResult>& matches,
-                            const LoopValidationConfig& config) {
+                            const LoopValidationConfig& config, const LoopImages& images) {
   assert(config.detectors.size() == 2);
   static const MatchResult kNotMatched;
   const MatchResult& first = Of(matches, config.detectors[0], kNotMatched);
   const MatchResult& second = Of(matches, config.detectors[1], kNotMatched);
   LoopValidation v;
   v.decision = ApplyLoopRule(StatsOf(first), StatsOf(second), config);
+  if (!v.decision.accepted) {
+    RefineNearAgreement(StatsOf(first), StatsOf(second), grid_i.resolution_m, images, config, &v);
+  }
   if (!v.decision.accepted) {
     v.reason = v.decision.reason;
     return v;
@@ -145,8 +231,12 @@ LoopValidation ValidateLoop(int id_i, const ImageGrid& grid_i, int id_j, const I
   // Fused rotation (paper), metric; translation = least squares for that rotation over
   // all inliers (equals the paper's weighted mean when scale is 1, and unlike the pixel
   // translation it does not pick up a lever-arm error from a scale slightly off 1).
+  // A refined pair's translation is the correlation peak's, exactly converted.
   const double yaw = NormalizeAngle(-v.decision.rotation_deg * M_PI / 180.0);
-  const RigidFit fit = FitForRotation(qi, qj, yaw);
+  const Pose2 peak = PixelToMetricTransform(grid_i, grid_j, v.decision.tx_px, v.decision.ty_px,
+                                            v.decision.rotation_deg);
+  const Eigen::Vector2d peak_t(peak.x_m, peak.y_m);
+  const RigidFit fit = FitForRotation(qi, qj, yaw, v.refined ? &peak_t : nullptr);
   const double n = static_cast<double>(qi.size());
   Eigen::Matrix3d information;
   if (!LoopInformation(fit, n, grid_i.resolution_m, config, &information)) {
@@ -172,11 +262,11 @@ LoopValidation ValidateLoop(int id_i, const ImageGrid& grid_i, int id_j, const I
 
 LoopValidation ValidateLoop(int id_i, const ImageGrid& grid_i, int id_j, const ImageGrid& grid_j,
                             const MatchResult& first, const MatchResult& second,
-                            const LoopValidationConfig& config) {
+                            const LoopValidationConfig& config, const LoopImages& images) {
   assert(config.detectors.size() == 2);
   const DetectorMap<MatchResult> matches = {{config.detectors[0], first},
                                             {config.detectors[1], second}};
-  return ValidateLoop(id_i, grid_i, id_j, grid_j, matches, config);
+  return ValidateLoop(id_i, grid_i, id_j, grid_j, matches, config, images);
 }
 
 }  // namespace uwbsar

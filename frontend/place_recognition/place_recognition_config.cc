@@ -63,6 +63,19 @@ void ValidateLoopValidation(const LoopValidationConfig& v, const std::string& sr
   Require(v.min_residual_px > 0, src, k + "validation.min_residual_px", "must be > 0");
   Require(v.min_xy_sigma_m > 0, src, k + "validation.min_xy_sigma_m", "must be > 0");
   Require(v.min_yaw_sigma_deg > 0, src, k + "validation.min_yaw_sigma_deg", "must be > 0");
+  const DenseRefinementConfig& r = v.refinement;
+  const std::string rk = k + "validation.refinement.";
+  Require(r.near_agreement_factor >= 1 && r.near_agreement_factor <= 4, src,
+          rk + "near_agreement_factor", "must be in [1, 4]");
+  Require(r.search_m > 0 && r.search_m <= 0.5, src, rk + "search_m", "must be in (0, 0.5]");
+  Require(r.search_deg >= 0 && r.search_deg <= 10, src, rk + "search_deg", "must be in [0, 10]");
+  Require(r.step_deg > 0 && r.step_deg <= 5, src, rk + "step_deg", "must be in (0, 5]");
+  Require(r.min_peak_ratio >= 1, src, rk + "min_peak_ratio", "must be >= 1");
+  Require(r.min_peak_ncc > 0 && r.min_peak_ncc <= 1, src, rk + "min_peak_ncc", "must be in (0, 1]");
+  Require(r.highpass_sigma_m > 0 && r.highpass_sigma_m <= 1, src, rk + "highpass_sigma_m",
+          "must be in (0, 1]");
+  Require(r.min_overlap_fraction > 0 && r.min_overlap_fraction <= 1, src,
+          rk + "min_overlap_fraction", "must be in (0, 1]");
 }
 
 void ValidateCandidates(const CandidateSearchConfig& c, const std::string& src,

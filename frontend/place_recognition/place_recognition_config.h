@@ -73,6 +73,44 @@ struct FeatureMatchConfig {
   }
 };
 
+/// Dense refinement of a pair whose two detectors nearly agree (dense_refinement.h): both
+/// feature images are correlated (masked normalised cross-correlation) over a small window of
+/// shifts and rotations around the detectors' fused transform; the pair is accepted when both
+/// detectors lie within the rule's agreement limits of the correlation peak and the peak is
+/// distinct. The rule's own limits are not moved: a pair the rule accepts is never refined.
+struct DenseRefinementConfig {
+  bool enabled = true;                 ///< false: the paper's rule alone
+  double near_agreement_factor = 1.5;  ///< refine when every difference of the pair is within
+                                       ///< this many times its limit (tx, ty, rotation)
+  double search_m = 0.06;              ///< shifts searched, +- this around the fused transform
+  double search_deg = 1.5;             ///< rotations searched, +- this ...
+  double step_deg = 0.25;              ///< ... in steps of this
+  double min_peak_ratio = 1.1;         ///< the correlation peak over the second peak: the
+                                       ///< highest correlation outside the peak's lobe (the
+                                       ///< shifts around it above half the peak), or the lobe's
+                                       ///< highest on the window's edge when it reaches it
+  double min_peak_ncc = 0.3;           ///< the peak's correlation at least this (real
+                                       ///< corridor: true pairs 0.40-0.56, wrong ones <= 0.15)
+  double highpass_sigma_m = 0.03;      ///< the images' local mean (Gaussian of this sigma) is
+                                       ///< taken off before correlating: broad echo bands would
+                                       ///< make every nearby shift correlate alike
+  double min_overlap_fraction = 0.2;   ///< the overlap of the measured areas at the fused
+                                       ///< transform, of the smaller one, at least this
+
+  template <class V>
+  void Visit(V& v) {
+    v("enabled", enabled);
+    v("near_agreement_factor", near_agreement_factor);
+    v("search_m", search_m);
+    v("search_deg", search_deg);
+    v("step_deg", step_deg);
+    v("min_peak_ratio", min_peak_ratio);
+    v("min_peak_ncc", min_peak_ncc);
+    v("highpass_sigma_m", highpass_sigma_m);
+    v("min_overlap_fraction", min_overlap_fraction);
+  }
+};
+
 /// The paper's loop validation ("Identifying Loop Closures while Exploring") on a pair of
 /// detectors, AKAZE+ORB by default, and the uncertainty given to accepted loops.
 struct LoopValidationConfig {
@@ -87,12 +125,13 @@ struct LoopValidationConfig {
   double max_rotation_difference_deg = 10.0;  ///< |rot_a - rot_b| limit of the pair (paper)
   double min_inlier_spread_px = 5.0;          ///< the inliers' smaller principal standard deviation
                                       ///< must exceed this (collinear matches are degenerate)
-  double min_residual_px = 1.0;    ///< floor of the per-feature position noise used for the
-                                   ///< loop's information matrix
-  double min_xy_sigma_m = 0.02;    ///< floor of a loop's translation standard deviation:
-                                   ///< tiles are imaged with odometry, whose 1-2 % drift
-                                   ///< within a tile distorts it by about this much
-  double min_yaw_sigma_deg = 0.5;  ///< floor of a loop's rotation standard deviation
+  double min_residual_px = 1.0;      ///< floor of the per-feature position noise used for the
+                                     ///< loop's information matrix
+  double min_xy_sigma_m = 0.02;      ///< floor of a loop's translation standard deviation:
+                                     ///< tiles are imaged with odometry, whose 1-2 % drift
+                                     ///< within a tile distorts it by about this much
+  double min_yaw_sigma_deg = 0.5;    ///< floor of a loop's rotation standard deviation
+  DenseRefinementConfig refinement;  ///< near agreements refined by dense correlation
 
   template <class V>
   void Visit(V& v) {
@@ -107,6 +146,7 @@ struct LoopValidationConfig {
     v("min_residual_px", min_residual_px);
     v("min_xy_sigma_m", min_xy_sigma_m);
     v("min_yaw_sigma_deg", min_yaw_sigma_deg);
+    v("refinement", refinement);
   }
 };
 

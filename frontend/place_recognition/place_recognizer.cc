@@ -4,6 +4,7 @@
 #include <chrono>
 #include <opencv2/imgproc.hpp>
 
+#include "frontend/place_recognition/dense_refinement.h"
 #include "frontend/place_recognition/guided_match.h"
 #include "frontend/place_recognition/radar_match.h"
 
@@ -55,6 +56,10 @@ KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe,
                              config.feature_downsampling, d.white_percentile, &k.grid);
   for (DetectorKind kind : config.place_recognition.validation.detectors)
     k.by_detector[kind] = ComputeFeatures(image, kind, d);
+  if (config.place_recognition.validation.refinement.enabled) {
+    k.refinement_image =
+        std::make_shared<const std::vector<unsigned char>>(PackForRefinement(image));
+  }
   if (config.place_recognition.per_radar.enabled) ExtractRadarFeatures(keyframe, config, &k);
   // Where the robot drove while imaging the tile: a better "position" of the tile than
   // the anchor, which sits at its first scan.
@@ -138,13 +143,23 @@ PlaceRecognitionResult PlaceRecognizer::Process(KeyframeFeatures features, doubl
     path_at_last_global_m_ = features.path_begin_m;
   }
   result.candidates = FindCandidates(index_, query, search);
+  FeatureImage new_image;  // unpacked at the first pair that needs it
   for (int id : result.candidates.ids) {
     const KeyframeFeatures& old = *database_.at(id);
     LoopAttempt attempt;
     attempt.candidate_id = id;
     attempt.matches = MatchDetectorPair(old, features, pr);
-    attempt.validation =
-        ValidateLoop(old.id, old.grid, features.id, features.grid, attempt.matches, pr.validation);
+    // The images are unpacked only for a pair the refinement will look at.
+    FeatureImage old_image;
+    LoopImages images;
+    if (features.refinement_image && old.refinement_image &&
+        MayRefine(attempt.matches, pr.validation)) {
+      if (new_image.gray.empty()) new_image = UnpackForRefinement(*features.refinement_image);
+      old_image = UnpackForRefinement(*old.refinement_image);
+      images = {&old_image, &new_image};
+    }
+    attempt.validation = ValidateLoop(old.id, old.grid, features.id, features.grid, attempt.matches,
+                                      pr.validation, images);
     if (!attempt.validation.accepted && pr.per_radar.enabled && HasRadarFeatures(old, pr) &&
         HasRadarFeatures(features, pr)) {
       LoopAttempt by_radar = MatchByRadar(old, features, pr);

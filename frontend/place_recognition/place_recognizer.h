@@ -35,6 +35,10 @@ struct KeyframeFeatures {
   /// in pixels of `grid`, class_id = sensor id.
   DetectorMap<FeatureSet> radar_by_detector;
   std::vector<double> look_anchor_rad;  ///< per sensor id: boresight at mid-tile, anchor frame
+  /// The feature image, packed (PackForRefinement), kept for the dense refinement of near
+  /// agreements (validation.refinement.enabled); null otherwise, and in a saved session's.
+  /// Shared: copies of the features (a session's capture) do not copy it.
+  std::shared_ptr<const std::vector<unsigned char>> refinement_image;
 
   /// The features of `kind` (an empty set when they were not computed, e.g. a saved session
   /// made with other detectors: nothing matches it).

@@ -6,6 +6,8 @@
 #include <opencv2/calib3d.hpp>
 #include <random>
 
+#include "test/frontend/place_recognition/texture.h"
+
 namespace uwbsar {
 namespace {
 
@@ -132,6 +134,109 @@ TEST(LoopValidatorTest, RuleRejectionIsPassedThrough) {
   EXPECT_FALSE(v.accepted);
   EXPECT_NE(v.reason.find("AKAZE: 8 good matches"), std::string::npos) << v.reason;
   EXPECT_TRUE(v.constraint.information.isZero());
+}
+
+// Near agreements (validation.refinement): two detectors 12 px apart (limit 10 px, refined up
+// to 1.5 x 10) on 1 cm images whose true transform lies between them.
+struct NearAgreement {
+  ImageGrid grid;
+  FeatureImage a, b;
+  cv::Matx23d truth{std::cos(0.4 * M_PI / 180), -std::sin(0.4 * M_PI / 180), 8.0,
+                    std::sin(0.4 * M_PI / 180), std::cos(0.4 * M_PI / 180),  -5.0};
+
+  explicit NearAgreement(std::uint64_t scene_b = 0) {
+    grid = Grid(0, 3);
+    grid.resolution_m = 0.01;
+    grid.rows = grid.cols = 300;
+    a.gray = testing::BlobTexture(300, 1, 220);
+    a.mask = cv::Mat(a.gray.size(), CV_8UC1, cv::Scalar(255));
+    // b sees a's scene through the truth (p_a = truth p_b), or another place.
+    const cv::Mat scene = scene_b ? testing::BlobTexture(300, scene_b, 220) : a.gray;
+    cv::warpAffine(scene, b.gray, cv::Mat(truth), a.gray.size(),
+                   cv::INTER_LINEAR | cv::WARP_INVERSE_MAP);
+    cv::warpAffine(a.mask, b.mask, cv::Mat(truth), a.gray.size(),
+                   cv::INTER_NEAREST | cv::WARP_INVERSE_MAP);
+  }
+  /// A detector's match: the truth moved by (dx, dy) px, inliers on the truth.
+  MatchResult Detector(DetectorKind kind, double dx, double dy, std::uint64_t seed) const {
+    MatchResult m;
+    m.detector = kind;
+    m.has_transform = true;
+    m.scale = 1.0;
+    m.good_matches = m.ratio_matches = 30;
+    m.rotation_deg = 0.4;
+    m.tx_px = truth(0, 2) + dx;
+    m.ty_px = truth(1, 2) + dy;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(30.0, 270.0);
+    for (int k = 0; k < m.good_matches; ++k) {
+      const cv::Vec3d pb(u(rng), u(rng), 1.0);
+      const cv::Vec2d pa = truth * pb;
+      m.inliers_b.emplace_back(pb[0], pb[1]);
+      m.inliers_a.emplace_back(pa[0], pa[1]);
+    }
+    return m;
+  }
+  LoopValidation Validate(double akaze_dx, double orb_dx, bool with_images = true,
+                          LoopValidationConfig config = {}) const {
+    return ValidateLoop(0, grid, 1, grid, Detector(DetectorKind::kAkaze, akaze_dx, 1.0, 1),
+                        Detector(DetectorKind::kOrb, orb_dx, -1.0, 2), config,
+                        with_images ? LoopImages{&a, &b} : LoopImages{});
+  }
+};
+
+TEST(LoopValidatorTest, NearAgreementOfATruePairIsAcceptedAtTheCorrelationPeak) {
+  const NearAgreement pair;
+  const LoopValidation v = pair.Validate(+6.0, -6.0);
+  ASSERT_TRUE(v.accepted) << v.reason;
+  EXPECT_TRUE(v.refinement_tried && v.refined);
+  EXPECT_GE(v.refinement.peak_ratio, LoopValidationConfig{}.refinement.min_peak_ratio);
+  const Pose2 truth =
+      PixelToMetricTransform(pair.grid, pair.grid, pair.truth(0, 2), pair.truth(1, 2), 0.4);
+  EXPECT_NEAR(v.constraint.T_ij.x_m, truth.x_m, 0.01);
+  EXPECT_NEAR(v.constraint.T_ij.y_m, truth.y_m, 0.01);
+  EXPECT_NEAR(v.constraint.T_ij.yaw_rad, truth.yaw_rad, 0.003);
+  EXPECT_TRUE(v.constraint.information.allFinite());
+  // The paper's rule alone rejects it: without the images, or with the refinement off.
+  const LoopValidation no_images = pair.Validate(+6.0, -6.0, false);
+  EXPECT_FALSE(no_images.accepted);
+  EXPECT_NE(no_images.reason.find("disagree"), std::string::npos) << no_images.reason;
+  LoopValidationConfig off;
+  off.refinement.enabled = false;
+  EXPECT_FALSE(pair.Validate(+6.0, -6.0, true, off).accepted);
+  // Far apart (beyond 1.5 x the limit) it is not tried, and callers need no images for it.
+  EXPECT_FALSE(pair.Validate(+9.0, -9.0).refinement_tried);
+  auto may_refine = [&](double akaze_dx, double orb_dx) {
+    return MayRefine({{DetectorKind::kAkaze, pair.Detector(DetectorKind::kAkaze, akaze_dx, 1, 1)},
+                      {DetectorKind::kOrb, pair.Detector(DetectorKind::kOrb, orb_dx, -1, 2)}},
+                     LoopValidationConfig{});
+  };
+  EXPECT_TRUE(may_refine(+6.0, -6.0));
+  EXPECT_FALSE(may_refine(+9.0, -9.0));  // far apart
+  EXPECT_FALSE(may_refine(+2.0, -2.0));  // accepted by the rule
+}
+
+TEST(LoopValidatorTest, NearAgreementOnImagesOfDifferentPlacesIsRefused) {
+  const LoopValidation v = NearAgreement(/*scene_b=*/7).Validate(+6.0, -6.0);
+  EXPECT_TRUE(v.refinement_tried);
+  EXPECT_FALSE(v.accepted);
+  EXPECT_NE(v.reason.find("refinement:"), std::string::npos) << v.reason;
+}
+
+TEST(LoopValidatorTest, NearAgreementSeededAtAWrongTransformIsRefused) {
+  // Both detectors 35-47 cm off the truth (seed 41 px off, the search reaches 6 px).
+  const LoopValidation v = NearAgreement().Validate(+35.0, +47.0);
+  EXPECT_TRUE(v.refinement_tried);
+  EXPECT_FALSE(v.accepted) << v.reason;
+}
+
+TEST(LoopValidatorTest, NearAgreementWithOneDetectorOffThePeakIsRefused) {
+  // ORB 1 px off the truth, AKAZE 11 px: the peak is near ORB's, AKAZE beyond the limit (10).
+  const LoopValidation v = NearAgreement().Validate(+11.0, -1.0);
+  EXPECT_TRUE(v.refinement_tried && v.refinement.found);
+  EXPECT_FALSE(v.accepted);
+  EXPECT_NE(v.reason.find("AKAZE off the correlation peak"), std::string::npos) << v.reason;
+  std::printf("%s\n", v.reason.c_str());
 }
 
 }  // namespace
