@@ -71,8 +71,8 @@ struct SolveRecord {
 };
 
 /// A keyframe as the trajectory's correction needs it: when it was, where odometry put its
-/// anchor and where the map puts it now. Kept keyframes and retired ones (slam/session/place_views.h)
-/// alike: a retired keyframe follows the node it was folded into.
+/// anchor and where the map puts it now. Kept keyframes and retired ones
+/// (slam/session/place_views.h) alike: a retired keyframe follows the node it was folded into.
 struct TrajectoryAnchor {
   int id = 0;
   TimestampNs stamp_ns = 0;
@@ -144,8 +144,8 @@ struct SlamSnapshot {
   std::vector<SensorGeometry> sensors;
   std::vector<TileSnapshot> tiles;        ///< keyframes in order (those the map keeps)
   std::map<int, Pose2> poses;             ///< optimised T_world_anchor by keyframe id
-  std::vector<TrajectoryAnchor> retired;  ///< retired keyframes (slam/session/place_views.h), in time
-                                          ///< order, at their optimised poses
+  std::vector<TrajectoryAnchor> retired;  ///< retired keyframes (slam/session/place_views.h), in
+                                          ///< time order, at their optimised poses
   std::vector<PoseGraphEdge> edges;
   std::vector<int> fixed_ids;
   std::vector<LoopRecord> loops;

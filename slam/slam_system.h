@@ -67,7 +67,8 @@ class SlamSystem {
   std::unique_lock<std::mutex> LockState() const { return std::unique_lock(state_mutex_); }
 
   const Config& config() const { return config_; }
-  /// The keyframes the map keeps, in order (a revisit retires old views: slam/session/place_views.h).
+  /// The keyframes the map keeps, in order (a revisit retires old views:
+  /// slam/session/place_views.h).
   const std::vector<KeyframeRecord>& keyframes() const { return keyframes_; }
   /// The keyframes retired so far, in the order they were retired.
   const std::vector<RetiredKeyframe>& retired() const { return retired_; }

@@ -60,7 +60,7 @@ struct SlamConfig {
                              ///< poses of every solve (24 bytes per keyframe and solve)
   double results_mcap_sar_max_pixels = 4e6;  ///< its SAR mosaic is averaged down to at most
                                              ///< this many pixels (a 20 m x 20 m map at 1 cm)
-  PlaceViewsConfig place_views;              ///< keyframes bounded by area (slam/session/place_views.h)
+  PlaceViewsConfig place_views;  ///< keyframes bounded by area (slam/session/place_views.h)
 
   template <class V>
   void Visit(V& v) {

@@ -51,16 +51,22 @@ struct SimFeed {
   }
 };
 
-TEST(MapSnapshotTest, OutputsFromTheCopyEqualThoseWrittenUnderTheLockAtThatMoment) {
-  Config config;
-  config.slam.keyframe_thread = true;
+/// A 1.5 m circle driven for 12 m (more than one lap: the second lap may close loops) past a
+/// wall and a few posts.
+SimFeed CircleRun(const Config& config) {
   SyntheticPath path;
   path.turn_radius_m = 1.5;
-  path.length_m = 12.0;  // more than one lap: the second lap may close loops
+  path.length_m = 12.0;
   path.speed_mps = 0.5;
   std::vector<Scatterer> scene = WallScatterers({-3, -3}, {3, -3}, 0.02, 0.05);
   for (int i = 0; i < 12; ++i) scene.push_back({{-2.5 + 0.45 * i, i % 2 ? 2.6 : -0.3}, 1.0});
-  SimFeed feed{SimulateRun(config, path, scene, EchoModel{}, 5)};
+  return SimFeed{SimulateRun(config, path, scene, EchoModel{}, 5)};
+}
+
+TEST(MapSnapshotTest, OutputsFromTheCopyEqualThoseWrittenUnderTheLockAtThatMoment) {
+  Config config;
+  config.slam.keyframe_thread = true;
+  SimFeed feed = CircleRun(config);
 
   slam::MapRun run;
   run.input = "synthetic circle";
@@ -103,13 +109,7 @@ TEST(MapSnapshotTest, AKeptMosaicEqualsAFullRenderOfTheSameState) {
   Config config;
   config.slam.keyframe_thread = false;
   config.slam.mosaic_redraw_px = 0.0;  // exact: every moved keyframe is redrawn
-  SyntheticPath path;
-  path.turn_radius_m = 1.5;
-  path.length_m = 12.0;
-  path.speed_mps = 0.5;
-  std::vector<Scatterer> scene = WallScatterers({-3, -3}, {3, -3}, 0.02, 0.05);
-  for (int i = 0; i < 12; ++i) scene.push_back({{-2.5 + 0.45 * i, i % 2 ? 2.6 : -0.3}, 1.0});
-  SimFeed feed{SimulateRun(config, path, scene, EchoModel{}, 5)};
+  SimFeed feed = CircleRun(config);
   slam::MapRun run;
   run.input = "synthetic circle";
   run.slam = std::make_shared<slam::SlamSystem>(config);

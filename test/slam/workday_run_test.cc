@@ -1,5 +1,5 @@
-// Keyframes bounded by the area mapped (slam/session/place_views.h): the office ring driven three times
-// in one run keeps about one lap's keyframes, closes every lap with no false loop, is as
+// Keyframes bounded by the area mapped (slam/session/place_views.h): the office ring driven three
+// times in one run keeps about one lap's keyframes, closes every lap with no false loop, is as
 // accurate as keeping every keyframe, and saves a session that reads back.
 #include <gtest/gtest.h>
 

@@ -37,22 +37,32 @@ std::map<int, Pose2> TrueAnchors(const SessionData& s, int trajectory,
   return out;
 }
 
-struct Runs {
-  slam::MapRun a, b;
-};
-
 using ::uwbsar::testing::ShortSessionConfig;
+
+/// Run A (ShortSessionConfig, seed 1) and run B 2 m along and 20 deg turned (seed 2) in the
+/// seed_lab scene, each captured as a session.
+struct SeedLabRuns {
+  Config config_a = ShortSessionConfig();
+  Config config_b = ::uwbsar::testing::TurnedRevisitConfig(config_a);
+  slam::MapRun a, b;
+  SessionData sa, sb;
+
+  SeedLabRuns() {
+    const std::string map = ::uwbsar::testing::SeedLabLidarMap();
+    a = slam::MapSimulation(config_a, map, "depart-return", 1);
+    b = slam::MapSimulationInScene(config_b, map, "depart-return", 1, 2,
+                                   slam::RouteStart(config_b).Inverse());
+    sa = slam::CaptureSession(a);
+    sb = slam::CaptureSession(b);
+  }
+};
 
 TEST(SessionMergeTest, SecondRunTurnedAndShiftedIsPlacedWithinThreeMetresWithoutFalseLoops) {
   UWBSAR_NEED_SEED_LAB_MAP();
-  Config config_a = ShortSessionConfig();
-  const Config config_b = ::uwbsar::testing::TurnedRevisitConfig(config_a);
-  const std::string map = ::uwbsar::testing::SeedLabLidarMap();
-  const slam::MapRun a = slam::MapSimulation(config_a, map, "depart-return", 1);
-  const slam::MapRun b = slam::MapSimulationInScene(config_b, map, "depart-return", 1, 2,
-                                                    slam::RouteStart(config_b).Inverse());
-  const SessionData sa = slam::CaptureSession(a);
-  const SessionData sb = slam::CaptureSession(b);
+  SeedLabRuns runs;
+  Config& config_a = runs.config_a;
+  const slam::MapRun &a = runs.a, &b = runs.b;
+  const SessionData &sa = runs.sa, &sb = runs.sb;
   // Every view kept, so that the loops between the runs stay in the joined session to be judged
   // (a retired keyframe's loops leave with it: RevisitedViewsAreRetired... below).
   config_a.slam.place_views.max_per_place = 0;
@@ -118,15 +128,11 @@ TEST(SessionMergeTest, SecondRunTurnedAndShiftedIsPlacedWithinThreeMetresWithout
 /// stay corrected through the retired keyframes' anchors, also once saved and read back.
 TEST(SessionMergeTest, RevisitedViewsAreRetiredAndBothRunsStayCorrected) {
   UWBSAR_NEED_SEED_LAB_MAP();
-  const Config config_a = ShortSessionConfig();
-  const Config config_b = ::uwbsar::testing::TurnedRevisitConfig(config_a);
+  const SeedLabRuns runs;
+  const Config& config_a = runs.config_a;
   ASSERT_EQ(config_a.slam.place_views.max_per_place, 1);
-  const std::string map = ::uwbsar::testing::SeedLabLidarMap();
-  const slam::MapRun a = slam::MapSimulation(config_a, map, "depart-return", 1);
-  const slam::MapRun b = slam::MapSimulationInScene(config_b, map, "depart-return", 1, 2,
-                                                    slam::RouteStart(config_b).Inverse());
-  const SessionData sa = slam::CaptureSession(a);
-  const SessionData sb = slam::CaptureSession(b);
+  const slam::MapRun &a = runs.a, &b = runs.b;
+  const SessionData &sa = runs.sa, &sb = runs.sb;
   MergeReport report;
   const SessionData merged = MergeSessions(sa, sb, config_a, &report);
   ASSERT_TRUE(report.connected) << report.reason;
