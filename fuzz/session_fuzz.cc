@@ -36,7 +36,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::set<int> ids;
     for (const uwbsar::SessionKeyframe& k : d.keyframes) {
       if (!Finite(k.T_map_anchor) || !Finite(k.T_odom_anchor) || !Finite(k.T_odom_robot) ||
-          k.detected.empty() || !cv::checkRange(k.detected) ||
+          k.detected.empty() || !cv::checkRange(k.detected.Load()) ||
           !(k.detected_grid.resolution_m > 0) || !(k.features.grid.resolution_m > 0)) {
         __builtin_trap();
       }
