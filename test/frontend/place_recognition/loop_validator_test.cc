@@ -177,8 +177,14 @@ struct NearAgreement {
     }
     return m;
   }
+  /// The refinement is off by default (its cost on long runs): these tests turn it on.
+  static LoopValidationConfig Refining() {
+    LoopValidationConfig c;
+    c.refinement.enabled = true;
+    return c;
+  }
   LoopValidation Validate(double akaze_dx, double orb_dx, bool with_images = true,
-                          LoopValidationConfig config = {}) const {
+                          LoopValidationConfig config = Refining()) const {
     return ValidateLoop(0, grid, 1, grid, Detector(DetectorKind::kAkaze, akaze_dx, 1.0, 1),
                         Detector(DetectorKind::kOrb, orb_dx, -1.0, 2), config,
                         with_images ? LoopImages{&a, &b} : LoopImages{});
@@ -209,7 +215,7 @@ TEST(LoopValidatorTest, NearAgreementOfATruePairIsAcceptedAtTheCorrelationPeak) 
   auto may_refine = [&](double akaze_dx, double orb_dx) {
     return MayRefine({{DetectorKind::kAkaze, pair.Detector(DetectorKind::kAkaze, akaze_dx, 1, 1)},
                       {DetectorKind::kOrb, pair.Detector(DetectorKind::kOrb, orb_dx, -1, 2)}},
-                     LoopValidationConfig{});
+                     NearAgreement::Refining());
   };
   EXPECT_TRUE(may_refine(+6.0, -6.0));
   EXPECT_FALSE(may_refine(+9.0, -9.0));  // far apart
