@@ -80,7 +80,7 @@ struct FeatureMatchConfig {
 /// distinct. The rule's own limits are not moved: a pair the rule accepts is never refined.
 struct DenseRefinementConfig {
   bool enabled = false;  ///< off by default: on floor50's 5 km it took matching from 5-8 to
-                        ///< 62-135 ms/m for 64 more loops of 20 400 (docs/measurements.md)
+                         ///< 62-135 ms/m for 64 more loops of 20 400 (docs/measurements.md)
   double near_agreement_factor = 1.5;  ///< refine when every difference of the pair is within
                                        ///< this many times its limit (tx, ty, rotation)
   double search_m = 0.06;              ///< shifts searched, +- this around the fused transform
