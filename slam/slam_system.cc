@@ -275,14 +275,7 @@ void SlamSystem::RetireRevisitedViews() {
   std::vector<int> queue;
   queue.swap(awaiting_retirement_check_);
   if (config.max_per_place <= 0 || queue.empty()) return;
-  // Only a keyframe a loop ties to the map (accepted at this solution) says where it is well
-  // enough to stand for a place.
-  std::set<int> tied;
-  for (const EdgeReport& r : graph_->EdgeReports()) {
-    if (r.kind != EdgeKind::kLoop || r.rejected) continue;
-    tied.insert(r.from_id);
-    tied.insert(r.to_id);
-  }
+  const std::set<int> tied = TiedByAcceptedLoops(graph_->EdgeReports());
   const std::vector<int> fixed = graph_->FixedNodes();
   const std::map<int, Pose2> poses = graph_->GetPoses();
   std::vector<PlaceView> views;
@@ -302,17 +295,10 @@ void SlamSystem::RetireRevisitedViews() {
     v.retirable = std::find(fixed.begin(), fixed.end(), k.id) == fixed.end();
     views.push_back(v);
   }
-  for (const int id : queue) {
-    if (!tied.count(id)) continue;
-    auto query =
-        std::find_if(views.begin(), views.end(), [&](const PlaceView& v) { return v.id == id; });
-    if (query == views.end()) continue;
-    const std::optional<int> victim = KeyframeToRetire(views, *query, config);
-    if (!victim) continue;
-    Retire(*victim);
-    views.erase(std::find_if(views.begin(), views.end(),
-                             [&](const PlaceView& v) { return v.id == *victim; }));
-  }
+  uwbsar::RetireRevisitedViews(&views, queue, tied, config, [this](int victim) {
+    Retire(victim);
+    return true;
+  });
 }
 
 void SlamSystem::Retire(int id) {

@@ -15,14 +15,7 @@ std::vector<SessionAnchor> RetireRevisitedViews(
     const PlaceViewsConfig& config, PoseGraph* graph) {
   std::vector<SessionAnchor> retired;
   if (config.max_per_place <= 0 || new_ids.empty()) return retired;
-  // Only a keyframe an accepted loop ties to the map says where it is well enough to stand for
-  // a place (as within a run: SlamSystem::RetireRevisitedViews).
-  std::set<int> tied;
-  for (const EdgeReport& r : graph->EdgeReports()) {
-    if (r.kind != EdgeKind::kLoop || r.rejected) continue;
-    tied.insert(r.from_id);
-    tied.insert(r.to_id);
-  }
+  const std::set<int> tied = TiedByAcceptedLoops(graph->EdgeReports());
   const std::map<int, Pose2> poses = graph->GetPoses();
   std::vector<PlaceView> views;
   std::map<int, const SessionKeyframe*> by_id;
@@ -42,14 +35,8 @@ std::vector<SessionAnchor> RetireRevisitedViews(
     views.push_back(v);
     by_id[k.id] = &k;
   }
-  for (const int id : new_ids) {
-    if (!tied.count(id)) continue;
-    auto query =
-        std::find_if(views.begin(), views.end(), [&](const PlaceView& v) { return v.id == id; });
-    if (query == views.end()) continue;  // retired by a newer keyframe already
-    const std::optional<int> victim = KeyframeToRetire(views, *query, config);
-    if (!victim) continue;
-    const SessionKeyframe& k = *by_id.at(*victim);
+  RetireRevisitedViews(&views, new_ids, tied, config, [&](int victim) {
+    const SessionKeyframe& k = *by_id.at(victim);
     SessionAnchor a;
     a.id = k.id;
     a.trajectory = k.trajectory;
@@ -59,13 +46,12 @@ std::vector<SessionAnchor> RetireRevisitedViews(
       a.hub_id = graph->RemoveNode(k.id, &a.T_hub_anchor);
     } catch (const InputError& e) {  // a frozen keyframe with no frozen neighbour left: kept
       Log(LogLevel::kDebug, std::string("view kept: ") + e.what());
-      continue;
+      return false;
     }
     if (a.hub_id < 0) a.T_hub_anchor = poses.at(k.id);
     retired.push_back(a);
-    views.erase(std::find_if(views.begin(), views.end(),
-                             [&](const PlaceView& v) { return v.id == *victim; }));
-  }
+    return true;
+  });
   return retired;
 }
 

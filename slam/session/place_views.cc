@@ -37,4 +37,30 @@ std::optional<int> KeyframeToRetire(const std::vector<PlaceView>& kept, const Pl
   return std::nullopt;
 }
 
+std::set<int> TiedByAcceptedLoops(const std::vector<EdgeReport>& reports) {
+  std::set<int> tied;
+  for (const EdgeReport& r : reports) {
+    if (r.kind != EdgeKind::kLoop || r.rejected) continue;
+    tied.insert(r.from_id);
+    tied.insert(r.to_id);
+  }
+  return tied;
+}
+
+void RetireRevisitedViews(std::vector<PlaceView>* views, const std::vector<int>& queries,
+                          const std::set<int>& tied, const PlaceViewsConfig& config,
+                          const std::function<bool(int)>& retire) {
+  const auto by_id = [views](int id) {
+    return std::find_if(views->begin(), views->end(),
+                        [id](const PlaceView& v) { return v.id == id; });
+  };
+  for (const int id : queries) {
+    if (!tied.count(id)) continue;
+    const auto query = by_id(id);
+    if (query == views->end()) continue;  // retired by a newer keyframe already
+    const std::optional<int> victim = KeyframeToRetire(*views, *query, config);
+    if (victim && retire(*victim)) views->erase(by_id(*victim));
+  }
+}
+
 }  // namespace uwbsar

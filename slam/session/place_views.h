@@ -10,10 +10,13 @@
 // the hub node, so that the trajectory of the run stays corrected where the map has moved on.
 #pragma once
 
+#include <functional>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
+#include "backend/pose_graph.h"
 #include "core/pose2.h"
 #include "slam/config/place_views_config.h"
 
@@ -38,5 +41,16 @@ std::vector<const PlaceView*> ViewsOfPlace(const std::vector<PlaceView>& kept,
 /// holds more than max_per_place views; nothing otherwise (or with max_per_place 0).
 std::optional<int> KeyframeToRetire(const std::vector<PlaceView>& kept, const PlaceView& query,
                                     const PlaceViewsConfig& config);
+
+/// The keyframes an accepted loop ties to the map, from a solve's edge reports: only such a
+/// keyframe says where it is well enough to stand for a place.
+std::set<int> TiedByAcceptedLoops(const std::vector<EdgeReport>& reports);
+
+/// For each of `queries` (in order) still in `views` and in `tied`: KeyframeToRetire, then
+/// `retire(victim)`, which returns false when it could not retire it (the view then stays).
+/// Retired views leave `views`.
+void RetireRevisitedViews(std::vector<PlaceView>* views, const std::vector<int>& queries,
+                          const std::set<int>& tied, const PlaceViewsConfig& config,
+                          const std::function<bool(int)>& retire);
 
 }  // namespace uwbsar
