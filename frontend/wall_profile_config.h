@@ -7,6 +7,8 @@
 // Part of the configuration (frontend/place_recognition/place_recognition_config.h includes it).
 #pragma once
 
+#include "frontend/wall_line_config.h"
+
 namespace uwbsar {
 
 struct WallProfileConfig {
@@ -23,6 +25,7 @@ struct WallProfileConfig {
                                         ///< is no wall, only the imaged band's own shape
   double min_correlation = 0.8;         ///< normalised cross-correlation of the aligned profiles
   double lateral_std_m = 0.02;          ///< standard deviation of the measured offset (edge weight)
+  WallLineConfig landmarks;             ///< walls as line landmarks instead of these edges
 
   template <class V>
   void Visit(V& v) {
@@ -36,6 +39,7 @@ struct WallProfileConfig {
     v("min_wall_contrast", min_wall_contrast);
     v("min_correlation", min_correlation);
     v("lateral_std_m", lateral_std_m);
+    v("landmarks", landmarks);
   }
 };
 

@@ -1,0 +1,51 @@
+// Configuration of wall landmarks (place_recognition.wall_profiles.landmarks): a straight wall
+// that many keyframes see becomes one line in the pose graph, so that a 10-20 m corridor
+// stays straight along its whole length (frontend/wall_line.h measures a keyframe's lines,
+// slam/wall_landmarks.h associates them, backend/line_landmark.h holds them in the graph).
+// Part of WallProfileConfig (frontend/wall_profile_config.h).
+#pragma once
+
+namespace uwbsar {
+
+struct WallLineConfig {
+  /// true: walls become line landmarks instead of the pairwise wall edges (the two measure
+  /// the same walls, so only one of them is used).
+  bool enabled = false;
+  // Measuring a keyframe's lines (frontend/wall_line.h).
+  double min_peak_contrast = 3.0;  ///< a wall's profile peak over the profile's floor (median)
+  double min_distance_m = 0.3;     ///< walls closer to the anchor than this are not used
+  int max_lines_per_side = 1;      ///< the strongest this many walls left and right of the path
+  int strips = 5;                  ///< the tile is cut into this many strips along the path;
+                                   ///< the wall's position in each gives its angle
+  int min_strips = 3;              ///< strips that must show the wall
+  double band_m = 0.1;             ///< a strip's peak is searched this far across the wall
+  double max_fit_rms_m = 0.02;     ///< strips further than this (rms) from one straight line:
+                                   ///< not a straight wall (a corner, a doorway's jamb)
+  double offset_std_m = 0.02;      ///< standard deviation of a line's measured offset
+  double angle_std_deg = 1.0;      ///< ... and of its measured angle
+  // Associating lines into landmarks (slam/wall_landmarks.h).
+  double gate_offset_m = 0.1;  ///< a line joins a landmark within this offset ...
+  double gate_angle_deg = 3.0;  ///< ... and this angle of it, seen from the keyframe
+  int max_gap = 3;              ///< a landmark not seen for this many keyframes ends
+  int min_observations = 3;     ///< keyframes that must see a landmark before it enters the graph
+
+  template <class V>
+  void Visit(V& v) {
+    v("enabled", enabled);
+    v("min_peak_contrast", min_peak_contrast);
+    v("min_distance_m", min_distance_m);
+    v("max_lines_per_side", max_lines_per_side);
+    v("strips", strips);
+    v("min_strips", min_strips);
+    v("band_m", band_m);
+    v("max_fit_rms_m", max_fit_rms_m);
+    v("offset_std_m", offset_std_m);
+    v("angle_std_deg", angle_std_deg);
+    v("gate_offset_m", gate_offset_m);
+    v("gate_angle_deg", gate_angle_deg);
+    v("max_gap", max_gap);
+    v("min_observations", min_observations);
+  }
+};
+
+}  // namespace uwbsar
