@@ -223,6 +223,7 @@ void PoseGraph::ChordalStart() {
   for (const auto& [id, pose] : ChordalInitialization(guess, edges, anchor_id)) {
     solver_nodes_.at(id)->x = {pose.x_m, pose.y_m, pose.yaw_rad};  // solver frame in and out
   }
+  ReseedLandmarks();  // the walls move with the nodes that see them
 }
 
 double PoseGraph::HalfChi2Sum(bool accepted_only) const {
@@ -231,7 +232,7 @@ double PoseGraph::HalfChi2Sum(bool accepted_only) const {
     if (accepted_only && se->rejected) continue;
     sum += se->Chi2();
   }
-  return 0.5 * sum;
+  return 0.5 * (sum + ObservationChi2Sum());
 }
 
 OptimizeResult PoseGraph::Optimize() {
@@ -248,6 +249,7 @@ OptimizeResult PoseGraph::Optimize() {
   solved_once_ = true;
   if (!solver_edges_.empty()) SolveWithLoopHandling(first, &result);
   for (auto& se : solver_edges_) se->chi2 = se->Chi2();
+  for (auto& so : solver_observations_) so->chi2 = so->Chi2();
   result.final_cost = HalfChi2Sum(true);
   PublishSolution(&result);
   result.num_nodes = static_cast<int>(solver_nodes_.size());
@@ -262,14 +264,22 @@ void PoseGraph::TakePending() {
   std::vector<int> edge_indices;
   std::vector<PoseGraphEdge> edges;
   std::vector<int> fixed;
+  std::vector<std::pair<int, Line2>> landmarks;
+  std::vector<int> observation_indices;
+  std::vector<LineObservation> observations;
   {
     std::lock_guard<std::mutex> lock(data_mutex_);
     nodes.swap(pending_nodes_);
     edge_indices.swap(pending_edges_);
     fixed.swap(pending_fixed_);
+    landmarks.swap(pending_landmarks_);
+    observation_indices.swap(pending_observations_);
     for (const int i : edge_indices) edges.push_back(edges_[static_cast<std::size_t>(i)]);
+    for (const int i : observation_indices)
+      observations.push_back(observations_[static_cast<std::size_t>(i)]);
   }
   InsertPending(std::move(nodes), edge_indices, edges, fixed);
+  InsertPendingLandmarks(landmarks, observation_indices, observations);
 }
 
 void PoseGraph::SolveWithLoopHandling(bool first, OptimizeResult* result) {
@@ -307,6 +317,7 @@ void PoseGraph::PublishSolution(OptimizeResult* result) {
         Pose2{node->x[0] + solver_origin_.x_m, node->x[1] + solver_origin_.y_m, node->x[2]};
   }
   for (const auto& [trajectory, block] : calibrations_) calibrations_out_[trajectory] = block->x;
+  PublishLandmarks();
   for (const auto& se : solver_edges_) {
     EdgeReport& r = reports_[static_cast<std::size_t>(se->index)];
     r.chi2 = se->chi2;

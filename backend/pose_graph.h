@@ -53,11 +53,13 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
 #include "backend/backend_config.h"
+#include "backend/line_landmark.h"
 #include "core/pose2.h"
 
 namespace ceres {
@@ -117,6 +119,15 @@ struct EdgeReport {
                           ///< "inconsistent" (bent the odometry, backend/odometry_consistency.h)
   int support = -1;       ///< loops: neighbouring loops that agree (-1: not computed)
   double chi2 = 0.0;      ///< e^T Omega e at the last solution (0 before the first)
+};
+
+/// The state of one landmark observation after the last Optimize().
+struct LineObservationReport {
+  int index = 0;  ///< the index AddLineObservation returned
+  int landmark_id = 0;
+  int node_id = 0;
+  bool rejected = false;  ///< its chi2 exceeded loop_rejection_chi2 (the wall ended, a corner)
+  double chi2 = 0.0;      ///< at the last solution (0 before the first)
 };
 
 struct OptimizeResult {
@@ -179,6 +190,17 @@ class PoseGraph {
   /// A loop edge with the configured default information.
   int AddLoopEdge(int from_id, int to_id, const Pose2& T_from_to);
 
+  /// Adds a line landmark, a straight wall (backend/line_landmark.h), with its initial estimate
+  /// in the world. Landmarks are never fixed and never free the odometry calibration. Throws
+  /// InputError on a duplicate id or a non-finite line.
+  void AddLandmark(int id, const Line2& line_world);
+
+  /// Adds one node's observation of a landmark; returns its index. It carries the loops' robust
+  /// loss and is rejected by its chi2 like a loop (a wall that bends or ends), never held back.
+  /// Throws InputError (graph unchanged) on an unknown node or landmark, a non-finite
+  /// measurement, or a standard deviation that is not > 0.
+  int AddLineObservation(const LineObservation& observation);
+
   /// Inserts what was added since the last call and solves (see the file comment).
   OptimizeResult Optimize();
 
@@ -204,6 +226,11 @@ class PoseGraph {
   std::vector<PoseGraphEdge> Edges() const;
   std::vector<EdgeReport> EdgeReports() const;
   std::vector<int> FixedNodes() const;
+  /// The landmarks' estimates (world frame) after the last Optimize() (or as added).
+  std::map<int, Line2> GetLandmarks() const;
+  /// The observations of the nodes still in the graph, and their state.
+  std::vector<LineObservation> LineObservations() const;
+  std::vector<LineObservationReport> LineObservationReports() const;
   /// Each calibrated trajectory's odometry calibration after the last Optimize()
   /// ([scale, heading_drift_rad_per_m, rotation_scale]; zero while no loop constrains it).
   std::map<int, std::array<double, 3>> OdometryCalibrations() const;
@@ -214,6 +241,8 @@ class PoseGraph {
  private:
   struct SolverNode;
   struct SolverEdge;
+  struct SolverLandmark;
+  struct SolverObservation;
   struct CalibrationBlock;
   struct PendingNode {
     int id = 0;
@@ -247,6 +276,19 @@ class PoseGraph {
   double HalfChi2Sum(bool accepted_only) const;
   // backend/pose_graph_reduction.cc
   void EraseSolverNode(int id);
+  // backend/pose_graph_landmarks.cc
+  void InsertPendingLandmarks(const std::vector<std::pair<int, Line2>>& landmarks,
+                              const std::vector<int>& observation_indices,
+                              const std::vector<LineObservation>& observations);
+  bool UpdateObservationStatus();  ///< chi2 rejection; true when some observation changed
+  void SetObservationLosses();
+  /// Each landmark (or those in `only`) from its first accepted observation and that node's
+  /// pose.
+  void ReseedLandmarks(const std::set<int>* only = nullptr);
+  double ObservationChi2Sum() const;
+  std::vector<std::array<double, 2>> LandmarkStates() const;
+  void RestoreLandmarkStates(const std::vector<std::array<double, 2>>& states);
+  void PublishLandmarks();  ///< with data_mutex_ held
 
   const BackendConfig config_;
 
@@ -264,12 +306,20 @@ class PoseGraph {
   std::vector<PendingNode> pending_nodes_;
   std::vector<int> pending_edges_;
   std::vector<int> pending_fixed_;
+  std::map<int, Line2> landmarks_;  // world frame
+  std::vector<LineObservation> observations_;
+  std::vector<LineObservationReport> observation_reports_;
+  std::vector<bool> observation_removed_;  // by index: an observation of a removed node
+  std::vector<std::pair<int, Line2>> pending_landmarks_;
+  std::vector<int> pending_observations_;
 
   std::mutex solve_mutex_;  // guards the solver side below
   std::unique_ptr<ceres::Problem> problem_;
   std::unordered_map<int, std::unique_ptr<SolverNode>> solver_nodes_;
   std::vector<std::unique_ptr<SolverEdge>> solver_edges_;
   std::map<int, std::unique_ptr<CalibrationBlock>> calibrations_;  // by trajectory
+  std::map<int, std::unique_ptr<SolverLandmark>> solver_landmarks_;
+  std::vector<std::unique_ptr<SolverObservation>> solver_observations_;
   std::unordered_map<int, int> node_trajectory_;  // node -> trajectory of its odometry
   int first_node_id_ = -1;
   // The solver works in the world frame translated to the first node's initial position,

@@ -90,7 +90,7 @@ double PoseGraph::TotalChi2() const {
     if (!se->rejected) sum += se->Chi2();
   }
   for (const auto& [trajectory, block] : calibrations_) sum += block->prior->Chi2(block->x);
-  return sum;
+  return sum + ObservationChi2Sum();
 }
 
 void PoseGraph::TrialSolveHeldBackLoops(OptimizeResult* result) {
@@ -116,6 +116,9 @@ void PoseGraph::TrialSolveHeldBackLoops(OptimizeResult* result) {
     for (const auto& [trajectory, block] : calibrations_) calibrations.push_back(block->x);
     std::vector<bool> rejected;
     for (const auto& se : solver_edges_) rejected.push_back(se->rejected);
+    const std::vector<std::array<double, 2>> landmarks = LandmarkStates();
+    std::vector<bool> observations_rejected;
+    for (const auto& so : solver_observations_) observations_rejected.push_back(so->rejected);
     const double chi2_before = TotalChi2();
     // On refusal the map solved before stands, and so does its solve's convergence report.
     const bool converged_before = result->converged;
@@ -146,6 +149,9 @@ void PoseGraph::TrialSolveHeldBackLoops(OptimizeResult* result) {
     k = 0;
     for (auto& [trajectory, block] : calibrations_) block->x = calibrations[k++];
     for (std::size_t i = 0; i < solver_edges_.size(); ++i) solver_edges_[i]->rejected = rejected[i];
+    RestoreLandmarkStates(landmarks);
+    for (std::size_t i = 0; i < solver_observations_.size(); ++i)
+      solver_observations_[i]->rejected = observations_rejected[i];
     UpdateCalibrationFreedom();
     SetLoopLosses(false);
   }

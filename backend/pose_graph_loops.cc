@@ -14,16 +14,6 @@
 #include "backend/pose_graph_solver.h"
 
 namespace uwbsar {
-namespace {
-
-ceres::LossFunction* MakeRobustLoss(const BackendConfig& c) {
-  if (c.robust_loss == RobustLoss::kCauchy) return new ceres::CauchyLoss(c.robust_loss_scale);
-  if (c.robust_loss == RobustLoss::kHuber) return new ceres::HuberLoss(c.robust_loss_scale);
-  return nullptr;  // "none": plain least squares
-}
-
-}  // namespace
-
 void PoseGraph::SetLoopLosses(bool robust) {
   for (auto& se : solver_edges_) {
     if (!se->loss) continue;
@@ -35,6 +25,7 @@ void PoseGraph::SetLoopLosses(bool robust) {
       se->loss->Reset(robust ? MakeRobustLoss(config_) : nullptr, ceres::TAKE_OWNERSHIP);
     }
   }
+  SetObservationLosses();  // always robust: a wall may bend or end
 }
 
 bool PoseGraph::UpdateLoopStatus() {
@@ -49,6 +40,7 @@ bool PoseGraph::UpdateLoopStatus() {
       changed = true;
     }
   }
+  if (UpdateObservationStatus()) changed = true;
   return changed;
 }
 

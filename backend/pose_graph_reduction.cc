@@ -43,6 +43,15 @@ void PoseGraph::EraseSolverNode(int id) {
                                        return true;
                                      }),
                       solver_edges_.end());
+  // Its landmark observations leave with it (the landmark keeps the others').
+  solver_observations_.erase(
+      std::remove_if(solver_observations_.begin(), solver_observations_.end(),
+                     [&](const std::unique_ptr<SolverObservation>& so) {
+                       if (so->observation.node_id != id) return false;
+                       observation_removed_[static_cast<std::size_t>(so->index)] = true;
+                       return true;
+                     }),
+      solver_observations_.end());
   solver_nodes_.erase(node);
   node_trajectory_.erase(id);
   estimates_.erase(id);

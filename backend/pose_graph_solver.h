@@ -14,6 +14,14 @@
 
 namespace uwbsar {
 
+/// The configured robust loss of loops, wall edges and landmark observations (a new object,
+/// for the caller to own); nullptr for "none".
+inline ceres::LossFunction* MakeRobustLoss(const BackendConfig& c) {
+  if (c.robust_loss == RobustLoss::kCauchy) return new ceres::CauchyLoss(c.robust_loss_scale);
+  if (c.robust_loss == RobustLoss::kHuber) return new ceres::HuberLoss(c.robust_loss_scale);
+  return nullptr;  // "none": plain least squares
+}
+
 struct PoseGraph::SolverNode {
   // The Ceres parameter block [x_m, y_m, yaw_rad] in the solver frame: the world frame
   // moved to the first node's initial position (see solver_origin_).
@@ -54,6 +62,27 @@ struct PoseGraph::SolverEdge {
                                     travel, sqrt_information);
     }
     return Se2Chi2(from->x.data(), to->x.data(), edge.T_from_to, sqrt_information);
+  }
+};
+
+/// A line landmark's block [normal_rad, offset_m] in the solver frame (backend/line_landmark.h).
+struct PoseGraph::SolverLandmark {
+  std::array<double, 2> x{};
+};
+
+struct PoseGraph::SolverObservation {
+  int index = 0;
+  LineObservation observation;
+  SolverNode* node = nullptr;
+  SolverLandmark* landmark = nullptr;
+  ceres::ResidualBlockId residual = nullptr;
+  std::unique_ptr<ceres::LossFunctionWrapper> loss;  // robust, or zero weight once rejected
+  bool rejected = false;
+  double chi2 = 0.0;
+
+  double Chi2() const {
+    return LineObservationChi2(observation, Pose2{node->x[0], node->x[1], node->x[2]},
+                               Line2{landmark->x[0], landmark->x[1]});
   }
 };
 
