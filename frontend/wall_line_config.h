@@ -26,7 +26,8 @@ struct WallLineConfig {
   // Associating lines into landmarks (slam/wall_landmarks.h).
   double gate_offset_m = 0.1;  ///< a line joins a landmark within this offset ...
   double gate_angle_deg = 3.0;  ///< ... and this angle of it, seen from the keyframe
-  int max_gap = 3;              ///< a landmark not seen for this many keyframes ends
+  int max_gap = 3;              ///< a track survives this many keyframes in a row that do not
+                                ///< see its wall (a doorway); one more ends it
   int min_observations = 3;     ///< keyframes that must see a landmark before it enters the graph
 
   template <class V>
