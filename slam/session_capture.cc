@@ -8,6 +8,7 @@
 #include "slam/app_config_io.h"
 #include "slam/config/config_fingerprint.h"
 #include "slam/session/session_file.h"
+#include "slam/session/session_landmarks.h"
 
 namespace uwbsar::slam {
 namespace {
@@ -77,6 +78,7 @@ SessionData CaptureSession(const MapRun& run) {
   for (std::size_t i = 0; i < edges.size(); ++i) {
     d.edges.push_back({edges[i], i < reports.size() && reports[i].rejected});
   }
+  CaptureLandmarks(slam.graph(), &d);
   for (const LoopRecord& l : slam.loops()) {
     // A retired keyframe's loops went into the marginal edges with it: the session keeps the
     // loops between the keyframes it holds.

@@ -32,6 +32,12 @@ int SessionData::MaxTrajectoryId() const {
   return m;
 }
 
+int SessionData::MaxLandmarkId() const {
+  int m = -1;
+  for (const SessionLandmark& l : landmarks) m = std::max(m, l.id);
+  return m;
+}
+
 std::vector<int> SessionData::TrajectoryIds() const {
   std::vector<int> ids;
   for (const SessionKeyframe& k : keyframes) {
@@ -105,6 +111,17 @@ SessionData WithDenseIds(const SessionData& s) {
     a.id = next++;
     if (a.hub_id >= 0) a.hub_id = keyframe_of(a.hub_id);
     a.trajectory = trajectory_of(a.trajectory);
+  }
+  std::map<int, int> landmark;
+  for (SessionLandmark& l : out.landmarks) {
+    const int id = static_cast<int>(landmark.size());
+    landmark.emplace(l.id, id);
+    l.id = id;
+  }
+  for (SessionLineObservation& o : out.line_observations) {
+    o.observation.node_id = keyframe_of(o.observation.node_id);
+    const auto it = landmark.find(o.observation.landmark_id);
+    if (it != landmark.end()) o.observation.landmark_id = it->second;
   }
   return out;
 }

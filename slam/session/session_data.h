@@ -29,7 +29,9 @@ namespace uwbsar {
 /// akaze_good and orb_good columns, which versions 1 to 3 still read as AKAZE and ORB counts.
 /// 5: a tile may be compact (slam/session/blob_codec.h EncodeTile); 1 to 4 still read (float32).
 /// 6: the anchors table (keyframes the map retired, slam.place_views); 1 to 5 still read (none).
-constexpr int kSessionFormatVersion = 6;
+/// 7: the landmarks and line_observations tables (walls as line landmarks,
+/// place_recognition.wall_profiles.landmarks); 1 to 6 still read (none).
+constexpr int kSessionFormatVersion = 7;
 
 struct SessionKeyframe {
   int id = 0;          ///< unique in the session (graph node id)
@@ -94,6 +96,18 @@ struct SessionEdge {
   bool rejected = false;  ///< loops the backend rejected at the last solve
 };
 
+/// A wall landmark of the map (backend/line_landmark.h), in the session's map frame.
+struct SessionLandmark {
+  int id = 0;  ///< unique in the session
+  Line2 line_map;
+};
+
+/// One keyframe's observation of a landmark (LineObservation::node_id is the keyframe's id).
+struct SessionLineObservation {
+  LineObservation observation;
+  bool rejected = false;  ///< the backend rejected it at the last solve
+};
+
 struct SessionData {
   int format_version = kSessionFormatVersion;
   std::string config_yaml;  ///< the whole configuration it was made with
@@ -105,12 +119,15 @@ struct SessionData {
   std::vector<SessionKeyframe> keyframes;  ///< by trajectory, then in time
   std::vector<SessionEdge> edges;
   std::vector<SessionLoop> loops;
-  std::vector<SessionOdometry> odometry;  ///< by trajectory, then in time
-  std::vector<SessionAnchor> anchors;     ///< by trajectory, then in time
+  std::vector<SessionOdometry> odometry;                  ///< by trajectory, then in time
+  std::vector<SessionAnchor> anchors;                     ///< by trajectory, then in time
+  std::vector<SessionLandmark> landmarks;                 ///< by id
+  std::vector<SessionLineObservation> line_observations;  ///< in the pose graph's order
 
   const SessionKeyframe* Find(int id) const;
   int MaxKeyframeId() const;    ///< -1 when empty (anchors' ids included: never reused)
   int MaxTrajectoryId() const;  ///< -1 when empty
+  int MaxLandmarkId() const;    ///< -1 when empty
   /// Optimised T_map_anchor by keyframe id.
   std::map<int, Pose2> Poses() const;
   /// The runs that have keyframes, in the order of their first keyframe; with runs that only

@@ -9,6 +9,7 @@
 #include "core/errors.h"
 #include "slam/config/config_fingerprint.h"
 #include "slam/session/blob_codec.h"
+#include "slam/session/session_landmarks.h"
 #include "slam/session/session_loops.h"
 #include "slam/session/session_reader.h"
 #include "slam/session/sqlite_db.h"
@@ -188,6 +189,7 @@ void WriteAll(SqliteDb& db, const SessionData& d, bool lossless_tiles) {
   db.Exec("PRAGMA journal_mode = OFF; PRAGMA synchronous = OFF;");
   db.Exec(kSchema);
   db.Exec(session::kLoopTablesSchema);
+  db.Exec(session::kLandmarkTablesSchema);
   db.Exec("BEGIN");
   WriteMeta(db, d);
   WriteTrajectories(db, d);
@@ -196,6 +198,7 @@ void WriteAll(SqliteDb& db, const SessionData& d, bool lossless_tiles) {
   session::WriteLoopTables(db, d);
   WriteOdometry(db, d);
   WriteAnchors(db, d);
+  session::WriteLandmarkTables(db, d);
   db.Exec("COMMIT");
 }
 
@@ -254,9 +257,9 @@ SessionData ReadSession(const std::string& path, const SystemConfig* config) {
   // uncalibrated, as they were), versions 1 and 2 the trajectories' fingerprints (""), versions
   // 1 to 3 the loop_matches table (their loops' akaze_good and orb_good columns stand for it).
   // Version 4 and older hold float32 tiles only (version 5 also compact ones); version 5 and
-  // older have no anchors table (every keyframe was kept).
+  // older have no anchors table (every keyframe was kept), version 6 and older no landmarks.
   if (version != "1" && version != "2" && version != "3" && version != "4" && version != "5" &&
-      version != std::to_string(kSessionFormatVersion)) {
+      version != "6" && version != std::to_string(kSessionFormatVersion)) {
     throw InputError(path + ": session format version " + version.substr(0, 40) +
                      ", this uwbsar reads 1 to " + std::to_string(kSessionFormatVersion));
   }
@@ -269,6 +272,7 @@ SessionData ReadSession(const std::string& path, const SystemConfig* config) {
     if (!diff.empty()) throw InputError(path + ": incompatible configuration: " + diff);
   }
   session::ReadSessionTables(db, config != nullptr ? config->limits : LimitsConfig(), &d);
+  session::ReadLandmarkTables(db, &d);
   if (config != nullptr && !d.keyframes.empty()) {
     // Place recognition matches the saved features of the configured pair: a session made
     // with other detectors has nothing to match them against.

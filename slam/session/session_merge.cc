@@ -9,6 +9,7 @@
 #include "frontend/place_recognition/feature_matcher.h"
 #include "frontend/place_recognition/loop_validator.h"
 #include "slam/session/join_retirement.h"
+#include "slam/session/session_landmarks.h"
 
 namespace uwbsar {
 namespace {
@@ -30,9 +31,16 @@ Point2 Centre(const SessionKeyframe& k, const Pose2& T_map_anchor) {
   return T_map_anchor * k.features.centre_anchor;
 }
 
-/// b renumbered: keyframe ids + id_offset, trajectories + trajectory_offset, nothing fixed.
-SessionData Renumbered(const SessionData& b, int id_offset, int trajectory_offset) {
+/// b renumbered: keyframe ids + id_offset, trajectories + trajectory_offset, landmarks +
+/// landmark_offset, nothing fixed.
+SessionData Renumbered(const SessionData& b, int id_offset, int trajectory_offset,
+                       int landmark_offset) {
   SessionData out = b;
+  for (SessionLandmark& l : out.landmarks) l.id += landmark_offset;
+  for (SessionLineObservation& o : out.line_observations) {
+    o.observation.node_id += id_offset;
+    o.observation.landmark_id += landmark_offset;
+  }
   for (SessionTrajectory& t : out.trajectories) t.id += trajectory_offset;
   for (SessionKeyframe& k : out.keyframes) {
     k.id += id_offset;
@@ -154,6 +162,15 @@ std::vector<int> BuildJointGraph(const SessionData& a, const SessionData& b,
       graph->AddEdge(e.edge);
     }
   }
+  // Both sessions' walls, b's moved into a's map frame with it.
+  for (const SessionData* s : {&a, &b}) {
+    const Pose2 T_map_session = s == &b ? T_mapA_mapB : Pose2{};
+    for (const SessionLandmark& l : s->landmarks)
+      graph->AddLandmark(l.id, LineToWorld(T_map_session, l.line_map));
+    for (const SessionLineObservation& o : s->line_observations) {
+      if (!o.rejected) graph->AddLineObservation(o.observation);
+    }
+  }
   std::vector<PoseGraphEdge> between;
   for (const Hypothesis& h : loops) {
     PoseGraphEdge e;
@@ -192,6 +209,7 @@ void StoreJoined(const PoseGraph& graph, const std::vector<EdgeReport>& solved,
   out->edges.clear();
   for (std::size_t i = 0; i < edges.size(); ++i)
     out->edges.push_back({edges[i], reports[i].rejected});
+  CaptureLandmarks(graph, out);
   out->loops.insert(out->loops.end(), b.loops.begin(), b.loops.end());
   std::map<int, const EdgeReport*> verdict;  // by AddEdge index
   for (const EdgeReport& e : solved) verdict[e.index] = &e;
@@ -259,8 +277,8 @@ SessionData MergeSessions(const SessionData& a_in, const SessionData& b_in,
   r.renumbered = dense;
   r.id_offset = a.MaxKeyframeId() + 1;
   r.trajectory_offset = a.MaxTrajectoryId() + 1;
-  const SessionData b =
-      Renumbered(dense ? WithDenseIds(b_in) : b_in, r.id_offset, r.trajectory_offset);
+  const SessionData b = Renumbered(dense ? WithDenseIds(b_in) : b_in, r.id_offset,
+                                   r.trajectory_offset, a.MaxLandmarkId() + 1);
   std::vector<Hypothesis> before;  // validated loops before placement
   const std::vector<Hypothesis> loops = FindMergeLoops(a, b, config, &r, &before, on_progress);
   Log(LogLevel::kDebug,

@@ -1,0 +1,144 @@
+// Wall landmarks in the session file (format version 7, slam/session/session_landmarks.h): the
+// landmarks and their observations round-trip exactly, a row that refers to no landmark or
+// keyframe (or has no uncertainty) is refused naming it, a version 6 file reads with none, and
+// dense renumbering follows the keyframes.
+#include "slam/session/session_landmarks.h"
+
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+#include "slam/session/session_file.h"
+#include "test/slam/session/session_test_util.h"
+#include "test/slam/session/tiny_session.h"
+
+namespace uwbsar {
+namespace {
+namespace fs = std::filesystem;
+using testing::ErrorOf;
+
+/// The tiny session with one wall seen by its three keyframes (the last one rejected).
+SessionData WithWall() {
+  SessionData d = testing::TinySession();
+  d.landmarks.push_back({4, Line2{1.5, 0.75}});
+  for (int k = 0; k < 3; ++k) {
+    SessionLineObservation o;
+    o.observation.landmark_id = 4;
+    o.observation.node_id = k;
+    o.observation.line_node = LineToFrame(d.keyframes[k].T_map_anchor, d.landmarks[0].line_map);
+    o.observation.reference_node = {0.8, 0.1 * k};
+    o.observation.offset_std_m = 0.02 + 0.001 * k;
+    o.observation.normal_std_rad = 0.017;
+    o.rejected = k == 2;
+    d.line_observations.push_back(o);
+  }
+  return d;
+}
+
+class SessionLandmarksTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = (fs::temp_directory_path() /
+            ("uwbsar_landmarks_" + std::to_string(::getpid()) + "_" +
+             ::testing::UnitTest::GetInstance()->current_test_info()->name()))
+               .string();
+    fs::create_directories(dir_);
+    path_ = dir_ + "/session.uwbsar";
+    WriteSession(path_, WithWall());
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  void Sql(const std::string& sql) {
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(path_.c_str(), &db), SQLITE_OK);
+    char* error = nullptr;
+    const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error);
+    const std::string message = error ? error : "";
+    sqlite3_free(error);
+    sqlite3_close(db);
+    ASSERT_EQ(rc, SQLITE_OK) << sql << ": " << message;
+  }
+  std::string dir_, path_;
+};
+
+TEST_F(SessionLandmarksTest, LandmarksAndObservationsRoundTripExactly) {
+  const SessionData saved = WithWall();
+  const SessionData d = ReadSession(path_);
+  EXPECT_EQ(d.format_version, kSessionFormatVersion);
+  ASSERT_EQ(d.landmarks.size(), 1u);
+  EXPECT_EQ(d.landmarks[0].id, 4);
+  EXPECT_EQ(d.landmarks[0].line_map.normal_rad, 1.5);
+  EXPECT_EQ(d.landmarks[0].line_map.offset_m, 0.75);
+  ASSERT_EQ(d.line_observations.size(), 3u);
+  for (int k = 0; k < 3; ++k) {
+    const LineObservation& a = saved.line_observations[k].observation;
+    const LineObservation& b = d.line_observations[k].observation;
+    EXPECT_EQ(b.landmark_id, 4);
+    EXPECT_EQ(b.node_id, k);
+    EXPECT_EQ(b.line_node.normal_rad, a.line_node.normal_rad);
+    EXPECT_EQ(b.line_node.offset_m, a.line_node.offset_m);
+    EXPECT_EQ(b.reference_node.y_m, a.reference_node.y_m);
+    EXPECT_EQ(b.offset_std_m, a.offset_std_m);
+    EXPECT_EQ(d.line_observations[k].rejected, k == 2);
+  }
+  EXPECT_EQ(d.MaxLandmarkId(), 4);
+}
+
+TEST_F(SessionLandmarksTest, ObservationsOfNothingAreRefusedNamingTheRowAndColumn) {
+  Sql("UPDATE line_observations SET landmark_id = 9 WHERE idx = 1");
+  EXPECT_EQ(ErrorOf([&] { ReadSession(path_); }),
+            path_ + ": line_observations row 2: landmark_id 9 is not a landmark");
+  Sql("UPDATE line_observations SET landmark_id = 4, keyframe_id = 7 WHERE idx = 1");
+  EXPECT_EQ(ErrorOf([&] { ReadSession(path_); }),
+            path_ + ": line_observations row 2: keyframe_id 7 is not a keyframe");
+  Sql("UPDATE line_observations SET keyframe_id = 1, offset_std_m = 0 WHERE idx = 1");
+  EXPECT_EQ(ErrorOf([&] { ReadSession(path_); }),
+            path_ + ": line_observations row 2: offset_std_m must be > 0");
+  Sql("UPDATE line_observations SET offset_std_m = 0.02; UPDATE landmarks SET offset_m = NULL");
+  EXPECT_NE(ErrorOf([&] { ReadSession(path_); }).find(path_ + ": landmarks row 1: offset_m"),
+            std::string::npos);
+}
+
+TEST_F(SessionLandmarksTest, AVersion6FileHasNoLandmarks) {
+  Sql("DROP TABLE line_observations; DROP TABLE landmarks; "
+      "UPDATE meta SET value = '6' WHERE key = 'format_version'");
+  const SessionData d = ReadSession(path_);
+  EXPECT_EQ(d.format_version, 6);
+  EXPECT_TRUE(d.landmarks.empty());
+  EXPECT_TRUE(d.line_observations.empty());
+}
+
+TEST(SessionLandmarksDenseTest, DenseIdsFollowTheKeyframes) {
+  SessionData d = WithWall();
+  for (SessionKeyframe& k : d.keyframes) k.id += 10;
+  for (SessionEdge& e : d.edges) e.edge.from_id += 10, e.edge.to_id += 10;
+  for (SessionLoop& l : d.loops) l.query_id += 10, l.match_id += 10;
+  for (SessionLineObservation& o : d.line_observations) o.observation.node_id += 10;
+  const SessionData dense = WithDenseIds(d);
+  ASSERT_EQ(dense.line_observations.size(), 3u);
+  EXPECT_EQ(dense.line_observations[2].observation.node_id, 2);
+  EXPECT_EQ(dense.landmarks[0].id, 0);
+  EXPECT_EQ(dense.line_observations[0].observation.landmark_id, 0);
+}
+
+TEST(SessionLandmarksCaptureTest, TheGraphsLandmarksAreCapturedWithTheObservationsOfItsNodes) {
+  const SessionData d = WithWall();
+  PoseGraph g;
+  for (const SessionKeyframe& k : d.keyframes) g.AddNode(k.id, k.T_map_anchor, false);
+  g.FixNode(0);
+  for (const SessionEdge& e : d.edges) g.AddEdge(e.edge);
+  g.AddLandmark(4, d.landmarks[0].line_map);
+  g.AddLandmark(5, Line2{0.0, 3.0});  // seen by nobody: not captured
+  for (const SessionLineObservation& o : d.line_observations) g.AddLineObservation(o.observation);
+  g.Optimize();
+  SessionData out;
+  CaptureLandmarks(g, &out);
+  ASSERT_EQ(out.landmarks.size(), 1u);
+  EXPECT_EQ(out.landmarks[0].id, 4);
+  EXPECT_EQ(out.line_observations.size(), 3u);
+}
+
+}  // namespace
+}  // namespace uwbsar
