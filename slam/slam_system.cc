@@ -48,6 +48,7 @@ SlamSystem::SlamSystem(const Config& config)
       graph_(std::make_unique<PoseGraph>(config.backend)),
       recognizer_(std::make_unique<PlaceRecognizer>(PlaceRecognizerConfig(config))),
       wall_edges_(config.place_recognition.wall_profiles),
+      wall_landmarks_(config.place_recognition.wall_profiles),
       tiles_(static_cast<std::size_t>(config.limits.tile_cache_mb * 1024.0 * 1024.0)),
       worker_(config.slam.keyframe_thread, config.slam.keyframe_queue_size,
               [this](Work&& work) { Process(std::move(work)); }) {
@@ -161,8 +162,15 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
   KeyframeRecord record;
   cv::Mat detected;
   MakeDetected(keyframe, config_, &detected, &record.detected_grid);
+  // Walls as landmarks, or as the pairwise edges: the two measure the same walls.
+  const WallProfileConfig& wall_config = config_.place_recognition.wall_profiles;
+  const bool landmarks = wall_config.enabled && wall_config.landmarks.enabled;
   const std::vector<PoseGraphEdge> walls =
-      wall_edges_.Add(keyframe, detected, record.detected_grid);
+      landmarks ? std::vector<PoseGraphEdge>()
+                : wall_edges_.Add(keyframe, detected, record.detected_grid);
+  const WallLandmarkTracker::Update seen =
+      landmarks ? wall_landmarks_.Add(keyframe, detected, record.detected_grid)
+                : WallLandmarkTracker::Update();
   record.detected = tiles_.Put(detected);  // out of core from here on
   if (!config_.slam.keep_tile_images) keyframe.image.release();
   keyframe.sensor_tiles.clear();  // per-radar images: only their features are kept
@@ -180,6 +188,10 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
   for (const PoseGraphEdge& wall : walls) {
     // A wall partner retired meanwhile (another run's, never this run's recent ones) is gone.
     if (graph_->HasNode(wall.from_id) && graph_->HasNode(wall.to_id)) graph_->AddEdge(wall);
+  }
+  for (const auto& [id, line] : seen.new_landmarks) graph_->AddLandmark(id, line);
+  for (const LineObservation& o : seen.observations) {
+    if (graph_->HasNode(o.node_id)) graph_->AddLineObservation(o);
   }
   awaiting_retirement_check_.push_back(keyframe.id);
   record.keyframe = std::move(keyframe);

@@ -33,6 +33,7 @@
 #include "slam/session/tile_store.h"
 #include "slam/slam_snapshot.h"
 #include "slam/wall_edges.h"
+#include "slam/wall_landmarks.h"
 
 namespace uwbsar::slam {
 
@@ -140,6 +141,7 @@ class SlamSystem {
   std::unique_ptr<PoseGraph> graph_;             // GUARDED_BY(state_mutex_), solves included
   std::unique_ptr<PlaceRecognizer> recognizer_;  // keyframe thread only
   WallEdgeFinder wall_edges_;                    // keyframe thread only
+  WallLandmarkTracker wall_landmarks_;           // keyframe thread only
   TileStore tiles_;                              // thread-safe (detected tiles out of core)
   std::vector<KeyframeRecord> keyframes_;        // GUARDED_BY(state_mutex_)
   std::vector<RetiredKeyframe> retired_;         // GUARDED_BY(state_mutex_)

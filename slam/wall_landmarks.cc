@@ -16,6 +16,39 @@ double OffsetAt(const Line2& l, const Point2& q) {
 
 }  // namespace
 
+std::vector<SeenLine> SeenLines(const std::vector<WallLineObservation>& lines,
+                                double heading_anchor_rad) {
+  std::vector<SeenLine> out;
+  const double ux = std::cos(heading_anchor_rad), uy = std::sin(heading_anchor_rad);
+  for (const WallLineObservation& w : lines) {
+    SeenLine s;
+    s.line_anchor = {w.normal_rad, w.offset_m};
+    s.offset_std_m = w.offset_std_m;
+    s.normal_std_rad = w.normal_std_rad;
+    const double mid = 0.5 * (w.begin_m + w.end_m);
+    const Point2 on_path{mid * ux, mid * uy};
+    const double nx = std::cos(w.normal_rad), ny = std::sin(w.normal_rad);
+    const double off = w.offset_m - (nx * on_path.x_m + ny * on_path.y_m);
+    s.reference_anchor = {on_path.x_m + off * nx, on_path.y_m + off * ny};
+    out.push_back(s);
+  }
+  return out;
+}
+
+WallLandmarkTracker::Update WallLandmarkTracker::Add(const Keyframe& keyframe,
+                                                     const cv::Mat& detected,
+                                                     const ImageGrid& grid) {
+  std::vector<SeenLine> lines;
+  if (keyframe.complete && !detected.empty()) {
+    const double heading_anchor_rad =
+        keyframe.T_world_robot.yaw_rad - keyframe.T_world_anchor.yaw_rad;
+    lines = SeenLines(FindWallLines(detected, grid, heading_anchor_rad, profile_config_),
+                      heading_anchor_rad);
+  }
+  lines_seen_ += static_cast<int>(lines.size());
+  return Add(keyframe.id, keyframe.T_world_anchor, lines);
+}
+
 WallLandmarkTracker::Update WallLandmarkTracker::Add(int keyframe_id, const Pose2& T_world_anchor,
                                                      const std::vector<SeenLine>& lines) {
   ++calls_;

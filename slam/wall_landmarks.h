@@ -15,9 +15,13 @@
 #include <utility>
 #include <vector>
 
+#include <opencv2/core.hpp>
+
 #include "backend/line_landmark.h"
 #include "core/pose2.h"
-#include "frontend/wall_line_config.h"
+#include "frontend/keyframe.h"
+#include "frontend/wall_line.h"
+#include "frontend/wall_profile_config.h"
 
 namespace uwbsar::slam {
 
@@ -29,11 +33,17 @@ struct SeenLine {
   double normal_std_rad = 0.017;
 };
 
+/// The lines of FindWallLines for a robot heading `heading_anchor_rad` in the anchor frame, each
+/// with its reference point: the point of the line nearest the middle of the stretch of path
+/// along which the tile saw it.
+std::vector<SeenLine> SeenLines(const std::vector<WallLineObservation>& lines,
+                                double heading_anchor_rad);
+
 class WallLandmarkTracker {
  public:
   /// Landmark ids are handed out from `first_landmark_id` up.
-  explicit WallLandmarkTracker(const WallLineConfig& config, int first_landmark_id = 0)
-      : config_(config), next_id_(first_landmark_id) {}
+  explicit WallLandmarkTracker(const WallProfileConfig& config, int first_landmark_id = 0)
+      : profile_config_(config), config_(config.landmarks), next_id_(first_landmark_id) {}
 
   struct Update {
     /// Landmarks that enter the graph now, with their line in the odometry's world frame (the
@@ -44,11 +54,16 @@ class WallLandmarkTracker {
     std::vector<LineObservation> observations;
   };
 
+  /// The walls of `keyframe`, whose detected tile is `detected` on `grid` (its anchor frame); a
+  /// tile cut short (!keyframe.complete) sees none.
+  Update Add(const Keyframe& keyframe, const cv::Mat& detected, const ImageGrid& grid);
+
   /// The walls keyframe `keyframe_id` sees; T_world_anchor is its anchor's odometry pose.
   /// Keyframes come in path order, one call each (an empty `lines` counts towards the gap).
   Update Add(int keyframe_id, const Pose2& T_world_anchor, const std::vector<SeenLine>& lines);
 
   int tracks_started() const { return tracks_started_; }
+  int lines_seen() const { return lines_seen_; }
   int next_landmark_id() const { return next_id_; }
 
  private:
@@ -59,8 +74,10 @@ class WallLandmarkTracker {
     std::vector<LineObservation> waiting;  ///< sightings before it enters the graph
   };
 
+  const WallProfileConfig profile_config_;
   const WallLineConfig config_;
   int next_id_ = 0;
+  int lines_seen_ = 0;
   int calls_ = 0;
   int tracks_started_ = 0;
   std::vector<Track> tracks_;

@@ -38,8 +38,9 @@ Pose2 Anchor(int k) {
 }
 
 TEST(WallLandmarkTrackerTest, ACorridorsTwoWallsBecomeTwoLandmarksSeenByEveryKeyframe) {
-  WallLineConfig config;
-  WallLandmarkTracker tracker(config, 5);
+  WallProfileConfig profiles;
+  const WallLineConfig& config = profiles.landmarks;
+  WallLandmarkTracker tracker(profiles, 5);
   std::map<int, int> observations;  // by landmark
   std::vector<int> entered_at;
   for (int k = 0; k < 20; ++k) {
@@ -66,9 +67,9 @@ TEST(WallLandmarkTrackerTest, ACorridorsTwoWallsBecomeTwoLandmarksSeenByEveryKey
 }
 
 TEST(WallLandmarkTrackerTest, ATurnOrAGapEndsATrack) {
-  WallLineConfig config;
-  config.max_gap = 2;
-  WallLandmarkTracker tracker(config);
+  WallProfileConfig profiles;
+  profiles.landmarks.max_gap = 2;
+  WallLandmarkTracker tracker(profiles);
   for (int k = 0; k < 4; ++k)
     tracker.Add(k, Pose2{1.0 * k, 0.0, 0.0}, CorridorWalls({1.0 * k, 0.0, 0.0}));
   EXPECT_EQ(tracker.tracks_started(), 2);
@@ -91,8 +92,7 @@ TEST(WallLandmarkTrackerTest, ATurnOrAGapEndsATrack) {
 }
 
 TEST(WallLandmarkTrackerTest, ALineWithItsNormalTurnedOverJoinsItsWallAndFacesIt) {
-  WallLineConfig config;
-  WallLandmarkTracker tracker(config);
+  WallLandmarkTracker tracker{WallProfileConfig()};
   std::vector<LineObservation> all;
   for (int k = 0; k < 6; ++k) {
     const Pose2 p{1.0 * k, 0.0, 0.0};
