@@ -54,29 +54,31 @@ std::vector<Candidate> PickWalls(const WallProfile& p, const WallLineConfig& con
   return walls;
 }
 
-/// The tile within +-band of a wall's offset, summed into cells along the path (one pixel
-/// wide) x bins across it (the profile's bins).
+/// The tile within +-half_m of a wall's offset, summed into cells along the path (one pixel
+/// wide) x bins across it (the profile's bins). half_m is two bands: the wall is searched in
+/// the middle half (+-band), the outer parts give the floor beside it (a radar's wall is blurred
+/// over a width like the band's, so the band alone would hold little but the wall).
 struct Band {
-  double centre_m = 0.0, band_m = 0.0, bin_m = 0.0;  ///< across the path
+  double centre_m = 0.0, half_m = 0.0, bin_m = 0.0;  ///< across the path
   double along0_m = 0.0, cell_m = 0.0;               ///< cell k covers along0 + [k, k+1) cell
   int cells = 0, bins = 0;
   std::vector<float> sums;  ///< cells x bins
   std::vector<int> imaged;  ///< pixels > 0 per cell
 
   const float* Cell(int k) const { return sums.data() + static_cast<std::size_t>(k) * bins; }
-  double AcrossM(double bin) const { return centre_m - band_m + (bin + 0.5) * bin_m; }
+  double AcrossM(double bin) const { return centre_m - half_m + (bin + 0.5) * bin_m; }
   double AlongM(double cell) const { return along0_m + (cell + 0.5) * cell_m; }
 };
 
 Band SumBand(const cv::Mat& detected, const ImageGrid& grid, double heading_rad, double centre_m,
-             double band_m, double bin_m) {
+             double half_m, double bin_m) {
   const double ux = std::cos(heading_rad), uy = std::sin(heading_rad);
   const GridProjection along(grid, ux, uy), across(grid, -uy, ux);
   Band band;
   band.centre_m = centre_m;
-  band.band_m = band_m;
+  band.half_m = half_m;
   band.bin_m = bin_m;
-  band.bins = static_cast<int>(std::lround(2.0 * band_m / bin_m));
+  band.bins = static_cast<int>(std::lround(2.0 * half_m / bin_m));
   // The tile's extent along the path: its corners' pixel centres.
   const double t[4] = {along.At(0, 0), along.At(grid.cols - 1, 0), along.At(0, grid.rows - 1),
                        along.At(grid.cols - 1, grid.rows - 1)};
@@ -87,8 +89,8 @@ Band SumBand(const cv::Mat& detected, const ImageGrid& grid, double heading_rad,
   band.imaged.assign(static_cast<std::size_t>(band.cells), 0);
   // Pixels whose footprint reaches into the band: across = AtRow(r) + per_col c lies within
   // reach of the centre, an interval of columns on each row.
-  const double reach_m = band_m + 0.5 * across.footprint_m;
-  const double first_edge_m = centre_m - band_m + 0.5 * across.footprint_m;  // as in the profile
+  const double reach_m = half_m + 0.5 * across.footprint_m;
+  const double first_edge_m = centre_m - half_m + 0.5 * across.footprint_m;  // as in the profile
   const double width_bins = across.footprint_m / bin_m;
   for (int r = 0; r < grid.rows; ++r) {
     const double s_row = across.AtRow(r);
@@ -131,8 +133,8 @@ StripPeak FindStripPeak(const Band& band, int begin, int end, double min_contras
     for (int b = 0; b < band.bins; ++b) profile[static_cast<std::size_t>(b)] += cell[b];
   }
   if (imaged == 0) return result;
-  // The floor: the lower quartile of the imaged bins (a wall and its flanks may fill much of
-  // the band, so not the median).
+  // The floor: the lower quartile of the imaged bins (a wall and its flanks may fill half of
+  // them, so not the median).
   std::vector<float> sorted;
   for (const float v : profile) {
     if (v > 0.0f) sorted.push_back(v);
@@ -140,17 +142,20 @@ StripPeak FindStripPeak(const Band& band, int begin, int end, double min_contras
   if (sorted.size() < 4) return result;
   std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 4, sorted.end());
   const double floor = sorted[sorted.size() / 4];
-  const int peak =
-      static_cast<int>(std::max_element(profile.begin(), profile.end()) - profile.begin());
-  // A peak on the band's edge may be a wall outside it (or its flank).
-  if (peak == 0 || peak + 1 == band.bins ||
+  // The peak within +-band (the middle half); one on its edge may be a wall beyond it, or the
+  // flank of one.
+  const int search_begin = band.bins / 4, search_end = band.bins - band.bins / 4;
+  const int peak = static_cast<int>(
+      std::max_element(profile.begin() + search_begin, profile.begin() + search_end) -
+      profile.begin());
+  if (peak == search_begin || peak + 1 == search_end ||
       profile[static_cast<std::size_t>(peak)] < min_contrast * floor) {
     return result;
   }
   // Below a bin: the centroid above the floor within +-half a band of it, moved onto the
   // centroid until it settles (the wall's spread across the path is symmetric; a parabola
   // through three bins of a speckled profile is several times noisier).
-  const int reach = std::max(1, band.bins / 4);
+  const int reach = std::max(1, band.bins / 8);
   double centre = peak;
   for (int iteration = 0; iteration < 5; ++iteration) {
     const int c = static_cast<int>(std::lround(centre));
@@ -186,6 +191,38 @@ StripPeak FindStripPeak(const Band& band, int begin, int end, double min_contras
   return result;
 }
 
+/// Least squares across = at_anchor + slope * along through the strips' positions.
+struct LineFit {
+  bool ok = false;  ///< false: fewer than two distinct positions along the path
+  int n = 0;
+  double slope = 0.0, at_anchor_m = 0.0;
+  double t_mean_m = 0.0, stt = 0.0;  ///< mean along, and sum of squares about it
+  double squares = 0.0;              ///< sum of squared residuals
+
+  double Residual(const StripPeak& p) const {
+    return p.across_m - (at_anchor_m + slope * p.along_m);
+  }
+  double Rms() const { return n > 0 ? std::sqrt(squares / n) : 0.0; }
+};
+
+LineFit FitLine(const std::vector<StripPeak>& strips) {
+  LineFit fit;
+  fit.n = static_cast<int>(strips.size());
+  double s_mean = 0.0;
+  for (const StripPeak& p : strips) fit.t_mean_m += p.along_m / fit.n, s_mean += p.across_m / fit.n;
+  double sts = 0.0;
+  for (const StripPeak& p : strips) {
+    fit.stt += (p.along_m - fit.t_mean_m) * (p.along_m - fit.t_mean_m);
+    sts += (p.along_m - fit.t_mean_m) * (p.across_m - s_mean);
+  }
+  if (!(fit.stt > 0.0)) return fit;
+  fit.ok = true;
+  fit.slope = sts / fit.stt;
+  fit.at_anchor_m = s_mean - fit.slope * fit.t_mean_m;
+  for (const StripPeak& p : strips) fit.squares += fit.Residual(p) * fit.Residual(p);
+  return fit;
+}
+
 }  // namespace
 
 std::vector<WallLineObservation> FindWallLines(const cv::Mat& detected, const ImageGrid& grid,
@@ -196,7 +233,7 @@ std::vector<WallLineObservation> FindWallLines(const cv::Mat& detected, const Im
   std::vector<WallLineObservation> result;
   for (const Candidate& wall : PickWalls(profile, lines)) {
     const Band band =
-        SumBand(detected, grid, heading_rad, wall.offset_m, lines.band_m, config.bin_m);
+        SumBand(detected, grid, heading_rad, wall.offset_m, 2.0 * lines.band_m, config.bin_m);
     // The extent along the path in which the wall shows: from the first to the last of
     // 4 x strips segments of the band's imaged cells that show it.
     int first = 0, last = band.cells - 1;
@@ -212,7 +249,8 @@ std::vector<WallLineObservation> FindWallLines(const cv::Mat& detected, const Im
       if (begin < 0) begin = a;
       end = b;
     }
-    if (begin < 0 || end - begin < lines.strips) continue;
+    // Each strip at least a segment long: a wall seen over a short piece has no angle.
+    if (begin < 0 || (end - begin) * segments < lines.strips * (last + 1 - first)) continue;
     // The wall's position across the path in each strip; a line through them.
     std::vector<StripPeak> shown;
     for (int s = 0; s < lines.strips; ++s) {
@@ -221,22 +259,12 @@ std::vector<WallLineObservation> FindWallLines(const cv::Mat& detected, const Im
                         begin + (end - begin) * (s + 1) / lines.strips, lines.min_peak_contrast);
       if (peak.shows) shown.push_back(peak);
     }
-    const int n = static_cast<int>(shown.size());
-    if (n < std::max(2, lines.min_strips)) continue;
-    double t_mean = 0.0, s_mean = 0.0;
-    for (const StripPeak& p : shown) t_mean += p.along_m / n, s_mean += p.across_m / n;
-    double stt = 0.0, sts = 0.0;
-    for (const StripPeak& p : shown) {
-      stt += (p.along_m - t_mean) * (p.along_m - t_mean);
-      sts += (p.along_m - t_mean) * (p.across_m - s_mean);
-    }
-    if (!(stt > 0.0)) continue;
-    const double slope = sts / stt, at_anchor_m = s_mean - slope * t_mean;
-    double squares = 0.0;
-    for (const StripPeak& p : shown) {
-      const double residual = p.across_m - (at_anchor_m + slope * p.along_m);
-      squares += residual * residual;
-    }
+    if (static_cast<int>(shown.size()) < std::max(2, lines.min_strips)) continue;
+    const LineFit fit = FitLine(shown);
+    if (!fit.ok) continue;
+    const int n = fit.n;
+    const double slope = fit.slope, at_anchor_m = fit.at_anchor_m, t_mean = fit.t_mean_m;
+    const double stt = fit.stt, squares = fit.squares;
     WallLineObservation line;
     line.fit_rms_m = std::sqrt(squares / n);
     if (line.fit_rms_m > lines.max_fit_rms_m) continue;  // a corner or a step, not one wall

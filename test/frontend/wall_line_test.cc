@@ -7,7 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
+#include <cstdio>
+#include <opencv2/imgproc.hpp>
 
 #include "test/frontend/corridor_tile.h"
 
@@ -54,12 +55,6 @@ TEST(WallLineTest, StraightWallsAreMeasuredAtAnyHeadingAndAngle) {
         EXPECT_LE(line.end_m, 1.0);
         EXPECT_GE(line.offset_std_m, config.landmarks.offset_std_m);
         EXPECT_GE(line.normal_std_rad, config.landmarks.angle_std_deg * kDeg);
-        if (std::getenv("WALL_LINE_DEBUG")) {
-          std::printf("h %6.1f a %5.1f  offset err %6.2f mm  normal err %6.3f deg  rms %.2f mm\n",
-                      heading_deg, angle_deg, 1e3 * (line.offset_m - truth_m),
-                      std::remainder(line.normal_rad - (h + a + 0.5 * kPi), 2 * kPi) / kDeg,
-                      1e3 * line.fit_rms_m);
-        }
         worst_offset_m = std::max(worst_offset_m, std::abs(line.offset_m - truth_m));
         worst_normal_rad =
             std::max(worst_normal_rad, AngleDiff(line.normal_rad, h + a + 0.5 * kPi));
@@ -68,6 +63,24 @@ TEST(WallLineTest, StraightWallsAreMeasuredAtAnyHeadingAndAngle) {
   }
   std::printf("worst offset error %.2f mm, worst normal error %.3f deg\n", 1e3 * worst_offset_m,
               worst_normal_rad / kDeg);
+}
+
+TEST(WallLineTest, FinePixelsGiveTheSameLines) {
+  const WallProfileConfig config;
+  // The 1 cm tile on 5 mm pixels (each pixel split in four of the same intensity), as the
+  // imaging's 5 mm tiles are: about 1000 x 1000 pixels.
+  const ImageGrid coarse = TileGrid();
+  const ImageGrid grid = ImageGrid::Covering(-2.5, 2.5, -2.5, 2.5, 0.005);
+  const double h = -50.0 * kDeg, a = 1.0 * kDeg;
+  cv::Mat tile;
+  cv::resize(CorridorTile(coarse, h, {0.8, -1.5}, 4, a), tile, cv::Size(grid.cols, grid.rows), 0, 0,
+             cv::INTER_NEAREST);
+  const std::vector<WallLineObservation> lines = FindWallLines(tile, grid, h, config);
+  ASSERT_EQ(lines.size(), 2u);
+  for (const WallLineObservation& line : lines) {
+    EXPECT_NEAR(line.offset_m, line.offset_m > 0.0 ? 0.8 : -1.5, 0.005);
+    EXPECT_LT(AngleDiff(line.normal_rad, h + a + 0.5 * kPi), 0.3 * kDeg);
+  }
 }
 
 TEST(WallLineTest, NoiseAloneGivesNoLine) {
