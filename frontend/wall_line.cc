@@ -121,6 +121,7 @@ struct StripPeak {
   bool shows = false;
   double across_m = 0.0;  ///< the wall's offset along the path's left normal
   double along_m = 0.0;   ///< where along the path the wall's energy in the strip lies
+  double energy = 0.0;    ///< the wall's energy above the floor in the strip
 };
 
 StripPeak FindStripPeak(const Band& band, int begin, int end, double min_contrast) {
@@ -172,8 +173,9 @@ StripPeak FindStripPeak(const Band& band, int begin, int end, double min_contras
     centre = moved;
     if (settled) break;
   }
-  // Along: the cells weighted by the wall's energy above the floor near the peak.
-  const int lo = std::max(0, peak - 4), hi = std::min(band.bins, peak + 5);
+  // Along: the cells weighted by the wall's energy above the floor near the wall.
+  const int at = static_cast<int>(std::lround(centre));
+  const int lo = std::max(0, at - reach), hi = std::min(band.bins, at + reach + 1);
   const double cell_floor = floor * (hi - lo) / std::max(1, end - begin);
   double weight = 0.0, moment = 0.0;
   for (int k = begin; k < end; ++k) {
@@ -188,38 +190,51 @@ StripPeak FindStripPeak(const Band& band, int begin, int end, double min_contras
   result.shows = true;
   result.across_m = band.AcrossM(centre);
   result.along_m = moment / weight;
+  result.energy = weight;
   return result;
 }
 
-/// Least squares across = at_anchor + slope * along through the strips' positions.
+/// Least squares across = at_anchor + slope * along through the strips' positions, each
+/// weighted by its wall energy (weights of mean 1): a strip that shows little of the wall (a
+/// doorway, the tile's end) places it less precisely.
 struct LineFit {
-  bool ok = false;  ///< false: fewer than two distinct positions along the path
+  bool ok = false;  ///< false: no energy, or no two distinct positions along the path
   int n = 0;
   double slope = 0.0, at_anchor_m = 0.0;
-  double t_mean_m = 0.0, stt = 0.0;  ///< mean along, and sum of squares about it
-  double squares = 0.0;              ///< sum of squared residuals
+  double t_mean_m = 0.0, stt = 0.0;  ///< weighted mean along, and sum of squares about it
+  double squares = 0.0;              ///< weighted sum of squared residuals
 
   double Residual(const StripPeak& p) const {
     return p.across_m - (at_anchor_m + slope * p.along_m);
   }
-  double Rms() const { return n > 0 ? std::sqrt(squares / n) : 0.0; }
 };
 
 LineFit FitLine(const std::vector<StripPeak>& strips) {
   LineFit fit;
   fit.n = static_cast<int>(strips.size());
+  double total = 0.0;
+  for (const StripPeak& p : strips) total += p.energy;
+  if (!(total > 0.0)) return fit;
+  std::vector<double> w;
+  for (const StripPeak& p : strips) w.push_back(fit.n * p.energy / total);
   double s_mean = 0.0;
-  for (const StripPeak& p : strips) fit.t_mean_m += p.along_m / fit.n, s_mean += p.across_m / fit.n;
+  for (std::size_t i = 0; i < strips.size(); ++i) {
+    fit.t_mean_m += w[i] * strips[i].along_m / fit.n;
+    s_mean += w[i] * strips[i].across_m / fit.n;
+  }
   double sts = 0.0;
-  for (const StripPeak& p : strips) {
-    fit.stt += (p.along_m - fit.t_mean_m) * (p.along_m - fit.t_mean_m);
-    sts += (p.along_m - fit.t_mean_m) * (p.across_m - s_mean);
+  for (std::size_t i = 0; i < strips.size(); ++i) {
+    const double dt = strips[i].along_m - fit.t_mean_m;
+    fit.stt += w[i] * dt * dt;
+    sts += w[i] * dt * (strips[i].across_m - s_mean);
   }
   if (!(fit.stt > 0.0)) return fit;
   fit.ok = true;
   fit.slope = sts / fit.stt;
   fit.at_anchor_m = s_mean - fit.slope * fit.t_mean_m;
-  for (const StripPeak& p : strips) fit.squares += fit.Residual(p) * fit.Residual(p);
+  for (std::size_t i = 0; i < strips.size(); ++i) {
+    fit.squares += w[i] * fit.Residual(strips[i]) * fit.Residual(strips[i]);
+  }
   return fit;
 }
 
@@ -276,11 +291,14 @@ std::vector<WallLineObservation> FindWallLines(const cv::Mat& detected, const Im
     if (line.normal_rad <= -kPi) line.normal_rad = kPi;                     // ... to (-pi, pi]
     line.offset_m = std::cos(angle_rad) * at_anchor_m;
     // The configured uncertainties, combined with the fit's standard errors (offset at the
-    // anchor, slope), which grow when the strips scatter about the line.
-    const double offset_var = squares / n * (1.0 / n + t_mean * t_mean / stt);
+    // anchor, slope): they grow when the strips scatter about the line or span little of the
+    // path. A strip's variance: the residuals' (n - 2 degrees of freedom), at least a bin's
+    // square (three strips on a line by chance do not make a precise angle).
+    const double strip_var = std::max(n > 2 ? squares / (n - 2) : 0.0, config.bin_m * config.bin_m);
+    const double offset_var = strip_var * (1.0 / n + t_mean * t_mean / stt);
     line.offset_std_m = std::sqrt(lines.offset_std_m * lines.offset_std_m + offset_var);
     const double angle_std_rad = lines.angle_std_deg * kPi / 180.0;
-    line.normal_std_rad = std::sqrt(angle_std_rad * angle_std_rad + squares / n / stt);
+    line.normal_std_rad = std::sqrt(angle_std_rad * angle_std_rad + strip_var / stt);
     line.begin_m = shown.front().along_m;
     line.end_m = shown.back().along_m;
     line.contrast = wall.contrast;

@@ -5,7 +5,7 @@
 // walls but not their angle to the path. Cutting the tile into strips along the path and
 // locating each wall in every strip gives the wall's offset as a function of the position along
 // the path; a straight line through them is the wall. Many keyframes seeing one line keep a long
-// corridor straight in the graph (slam/wall_landmarks.h, backend/line_landmark.h).
+// corridor straight in the pose graph, as line landmarks.
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -24,8 +24,8 @@ namespace uwbsar {
 struct WallLineObservation {
   double normal_rad = 0.0;      ///< in (-pi, pi]
   double offset_m = 0.0;        ///< signed distance of the wall from the anchor along n
-  double offset_std_m = 0.0;    ///< config.offset_std_m and the fit's standard error, combined
-  double normal_std_rad = 0.0;  ///< config.angle_std_deg and the fit's standard error, combined
+  double offset_std_m = 0.0;    ///< landmarks.offset_std_m and the fit's standard error
+  double normal_std_rad = 0.0;  ///< landmarks.angle_std_deg and the fit's standard error
   /// Extent of the wall seen, as positions along the path direction (cos h, sin h) . p of the
   /// first and last strip centres that showed it (a strip's centre: where along it the wall's
   /// energy lies, not the strip's middle).
@@ -43,12 +43,17 @@ struct WallLineObservation {
 ///
 /// Method: the whole tile's profile across the path gives the walls' offsets (its peaks, at
 /// least landmarks.min_peak_contrast over its floor and landmarks.min_distance_m from the
-/// anchor). Around each, +-landmarks.band_m, one pass over the pixels sums the tile into cells
-/// along the path x bins across it. The along-path extent in which the wall shows is cut into
-/// landmarks.strips strips; in each the wall's position across the path is its band profile's
-/// peak, refined below a bin. A least-squares line through at least landmarks.min_strips of
-/// them, with an rms about it of at most landmarks.max_fit_rms_m, is the wall: a corner or a
-/// step in the wall puts the strips off one line and the wall is refused, not averaged.
+/// anchor). Around each, +-2 bands, one pass over those pixels sums the tile into cells along the
+/// path x bins across it. The along-path extent in which the wall shows (4 x strips segments of
+/// the band's imaged length, each tested for a peak) is cut into landmarks.strips strips, which
+/// together must span at least a quarter of that length. In each strip the wall lies at its
+/// profile's peak within +-band_m, at least min_peak_contrast over the lower quartile of the
+/// +-2 bands (a radar's wall is blurred over about a band), refined to the centroid above that
+/// floor within +-band_m / 2; its position along the path is where its energy lies. A line
+/// through at least landmarks.min_strips strips, weighted by their wall energy, with an rms
+/// about it of at most landmarks.max_fit_rms_m, is the wall: a step in the wall puts the strips
+/// off one line and the wall is refused, not averaged. The standard deviations combine the
+/// configured ones with the fit's standard errors (a strip's variance at least a bin's square).
 std::vector<WallLineObservation> FindWallLines(const cv::Mat& detected, const ImageGrid& grid,
                                                double heading_rad, const WallProfileConfig& config);
 

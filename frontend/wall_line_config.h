@@ -19,6 +19,7 @@ struct WallLineConfig {
                                    ///< the wall's position in each gives its angle
   int min_strips = 3;              ///< strips that must show the wall
   double band_m = 0.1;             ///< a strip's peak is searched this far across the wall
+                                   ///< (its floor is taken from twice as far)
   double max_fit_rms_m = 0.02;     ///< strips further than this (rms) from one straight line:
                                    ///< not a straight wall (a corner, a doorway's jamb)
   double offset_std_m = 0.02;      ///< standard deviation of a line's measured offset
