@@ -25,7 +25,7 @@ struct WallLineConfig {
   double offset_std_m = 0.02;      ///< standard deviation of a line's measured offset
   double angle_std_deg = 1.0;      ///< ... and of its measured angle
   // Associating lines into landmarks (slam/wall_landmarks.h).
-  double gate_offset_m = 0.1;  ///< a line joins a landmark within this offset ...
+  double gate_offset_m = 0.1;   ///< a line joins a landmark within this offset ...
   double gate_angle_deg = 3.0;  ///< ... and this angle of it, seen from the keyframe
   int max_gap = 3;              ///< a landmark not seen for this many keyframes ends
   int min_observations = 3;     ///< keyframes that must see a landmark before it enters the graph
