@@ -5,7 +5,7 @@
 // walls but not their angle to the path. Cutting the tile into strips along the path and
 // locating each wall in every strip gives the wall's offset as a function of the position along
 // the path; a straight line through them is the wall. Many keyframes seeing one line keep a long
-// corridor straight in the pose graph, as line landmarks.
+// corridor straight in the pose graph (slam/wall_landmarks.h, backend/line_landmark.h).
 #pragma once
 
 #include <opencv2/core.hpp>
