@@ -19,12 +19,13 @@ struct WallLineConfig {
                                    ///< the wall's position in each gives its angle
   int min_strips = 3;              ///< strips that must show the wall
   double band_m = 0.1;             ///< a strip's peak is searched this far across the wall
+                                   ///< (its floor is taken from twice as far)
   double max_fit_rms_m = 0.02;     ///< strips further than this (rms) from one straight line:
                                    ///< not a straight wall (a corner, a doorway's jamb)
   double offset_std_m = 0.02;      ///< standard deviation of a line's measured offset
   double angle_std_deg = 1.0;      ///< ... and of its measured angle
   // Associating lines into landmarks (slam/wall_landmarks.h).
-  double gate_offset_m = 0.1;  ///< a line joins a landmark within this offset ...
+  double gate_offset_m = 0.1;   ///< a line joins a landmark within this offset ...
   double gate_angle_deg = 3.0;  ///< ... and this angle of it, seen from the keyframe
   int max_gap = 3;              ///< a track survives this many keyframes in a row that do not
                                 ///< see its wall (a doorway); one more ends it

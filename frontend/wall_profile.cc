@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "frontend/profile_bins.h"
+
 namespace uwbsar {
 namespace {
 
@@ -39,25 +41,18 @@ WallProfile ComputeWallProfile(const cv::Mat& detected, const ImageGrid& grid, d
   p.bin_m = config.bin_m;
   const int num_bins = 2 * static_cast<int>(std::lround(config.half_width_m / config.bin_m));
   p.bins.assign(static_cast<std::size_t>(num_bins), 0.0f);
-  const double half_width_m = p.half_width_m();
-  // Offset of pixel (c, r) along the normal: n . (x0 + c res, y0 - r res), linear in c and r.
-  const double nx = -std::sin(heading_rad), ny = std::cos(heading_rad);
-  // Each pixel is spread over the width its square covers across the path, so that bins finer
-  // than the pixels get no empty comb on an axis-aligned path.
-  const double footprint_m = grid.resolution_m * (std::abs(nx) + std::abs(ny));
+  // Offset of pixel (c, r) along the path's left normal; its footprint starts half a footprint
+  // lower, which lies (that - first_edge_m) / bin_m bins from the profile's first bin edge.
+  const GridProjection across(grid, -std::sin(heading_rad), std::cos(heading_rad));
+  const double first_edge_m = -p.half_width_m() + 0.5 * across.footprint_m;
+  const double width_bins = across.footprint_m / config.bin_m;
   for (int r = 0; r < detected.rows; ++r) {
     const float* row = detected.ptr<float>(r);
-    const double s_row = nx * grid.x0_m + ny * grid.RowToY(r) + half_width_m;
+    const double s_row = across.AtRow(r) - first_edge_m;
     for (int c = 0; c < detected.cols; ++c) {
       if (!(row[c] > 0.0f)) continue;
-      const double lo = (s_row + nx * c * grid.resolution_m - 0.5 * footprint_m) / config.bin_m;
-      const double hi = lo + footprint_m / config.bin_m;
-      const double density = row[c] / (hi - lo);
-      for (int b = std::max(0, static_cast<int>(std::floor(lo)));
-           b < std::min(num_bins, static_cast<int>(std::ceil(hi))); ++b) {
-        const double overlap = std::min<double>(hi, b + 1) - std::max<double>(lo, b);
-        p.bins[static_cast<std::size_t>(b)] += static_cast<float>(density * overlap);
-      }
+      SpreadOverBins((s_row + across.per_col_m * c) / config.bin_m, width_bins, row[c],
+                     p.bins.data(), num_bins);
     }
   }
   // The floor: the median of the bins the tile imaged. It is the same wherever a tile is (the
@@ -69,6 +64,7 @@ WallProfile ComputeWallProfile(const cv::Mat& detected, const ImageGrid& grid, d
   if (imaged.empty()) return p;
   std::nth_element(imaged.begin(), imaged.begin() + imaged.size() / 2, imaged.end());
   const float floor = imaged[imaged.size() / 2];
+  p.floor = floor;
   float peak = 0.0f;
   for (float& v : p.bins) {
     peak = std::max(peak, v);

@@ -28,6 +28,7 @@ struct WallProfile {
   /// of the imaged bins), clipped at 0.
   std::vector<float> bins;
   double contrast = 0.0;  ///< the highest bin over the floor, before the floor was removed
+  double floor = 0.0;     ///< the floor that was removed (0: nothing imaged)
 
   double half_width_m() const { return 0.5 * bin_m * static_cast<double>(bins.size()); }
 };
