@@ -162,15 +162,21 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
   KeyframeRecord record;
   cv::Mat detected;
   MakeDetected(keyframe, config_, &detected, &record.detected_grid);
-  // Walls as landmarks, or as the pairwise edges: the two measure the same walls.
+  // Walls as landmarks where a straight wall is seen, the pairwise edges elsewhere: an edge
+  // between two keyframes that see one landmark would measure that wall a second time.
   const WallProfileConfig& wall_config = config_.place_recognition.wall_profiles;
   const bool landmarks = wall_config.enabled && wall_config.landmarks.enabled;
-  const std::vector<PoseGraphEdge> walls =
-      landmarks ? std::vector<PoseGraphEdge>()
-                : wall_edges_.Add(keyframe, detected, record.detected_grid);
   const WallLandmarkTracker::Update seen =
       landmarks ? wall_landmarks_.Add(keyframe, detected, record.detected_grid)
                 : WallLandmarkTracker::Update();
+  std::vector<PoseGraphEdge> walls = wall_edges_.Add(keyframe, detected, record.detected_grid);
+  if (landmarks) {
+    walls.erase(std::remove_if(walls.begin(), walls.end(),
+                               [&](const PoseGraphEdge& e) {
+                                 return wall_landmarks_.ShareLandmark(e.from_id, e.to_id);
+                               }),
+                walls.end());
+  }
   record.detected = tiles_.Put(detected);  // out of core from here on
   if (!config_.slam.keep_tile_images) keyframe.image.release();
   keyframe.sensor_tiles.clear();  // per-radar images: only their features are kept

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <set>
 #include <tuple>
 
 namespace uwbsar::slam {
@@ -77,6 +79,7 @@ WallLandmarkTracker::Update WallLandmarkTracker::Add(int keyframe_id, const Pose
   }
   std::sort(pairs.begin(), pairs.end());
   std::vector<int> track_of(lines.size(), -1);
+  std::vector<int> serials;
   std::vector<char> track_used(tracks_.size(), 0);
   for (const auto& [cost, l, t] : pairs) {
     if (track_of[l] >= 0 || track_used[t]) continue;
@@ -86,10 +89,11 @@ WallLandmarkTracker::Update WallLandmarkTracker::Add(int keyframe_id, const Pose
   for (std::size_t l = 0; l < lines.size(); ++l) {
     if (track_of[l] < 0) {
       tracks_.emplace_back();
-      ++tracks_started_;
+      tracks_.back().serial = tracks_started_++;
       track_of[l] = static_cast<int>(tracks_.size()) - 1;
     }
     Track& track = tracks_[static_cast<std::size_t>(track_of[l])];
+    serials.push_back(track.serial);
     const SeenLine& seen = lines[l];
     // Every sighting faces the track's first one, so that a landmark keeps one orientation.
     const Line2 world = LineToWorld(T_world_anchor, seen.line_anchor);
@@ -104,6 +108,7 @@ WallLandmarkTracker::Update WallLandmarkTracker::Add(int keyframe_id, const Pose
     track.last_world = facing_world;
     track.last_seen = calls_;
     if (track.id >= 0) {
+      landmark_of_serial_[track.serial] = track.id;
       o.landmark_id = track.id;
       update.observations.push_back(o);
       continue;
@@ -111,6 +116,7 @@ WallLandmarkTracker::Update WallLandmarkTracker::Add(int keyframe_id, const Pose
     track.waiting.push_back(o);
     if (static_cast<int>(track.waiting.size()) < config_.min_observations) continue;
     track.id = next_id_++;
+    landmark_of_serial_[track.serial] = track.id;
     update.new_landmarks.push_back({track.id, facing_world});
     for (LineObservation& w : track.waiting) {
       w.landmark_id = track.id;
@@ -118,7 +124,28 @@ WallLandmarkTracker::Update WallLandmarkTracker::Add(int keyframe_id, const Pose
     }
     track.waiting.clear();
   }
+  recent_.emplace_back(keyframe_id, std::move(serials));
+  while (recent_.size() > 16) recent_.pop_front();
+  // Only the recent keyframes' tracks are asked about.
+  std::set<int> live;
+  for (const auto& [id, list] : recent_) live.insert(list.begin(), list.end());
+  for (auto it = landmark_of_serial_.begin(); it != landmark_of_serial_.end();)
+    it = live.count(it->first) ? std::next(it) : landmark_of_serial_.erase(it);
   return update;
+}
+
+bool WallLandmarkTracker::ShareLandmark(int a_id, int b_id) const {
+  const std::vector<int>* a = nullptr;
+  const std::vector<int>* b = nullptr;
+  for (const auto& [id, list] : recent_) {
+    if (id == a_id) a = &list;
+    if (id == b_id) b = &list;
+  }
+  if (a == nullptr || b == nullptr) return false;
+  for (const int serial : *a) {
+    if (landmark_of_serial_.count(serial) && std::count(b->begin(), b->end(), serial)) return true;
+  }
+  return false;
 }
 
 }  // namespace uwbsar::slam

@@ -12,6 +12,8 @@
 // by its chi2 there.
 #pragma once
 
+#include <deque>
+#include <map>
 #include <utility>
 #include <vector>
 
@@ -62,12 +64,18 @@ class WallLandmarkTracker {
   /// Keyframes come in path order, one call each (an empty `lines` counts towards the gap).
   Update Add(int keyframe_id, const Pose2& T_world_anchor, const std::vector<SeenLine>& lines);
 
+  /// Whether keyframes `a_id` and `b_id` (both among the last 16 added) saw one wall that is a
+  /// landmark of the graph by now: what a wall edge between them would measure is then in the
+  /// graph already (slam/slam_system.cc keeps the edges only between keyframes that do not).
+  bool ShareLandmark(int a_id, int b_id) const;
+
   int tracks_started() const { return tracks_started_; }
   int lines_seen() const { return lines_seen_; }
   int next_landmark_id() const { return next_id_; }
 
  private:
   struct Track {
+    int serial = 0;                        ///< tracks_started_ when it began
     int id = -1;                           ///< landmark id once in the graph, -1 before
     Line2 last_world;                      ///< the last sighting, in the odometry's world frame
     int last_seen = 0;                     ///< the call that saw it last
@@ -81,6 +89,8 @@ class WallLandmarkTracker {
   int calls_ = 0;
   int tracks_started_ = 0;
   std::vector<Track> tracks_;
+  std::deque<std::pair<int, std::vector<int>>> recent_;  ///< keyframe id -> its tracks' serials
+  std::map<int, int> landmark_of_serial_;  ///< tracks of the recent keyframes that are landmarks
 };
 
 }  // namespace uwbsar::slam
