@@ -51,6 +51,52 @@ void EvaluateWallEdges(const SlamSystem& slam, const std::map<int, Pose2>& true_
   if (accepted > 0) e->wall_error_rms_m = std::sqrt(sum_sq / accepted);
 }
 
+/// Each accepted landmark observation placed in the world by its keyframe's true anchor: its
+/// point nearest the reference point. Per landmark, a line through those points (total least
+/// squares) stands for the true wall; an observation's error is its point's distance from it.
+void EvaluateLandmarks(const SlamSystem& slam, const std::map<int, Pose2>& true_anchor,
+                       TourEvaluation* e) {
+  const std::vector<LineObservation> observations = slam.graph().LineObservations();
+  const std::vector<LineObservationReport> reports = slam.graph().LineObservationReports();
+  std::map<int, std::vector<Eigen::Vector2d>> points;
+  for (std::size_t i = 0; i < observations.size(); ++i) {
+    ++e->landmark_observations;
+    const LineObservation& o = observations[i];
+    if (i < reports.size() && reports[i].rejected) {
+      ++e->landmark_rejected;
+      continue;
+    }
+    const auto anchor = true_anchor.find(o.node_id);
+    if (anchor == true_anchor.end()) continue;
+    const Eigen::Vector2d n(std::cos(o.line_node.normal_rad), std::sin(o.line_node.normal_rad));
+    const Eigen::Vector2d q(o.reference_node.x_m, o.reference_node.y_m);
+    const Eigen::Vector2d on_line = q + (o.line_node.offset_m - n.dot(q)) * n;
+    const Point2 w = anchor->second * Point2{on_line.x(), on_line.y()};
+    points[o.landmark_id].emplace_back(w.x_m, w.y_m);
+  }
+  e->landmarks = static_cast<int>(slam.graph().GetLandmarks().size());
+  double sum_sq = 0.0;
+  int count = 0;
+  for (const auto& [id, p] : points) {
+    if (p.size() < 3) continue;
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    for (const Eigen::Vector2d& x : p) mean += x;
+    mean /= static_cast<double>(p.size());
+    Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+    for (const Eigen::Vector2d& x : p) scatter += (x - mean) * (x - mean).transpose();
+    const Eigen::Vector2d normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(scatter)
+                                       .eigenvectors()
+                                       .col(0);  // smallest eigenvalue: across the line
+    for (const Eigen::Vector2d& x : p) {
+      const double error = normal.dot(x - mean);
+      sum_sq += error * error;
+      ++count;
+      e->landmark_error_max_m = std::max(e->landmark_error_max_m, std::abs(error));
+    }
+  }
+  if (count > 0) e->landmark_error_rms_m = std::sqrt(sum_sq / count);
+}
+
 /// Adds one accepted loop's error against `truth` and its claimed sigmas to the sums.
 struct LoopAccuracySums {
   double error_sq_m2 = 0.0, error_sq_rad2 = 0.0, sigma_m = 0.0, sigma_rad = 0.0;
@@ -133,6 +179,7 @@ TourEvaluation EvaluateTour(const MapRun& run, double overlap_m) {
   }
   accuracy.Finish(&e);
   EvaluateWallEdges(slam, true_anchor, &e);
+  EvaluateLandmarks(slam, true_anchor, &e);
   int previous = -10;
   bool recalled = false;
   for (const auto& [id, overlap] : query_overlap) {
@@ -149,11 +196,12 @@ TourEvaluation EvaluateTour(const MapRun& run, double overlap_m) {
 }
 
 std::string FormatTourEvaluation(const TourEvaluation& e) {
-  char line[800];
+  char line[1000];
   std::snprintf(line, sizeof(line),
                 "travel %.1f m, ATE %.2f cm, odometry %.2f cm (%.1fx)%s, loops %d accepted / %d "
                 "validated / %d candidates, false %d accepted (%d validated), longest %.0f m, "
                 "recall %d/%d candidates (%.2f), %d/%d revisits (%.2f), wall edges %d (%d "
+                "rejected, error rms %.1f max %.1f cm), wall landmarks %d (%d observations, %d "
                 "rejected, error rms %.1f max %.1f cm), true loops' error rms %.2f cm %.2f deg "
                 "(claimed sigma %.2f cm %.2f deg)",
                 e.travel_m, e.ate_m * 100, e.odometry_ate_m * 100,
@@ -162,7 +210,9 @@ std::string FormatTourEvaluation(const TourEvaluation& e) {
                 e.candidates, e.false_accepted, e.false_validated, e.longest_loop_path_m,
                 e.overlap_accepted, e.overlap_candidates, e.candidate_recall(), e.revisits_recalled,
                 e.revisits, e.revisit_recall(), e.wall_edges, e.wall_rejected,
-                e.wall_error_rms_m * 100, e.wall_error_max_m * 100, e.loop_error_rms_m * 100,
+                e.wall_error_rms_m * 100, e.wall_error_max_m * 100, e.landmarks,
+                e.landmark_observations, e.landmark_rejected, e.landmark_error_rms_m * 100,
+                e.landmark_error_max_m * 100, e.loop_error_rms_m * 100,
                 e.loop_error_rms_yaw_rad * 180 / M_PI, e.loop_sigma_mean_m * 100,
                 e.loop_sigma_mean_yaw_rad * 180 / M_PI);
   return line;
