@@ -142,7 +142,7 @@ nlohmann::json MergeReportJson(const MergeReport& r) {
       {"connected", r.connected},      {"keyframe_pairs_matched", r.candidates},
       {"validated", r.validated},      {"dropped_before_placement", r.dropped},
       {"loop_edges", r.loop_edges},    {"loop_edges_rejected", r.loop_edges_rejected},
-      {"keyframes_retired", r.retired}};
+      {"keyframes_retired", r.retired},  {"walls_reused", r.walls_reused}};
   if (r.connected) {
     j["connect_keyframe_id"] = r.connect_keyframe_id;
     j["connect_path_m"] = r.connect_path_m;

@@ -71,9 +71,10 @@ void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
     std::printf(
         "merged: %zu + %zu keyframes, %d loops between the sessions (%d rejected by the "
         "backend), placed after %.2f m of the second; %zu keyframes in the map (%d older views "
-        "retired)\n",
+        "retired), %zu wall landmarks (%d seen again)\n",
         a.keyframes.size(), b.keyframes.size(), report.loop_edges, report.loop_edges_rejected,
-        report.connect_path_m, merged.keyframes.size(), report.retired);
+        report.connect_path_m, merged.keyframes.size(), report.retired, merged.landmarks.size(),
+        report.walls_reused);
     std::printf("report: %s/report.html\n", opts->out_dir.c_str());
     PrintWrittenFolder(opts->out_dir, outputs.files, globals);
   });

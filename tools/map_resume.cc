@@ -66,8 +66,11 @@ void WriteResumedMap(const slam::SavedSession& saved, const slam::MapRun& run,
       "(%d rejected by the backend), %d dropped before placement\n",
       report.trajectory_offset, report.connect_path_m, report.connect_keyframe_id,
       report.loop_edges, report.loop_edges_rejected, report.dropped);
-  std::printf("%zu keyframes in the map (%d older views retired); report: %s/report.html\n",
-              merged.keyframes.size(), report.retired, out_dir.c_str());
+  std::printf(
+      "%zu keyframes in the map (%d older views retired), %zu wall landmarks (%d seen again); "
+      "report: %s/report.html\n",
+      merged.keyframes.size(), report.retired, merged.landmarks.size(), report.walls_reused,
+      out_dir.c_str());
   PrintOdometryCalibration(config, globals);
   PrintWrittenFolder(out_dir, outputs.files, globals);
 }

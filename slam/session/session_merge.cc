@@ -277,8 +277,8 @@ SessionData MergeSessions(const SessionData& a_in, const SessionData& b_in,
   r.renumbered = dense;
   r.id_offset = a.MaxKeyframeId() + 1;
   r.trajectory_offset = a.MaxTrajectoryId() + 1;
-  const SessionData b = Renumbered(dense ? WithDenseIds(b_in) : b_in, r.id_offset,
-                                   r.trajectory_offset, a.MaxLandmarkId() + 1);
+  SessionData b = Renumbered(dense ? WithDenseIds(b_in) : b_in, r.id_offset, r.trajectory_offset,
+                             a.MaxLandmarkId() + 1);
   std::vector<Hypothesis> before;  // validated loops before placement
   const std::vector<Hypothesis> loops = FindMergeLoops(a, b, config, &r, &before, on_progress);
   Log(LogLevel::kDebug,
@@ -298,6 +298,10 @@ SessionData MergeSessions(const SessionData& a_in, const SessionData& b_in,
                                     "session.connect_min_loops agree on where the run lies";
     return out;
   }
+  // The saved map's walls seen again are the same landmarks (within a tile of them).
+  r.walls_reused =
+      ReuseSavedWalls(a, r.T_mapA_mapB, config.place_recognition.wall_profiles.landmarks,
+                      2.0 * config.keyframe.tile_length_m, &b);
   PoseGraph graph(config.backend);
   const std::vector<int> new_edges =
       BuildJointGraph(a, b, r.T_mapA_mapB, loops, config.session.freeze_saved_map, &graph);

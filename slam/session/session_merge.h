@@ -39,6 +39,8 @@ struct MergeReport {
   bool renumbered = false;       ///< both sessions' ids were made dense first (kMaxJoinedId)
   int trajectory_offset = 0;     ///< added to its trajectory ids
   int retired = 0;  ///< keyframes (of either run) the join retired (slam/session/join_retirement.h)
+  int walls_reused =
+      0;  ///< the new run's wall landmarks that are the saved map's (ReuseSavedWalls)
   OptimizeResult optimization;
 };
 

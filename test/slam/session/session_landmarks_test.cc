@@ -140,5 +140,54 @@ TEST(SessionLandmarksCaptureTest, TheGraphsLandmarksAreCapturedWithTheObservatio
   EXPECT_EQ(out.line_observations.size(), 3u);
 }
 
+/// b: the same run seen again, its map frame placed at T_mapA_mapB in a's, its landmark (id
+/// 20) with the normal turned over, and a second landmark (21) `away_m` off the wall.
+SessionData SeenAgain(const SessionData& a, const Pose2& T_mapA_mapB, double away_m) {
+  SessionData b = a;
+  for (SessionKeyframe& k : b.keyframes)
+    k.id += 10, k.T_map_anchor = T_mapA_mapB.Inverse() * k.T_map_anchor;
+  const Line2 wall_b = LineToFrame(T_mapA_mapB, a.landmarks[0].line_map);
+  b.landmarks = {{20, Line2{NormalizeAngle(wall_b.normal_rad + M_PI), -wall_b.offset_m}},
+                 {21, Line2{wall_b.normal_rad, wall_b.offset_m + away_m}}};
+  b.line_observations.clear();
+  for (const SessionKeyframe& k : b.keyframes) {
+    for (const SessionLandmark& l : b.landmarks) {
+      SessionLineObservation o;
+      o.observation.landmark_id = l.id;
+      o.observation.node_id = k.id;
+      o.observation.line_node = LineToFrame(k.T_map_anchor, l.line_map);
+      o.observation.reference_node = {0.5, 0.0};
+      b.line_observations.push_back(o);
+    }
+  }
+  return b;
+}
+
+TEST(SessionLandmarksReuseTest, ASavedWallSeenAgainIsTheSameLandmarkAndAnotherWallIsNot) {
+  const SessionData a = WithWall();
+  const Pose2 T_mapA_mapB{2.0, -1.0, 0.4};
+  SessionData b = SeenAgain(a, T_mapA_mapB, 0.3);
+  const WallLineConfig config;
+  EXPECT_EQ(ReuseSavedWalls(a, T_mapA_mapB, config, 4.0, &b), 1);
+  ASSERT_EQ(b.landmarks.size(), 1u);
+  EXPECT_EQ(b.landmarks[0].id, 21);  // 30 cm off the saved wall: another wall
+  int reused = 0;
+  for (const SessionLineObservation& o : b.line_observations) {
+    if (o.observation.landmark_id != 4) continue;
+    ++reused;
+    // Turned to face the saved landmark: in a's frame it is that line.
+    const Pose2 T_mapA_node = T_mapA_mapB * b.Find(o.observation.node_id)->T_map_anchor;
+    const Line2 seen = LineToWorld(T_mapA_node, o.observation.line_node);
+    EXPECT_NEAR(NormalizeAngle(seen.normal_rad - a.landmarks[0].line_map.normal_rad), 0.0, 1e-9);
+    EXPECT_NEAR(seen.offset_m, a.landmarks[0].line_map.offset_m, 1e-9);
+  }
+  EXPECT_EQ(reused, 3);
+  // Placed 20 cm off, the same wall is not taken for the saved one; nor one too far along it.
+  SessionData off = SeenAgain(a, T_mapA_mapB, 0.3);
+  EXPECT_EQ(ReuseSavedWalls(a, T_mapA_mapB * Pose2{0.0, 0.2, 0.0}, config, 4.0, &off), 0);
+  SessionData far = SeenAgain(a, T_mapA_mapB, 0.3);
+  EXPECT_EQ(ReuseSavedWalls(a, T_mapA_mapB, config, 0.0, &far), 0);
+}
+
 }  // namespace
 }  // namespace uwbsar
