@@ -22,8 +22,11 @@ struct WallLineConfig {
                                    ///< (its floor is taken from twice as far)
   double max_fit_rms_m = 0.02;     ///< strips further than this (rms) from one straight line:
                                    ///< not a straight wall (a corner, a doorway's jamb)
-  double offset_std_m = 0.02;      ///< standard deviation of a line's measured offset
-  double angle_std_deg = 1.0;      ///< ... and of its measured angle
+  double offset_std_m = 0.03;      ///< standard deviation of a line's measured offset (at its
+                                   ///< reference point) ...
+  double angle_std_deg = 10.0;     ///< ... and of its measured angle: weak on purpose, the
+                                   ///< offsets of many keyframes give a wall its angle (measured
+                                   ///< angles of 1 deg weight bent the tours: docs/measurements.md)
   // Associating lines into landmarks (slam/wall_landmarks.h).
   double gate_offset_m = 0.1;   ///< a line joins a landmark within this offset ...
   double gate_angle_deg = 3.0;  ///< ... and this angle of it, seen from the keyframe

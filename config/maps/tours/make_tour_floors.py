@@ -18,6 +18,10 @@ Floors (world metres, origin at the bottom-left corner):
     figure of eight). The tour closes the west ring after 50 m, then drives the east ring,
     which sends it down the middle corridor in the other direction (the left radar sees on
     the way back what the right one saw on the way out): 105 m.
+  office_block (28 x 18 m): one corridor ring 2 m wide around a block of offices, centre line
+    the rectangle x = 4 .. 24, y = 4 .. 14 (60 m around), offices outside it on every side.
+    The tour drives the ring once counter-clockwise and 5 m of its first corridor again: its
+    only loops are at the start (66 m).
 """
 
 import os
@@ -181,10 +185,33 @@ def two_rings():
         "x_m y_m in the map frame; the robot starts on the first point facing the second."])
 
 
+OFFICE_BLOCK_ROUTE = [(7.0, 4.0), (24.0, 4.0), (24.0, 14.0), (4.0, 14.0), (4.0, 4.0),
+                      (12.0, 4.0)]
+
+
+def office_block():
+    rng = random.Random(19004)
+    w, h = 28.0, 18.0
+    g = map_gen.Grid(w, h, 0.05)
+    boundary(g, w, h)
+    for c in (3.0, 15.0):
+        g.hwall(c, 0.0, w)
+    for c in (3.0, 25.0):
+        g.vwall(c, 0.0, h)
+    g.rect(3.05, 3.05, 24.95, 14.95, map_gen.FREE)
+    doors, rooms, walls = [], [], []
+    outer_offices(g, rng, doors, rooms, walls, 3.0, 3.0, 25.0, 15.0, w, h)
+    ring_block(g, rng, doors, rooms, walls, 5.0, 5.0, 23.0, 13.0)
+    finish(g, rng, "office_block", OFFICE_BLOCK_ROUTE, doors, rooms, walls, [
+        "office_block.yaml: the 60 m corridor ring around one office block once",
+        "counter-clockwise, then 5 m of the first corridor again (loops only at the start)."])
+
+
 def main():
     ring_offices()
     hall_wing()
     two_rings()
+    office_block()
 
 
 if __name__ == "__main__":
