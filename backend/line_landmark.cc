@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include "backend/line_observation_cost.h"
+
 namespace uwbsar {
 
 Line2 LineToWorld(const Pose2& T_world_frame, const Line2& line_frame) {

@@ -7,6 +7,7 @@
 #include <set>
 #include <string>
 
+#include "backend/line_observation_cost.h"
 #include "backend/pose_graph.h"
 #include "backend/pose_graph_solver.h"
 #include "core/errors.h"

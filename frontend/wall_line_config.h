@@ -8,9 +8,9 @@
 namespace uwbsar {
 
 struct WallLineConfig {
-  /// true: walls become line landmarks instead of the pairwise wall edges (the two measure
-  /// the same walls, so only one of them is used).
-  bool enabled = false;
+  /// true: straight walls become line landmarks; the pairwise wall edges stay only between
+  /// keyframes that share no landmark (the two would measure the same wall twice).
+  bool enabled = true;
   // Measuring a keyframe's lines (frontend/wall_line.h).
   double min_peak_contrast = 3.0;  ///< a wall's profile peak over the profile's floor (median)
   double min_distance_m = 0.3;     ///< walls closer to the anchor than this are not used

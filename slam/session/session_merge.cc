@@ -9,7 +9,7 @@
 #include "frontend/place_recognition/feature_matcher.h"
 #include "frontend/place_recognition/loop_validator.h"
 #include "slam/session/join_retirement.h"
-#include "slam/session/session_landmarks.h"
+#include "slam/session/landmark_join.h"
 
 namespace uwbsar {
 namespace {
