@@ -1,9 +1,9 @@
 // Building tours: the generated floors of config/maps/tours (office_block: a single 60 m ring
-// whose only loops are at its start) and tours on office and floor50, each mapped with the default configuration over several seeds.
-// Reported per run: ring closed (SLAM ATE >= 3x better than odometry), ATE, odometry ATE,
-// loops accepted / validated / candidates, false loops, recall per candidate with true
-// overlap and per revisit (eval/tour/tour_eval.h), loops found by the per-radar pass
-// (radar_match.h) and the keyframe thread's feature and matching time. Targets: every ring
+// whose only loops are at its start) and tours on office and floor50, each mapped with the default
+// configuration over several seeds. Reported per run: ring closed (SLAM ATE >= 3x better than
+// odometry), ATE, odometry ATE, loops accepted / validated / candidates, false loops, recall per
+// candidate with true overlap and per revisit (eval/tour/tour_eval.h), loops found by the per-radar
+// pass (radar_match.h) and the keyframe thread's feature and matching time. Targets: every ring
 // closes, 0 false loops, ATE <= 5 cm.
 //
 // Run by hand (about 1-2 minutes per run on 2 cores; not part of CI; the last entry is
@@ -40,7 +40,7 @@ const std::vector<Tour>& Tours() {
       {"office", "office/office.yaml", "office/route_loops.txt"},
       {"floor50", "floor50/floor50.yaml", "floor50/route_tour.txt"},
       {"office_block", "tours/office_block.yaml", "tours/office_block_tour.txt"},  // one ring
-      {"two_rings_west", "tours/two_rings.yaml", "tours/two_rings_west.txt"},  // TourRunTest
+      {"two_rings_west", "tours/two_rings.yaml", "tours/two_rings_west.txt"},      // TourRunTest
   };
   return tours;
 }

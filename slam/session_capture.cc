@@ -7,8 +7,8 @@
 
 #include "slam/app_config_io.h"
 #include "slam/config/config_fingerprint.h"
-#include "slam/session/session_file.h"
 #include "slam/session/landmark_join.h"
+#include "slam/session/session_file.h"
 
 namespace uwbsar::slam {
 namespace {

@@ -139,10 +139,10 @@ std::vector<std::pair<TimestampNs, Pose2>> CorrectedTrajectory(const SessionData
 
 nlohmann::json MergeReportJson(const MergeReport& r) {
   nlohmann::json j = {
-      {"connected", r.connected},      {"keyframe_pairs_matched", r.candidates},
-      {"validated", r.validated},      {"dropped_before_placement", r.dropped},
-      {"loop_edges", r.loop_edges},    {"loop_edges_rejected", r.loop_edges_rejected},
-      {"keyframes_retired", r.retired},  {"walls_reused", r.walls_reused}};
+      {"connected", r.connected},       {"keyframe_pairs_matched", r.candidates},
+      {"validated", r.validated},       {"dropped_before_placement", r.dropped},
+      {"loop_edges", r.loop_edges},     {"loop_edges_rejected", r.loop_edges_rejected},
+      {"keyframes_retired", r.retired}, {"walls_reused", r.walls_reused}};
   if (r.connected) {
     j["connect_keyframe_id"] = r.connect_keyframe_id;
     j["connect_path_m"] = r.connect_path_m;

@@ -14,10 +14,9 @@
 
 #include <deque>
 #include <map>
+#include <opencv2/core.hpp>
 #include <utility>
 #include <vector>
-
-#include <opencv2/core.hpp>
 
 #include "backend/line_landmark.h"
 #include "core/pose2.h"

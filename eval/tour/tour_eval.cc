@@ -84,9 +84,9 @@ void EvaluateLandmarks(const SlamSystem& slam, const std::map<int, Pose2>& true_
     mean /= static_cast<double>(p.size());
     Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
     for (const Eigen::Vector2d& x : p) scatter += (x - mean) * (x - mean).transpose();
-    const Eigen::Vector2d normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(scatter)
-                                       .eigenvectors()
-                                       .col(0);  // smallest eigenvalue: across the line
+    const Eigen::Vector2d normal =
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(scatter).eigenvectors().col(
+            0);  // smallest eigenvalue: across the line
     for (const Eigen::Vector2d& x : p) {
       const double error = normal.dot(x - mean);
       sum_sq += error * error;
@@ -197,24 +197,23 @@ TourEvaluation EvaluateTour(const MapRun& run, double overlap_m) {
 
 std::string FormatTourEvaluation(const TourEvaluation& e) {
   char line[1000];
-  std::snprintf(line, sizeof(line),
-                "travel %.1f m, ATE %.2f cm, odometry %.2f cm (%.1fx)%s, loops %d accepted / %d "
-                "validated / %d candidates, false %d accepted (%d validated), longest %.0f m, "
-                "recall %d/%d candidates (%.2f), %d/%d revisits (%.2f), wall edges %d (%d "
-                "rejected, error rms %.1f max %.1f cm), wall landmarks %d (%d observations, %d "
-                "rejected, error rms %.1f max %.1f cm), true loops' error rms %.2f cm %.2f deg "
-                "(claimed sigma %.2f cm %.2f deg)",
-                e.travel_m, e.ate_m * 100, e.odometry_ate_m * 100,
-                e.ate_m > 0 ? e.odometry_ate_m / e.ate_m : 0.0,
-                e.ring_closed ? " ring closed" : " RING OPEN", e.accepted, e.validated,
-                e.candidates, e.false_accepted, e.false_validated, e.longest_loop_path_m,
-                e.overlap_accepted, e.overlap_candidates, e.candidate_recall(), e.revisits_recalled,
-                e.revisits, e.revisit_recall(), e.wall_edges, e.wall_rejected,
-                e.wall_error_rms_m * 100, e.wall_error_max_m * 100, e.landmarks,
-                e.landmark_observations, e.landmark_rejected, e.landmark_error_rms_m * 100,
-                e.landmark_error_max_m * 100, e.loop_error_rms_m * 100,
-                e.loop_error_rms_yaw_rad * 180 / M_PI, e.loop_sigma_mean_m * 100,
-                e.loop_sigma_mean_yaw_rad * 180 / M_PI);
+  std::snprintf(
+      line, sizeof(line),
+      "travel %.1f m, ATE %.2f cm, odometry %.2f cm (%.1fx)%s, loops %d accepted / %d "
+      "validated / %d candidates, false %d accepted (%d validated), longest %.0f m, "
+      "recall %d/%d candidates (%.2f), %d/%d revisits (%.2f), wall edges %d (%d "
+      "rejected, error rms %.1f max %.1f cm), wall landmarks %d (%d observations, %d "
+      "rejected, error rms %.1f max %.1f cm), true loops' error rms %.2f cm %.2f deg "
+      "(claimed sigma %.2f cm %.2f deg)",
+      e.travel_m, e.ate_m * 100, e.odometry_ate_m * 100,
+      e.ate_m > 0 ? e.odometry_ate_m / e.ate_m : 0.0, e.ring_closed ? " ring closed" : " RING OPEN",
+      e.accepted, e.validated, e.candidates, e.false_accepted, e.false_validated,
+      e.longest_loop_path_m, e.overlap_accepted, e.overlap_candidates, e.candidate_recall(),
+      e.revisits_recalled, e.revisits, e.revisit_recall(), e.wall_edges, e.wall_rejected,
+      e.wall_error_rms_m * 100, e.wall_error_max_m * 100, e.landmarks, e.landmark_observations,
+      e.landmark_rejected, e.landmark_error_rms_m * 100, e.landmark_error_max_m * 100,
+      e.loop_error_rms_m * 100, e.loop_error_rms_yaw_rad * 180 / M_PI, e.loop_sigma_mean_m * 100,
+      e.loop_sigma_mean_yaw_rad * 180 / M_PI);
   return line;
 }
 

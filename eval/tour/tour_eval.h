@@ -43,11 +43,11 @@ struct TourEvaluation {
   int wall_rejected = 0;             ///< of those, rejected by the backend
   double wall_error_rms_m = 0.0;     ///< sideways error of the accepted ones against the truth
   double wall_error_max_m = 0.0;
-  int landmarks = 0;                   ///< wall landmarks (slam/wall_landmarks.h)
-  int landmark_observations = 0;       ///< their observations
-  int landmark_rejected = 0;           ///< of those, rejected by the backend
-  double landmark_error_rms_m = 0.0;   ///< accepted observations about their wall's true line
-  double landmark_error_max_m = 0.0;   ///< (the line through all of them, placed by the truth)
+  int landmarks = 0;                     ///< wall landmarks (slam/wall_landmarks.h)
+  int landmark_observations = 0;         ///< their observations
+  int landmark_rejected = 0;             ///< of those, rejected by the backend
+  double landmark_error_rms_m = 0.0;     ///< accepted observations about their wall's true line
+  double landmark_error_max_m = 0.0;     ///< (the line through all of them, placed by the truth)
   double loop_error_rms_m = 0.0;         ///< accepted loops, translation
   double loop_error_rms_yaw_rad = 0.0;   ///< accepted loops, rotation
   double loop_sigma_mean_m = 0.0;        ///< their claimed translation sigma, mean

@@ -2,7 +2,6 @@
 // landmarks and their observations round-trip exactly, a row that refers to no landmark or
 // keyframe (or has no uncertainty) is refused naming it, a version 6 file reads with none, and
 // dense renumbering follows the keyframes.
-#include "slam/session/landmark_join.h"
 #include "slam/session/session_landmarks.h"
 
 #include <gtest/gtest.h>
@@ -12,6 +11,7 @@
 #include <filesystem>
 #include <string>
 
+#include "slam/session/landmark_join.h"
 #include "slam/session/session_file.h"
 #include "test/slam/session/session_test_util.h"
 #include "test/slam/session/tiny_session.h"
