@@ -11,6 +11,11 @@ struct WallLineConfig {
   /// true: straight walls become line landmarks; the pairwise wall edges stay only between
   /// keyframes that share no landmark (the two would measure the same wall twice).
   bool enabled = true;
+  /// true: only for a base whose odometry calibration is given (backend.calibration_*_mean
+  /// not all 0, `uwbsar calibrate`): with its distance scale unknown, a ring closes only by
+  /// bending its corridors a little, which straight walls forbid (uncalibrated ring_offices
+  /// tours: 2.7-6.2 cm with landmarks against 2.5-5.6 cm without).
+  bool require_calibrated_base = true;
   // Measuring a keyframe's lines (frontend/wall_line.h).
   double min_peak_contrast = 3.0;  ///< a wall's profile peak over the profile's floor (median)
   double min_distance_m = 0.3;     ///< walls closer to the anchor than this are not used
@@ -37,6 +42,7 @@ struct WallLineConfig {
   template <class V>
   void Visit(V& v) {
     v("enabled", enabled);
+    v("require_calibrated_base", require_calibrated_base);
     v("min_peak_contrast", min_peak_contrast);
     v("min_distance_m", min_distance_m);
     v("max_lines_per_side", max_lines_per_side);

@@ -1,6 +1,7 @@
 #include "slam/slam_system.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -165,7 +166,10 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
   // Walls as landmarks where a straight wall is seen, the pairwise edges elsewhere: an edge
   // between two keyframes that see one landmark would measure that wall a second time.
   const WallProfileConfig& wall_config = config_.place_recognition.wall_profiles;
-  const bool landmarks = wall_config.enabled && wall_config.landmarks.enabled;
+  const std::array<double, 3> calibration = config_.backend.CalibrationMean();
+  const bool calibrated = calibration[0] != 0.0 || calibration[1] != 0.0 || calibration[2] != 0.0;
+  const bool landmarks = wall_config.enabled && wall_config.landmarks.enabled &&
+                         (calibrated || !wall_config.landmarks.require_calibrated_base);
   const WallLandmarkTracker::Update seen =
       landmarks ? wall_landmarks_.Add(keyframe, detected, record.detected_grid)
                 : WallLandmarkTracker::Update();

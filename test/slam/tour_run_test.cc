@@ -40,15 +40,12 @@ TEST(TourRunTest, RingClosedAfterFiftyMetresWithoutFalseLoops) {
   EXPECT_GE(e.longest_loop_path_m, 45.0);  // the ring's closure itself was accepted
   EXPECT_LT(e.ate_m * 2.5, e.odometry_ate_m);
   EXPECT_LE(e.ate_m, 0.05);
-  // The walls: landmarks where a straight wall is seen, wall edges between the other keyframes.
-  EXPECT_GE(e.wall_edges + e.landmark_observations, 50);
-  EXPECT_GE(e.landmarks, 5);
+  // An uncalibrated base: wall edges alone (landmarks.require_calibrated_base).
+  EXPECT_EQ(e.landmarks, 0);
+  EXPECT_GE(e.wall_edges, 50);
   EXPECT_LE(e.wall_rejected * 10, e.wall_edges);
-  EXPECT_LE(e.landmark_rejected * 10, e.landmark_observations);
   EXPECT_LE(e.wall_error_rms_m, 0.02);
   EXPECT_LE(e.wall_error_max_m, 0.06);
-  EXPECT_LE(e.landmark_error_rms_m, 0.02);
-  EXPECT_LE(e.landmark_error_max_m, 0.06);
   // The loops are accurate, and their information does not claim more than they deliver
   // (the translation error is a length: sqrt(2) per-axis sigmas).
   EXPECT_GT(e.loop_sigma_mean_m, 0.0);
@@ -95,6 +92,11 @@ TEST(TourRunTest, ABaseCalibratedOnAnotherRunKeepsTheTourWithinFiveCentimetres) 
   EXPECT_EQ(e.false_accepted, 0);
   EXPECT_TRUE(e.ring_closed);
   EXPECT_LE(e.ate_m, 0.05);
+  // A calibrated base: its straight walls are landmarks, each observation on its wall's line.
+  EXPECT_GE(e.landmarks, 5);
+  EXPECT_LE(e.landmark_rejected * 10, e.landmark_observations);
+  EXPECT_LE(e.landmark_error_rms_m, 0.02);
+  EXPECT_LE(e.landmark_error_max_m, 0.06);
   const double scale = run.slam->graph().OdometryCalibrations().at(0)[kCalibScale];
   EXPECT_NEAR(scale, true_scale, 0.001);  // the tour did not move it away
 }
