@@ -96,22 +96,29 @@ RING_OFFICES_ROUTE = [(7.0, 4.0), (32.0, 4.0), (32.0, 18.0), (4.0, 18.0), (4.0, 
                       (16.0, 4.4)]
 
 
-def ring_offices():
-    rng = random.Random(19001)
-    w, h = 36.0, 22.0
+def ring_floor(name, seed, w, h, ring, block, route, description):
+    """A floor of one corridor ring 2 m wide (outer walls `ring` = x0, y0, x1, y1) around a
+    block of offices (`block`), with offices between the ring and the building's walls."""
+    rng = random.Random(seed)
     g = map_gen.Grid(w, h, 0.05)
     boundary(g, w, h)
-    for c in (3.0, 19.0):
+    x0, y0, x1, y1 = ring
+    for c in (y0, y1):
         g.hwall(c, 0.0, w)
-    for c in (3.0, 33.0):
+    for c in (x0, x1):
         g.vwall(c, 0.0, h)
-    g.rect(3.05, 3.05, 32.95, 18.95, map_gen.FREE)
+    g.rect(x0 + 0.05, y0 + 0.05, x1 - 0.05, y1 - 0.05, map_gen.FREE)
     doors, rooms, walls = [], [], []
-    outer_offices(g, rng, doors, rooms, walls, 3.0, 3.0, 33.0, 19.0, w, h)
-    ring_block(g, rng, doors, rooms, walls, 5.0, 5.0, 31.0, 17.0)
-    finish(g, rng, "ring_offices", RING_OFFICES_ROUTE, doors, rooms, walls, [
-        "ring_offices.yaml: the 84 m corridor ring once counter-clockwise, then the first",
-        "corridor again 0.4 m off its first line."])
+    outer_offices(g, rng, doors, rooms, walls, x0, y0, x1, y1, w, h)
+    ring_block(g, rng, doors, rooms, walls, *block)
+    finish(g, rng, name, route, doors, rooms, walls, description)
+
+
+def ring_offices():
+    ring_floor("ring_offices", 19001, 36.0, 22.0, (3.0, 3.0, 33.0, 19.0), (5.0, 5.0, 31.0, 17.0),
+               RING_OFFICES_ROUTE, [
+                   "ring_offices.yaml: the 84 m corridor ring once counter-clockwise, then the first",
+                   "corridor again 0.4 m off its first line."])
 
 
 HALL_WING_ROUTE = [(11.0, 5.0), (37.0, 5.0), (37.0, 19.0), (10.0, 19.0), (10.0, 5.0),
@@ -190,21 +197,11 @@ OFFICE_BLOCK_ROUTE = [(7.0, 4.0), (24.0, 4.0), (24.0, 14.0), (4.0, 14.0), (4.0, 
 
 
 def office_block():
-    rng = random.Random(19004)
-    w, h = 28.0, 18.0
-    g = map_gen.Grid(w, h, 0.05)
-    boundary(g, w, h)
-    for c in (3.0, 15.0):
-        g.hwall(c, 0.0, w)
-    for c in (3.0, 25.0):
-        g.vwall(c, 0.0, h)
-    g.rect(3.05, 3.05, 24.95, 14.95, map_gen.FREE)
-    doors, rooms, walls = [], [], []
-    outer_offices(g, rng, doors, rooms, walls, 3.0, 3.0, 25.0, 15.0, w, h)
-    ring_block(g, rng, doors, rooms, walls, 5.0, 5.0, 23.0, 13.0)
-    finish(g, rng, "office_block", OFFICE_BLOCK_ROUTE, doors, rooms, walls, [
-        "office_block.yaml: the 60 m corridor ring around one office block once",
-        "counter-clockwise, then 5 m of the first corridor again (loops only at the start)."])
+    ring_floor("office_block", 19004, 28.0, 18.0, (3.0, 3.0, 25.0, 15.0), (5.0, 5.0, 23.0, 13.0),
+               OFFICE_BLOCK_ROUTE, [
+                   "office_block.yaml: the 60 m corridor ring around one office block once",
+                   "counter-clockwise, then 5 m of the first corridor again (loops only at the "
+                   "start)."])
 
 
 def main():

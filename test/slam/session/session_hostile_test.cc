@@ -25,6 +25,7 @@
 #include "slam/session/session_merge.h"
 #include "slam/session_mosaic.h"
 #include "test/slam/session/session_test_util.h"
+#include "test/slam/session/sqlite_edit.h"
 #include "test/slam/session/tiny_session.h"
 #include "test/slam/session/version3_loops.h"
 
@@ -47,17 +48,7 @@ class SessionHostileTest : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  /// Runs `sql` on the session file (fails the test when sqlite refuses it).
-  void Sql(const std::string& sql) {
-    sqlite3* db = nullptr;
-    ASSERT_EQ(sqlite3_open(path_.c_str(), &db), SQLITE_OK);
-    char* error = nullptr;
-    const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error);
-    const std::string message = error ? error : "";
-    sqlite3_free(error);
-    sqlite3_close(db);
-    ASSERT_EQ(rc, SQLITE_OK) << sql << ": " << message;
-  }
+  void Sql(const std::string& sql) { ::uwbsar::testing::RunSql(path_, sql); }
   /// Sets `column` of the keyframe `id` to `blob`.
   void SetBlob(const std::string& column, int id, const std::vector<unsigned char>& blob) {
     sqlite3* db = nullptr;

@@ -14,6 +14,7 @@
 #include "slam/session/landmark_join.h"
 #include "slam/session/session_file.h"
 #include "test/slam/session/session_test_util.h"
+#include "test/slam/session/sqlite_edit.h"
 #include "test/slam/session/tiny_session.h"
 
 namespace uwbsar {
@@ -51,16 +52,7 @@ class SessionLandmarksTest : public ::testing::Test {
     WriteSession(path_, WithWall());
   }
   void TearDown() override { fs::remove_all(dir_); }
-  void Sql(const std::string& sql) {
-    sqlite3* db = nullptr;
-    ASSERT_EQ(sqlite3_open(path_.c_str(), &db), SQLITE_OK);
-    char* error = nullptr;
-    const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error);
-    const std::string message = error ? error : "";
-    sqlite3_free(error);
-    sqlite3_close(db);
-    ASSERT_EQ(rc, SQLITE_OK) << sql << ": " << message;
-  }
+  void Sql(const std::string& sql) { ::uwbsar::testing::RunSql(path_, sql); }
   std::string dir_, path_;
 };
 
