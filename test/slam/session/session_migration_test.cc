@@ -14,6 +14,7 @@
 #include "slam/app_config.h"
 #include "slam/session/session_file.h"
 #include "test/slam/session/session_test_util.h"
+#include "test/slam/session/sqlite_edit.h"
 #include "test/slam/session/tiny_session.h"
 #include "test/slam/session/version3_loops.h"
 
@@ -34,14 +35,7 @@ class SessionMigrationTest : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   static void Sql(const std::string& path, const std::string& sql) {
-    sqlite3* db = nullptr;
-    ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-    char* error = nullptr;
-    const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error);
-    const std::string message = error ? error : "";
-    sqlite3_free(error);
-    sqlite3_close(db);
-    ASSERT_EQ(rc, SQLITE_OK) << message;
+    ::uwbsar::testing::RunSql(path, sql);
   }
 
   /// The tiny session's loop (AKAZE 12, ORB 9) and AKAZE and ORB features of each keyframe.
