@@ -243,7 +243,14 @@ LineFit FitLine(const std::vector<StripPeak>& strips) {
 std::vector<WallLineObservation> FindWallLines(const cv::Mat& detected, const ImageGrid& grid,
                                                double heading_rad,
                                                const WallProfileConfig& config) {
-  const WallProfile profile = ComputeWallProfile(detected, grid, heading_rad, config);
+  return FindWallLines(detected, grid, ComputeWallProfile(detected, grid, heading_rad, config),
+                       config);
+}
+
+std::vector<WallLineObservation> FindWallLines(const cv::Mat& detected, const ImageGrid& grid,
+                                               const WallProfile& profile,
+                                               const WallProfileConfig& config) {
+  const double heading_rad = profile.heading_rad;
   const WallLineConfig& lines = config.landmarks;
   std::vector<WallLineObservation> result;
   for (const Candidate& wall : PickWalls(profile, lines)) {

@@ -11,6 +11,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "frontend/wall_profile.h"
 #include "frontend/wall_profile_config.h"
 #include "imaging/image_grid.h"
 
@@ -56,5 +57,11 @@ struct WallLineObservation {
 /// configured ones with the fit's standard errors (a strip's variance at least a bin's square).
 std::vector<WallLineObservation> FindWallLines(const cv::Mat& detected, const ImageGrid& grid,
                                                double heading_rad, const WallProfileConfig& config);
+
+/// The same with the tile's profile already computed (ComputeWallProfile of `detected` at
+/// profile.heading_rad with `config`), as the wall edges need it too.
+std::vector<WallLineObservation> FindWallLines(const cv::Mat& detected, const ImageGrid& grid,
+                                               const WallProfile& profile,
+                                               const WallProfileConfig& config);
 
 }  // namespace uwbsar

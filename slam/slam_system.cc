@@ -41,6 +41,16 @@ void MakeDetected(const Keyframe& k, const Config& config, cv::Mat* detected, Im
   *grid = k.grid.Resized(cols, rows);
 }
 
+/// Walls as landmarks (place_recognition.wall_profiles.landmarks): only for a base whose
+/// odometry calibration is given, unless require_calibrated_base is off.
+bool UsesWallLandmarks(const Config& config) {
+  const WallProfileConfig& walls = config.place_recognition.wall_profiles;
+  const std::array<double, 3> calibration = config.backend.CalibrationMean();
+  const bool calibrated = calibration[0] != 0.0 || calibration[1] != 0.0 || calibration[2] != 0.0;
+  return walls.enabled && walls.landmarks.enabled &&
+         (calibrated || !walls.landmarks.require_calibrated_base);
+}
+
 }  // namespace
 
 SlamSystem::SlamSystem(const Config& config)
@@ -50,6 +60,7 @@ SlamSystem::SlamSystem(const Config& config)
       recognizer_(std::make_unique<PlaceRecognizer>(PlaceRecognizerConfig(config))),
       wall_edges_(config.place_recognition.wall_profiles),
       wall_landmarks_(config.place_recognition.wall_profiles),
+      wall_landmarks_on_(UsesWallLandmarks(config)),
       tiles_(static_cast<std::size_t>(config.limits.tile_cache_mb * 1024.0 * 1024.0)),
       worker_(config.slam.keyframe_thread, config.slam.keyframe_queue_size,
               [this](Work&& work) { Process(std::move(work)); }) {
@@ -164,17 +175,22 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
   cv::Mat detected;
   MakeDetected(keyframe, config_, &detected, &record.detected_grid);
   // Walls as landmarks where a straight wall is seen, the pairwise edges elsewhere: an edge
-  // between two keyframes that see one landmark would measure that wall a second time.
+  // between two keyframes that see one landmark would measure that wall a second time. Both
+  // read the tile's wall profile, made once here.
   const WallProfileConfig& wall_config = config_.place_recognition.wall_profiles;
-  const std::array<double, 3> calibration = config_.backend.CalibrationMean();
-  const bool calibrated = calibration[0] != 0.0 || calibration[1] != 0.0 || calibration[2] != 0.0;
-  const bool landmarks = wall_config.enabled && wall_config.landmarks.enabled &&
-                         (calibrated || !wall_config.landmarks.require_calibrated_base);
-  const WallLandmarkTracker::Update seen =
-      landmarks ? wall_landmarks_.Add(keyframe, detected, record.detected_grid)
-                : WallLandmarkTracker::Update();
-  std::vector<PoseGraphEdge> walls = wall_edges_.Add(keyframe, detected, record.detected_grid);
-  if (landmarks) {
+  std::vector<PoseGraphEdge> walls;
+  WallLandmarkTracker::Update seen;
+  if (wall_config.enabled && keyframe.complete && !detected.empty()) {
+    const WallProfile profile =
+        KeyframeWallProfile(keyframe, detected, record.detected_grid, wall_config);
+    if (wall_landmarks_on_) {
+      seen = wall_landmarks_.Add(keyframe, detected, record.detected_grid, profile);
+    }
+    walls = wall_edges_.Add(keyframe, profile);
+  } else if (wall_landmarks_on_) {
+    seen = wall_landmarks_.Add(keyframe.id, keyframe.T_world_anchor, {});  // counts as a gap
+  }
+  if (wall_landmarks_on_) {
     walls.erase(std::remove_if(walls.begin(), walls.end(),
                                [&](const PoseGraphEdge& e) {
                                  return wall_landmarks_.ShareLandmark(e.from_id, e.to_id);

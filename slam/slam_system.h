@@ -142,6 +142,7 @@ class SlamSystem {
   std::unique_ptr<PlaceRecognizer> recognizer_;  // keyframe thread only
   WallEdgeFinder wall_edges_;                    // keyframe thread only
   WallLandmarkTracker wall_landmarks_;           // keyframe thread only
+  const bool wall_landmarks_on_;                 // UsesWallLandmarks: fixed at construction
   TileStore tiles_;                              // thread-safe (detected tiles out of core)
   std::vector<KeyframeRecord> keyframes_;        // GUARDED_BY(state_mutex_)
   std::vector<RetiredKeyframe> retired_;         // GUARDED_BY(state_mutex_)

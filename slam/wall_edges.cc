@@ -32,16 +32,27 @@ PoseGraphEdge WallEdgeFinder::MakeEdge(int a_id, int b_id, const Pose2& T_a_b_od
   return e;
 }
 
+WallProfile KeyframeWallProfile(const Keyframe& keyframe, const cv::Mat& detected,
+                                const ImageGrid& grid, const WallProfileConfig& config) {
+  return ComputeWallProfile(
+      detected, grid, keyframe.T_world_robot.yaw_rad - keyframe.T_world_anchor.yaw_rad, config);
+}
+
 std::vector<PoseGraphEdge> WallEdgeFinder::Add(const Keyframe& keyframe, const cv::Mat& detected,
                                                const ImageGrid& grid) {
+  if (!config_.enabled || !keyframe.complete || detected.empty()) return {};
+  return Add(keyframe, KeyframeWallProfile(keyframe, detected, grid, config_));
+}
+
+std::vector<PoseGraphEdge> WallEdgeFinder::Add(const Keyframe& keyframe,
+                                               const WallProfile& profile) {
   std::vector<PoseGraphEdge> edges;
-  if (!config_.enabled || !keyframe.complete || detected.empty()) return edges;
+  if (!config_.enabled || !keyframe.complete) return edges;
   Recent now;
   now.id = keyframe.id;
   now.T_world_anchor = keyframe.T_world_anchor;
   now.heading_rad = keyframe.T_world_robot.yaw_rad;
-  now.profile = ComputeWallProfile(detected, grid,
-                                   now.heading_rad - keyframe.T_world_anchor.yaw_rad, config_);
+  now.profile = profile;
   const double max_turn_rad = config_.max_heading_change_deg * kPi / 180.0;
   // Walk back while the path stays straight: every keyframe from the earlier one up to this
   // one keeps its heading within max_turn of the earlier one's.

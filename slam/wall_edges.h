@@ -14,6 +14,11 @@
 
 namespace uwbsar::slam {
 
+/// The wall profile of a keyframe's detected tile (on `grid`, its anchor frame) across the
+/// robot's heading at the tile's middle: what the wall edges and the wall lines both read.
+WallProfile KeyframeWallProfile(const Keyframe& keyframe, const cv::Mat& detected,
+                                const ImageGrid& grid, const WallProfileConfig& config);
+
 class WallEdgeFinder {
  public:
   explicit WallEdgeFinder(const WallProfileConfig& config) : config_(config) {}
@@ -23,6 +28,8 @@ class WallEdgeFinder {
   /// (!keyframe.complete) is neither paired nor kept.
   std::vector<PoseGraphEdge> Add(const Keyframe& keyframe, const cv::Mat& detected,
                                  const ImageGrid& grid);
+  /// The same with the tile's profile computed by the caller (KeyframeWallProfile).
+  std::vector<PoseGraphEdge> Add(const Keyframe& keyframe, const WallProfile& profile);
 
   int pairs_tried() const { return pairs_tried_; }
 

@@ -38,14 +38,11 @@ std::vector<SeenLine> SeenLines(const std::vector<WallLineObservation>& lines,
 }
 
 WallLandmarkTracker::Update WallLandmarkTracker::Add(const Keyframe& keyframe,
-                                                     const cv::Mat& detected,
-                                                     const ImageGrid& grid) {
+                                                     const cv::Mat& detected, const ImageGrid& grid,
+                                                     const WallProfile& profile) {
   std::vector<SeenLine> lines;
   if (keyframe.complete && !detected.empty()) {
-    const double heading_anchor_rad =
-        keyframe.T_world_robot.yaw_rad - keyframe.T_world_anchor.yaw_rad;
-    lines = SeenLines(FindWallLines(detected, grid, heading_anchor_rad, profile_config_),
-                      heading_anchor_rad);
+    lines = SeenLines(FindWallLines(detected, grid, profile, profile_config_), profile.heading_rad);
   }
   lines_seen_ += static_cast<int>(lines.size());
   return Add(keyframe.id, keyframe.T_world_anchor, lines);

@@ -55,9 +55,11 @@ class WallLandmarkTracker {
     std::vector<LineObservation> observations;
   };
 
-  /// The walls of `keyframe`, whose detected tile is `detected` on `grid` (its anchor frame); a
-  /// tile cut short (!keyframe.complete) sees none.
-  Update Add(const Keyframe& keyframe, const cv::Mat& detected, const ImageGrid& grid);
+  /// The walls of `keyframe`, whose detected tile is `detected` on `grid` (its anchor frame)
+  /// with the wall profile `profile` (KeyframeWallProfile); a tile cut short
+  /// (!keyframe.complete) sees none.
+  Update Add(const Keyframe& keyframe, const cv::Mat& detected, const ImageGrid& grid,
+             const WallProfile& profile);
 
   /// The walls keyframe `keyframe_id` sees; T_world_anchor is its anchor's odometry pose.
   /// Keyframes come in path order, one call each (an empty `lines` counts towards the gap).
