@@ -26,6 +26,12 @@ void Validate(const BackendConfig& b, const std::string& src) {
           "backend.calibration_heading_drift_sigma_rad_per_m", "must be > 0");
   Require(b.calibration_rotation_sigma > 0, src, "backend.calibration_rotation_sigma",
           "must be > 0");
+  Require(b.landmark_right_angle_std_deg >= 0, src, "backend.landmark_right_angle_std_deg",
+          "must be >= 0 (0 = off)");
+  Require(b.landmark_right_angle_gate_deg > 0 && b.landmark_right_angle_gate_deg < 45, src,
+          "backend.landmark_right_angle_gate_deg", "must be in (0, 45)");
+  Require(b.landmark_right_angle_pairs >= 1, src, "backend.landmark_right_angle_pairs",
+          "must be >= 1");
   // A base off by more than 20 % (distance or turns) or 0.1 rad per metre needs mending, not
   // a calibration: beyond that a typo (a percentage for a fraction) would pass silently.
   Require(std::abs(b.calibration_scale_mean) <= kMaxCalibrationScale, src,

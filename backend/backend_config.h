@@ -75,6 +75,14 @@ struct BackendConfig {
   double calibration_scale_mean = 0.0;  ///< distances are multiplied by (1 + this)
   double calibration_heading_drift_mean_rad_per_m = 0.0;  ///< heading lost per metre
   double calibration_rotation_mean = 0.0;                 ///< turns are multiplied by (1 + this)
+  /// Right angles between wall landmarks (buildings are mostly rectilinear): each new landmark
+  /// and each of the last landmark_right_angle_pairs landmarks before it whose angles differ by
+  /// a whole number of quarter turns within landmark_right_angle_gate_deg get a robust prior
+  /// (the loops' loss) holding that difference, with this standard deviation; 0 = off (the
+  /// default: a building whose corners are 2 deg off square is bent by it).
+  double landmark_right_angle_std_deg = 0.0;
+  double landmark_right_angle_gate_deg = 3.0;
+  int landmark_right_angle_pairs = 8;
   int max_trial_solves = 2;  ///< loops still held back as unsupported, tried per Optimize() in a
                              ///< solve of their own (lowest chi2 first, each once); 0 = off
   double trial_loop_chi2 = 16.27;      ///< trial: the most the solution's chi2 (all edges and
@@ -107,6 +115,9 @@ struct BackendConfig {
     v("calibration_scale_mean", calibration_scale_mean);
     v("calibration_heading_drift_mean_rad_per_m", calibration_heading_drift_mean_rad_per_m);
     v("calibration_rotation_mean", calibration_rotation_mean);
+    v("landmark_right_angle_std_deg", landmark_right_angle_std_deg);
+    v("landmark_right_angle_gate_deg", landmark_right_angle_gate_deg);
+    v("landmark_right_angle_pairs", landmark_right_angle_pairs);
     v("max_trial_solves", max_trial_solves);
     v("trial_loop_chi2", trial_loop_chi2);
     v("loop_xy_information", loop_xy_information);

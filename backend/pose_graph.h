@@ -63,8 +63,9 @@
 #include "core/pose2.h"
 
 namespace ceres {
+class LossFunction;
 class Problem;
-}
+}  // namespace ceres
 
 namespace uwbsar {
 
@@ -191,9 +192,11 @@ class PoseGraph {
   int AddLoopEdge(int from_id, int to_id, const Pose2& T_from_to);
 
   /// Adds a line landmark, a straight wall (backend/line_landmark.h), with its initial estimate
-  /// in the world. Landmarks are never fixed and never free the odometry calibration. Throws
-  /// InputError on a duplicate id or a non-finite line.
-  void AddLandmark(int id, const Line2& line_world);
+  /// in the world. A `fixed` landmark (a saved map's wall, as a run localised in the map sees
+  /// it) stays at line_world; the others are re-seeded from their first observation and solved.
+  /// Landmarks never free the odometry calibration. Throws InputError on a duplicate id or a
+  /// non-finite line.
+  void AddLandmark(int id, const Line2& line_world, bool fixed = false);
 
   /// Adds one node's observation of a landmark; returns its index. It carries the loops' robust
   /// loss and is rejected by its chi2 like a loop (a wall that bends or ends), never held back.
@@ -231,6 +234,8 @@ class PoseGraph {
   /// The observations of the nodes still in the graph, and their state.
   std::vector<LineObservation> LineObservations() const;
   std::vector<LineObservationReport> LineObservationReports() const;
+  /// Right-angle priors made between landmarks so far (backend.landmark_right_angle_*).
+  int RightAnglePriors() const;
   /// Each calibrated trajectory's odometry calibration after the last Optimize()
   /// ([scale, heading_drift_rad_per_m, rotation_scale]; zero while no loop constrains it).
   std::map<int, std::array<double, 3>> OdometryCalibrations() const;
@@ -285,6 +290,8 @@ class PoseGraph {
   /// Each landmark (or those in `only`) from its first accepted observation and that node's
   /// pose.
   void ReseedLandmarks(const std::set<int>* only = nullptr);
+  /// Right-angle priors between landmark `id` (just inserted) and the ones before it.
+  void AddRightAnglePriors(int id);
   double ObservationChi2Sum() const;
   std::vector<std::array<double, 2>> LandmarkStates() const;
   void RestoreLandmarkStates(const std::vector<std::array<double, 2>>& states);
@@ -311,6 +318,10 @@ class PoseGraph {
   std::vector<LineObservationReport> observation_reports_;
   std::vector<bool> observation_removed_;  // by index: an observation of a removed node
   std::vector<std::pair<int, Line2>> pending_landmarks_;
+  std::set<int> fixed_landmarks_;
+  std::vector<int> landmark_order_;  // ids in insertion order (right-angle priors' partners)
+  int right_angle_priors_ = 0;
+  std::vector<std::unique_ptr<ceres::LossFunction>> right_angle_losses_;  // the problem's, owned
   std::vector<int> pending_observations_;
 
   std::mutex solve_mutex_;  // guards the solver side below

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "backend/line_observation_cost.h"
+#include "backend/line_right_angle_cost.h"
 #include "backend/pose_graph.h"
 #include "backend/pose_graph_solver.h"
 #include "core/errors.h"
@@ -24,7 +25,7 @@ std::string ObservationName(const LineObservation& o) {
 
 }  // namespace
 
-void PoseGraph::AddLandmark(int id, const Line2& line_world) {
+void PoseGraph::AddLandmark(int id, const Line2& line_world, bool fixed) {
   if (!Finite(line_world)) {
     throw InputError("pose graph: landmark " + std::to_string(id) + " has a non-finite line");
   }
@@ -37,6 +38,7 @@ void PoseGraph::AddLandmark(int id, const Line2& line_world) {
     throw InputError("pose graph: landmark " + std::to_string(id) + " already exists");
   }
   landmarks_[id] = line_world;
+  if (fixed) fixed_landmarks_.insert(id);
   pending_landmarks_.push_back({id, line_world});
 }
 
@@ -78,6 +80,8 @@ void PoseGraph::InsertPendingLandmarks(const std::vector<std::pair<int, Line2>>&
     landmark->x = {a, line_world.offset_m -
                           (std::cos(a) * solver_origin_.x_m + std::sin(a) * solver_origin_.y_m)};
     problem_->AddParameterBlock(landmark->x.data(), 2);
+    landmark->fixed = fixed_landmarks_.count(id) > 0;
+    if (landmark->fixed) problem_->SetParameterBlockConstant(landmark->x.data());
     solver_landmarks_[id] = std::move(landmark);
   }
   for (std::size_t k = 0; k < observation_indices.size(); ++k) {
@@ -98,6 +102,36 @@ void PoseGraph::InsertPendingLandmarks(const std::vector<std::pair<int, Line2>>&
   std::set<int> added;
   for (const auto& [id, line_world] : landmarks) added.insert(id);
   ReseedLandmarks(&added);
+  for (const auto& [id, line_world] : landmarks) AddRightAnglePriors(id);
+}
+
+void PoseGraph::AddRightAnglePriors(int id) {
+  const int pairs = config_.landmark_right_angle_pairs;
+  SolverLandmark* a = solver_landmarks_.at(id).get();
+  if (config_.landmark_right_angle_std_deg > 0.0) {
+    const double quarter = 0.5 * M_PI;
+    const double gate_rad = config_.landmark_right_angle_gate_deg * M_PI / 180.0;
+    const double std_rad = config_.landmark_right_angle_std_deg * M_PI / 180.0;
+    const int n = static_cast<int>(landmark_order_.size());
+    for (int k = n - 1; k >= 0 && k >= n - pairs; --k) {
+      SolverLandmark* b = solver_landmarks_.at(landmark_order_[static_cast<std::size_t>(k)]).get();
+      if (a->fixed && b->fixed) continue;  // nothing to hold
+      // The angles as the graph has them now (a new landmark re-seeded from its first view).
+      const double d = NormalizeAngle(a->x[0] - b->x[0]);
+      const int turns = static_cast<int>(std::lround(d / quarter));
+      if (std::abs(d - turns * quarter) > gate_rad) continue;
+      right_angle_losses_.emplace_back(MakeRobustLoss(config_));
+      problem_->AddResidualBlock(LineRightAngleCost::Create(turns, std_rad),
+                                 right_angle_losses_.back().get(), a->x.data(), b->x.data());
+      ++right_angle_priors_;
+    }
+  }
+  landmark_order_.push_back(id);
+}
+
+int PoseGraph::RightAnglePriors() const {
+  std::lock_guard<std::mutex> lock(data_mutex_);
+  return right_angle_priors_;
 }
 
 bool PoseGraph::UpdateObservationStatus() {
@@ -129,7 +163,10 @@ void PoseGraph::ReseedLandmarks(const std::set<int>* only) {
   std::set<int> seeded;
   for (const auto& so : solver_observations_) {
     const int id = so->observation.landmark_id;
-    if (so->rejected || seeded.count(id) || (only != nullptr && !only->count(id))) continue;
+    if (so->rejected || so->landmark->fixed || seeded.count(id) ||
+        (only != nullptr && !only->count(id))) {
+      continue;
+    }
     seeded.insert(id);
     const Pose2 T_solver_node{so->node->x[0], so->node->x[1], so->node->x[2]};
     const Line2 before{so->landmark->x[0], so->landmark->x[1]};

@@ -68,6 +68,7 @@ struct PoseGraph::SolverEdge {
 /// A line landmark's block [normal_rad, offset_m] in the solver frame (backend/line_landmark.h).
 struct PoseGraph::SolverLandmark {
   std::array<double, 2> x{};
+  bool fixed = false;  ///< held constant (a saved map's wall): never re-seeded
 };
 
 struct PoseGraph::SolverObservation {

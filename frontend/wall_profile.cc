@@ -74,6 +74,57 @@ WallProfile ComputeWallProfile(const cv::Mat& detected, const ImageGrid& grid, d
   return p;
 }
 
+namespace {
+
+/// The best shift of b against a within +-reach bins of `centre` (bins): its correlation, the
+/// shift refined below a bin by a parabola, and whether the peak lies on the searched range's
+/// edge.
+struct Shift {
+  double correlation = -1.0;
+  double bins = 0.0;
+  bool on_edge = false;
+};
+
+Shift BestShift(const std::vector<float>& a, const std::vector<float>& b, int centre, int reach) {
+  std::vector<double> score(static_cast<std::size_t>(2 * reach + 1));
+  int best = -1;
+  for (int k = 0; k <= 2 * reach; ++k) {
+    score[static_cast<std::size_t>(k)] = Correlation(a, b, centre - reach + k);
+    if (best < 0 || score[static_cast<std::size_t>(k)] > score[static_cast<std::size_t>(best)]) {
+      best = k;
+    }
+  }
+  Shift s;
+  s.correlation = score[static_cast<std::size_t>(best)];
+  double refined = best;
+  if (best > 0 && best < 2 * reach) {  // parabola through the peak and its neighbours
+    const double l = score[static_cast<std::size_t>(best - 1)];
+    const double m = score[static_cast<std::size_t>(best)];
+    const double r = score[static_cast<std::size_t>(best + 1)];
+    const double curvature = l - 2.0 * m + r;
+    if (curvature < 0.0) refined += 0.5 * (l - r) / curvature;
+  }
+  s.bins = centre - reach + refined;
+  s.on_edge = best == 0 || best == 2 * reach;
+  return s;
+}
+
+/// The profile's bins on one side of the path (`left`: offsets > 0), the other side zeroed;
+/// empty when that side shows no wall (its highest bin under min_wall_contrast x the floor).
+std::vector<float> SideBins(const WallProfile& p, bool left, double min_wall_contrast) {
+  std::vector<float> side(p.bins.size(), 0.0f);
+  const std::size_t half = p.bins.size() / 2;  // bin half is the first at an offset > 0
+  float peak = 0.0f;
+  for (std::size_t j = left ? half : 0; j < (left ? p.bins.size() : half); ++j) {
+    side[j] = p.bins[j];
+    peak = std::max(peak, p.bins[j]);
+  }
+  if (!(p.floor > 0.0) || (peak + p.floor) / p.floor < min_wall_contrast) return {};
+  return side;
+}
+
+}  // namespace
+
 WallProfileAlignment AlignWallProfiles(const WallProfile& a, const WallProfile& b,
                                        double predicted_offset_m, const WallProfileConfig& config) {
   if (a.bins.size() != b.bins.size() || a.bin_m != b.bin_m) {
@@ -90,34 +141,44 @@ WallProfileAlignment AlignWallProfiles(const WallProfile& a, const WallProfile& 
   // a's offset s_a of a world point is b's s_b plus b's anchor offset: a[q + shift] ~ b[q].
   const int centre = static_cast<int>(std::lround(predicted_offset_m / a.bin_m));
   const int reach = static_cast<int>(std::lround(config.search_m / a.bin_m));
-  std::vector<double> score(static_cast<std::size_t>(2 * reach + 1));
-  int best = -1;
-  for (int k = 0; k <= 2 * reach; ++k) {
-    score[static_cast<std::size_t>(k)] = Correlation(a.bins, b.bins, centre - reach + k);
-    if (best < 0 || score[static_cast<std::size_t>(k)] > score[static_cast<std::size_t>(best)]) {
-      best = k;
-    }
-  }
-  result.correlation = score[static_cast<std::size_t>(best)];
-  double refined = best;
-  if (best > 0 && best < 2 * reach) {  // parabola through the peak and its neighbours
-    const double l = score[static_cast<std::size_t>(best - 1)];
-    const double m = score[static_cast<std::size_t>(best)];
-    const double r = score[static_cast<std::size_t>(best + 1)];
-    const double curvature = l - 2.0 * m + r;
-    if (curvature < 0.0) refined += 0.5 * (l - r) / curvature;
-  }
-  result.offset_m = (centre - reach + refined) * a.bin_m;
-  if (best == 0 || best == 2 * reach) {
+  const Shift whole = BestShift(a.bins, b.bins, centre, reach);
+  result.correlation = whole.correlation;
+  result.offset_m = whole.bins * a.bin_m;
+  if (whole.on_edge) {
     std::snprintf(text, sizeof text, "peak on the edge of the +-%.2f m search", config.search_m);
     result.reason = text;
-  } else if (result.correlation < config.min_correlation) {
+    return result;
+  }
+  if (result.correlation < config.min_correlation) {
     std::snprintf(text, sizeof text, "correlation %.2f < %.2f", result.correlation,
                   config.min_correlation);
     result.reason = text;
-  } else {
-    result.accepted = true;
+    return result;
   }
+  // Where both sides show walls, each side aligned alone must tell the same shift: when they
+  // do not, the tiles saw different things on one side (a cabinet here, another one there) and
+  // the whole profile's peak is a compromise between them.
+  if (config.max_side_disagreement_m > 0.0) {
+    double side_offset_m[2];
+    bool both = true;
+    for (int left = 0; left < 2 && both; ++left) {
+      const std::vector<float> sa = SideBins(a, left, config.min_wall_contrast);
+      const std::vector<float> sb = SideBins(b, left, config.min_wall_contrast);
+      const Shift s = sa.empty() || sb.empty() ? Shift{} : BestShift(sa, sb, centre, reach);
+      both = !sa.empty() && !sb.empty() && !s.on_edge;
+      side_offset_m[left] = s.bins * a.bin_m;
+    }
+    if (both) {
+      result.side_disagreement_m = std::abs(side_offset_m[1] - side_offset_m[0]);
+      if (result.side_disagreement_m > config.max_side_disagreement_m) {
+        std::snprintf(text, sizeof text, "the two sides' walls disagree by %.1f cm > %.1f cm",
+                      100.0 * result.side_disagreement_m, 100.0 * config.max_side_disagreement_m);
+        result.reason = text;
+        return result;
+      }
+    }
+  }
+  result.accepted = true;
   return result;
 }
 

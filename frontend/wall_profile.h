@@ -42,7 +42,9 @@ struct WallProfileAlignment {
   bool accepted = false;
   double offset_m = 0.0;     ///< anchor b's offset from anchor a along a's left normal
   double correlation = 0.0;  ///< normalised cross-correlation at the best shift
-  std::string reason;        ///< why not accepted
+  /// |left - right| of the two sides aligned alone, where both show walls (else 0)
+  double side_disagreement_m = 0.0;
+  std::string reason;  ///< why not accepted
 };
 
 /// Aligns `b` to `a` within config.search_m of `predicted_offset_m` (b's anchor offset from
@@ -50,7 +52,10 @@ struct WallProfileAlignment {
 /// cross-correlation, refined below a bin by a parabola. Refused when either profile has no
 /// wall (contrast below config.min_wall_contrast). Accepted when the correlation reaches
 /// config.min_correlation and the peak lies inside the searched range (a peak on its edge means
-/// the true shift may lie outside it). The profiles must have the same bin size and extent.
+/// the true shift may lie outside it), and, where both profiles show walls on both sides of the
+/// path (each side's highest bin at least min_wall_contrast x the floor), the left walls aligned
+/// alone and the right walls aligned alone differ by at most config.max_side_disagreement_m (0:
+/// not checked). The profiles must have the same bin size and extent.
 WallProfileAlignment AlignWallProfiles(const WallProfile& a, const WallProfile& b,
                                        double predicted_offset_m, const WallProfileConfig& config);
 

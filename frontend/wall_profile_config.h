@@ -25,7 +25,10 @@ struct WallProfileConfig {
                                         ///< is no wall, only the imaged band's own shape
   double min_correlation = 0.8;         ///< normalised cross-correlation of the aligned profiles
   double lateral_std_m = 0.02;          ///< standard deviation of the measured offset (edge weight)
-  WallLineConfig landmarks;             ///< walls as line landmarks instead of these edges
+  /// With walls on both sides, the shift of the left walls alone and of the right walls alone
+  /// may differ by at most this; more, and the sides saw different things (0: not checked).
+  double max_side_disagreement_m = 0.07;
+  WallLineConfig landmarks;  ///< walls as line landmarks instead of these edges
 
   template <class V>
   void Visit(V& v) {
@@ -39,6 +42,7 @@ struct WallProfileConfig {
     v("min_wall_contrast", min_wall_contrast);
     v("min_correlation", min_correlation);
     v("lateral_std_m", lateral_std_m);
+    v("max_side_disagreement_m", max_side_disagreement_m);
     v("landmarks", landmarks);
   }
 };

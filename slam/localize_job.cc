@@ -117,13 +117,14 @@ nlohmann::json WriteLocalizeFiles(const LocalizeRun& run, const std::string& out
   }
   WriteTum(out_dir + "/trajectory.tum", tum);
   std::ostringstream csv;
-  csv << "keyframe_id,stamp_s,path_m,status,x_m,y_m,yaw_deg,candidates,loops\n";
+  csv << "keyframe_id,stamp_s,path_m,status,x_m,y_m,yaw_deg,candidates,loops,walls\n";
   csv << std::fixed;
-  int tracking = 0, lost = 0, relocalised = 0;
+  int tracking = 0, lost = 0, relocalised = 0, with_walls = 0;
   for (const LocalizedKeyframe& k : run.keyframes) {
     tracking += k.status == LocalizeStatus::kTracking;
     lost += k.status == LocalizeStatus::kLost;
     relocalised += k.status == LocalizeStatus::kRelocalised;
+    with_walls += k.walls > 0;
     csv << k.id << "," << std::setprecision(6) << NsToSeconds(k.stamp_ns) << ","
         << std::setprecision(3) << k.path_end_m << "," << LocalizeStatusName(k.status) << ",";
     if (k.placed) {
@@ -132,7 +133,7 @@ nlohmann::json WriteLocalizeFiles(const LocalizeRun& run, const std::string& out
     } else {
       csv << ",,";
     }
-    csv << "," << k.candidates << "," << k.loops << "\n";
+    csv << "," << k.candidates << "," << k.loops << "," << k.walls << "\n";
   }
   WriteTextAtomic(out_dir + "/localize.csv", csv.str());
   nlohmann::json s;
@@ -143,7 +144,8 @@ nlohmann::json WriteLocalizeFiles(const LocalizeRun& run, const std::string& out
   s["keyframes"] = {{"total", run.keyframes.size()},
                     {"tracking", tracking},
                     {"lost", lost},
-                    {"relocalised", relocalised}};
+                    {"relocalised", relocalised},
+                    {"observing_walls", with_walls}};
   if (run.first_fix >= 0) {
     s["first_fix"] = {{"keyframe_id", run.keyframes[run.first_fix].id},
                       {"path_m", run.first_fix_path_m},

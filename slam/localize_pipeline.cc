@@ -1,6 +1,8 @@
 #include "slam/localize_pipeline.h"
 
 #include "frontend/place_recognition/place_recognizer.h"
+#include "slam/detected_tile.h"
+#include "slam/wall_edges.h"
 
 namespace uwbsar::slam {
 
@@ -62,7 +64,16 @@ void LocalizePipeline::HandOver() {
 // The features and the matching (the long part) without the result lock.
 void LocalizePipeline::Localize(const Keyframe& k) {
   const KeyframeFeatures f = ExtractKeyframeFeatures(k, config_);
-  const LocalizedKeyframe l = localizer_.Add(f, k.T_world_anchor, k.stamp_ns, k.path_end_m);
+  std::vector<SeenLine> walls;
+  if (localizer_.UsesWalls() && k.complete) {
+    cv::Mat detected;
+    ImageGrid grid;
+    MakeDetected(k, config_, &detected, &grid);
+    const WallProfileConfig& wall_config = config_.place_recognition.wall_profiles;
+    walls = KeyframeSeenLines(k, detected, grid,
+                              KeyframeWallProfile(k, detected, grid, wall_config), wall_config);
+  }
+  const LocalizedKeyframe l = localizer_.Add(f, k.T_world_anchor, k.stamp_ns, k.path_end_m, walls);
   std::lock_guard<std::mutex> lock(result_mutex_);
   run_.keyframes.push_back(l);
   if (l.placed) T_map_odom_ = l.T_map_anchor * l.T_odom_anchor.Inverse();

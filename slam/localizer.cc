@@ -1,6 +1,9 @@
 #include "slam/localizer.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <utility>
 
 #include "backend/pose_graph.h"
 #include "frontend/place_recognition/feature_matcher.h"
@@ -22,6 +25,11 @@ const char* LocalizeStatusName(LocalizeStatus status) {
 
 namespace {
 
+bool UsesMapWalls(const SessionSettings& config) {
+  const WallProfileConfig& walls = config.place_recognition.wall_profiles;
+  return walls.enabled && walls.landmarks.enabled;
+}
+
 bool Agree(const Pose2& x, const Pose2& y, const SessionConfig& c) {
   const Pose2 d = Between(x, y);
   return std::hypot(d.x_m, d.y_m) <= c.connect_agree_m &&
@@ -33,11 +41,17 @@ bool Agree(const Pose2& x, const Pose2& y, const SessionConfig& c) {
 Localizer::Localizer(const SessionData& map, const SessionSettings& config)
     : map_(map),
       config_(config),
-      pr_(AtFeatureResolution(config.place_recognition, FeatureDownsampling(config))) {}
+      pr_(AtFeatureResolution(config.place_recognition, FeatureDownsampling(config))) {
+  if (UsesMapWalls(config)) {
+    map_walls_ = slam::MapWalls(map, config.place_recognition.wall_profiles.landmarks,
+                                2.0 * config.keyframe.tile_length_m);
+  }
+}
 
 const LocalizedKeyframe& Localizer::Add(const KeyframeFeatures& features,
                                         const Pose2& T_odom_anchor, TimestampNs stamp_ns,
-                                        double path_end_m) {
+                                        double path_end_m,
+                                        const std::vector<slam::SeenLine>& walls) {
   const SessionConfig& sc = config_.session;
   LocalizedKeyframe k;
   k.id = features.id;
@@ -70,8 +84,14 @@ const LocalizedKeyframe& Localizer::Add(const KeyframeFeatures& features,
   if (!used.empty()) {
     path_at_last_loop_m_ = path_end_m;
     for (const Loop& l : used) window_loops_.push_back(l);
-    SolveWindow();
   }
+  if (placed_) {
+    for (const LineObservation& o : map_walls_.Observe(walls, T_map_odom_ * T_odom_anchor, index)) {
+      window_walls_.push_back(o);
+      ++out.walls;
+    }
+  }
+  if (!used.empty() || out.walls > 0) SolveWindow();
   out.T_map_anchor = T_map_odom_ * T_odom_anchor;
   out.placed = placed_;
   return out;
@@ -141,6 +161,9 @@ void Localizer::SolveWindow() {
   while (!window_loops_.empty() && window_loops_.front().keyframe_index < first) {
     window_loops_.pop_front();
   }
+  while (!window_walls_.empty() && window_walls_.front().node_id < first) {
+    window_walls_.pop_front();
+  }
   BackendConfig backend = config_.backend;
   backend.min_loop_support = 0;  // the loops passed the gate against the estimate already
   PoseGraph graph(backend);
@@ -165,6 +188,14 @@ void Localizer::SolveWindow() {
     e.information = l.information;
     e.kind = EdgeKind::kLoop;
     graph.AddEdge(e);
+  }
+  // The map's walls stay where the map has them. Without a loop in the window its first
+  // keyframe holds the gauge (where the last solution put it): walls give no position along.
+  for (const LineObservation& o : window_walls_) {
+    if (!graph.GetLandmarks().count(o.landmark_id)) {
+      graph.AddLandmark(o.landmark_id, map_walls_.Line(o.landmark_id), /*fixed=*/true);
+    }
+    graph.AddLineObservation(o);
   }
   graph.Optimize();
   T_map_odom_ = graph.GetPose(last) * keyframes_[last].T_odom_anchor.Inverse();

@@ -7,15 +7,24 @@
 // session.localize_window_keyframes keyframes (odometry edges between them, loop edges to
 // the fixed map keyframes) is optimised after each keyframe with loops. Without a loop for
 // session.localize_lost_after_m of path the robot is "lost" and global search resumes.
+//
+// The map's walls (its line landmarks, place_recognition.wall_profiles.landmarks) hold the
+// robot between loops: once placed, each straight wall a keyframe sees that lies on one of the
+// map's (within the landmark gates at the estimate, and within two tile lengths of where the
+// map saw it) observes that landmark, held fixed in the window; a keyframe with such walls is
+// optimised too. Along a corridor, where loops are few, they keep the estimate on its line.
 #pragma once
 
 #include <deque>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "frontend/place_recognition/place_recognizer.h"
+#include "slam/map_walls.h"
 #include "slam/session/session_data.h"
 #include "slam/session/session_settings.h"
+#include "slam/wall_landmarks.h"
 
 namespace uwbsar {
 
@@ -33,6 +42,7 @@ struct LocalizedKeyframe {
   LocalizeStatus status = LocalizeStatus::kLost;
   int candidates = 0;
   int loops = 0;  ///< validated loops into the map used for this keyframe
+  int walls = 0;  ///< the map's wall landmarks it observed (once placed)
 };
 
 class Localizer {
@@ -40,10 +50,16 @@ class Localizer {
   /// `map` must outlive the localizer.
   Localizer(const SessionData& map, const SessionSettings& config);
 
-  /// One new keyframe: its features (grid, centre) and odometry anchor pose, its stamp and
-  /// the odometry path at its end. Returns what was decided for it.
+  /// One new keyframe: its features (grid, centre) and odometry anchor pose, its stamp, the
+  /// odometry path at its end and the straight walls its tile shows (slam/wall_landmarks.h,
+  /// anchor frame). Returns what was decided for it.
   const LocalizedKeyframe& Add(const KeyframeFeatures& features, const Pose2& T_odom_anchor,
-                               TimestampNs stamp_ns, double path_end_m);
+                               TimestampNs stamp_ns, double path_end_m,
+                               const std::vector<slam::SeenLine>& walls = {});
+
+  /// Whether the map has wall landmarks that Add's `walls` can observe (and the configuration
+  /// uses them): the caller need not find a tile's walls otherwise.
+  bool UsesWalls() const { return !map_walls_.empty(); }
 
   const std::vector<LocalizedKeyframe>& keyframes() const { return keyframes_; }
   bool placed() const { return placed_; }
@@ -72,8 +88,10 @@ class Localizer {
   SessionSettings config_;
   PlaceRecognitionConfig pr_;
   std::vector<LocalizedKeyframe> keyframes_;
-  std::deque<Loop> window_loops_;  ///< loops of the keyframes in the window
-  std::vector<Loop> unplaced_;     ///< validated loops while not placed (recent ones)
+  std::deque<Loop> window_loops_;             ///< loops of the keyframes in the window
+  std::deque<LineObservation> window_walls_;  ///< ... and their walls (node_id: keyframe index)
+  slam::MapWalls map_walls_;                  ///< the map's walls, empty when not used
+  std::vector<Loop> unplaced_;                ///< validated loops while not placed (recent ones)
   bool placed_ = false;
   Pose2 T_map_odom_;
   double path_at_last_loop_m_ = 0.0;

@@ -7,13 +7,12 @@
 #include <malloc.h>
 #endif
 #include <cmath>
-#include <opencv2/imgproc.hpp>
 #include <set>
 
 #include "core/errors.h"
 #include "core/log.h"
-#include "imaging/enhance.h"
 #include "slam/app_config.h"
+#include "slam/detected_tile.h"
 #include "slam/session/place_views.h"
 
 namespace uwbsar::slam {
@@ -23,22 +22,6 @@ using Clock = std::chrono::steady_clock;
 
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-/// The detected tile (the paper's positive image, or the magnitude, blurred) at
-/// the map resolution: what the mosaic is made of.
-void MakeDetected(const Keyframe& k, const Config& config, cv::Mat* detected, ImageGrid* grid) {
-  const cv::Mat full = EnhancedFloat(k.image, config.enhance);
-  const double factor = config.slam.map_resolution_m / k.grid.resolution_m;
-  *grid = k.grid;
-  if (factor <= 1.0 + 1e-9) {
-    *detected = full;
-    return;
-  }
-  const int cols = std::max(1, static_cast<int>(std::lround(k.grid.cols / factor)));
-  const int rows = std::max(1, static_cast<int>(std::lround(k.grid.rows / factor)));
-  cv::resize(full, *detected, cv::Size(cols, rows), 0, 0, cv::INTER_AREA);
-  *grid = k.grid.Resized(cols, rows);
 }
 
 /// Walls as landmarks (place_recognition.wall_profiles.landmarks): only for a base whose

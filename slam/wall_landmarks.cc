@@ -37,13 +37,18 @@ std::vector<SeenLine> SeenLines(const std::vector<WallLineObservation>& lines,
   return out;
 }
 
+std::vector<SeenLine> KeyframeSeenLines(const Keyframe& keyframe, const cv::Mat& detected,
+                                        const ImageGrid& grid, const WallProfile& profile,
+                                        const WallProfileConfig& config) {
+  if (!keyframe.complete || detected.empty()) return {};
+  return SeenLines(FindWallLines(detected, grid, profile, config), profile.heading_rad);
+}
+
 WallLandmarkTracker::Update WallLandmarkTracker::Add(const Keyframe& keyframe,
                                                      const cv::Mat& detected, const ImageGrid& grid,
                                                      const WallProfile& profile) {
-  std::vector<SeenLine> lines;
-  if (keyframe.complete && !detected.empty()) {
-    lines = SeenLines(FindWallLines(detected, grid, profile, profile_config_), profile.heading_rad);
-  }
+  const std::vector<SeenLine> lines =
+      KeyframeSeenLines(keyframe, detected, grid, profile, profile_config_);
   lines_seen_ += static_cast<int>(lines.size());
   return Add(keyframe.id, keyframe.T_world_anchor, lines);
 }

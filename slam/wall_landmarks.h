@@ -40,6 +40,12 @@ struct SeenLine {
 std::vector<SeenLine> SeenLines(const std::vector<WallLineObservation>& lines,
                                 double heading_anchor_rad);
 
+/// The walls of `keyframe`'s detected tile (on `grid`, its anchor frame) with its wall profile
+/// `profile` (KeyframeWallProfile), as SeenLines; none for a tile cut short (!keyframe.complete).
+std::vector<SeenLine> KeyframeSeenLines(const Keyframe& keyframe, const cv::Mat& detected,
+                                        const ImageGrid& grid, const WallProfile& profile,
+                                        const WallProfileConfig& config);
+
 class WallLandmarkTracker {
  public:
   /// Landmark ids are handed out from `first_landmark_id` up.

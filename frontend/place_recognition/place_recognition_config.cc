@@ -126,6 +126,9 @@ void ValidateWallProfiles(const WallProfileConfig& w, const std::string& src,
   Require(w.min_correlation > 0 && w.min_correlation <= 1, src, k + "wall_profiles.min_correlation",
           "must be in (0, 1]");
   Require(w.lateral_std_m > 0, src, k + "wall_profiles.lateral_std_m", "must be > 0");
+  Require(w.max_side_disagreement_m >= 0 && w.max_side_disagreement_m <= w.search_m * 2, src,
+          k + "wall_profiles.max_side_disagreement_m",
+          "must be in [0, 2 x wall_profiles.search_m]");
   const WallLineConfig& l = w.landmarks;
   const std::string m = k + "wall_profiles.landmarks.";
   Require(l.min_peak_contrast >= 1, src, m + "min_peak_contrast", "must be >= 1");

@@ -24,10 +24,8 @@ void CaptureLandmarks(const PoseGraph& graph, SessionData* d) {
   }
 }
 
-namespace {
-
-/// Where each observation saw its wall, in the map frame (`T_map_session` places the session).
-std::map<int, std::vector<Point2>> Sightings(const SessionData& s, const Pose2& T_map_session) {
+std::map<int, std::vector<Point2>> LandmarkSightings(const SessionData& s,
+                                                     const Pose2& T_map_session) {
   const std::map<int, Pose2> poses = s.Poses();
   std::map<int, std::vector<Point2>> out;
   for (const SessionLineObservation& o : s.line_observations) {
@@ -43,6 +41,8 @@ std::map<int, std::vector<Point2>> Sightings(const SessionData& s, const Pose2& 
   return out;
 }
 
+namespace {
+
 double Distance(const Line2& l, const Point2& p) {
   return std::abs(std::cos(l.normal_rad) * p.x_m + std::sin(l.normal_rad) * p.y_m - l.offset_m);
 }
@@ -51,8 +51,8 @@ double Distance(const Line2& l, const Point2& p) {
 
 int ReuseSavedWalls(const SessionData& a, const Pose2& T_mapA_mapB, const WallLineConfig& config,
                     double reach_m, SessionData* b) {
-  const std::map<int, std::vector<Point2>> seen_a = Sightings(a, Pose2{});
-  const std::map<int, std::vector<Point2>> seen_b = Sightings(*b, T_mapA_mapB);
+  const std::map<int, std::vector<Point2>> seen_a = LandmarkSightings(a, Pose2{});
+  const std::map<int, std::vector<Point2>> seen_b = LandmarkSightings(*b, T_mapA_mapB);
   const double gate_rad = config.gate_angle_deg * M_PI / 180.0;
   std::map<int, std::pair<int, bool>> reused;  // b's landmark -> a's, turned over
   for (const SessionLandmark& lb : b->landmarks) {

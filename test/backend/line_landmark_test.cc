@@ -146,6 +146,92 @@ TEST(LineLandmarkTest, AStraightCorridorIsStraightenedByTwoWalls) {
   EXPECT_EQ(g.OdometryCalibrations().at(0), (OdometryCalibration{0.0, 0.0, 0.0}));
 }
 
+// A saved map's wall, as `uwbsar localize` uses it: the landmark is fixed where the map has it
+// (here 5 cm further left than the run's own start puts it), never re-seeded from the run's
+// view, and the run's nodes move to see it where they do.
+TEST(LineLandmarkTest, AFixedLandmarkStaysWhereTheMapHasItAndPlacesTheNodes) {
+  const OdometryRun run = Corridor();
+  const Line2 map_wall{kPi / 2, 1.05};  // the truth: y = 1.0
+  for (const bool fixed : {true, false}) {
+    SCOPED_TRACE(fixed);
+    PoseGraph g;
+    BuildOdometryChain(run, &g);
+    g.AddLandmark(0, map_wall, fixed);
+    for (int k = 0; k < static_cast<int>(run.truth.size()); ++k) {
+      LineObservation o;
+      o.node_id = k;
+      o.line_node = LineToFrame(run.truth[k], {kPi / 2, 1.0});
+      o.reference_node = {1.0, 0.0};
+      o.offset_std_m = 0.02;
+      o.normal_std_rad = 1.0 * kPi / 180;
+      g.AddLineObservation(o);
+    }
+    EXPECT_TRUE(g.Optimize().converged);
+    const Line2 wall = g.GetLandmarks().at(0);
+    double far_y_m = 0.0;  // the nodes past the first 10 m, where node 0's pull has gone
+    for (int k = 10; k < static_cast<int>(run.truth.size()); ++k) far_y_m += g.GetPose(k).y_m;
+    far_y_m /= static_cast<double>(run.truth.size()) - 10;
+    if (fixed) {
+      EXPECT_EQ(wall.offset_m, map_wall.offset_m);
+      EXPECT_EQ(wall.normal_rad, map_wall.normal_rad);
+      EXPECT_NEAR(far_y_m, 0.05, 0.01);
+    } else {  // a free landmark is re-seeded from node 0's view: the map's place is lost
+      EXPECT_NEAR(wall.offset_m, 1.0, 0.01);
+    }
+  }
+}
+
+/// An L: 10 m along x, a left turn that the odometry under-reports by about 1 deg, 10 m up y.
+/// Each leg's nodes see its wall exactly: y = 1 (leg A) and x = 11 (leg B, on the right).
+/// Returns the estimated angle between the two walls' normals, minus 90 deg.
+double CornerErrorRad(const BackendConfig& config, int* priors) {
+  std::vector<Pose2> steps(10, {1.0, 0.0, 0.0});
+  steps.push_back({0.0, 0.0, kPi / 2});
+  steps.insert(steps.end(), 10, {1.0, 0.0, 0.0});
+  const OdometryRun run = DriveSteps({0.0, 0.0, 0.011}, steps);
+  PoseGraph g(config);
+  BuildOdometryChain(run, &g);
+  const Line2 walls[2] = {{kPi / 2, 1.0}, {0.0, 11.0}};
+  for (int w = 0; w < 2; ++w) {
+    const int first = w == 0 ? 0 : 11;
+    g.AddLandmark(w, LineToWorld(g.GetPose(first), LineToFrame(run.truth[first], walls[w])));
+    for (int k = first; k < first + 11; ++k) {
+      LineObservation o;
+      o.landmark_id = w;
+      o.node_id = k;
+      o.line_node = LineToFrame(run.truth[k], walls[w]);
+      o.reference_node = {0.0, 0.0};
+      o.offset_std_m = 0.03;
+      o.normal_std_rad = 10.0 * kPi / 180;
+      g.AddLineObservation(o);
+    }
+  }
+  EXPECT_TRUE(g.Optimize().converged);
+  *priors = g.RightAnglePriors();
+  const std::map<int, Line2> est = g.GetLandmarks();
+  return NormalizeAngle(est.at(0).normal_rad - est.at(1).normal_rad - kPi / 2);
+}
+
+// backend.landmark_right_angle_*: the corner between two walls is as square as the odometry's
+// turn says without the prior (1 deg off here), much squarer with it; walls whose angle is far
+// from a quarter turn get no prior.
+TEST(LineLandmarkTest, TheRightAnglePriorSquaresACornerTheOdometryTurnedWrong) {
+  BackendConfig config;
+  int priors = -1;
+  const double without_rad = CornerErrorRad(config, &priors);
+  EXPECT_EQ(priors, 0);  // off by default
+  config.landmark_right_angle_std_deg = 0.5;
+  const double with_rad = CornerErrorRad(config, &priors);
+  EXPECT_EQ(priors, 1);
+  std::printf("corner off square: %.3f deg without the prior, %.3f deg with it\n",
+              without_rad * 180 / kPi, with_rad * 180 / kPi);
+  EXPECT_GT(std::abs(without_rad), 0.8 * kPi / 180);
+  EXPECT_LT(std::abs(with_rad), 0.5 * std::abs(without_rad));
+  config.landmark_right_angle_gate_deg = 0.5;  // 1 deg off a quarter turn: outside the gate
+  CornerErrorRad(config, &priors);
+  EXPECT_EQ(priors, 0);
+}
+
 TEST(LineLandmarkTest, AWrongObservationIsRejectedAndDoesNotBendTheMap) {
   const OdometryRun run = Corridor();
   PoseGraph g;

@@ -13,6 +13,7 @@ namespace uwbsar {
 namespace {
 
 using testing::CorridorTile;
+using testing::SpeckledWalls;
 using testing::TileGrid;
 constexpr double kPi = 3.14159265358979323846;
 
@@ -65,6 +66,46 @@ TEST(WallProfileTest, AShiftBeyondTheSearchedRangeIsRefusedNotClamped) {
   const WallProfileAlignment wide = AlignWallProfiles(a, b, 0.05, config);
   EXPECT_TRUE(wide.accepted) << wide.reason;
   EXPECT_NEAR(wide.offset_m, 0.30, 0.004);
+}
+
+// As on floor50's tour, seed 5: two keyframes 5 m apart each see the right-hand wall behind a
+// cabinet, but not the same cabinet (one 0.74 m from the path, the other 0.62 m). The whole
+// profile's best shift follows the cabinets, 12 cm off; the left wall alone and the right walls
+// alone disagree by as much, so the edge is refused.
+TEST(WallProfileTest, SidesThatDisagreeAreRefused) {
+  WallProfileConfig config;
+  const ImageGrid grid = TileGrid();
+  auto tile = [&](double cabinet_m, unsigned seed) {
+    SpeckledWalls walls(grid, seed);
+    walls.Add(1, 0, 1.0, -1.0, 1.0);                                    // left wall
+    walls.Add(1, 0, -1.0, -1.0, 1.0);                                   // right wall
+    for (int k = 0; k < 6; ++k) walls.Add(1, 0, cabinet_m, -0.5, 0.5);  // a strong cabinet
+    return ComputeWallProfile(walls.tile(), grid, 0.0, config);
+  };
+  const WallProfile a = tile(-0.74, 1), b = tile(-0.62, 2);  // same anchor: true offset 0
+  const WallProfileAlignment refused = AlignWallProfiles(a, b, 0.0, config);
+  EXPECT_FALSE(refused.accepted);
+  EXPECT_NE(refused.reason.find("disagree"), std::string::npos) << refused.reason;
+  EXPECT_GT(refused.side_disagreement_m, config.max_side_disagreement_m);
+  config.max_side_disagreement_m = 0.0;  // not checked: the compromise is taken, cm off
+  const WallProfileAlignment unchecked = AlignWallProfiles(a, b, 0.0, config);
+  ASSERT_TRUE(unchecked.accepted) << unchecked.reason;
+  EXPECT_GT(std::abs(unchecked.offset_m), 0.03);
+  // The same cabinet in both: the sides agree and the offset is found.
+  config = WallProfileConfig{};
+  const WallProfileAlignment same = AlignWallProfiles(a, tile(-0.74, 3), 0.0, config);
+  EXPECT_TRUE(same.accepted) << same.reason;
+  EXPECT_LT(same.side_disagreement_m, 0.01);
+  EXPECT_NEAR(same.offset_m, 0.0, 0.004);
+  // A wall on one side only: nothing to compare, the edge stands on that side.
+  const WallProfile left_a =
+      ComputeWallProfile(CorridorTile(grid, 0.0, {1.0}, 4), grid, 0.0, config);
+  const WallProfile left_b =
+      ComputeWallProfile(CorridorTile(grid, 0.0, {0.96}, 5), grid, 0.0, config);
+  const WallProfileAlignment one_side = AlignWallProfiles(left_a, left_b, 0.0, config);
+  EXPECT_TRUE(one_side.accepted) << one_side.reason;
+  EXPECT_EQ(one_side.side_disagreement_m, 0.0);
+  EXPECT_NEAR(one_side.offset_m, 0.04, 0.004);
 }
 
 TEST(WallProfileTest, WrongInputIsAnError) {
