@@ -25,6 +25,10 @@ Line2 Facing(const Line2& line, const Line2& reference) {
   return {NormalizeAngle(line.normal_rad + M_PI), -line.offset_m};
 }
 
+double SignedDistance(const Line2& line, const Point2& p) {
+  return std::cos(line.normal_rad) * p.x_m + std::sin(line.normal_rad) * p.y_m - line.offset_m;
+}
+
 double LineObservationChi2(const LineObservation& observation, const Pose2& T_world_node,
                            const Line2& line_world) {
   const std::array<double, 3> pose{T_world_node.x_m, T_world_node.y_m, T_world_node.yaw_rad};

@@ -46,6 +46,8 @@ Line2 LineToFrame(const Pose2& T_world_frame, const Line2& line_world);
 /// `line` turned to face `reference` ((a + pi, -d) when their normals differ by more than 90
 /// degrees; the same line either way).
 Line2 Facing(const Line2& line, const Line2& reference);
+/// n . p - d: the signed distance of point `p` from `line` along its normal (same frame).
+double SignedDistance(const Line2& line, const Point2& p);
 
 /// The whitened squared residual (chi2) of `observation` for a node at T_world_node and the
 /// landmark `line_world` (both in one frame).

@@ -2,8 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <utility>
+#include <set>
 
 #include "backend/pose_graph.h"
 #include "frontend/place_recognition/feature_matcher.h"
@@ -191,8 +190,9 @@ void Localizer::SolveWindow() {
   }
   // The map's walls stay where the map has them. Without a loop in the window its first
   // keyframe holds the gauge (where the last solution put it): walls give no position along.
+  std::set<int> walls_added;
   for (const LineObservation& o : window_walls_) {
-    if (!graph.GetLandmarks().count(o.landmark_id)) {
+    if (walls_added.insert(o.landmark_id).second) {
       graph.AddLandmark(o.landmark_id, map_walls_.Line(o.landmark_id), /*fixed=*/true);
     }
     graph.AddLineObservation(o);

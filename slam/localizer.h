@@ -16,7 +16,6 @@
 #pragma once
 
 #include <deque>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -24,7 +23,6 @@
 #include "slam/map_walls.h"
 #include "slam/session/session_data.h"
 #include "slam/session/session_settings.h"
-#include "slam/wall_landmarks.h"
 
 namespace uwbsar {
 

@@ -27,8 +27,7 @@ std::vector<LineObservation> MapWalls::Observe(const std::vector<SeenLine>& wall
     for (const auto& [id, line] : lines_) {
       const double turn_rad = NormalizeAngle(Facing(seen_map, line).normal_rad - line.normal_rad);
       if (std::abs(turn_rad) > gate_angle_rad_) continue;
-      const double off_m = std::abs(std::cos(line.normal_rad) * q.x_m +
-                                    std::sin(line.normal_rad) * q.y_m - line.offset_m);
+      const double off_m = std::abs(SignedDistance(line, q));
       if (off_m > gate_offset_m_) continue;
       double closest_m = INFINITY;
       for (const Point2& p : sightings_.at(id)) {

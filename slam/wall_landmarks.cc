@@ -12,9 +12,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 /// The line's offset at point q (its signed distance from q along the normal, negated).
-double OffsetAt(const Line2& l, const Point2& q) {
-  return l.offset_m - (std::cos(l.normal_rad) * q.x_m + std::sin(l.normal_rad) * q.y_m);
-}
+double OffsetAt(const Line2& l, const Point2& q) { return -SignedDistance(l, q); }
 
 }  // namespace
 

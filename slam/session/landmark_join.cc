@@ -43,9 +43,7 @@ std::map<int, std::vector<Point2>> LandmarkSightings(const SessionData& s,
 
 namespace {
 
-double Distance(const Line2& l, const Point2& p) {
-  return std::abs(std::cos(l.normal_rad) * p.x_m + std::sin(l.normal_rad) * p.y_m - l.offset_m);
-}
+double Distance(const Line2& l, const Point2& p) { return std::abs(SignedDistance(l, p)); }
 
 }  // namespace
 
