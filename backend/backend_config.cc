@@ -30,6 +30,8 @@ void Validate(const BackendConfig& b, const std::string& src) {
           "must be >= 0 (0 = off)");
   Require(b.landmark_right_angle_gate_deg > 0 && b.landmark_right_angle_gate_deg < 45, src,
           "backend.landmark_right_angle_gate_deg", "must be in (0, 45)");
+  Require(b.landmark_right_angle_max_spread_deg >= 0, src,
+          "backend.landmark_right_angle_max_spread_deg", "must be >= 0");
   Require(b.landmark_right_angle_pairs >= 1, src, "backend.landmark_right_angle_pairs",
           "must be >= 1");
   // A base off by more than 20 % (distance or turns) or 0.1 rad per metre needs mending, not

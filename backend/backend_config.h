@@ -76,12 +76,19 @@ struct BackendConfig {
   double calibration_heading_drift_mean_rad_per_m = 0.0;  ///< heading lost per metre
   double calibration_rotation_mean = 0.0;                 ///< turns are multiplied by (1 + this)
   /// Right angles between wall landmarks (buildings are mostly rectilinear): each new landmark
-  /// and each of the last landmark_right_angle_pairs landmarks before it whose angles differ by
-  /// a whole number of quarter turns within landmark_right_angle_gate_deg get a robust prior
-  /// (the loops' loss) holding that difference, with this standard deviation; 0 = off (the
-  /// default: a building whose corners are 2 deg off square is bent by it).
-  double landmark_right_angle_std_deg = 0.0;
-  double landmark_right_angle_gate_deg = 3.0;
+  /// is a candidate with each of the last landmark_right_angle_pairs landmarks before it. A
+  /// candidate is decided once, at the first solve where an accepted loop encloses it (its older
+  /// node no later than the first node seeing either wall, its newer node no earlier than the
+  /// last): when the solved angles then differ by a whole number of quarter turns within
+  /// landmark_right_angle_gate_deg, the pair gets a robust prior (the loops' loss) holding that
+  /// difference with this standard deviation (0 = off). Before the loop, the heading drift and
+  /// turn scale between the walls are not yet solved. No pair is held in a building that is not
+  /// rectilinear: decided once, when loops first enclose at least 4 walls, from their rms
+  /// departure from one rectilinear frame (backend/rectilinear_frame.h; each wall weighted by
+  /// the keyframes that see it), which must be within landmark_right_angle_max_spread_deg.
+  double landmark_right_angle_std_deg = 0.5;
+  double landmark_right_angle_gate_deg = 1.0;
+  double landmark_right_angle_max_spread_deg = 0.75;
   int landmark_right_angle_pairs = 8;
   int max_trial_solves = 2;  ///< loops still held back as unsupported, tried per Optimize() in a
                              ///< solve of their own (lowest chi2 first, each once); 0 = off
@@ -117,6 +124,7 @@ struct BackendConfig {
     v("calibration_rotation_mean", calibration_rotation_mean);
     v("landmark_right_angle_std_deg", landmark_right_angle_std_deg);
     v("landmark_right_angle_gate_deg", landmark_right_angle_gate_deg);
+    v("landmark_right_angle_max_spread_deg", landmark_right_angle_max_spread_deg);
     v("landmark_right_angle_pairs", landmark_right_angle_pairs);
     v("max_trial_solves", max_trial_solves);
     v("trial_loop_chi2", trial_loop_chi2);

@@ -248,6 +248,7 @@ OptimizeResult PoseGraph::Optimize() {
   if (first && config_.initialization == GraphInitialization::kChordal) ChordalStart();
   solved_once_ = true;
   if (!solver_edges_.empty()) SolveWithLoopHandling(first, &result);
+  if (DecideRightAngles()) SolveWithLoopHandling(false, &result);
   for (auto& se : solver_edges_) se->chi2 = se->Chi2();
   for (auto& so : solver_observations_) so->chi2 = so->Chi2();
   result.final_cost = HalfChi2Sum(true);

@@ -56,6 +56,7 @@
 #include <set>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "backend/backend_config.h"
@@ -236,6 +237,9 @@ class PoseGraph {
   std::vector<LineObservationReport> LineObservationReports() const;
   /// Right-angle priors made between landmarks so far (backend.landmark_right_angle_*).
   int RightAnglePriors() const;
+  /// The rms departure (deg) of the first enclosed walls from one rectilinear frame, on which
+  /// the right-angle priors were allowed or refused; NaN until decided.
+  double BuildingSpreadDeg() const;
   /// Each calibrated trajectory's odometry calibration after the last Optimize()
   /// ([scale, heading_drift_rad_per_m, rotation_scale]; zero while no loop constrains it).
   std::map<int, std::array<double, 3>> OdometryCalibrations() const;
@@ -290,8 +294,12 @@ class PoseGraph {
   /// Each landmark (or those in `only`) from its first accepted observation and that node's
   /// pose.
   void ReseedLandmarks(const std::set<int>* only = nullptr);
-  /// Right-angle priors between landmark `id` (just inserted) and the ones before it.
-  void AddRightAnglePriors(int id);
+  /// Pairs landmark `id` (just inserted) with the landmark_right_angle_pairs before it as
+  /// candidates for a right-angle prior.
+  void AddRightAngleCandidates(int id);
+  /// Decides the candidates that an accepted loop now encloses (see BackendConfig); returns
+  /// true when a prior was added.
+  bool DecideRightAngles();
   double ObservationChi2Sum() const;
   std::vector<std::array<double, 2>> LandmarkStates() const;
   void RestoreLandmarkStates(const std::vector<std::array<double, 2>>& states);
@@ -319,9 +327,8 @@ class PoseGraph {
   std::vector<bool> observation_removed_;  // by index: an observation of a removed node
   std::vector<std::pair<int, Line2>> pending_landmarks_;
   std::set<int> fixed_landmarks_;
-  std::vector<int> landmark_order_;  // ids in insertion order (right-angle priors' partners)
   int right_angle_priors_ = 0;
-  std::vector<std::unique_ptr<ceres::LossFunction>> right_angle_losses_;  // the problem's, owned
+  double building_spread_deg_ = std::numeric_limits<double>::quiet_NaN();
   std::vector<int> pending_observations_;
 
   std::mutex solve_mutex_;  // guards the solver side below
@@ -331,6 +338,11 @@ class PoseGraph {
   std::map<int, std::unique_ptr<CalibrationBlock>> calibrations_;  // by trajectory
   std::map<int, std::unique_ptr<SolverLandmark>> solver_landmarks_;
   std::vector<std::unique_ptr<SolverObservation>> solver_observations_;
+  std::vector<int> landmark_order_;  // ids in insertion order (right-angle candidates' partners)
+  std::vector<std::pair<int, int>> right_angle_candidates_;  // landmark pairs not yet decided
+  enum class Rectilinear { kUnknown, kYes, kNo };
+  Rectilinear rectilinear_ = Rectilinear::kUnknown;  // the building, for right-angle priors
+  std::vector<std::unique_ptr<ceres::LossFunction>> right_angle_losses_;  // the problem's, owned
   std::unordered_map<int, int> node_trajectory_;  // node -> trajectory of its odometry
   int first_node_id_ = -1;
   // The solver works in the world frame translated to the first node's initial position,

@@ -8,7 +8,6 @@
 #include <string>
 
 #include "backend/line_observation_cost.h"
-#include "backend/line_right_angle_cost.h"
 #include "backend/pose_graph.h"
 #include "backend/pose_graph_solver.h"
 #include "core/errors.h"
@@ -102,36 +101,7 @@ void PoseGraph::InsertPendingLandmarks(const std::vector<std::pair<int, Line2>>&
   std::set<int> added;
   for (const auto& [id, line_world] : landmarks) added.insert(id);
   ReseedLandmarks(&added);
-  for (const auto& [id, line_world] : landmarks) AddRightAnglePriors(id);
-}
-
-void PoseGraph::AddRightAnglePriors(int id) {
-  const int pairs = config_.landmark_right_angle_pairs;
-  SolverLandmark* a = solver_landmarks_.at(id).get();
-  if (config_.landmark_right_angle_std_deg > 0.0) {
-    const double quarter = 0.5 * M_PI;
-    const double gate_rad = config_.landmark_right_angle_gate_deg * M_PI / 180.0;
-    const double std_rad = config_.landmark_right_angle_std_deg * M_PI / 180.0;
-    const int n = static_cast<int>(landmark_order_.size());
-    for (int k = n - 1; k >= 0 && k >= n - pairs; --k) {
-      SolverLandmark* b = solver_landmarks_.at(landmark_order_[static_cast<std::size_t>(k)]).get();
-      if (a->fixed && b->fixed) continue;  // nothing to hold
-      // The angles as the graph has them now (a new landmark re-seeded from its first view).
-      const double d = NormalizeAngle(a->x[0] - b->x[0]);
-      const int turns = static_cast<int>(std::lround(d / quarter));
-      if (std::abs(d - turns * quarter) > gate_rad) continue;
-      right_angle_losses_.emplace_back(MakeRobustLoss(config_));
-      problem_->AddResidualBlock(LineRightAngleCost::Create(turns, std_rad),
-                                 right_angle_losses_.back().get(), a->x.data(), b->x.data());
-      ++right_angle_priors_;
-    }
-  }
-  landmark_order_.push_back(id);
-}
-
-int PoseGraph::RightAnglePriors() const {
-  std::lock_guard<std::mutex> lock(data_mutex_);
-  return right_angle_priors_;
+  for (const auto& [id, line_world] : landmarks) AddRightAngleCandidates(id);
 }
 
 bool PoseGraph::UpdateObservationStatus() {

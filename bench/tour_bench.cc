@@ -1,13 +1,14 @@
 // Building tours: the generated floors of config/maps/tours (office_block: a single 60 m ring
-// whose only loops are at its start) and tours on office and floor50, each mapped with the default
+// whose only loops are at its start; office_block_sheared: the same 2 deg off square, for the
+// right-angle prior) and tours on office and floor50, each mapped with the default
 // configuration over several seeds. Reported per run: ring closed (SLAM ATE >= 3x better than
 // odometry), ATE, odometry ATE, loops accepted / validated / candidates, false loops, recall per
 // candidate with true overlap and per revisit (eval/tour/tour_eval.h), loops found by the per-radar
 // pass (radar_match.h) and the keyframe thread's feature and matching time. Targets: every ring
 // closes, 0 false loops, ATE <= 5 cm.
 //
-// Run by hand (about 1-2 minutes per run on 2 cores; not part of CI; the last entry is
-// the route of TourRunTest):
+// Run by hand (about 1-2 minutes per run on 2 cores; not part of CI; entry 6 is the route of
+// TourRunTest):
 //   build/bin/uwbsar_bench --benchmark_filter=Tour
 // UWBSAR_TOUR_SEEDS=N runs seeds 1..N (default 5; UWBSAR_TOUR_FIRST_SEED=K: K..K+N-1);
 // UWBSAR_TOUR_CONFIG=FILE.yaml maps with that configuration instead of the defaults (for
@@ -41,6 +42,8 @@ const std::vector<Tour>& Tours() {
       {"floor50", "floor50/floor50.yaml", "floor50/route_tour.txt"},
       {"office_block", "tours/office_block.yaml", "tours/office_block_tour.txt"},  // one ring
       {"two_rings_west", "tours/two_rings.yaml", "tours/two_rings_west.txt"},      // TourRunTest
+      {"office_block_sheared", "tours/office_block_sheared.yaml",  // 2 deg off square
+       "tours/office_block_sheared_tour.txt"},
   };
   return tours;
 }
@@ -68,9 +71,12 @@ void BM_Tour(benchmark::State& state) {
       const slam::StageTimes times = run.slam->times();
       int by_radar = 0;
       for (const slam::LoopRecord& l : run.slam->loops()) by_radar += l.accepted() && l.by_radar;
-      std::printf("%s seed %d: %s; %d loops by radar; features %.1f s, matching %.1f s\n",
-                  tour.name, seed, slam::FormatTourEvaluation(e).c_str(), by_radar,
-                  times.features_s, times.matching_s);
+      std::printf(
+          "%s seed %d: %s; %d loops by radar; %d right-angle priors (walls' spread %.2f deg); "
+          "features %.1f s, matching %.1f s\n",
+          tour.name, seed, slam::FormatTourEvaluation(e).c_str(), by_radar,
+          run.slam->graph().RightAnglePriors(), run.slam->graph().BuildingSpreadDeg(),
+          times.features_s, times.matching_s);
       for (const auto& [trajectory, c] : run.slam->graph().OdometryCalibrations()) {
         std::printf(
             "  odometry calibration: scale %+.4f, heading drift %+.5f rad/m, rotation %+.4f\n",
@@ -106,7 +112,7 @@ void BM_Tour(benchmark::State& state) {
     state.counters["worst_ate_cm"] = worst_ate_m * 100;
   }
 }
-BENCHMARK(BM_Tour)->DenseRange(0, 6)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_Tour)->DenseRange(0, 7)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
 }  // namespace uwbsar

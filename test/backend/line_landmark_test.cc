@@ -7,9 +7,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <random>
+#include <vector>
 
 #include "backend/pose_graph.h"
 #include "core/errors.h"
@@ -181,55 +185,122 @@ TEST(LineLandmarkTest, AFixedLandmarkStaysWhereTheMapHasItAndPlacesTheNodes) {
   }
 }
 
-/// An L: 10 m along x, a left turn that the odometry under-reports by about 1 deg, 10 m up y.
-/// Each leg's nodes see its wall exactly: y = 1 (leg A) and x = 11 (leg B, on the right).
-/// Returns the estimated angle between the two walls' normals, minus 90 deg.
-double CornerErrorRad(const BackendConfig& config, int* priors) {
-  std::vector<Pose2> steps(10, {1.0, 0.0, 0.0});
-  steps.push_back({0.0, 0.0, kPi / 2});
-  steps.insert(steps.end(), 10, {1.0, 0.0, 0.0});
-  const OdometryRun run = DriveSteps({0.0, 0.0, 0.011}, steps);
+/// A ring of four 10 m legs that turn left by `turn_deg` (true turns summing to 360 deg) while
+/// the odometry reports each turn `turn_error_deg` off. Each leg's nodes see the wall 1 m to their
+/// left exactly. Solved first without the loop that closes the ring, then with it.
+struct RingResult {
+  int priors_before_loop = -1;
+  int priors = -1;
+  std::vector<double> corner_error_deg;  ///< between consecutive walls, estimate minus truth
+  double ate_m = 0.0;
+};
+
+RingResult SolveRing(const BackendConfig& config, const std::array<double, 4>& turn_deg,
+                     const std::array<double, 4>& turn_error_deg) {
+  OdometryRun run;
+  run.truth.push_back({});
+  std::vector<int> leg_first;
+  for (int leg = 0; leg < 4; ++leg) {
+    leg_first.push_back(static_cast<int>(run.truth.size()) - 1);
+    for (int k = 0; k < 10; ++k) {
+      run.measured.push_back({1.0, 0.0, 0.0});
+      run.truth.push_back(run.truth.back() * Pose2{1.0, 0.0, 0.0});
+    }
+    const double turn_rad = turn_deg[leg] * kPi / 180;
+    run.measured.push_back({0.0, 0.0, turn_rad + turn_error_deg[leg] * kPi / 180});
+    run.truth.push_back(run.truth.back() * Pose2{0.0, 0.0, turn_rad});
+  }
   PoseGraph g(config);
   BuildOdometryChain(run, &g);
-  const Line2 walls[2] = {{kPi / 2, 1.0}, {0.0, 11.0}};
-  for (int w = 0; w < 2; ++w) {
-    const int first = w == 0 ? 0 : 11;
-    g.AddLandmark(w, LineToWorld(g.GetPose(first), LineToFrame(run.truth[first], walls[w])));
+  std::vector<Line2> walls;
+  for (int leg = 0; leg < 4; ++leg) {
+    const int first = leg_first[leg];
+    walls.push_back(LineToWorld(run.truth[first], {kPi / 2, 1.0}));
+    g.AddLandmark(leg, LineToWorld(g.GetPose(first), {kPi / 2, 1.0}));
     for (int k = first; k < first + 11; ++k) {
       LineObservation o;
-      o.landmark_id = w;
+      o.landmark_id = leg;
       o.node_id = k;
-      o.line_node = LineToFrame(run.truth[k], walls[w]);
-      o.reference_node = {0.0, 0.0};
+      o.line_node = LineToFrame(run.truth[k], walls.back());
       o.offset_std_m = 0.03;
       o.normal_std_rad = 10.0 * kPi / 180;
       g.AddLineObservation(o);
     }
   }
+  RingResult result;
   EXPECT_TRUE(g.Optimize().converged);
-  *priors = g.RightAnglePriors();
+  result.priors_before_loop = g.RightAnglePriors();
+  const int last = static_cast<int>(run.truth.size()) - 1;  // where node 0 is
+  g.AddLoopEdge(0, last, Between(run.truth[0], run.truth[last]));
+  EXPECT_TRUE(g.Optimize().converged);
+  result.priors = g.RightAnglePriors();
   const std::map<int, Line2> est = g.GetLandmarks();
-  return NormalizeAngle(est.at(0).normal_rad - est.at(1).normal_rad - kPi / 2);
+  for (int leg = 0; leg < 4; ++leg) {
+    const int next = (leg + 1) % 4;
+    const double est_rad = NormalizeAngle(est.at(next).normal_rad - est.at(leg).normal_rad);
+    const double true_rad = NormalizeAngle(walls[next].normal_rad - walls[leg].normal_rad);
+    result.corner_error_deg.push_back(NormalizeAngle(est_rad - true_rad) * 180 / kPi);
+  }
+  result.ate_m = GraphAte(g, run.truth);
+  return result;
 }
 
-// backend.landmark_right_angle_*: the corner between two walls is as square as the odometry's
-// turn says without the prior (1 deg off here), much squarer with it; walls whose angle is far
-// from a quarter turn get no prior.
-TEST(LineLandmarkTest, TheRightAnglePriorSquaresACornerTheOdometryTurnedWrong) {
+double WorstCornerDeg(const RingResult& r) {
+  double worst = 0.0;
+  for (const double e : r.corner_error_deg) worst = std::max(worst, std::abs(e));
+  return worst;
+}
+
+// backend.landmark_right_angle_*: a square ring whose corners the odometry turned 0.7 deg wrong
+// (alternately, so the loop alone cannot tell) keeps those errors without the prior; with it,
+// once the closing loop encloses the walls, the corners are squared. Before the loop, no pair is
+// decided.
+TEST(LineLandmarkTest,
+     TheRightAnglePriorSquaresCornersTheOdometryTurnedWrongOnceALoopEnclosesThem) {
+  const std::array<double, 4> square = {90, 90, 90, 90};
+  const std::array<double, 4> errors = {0.7, -0.7, 0.7, -0.7};
   BackendConfig config;
-  int priors = -1;
-  const double without_rad = CornerErrorRad(config, &priors);
-  EXPECT_EQ(priors, 0);  // off by default
-  config.landmark_right_angle_std_deg = 0.5;
-  const double with_rad = CornerErrorRad(config, &priors);
-  EXPECT_EQ(priors, 1);
-  std::printf("corner off square: %.3f deg without the prior, %.3f deg with it\n",
-              without_rad * 180 / kPi, with_rad * 180 / kPi);
-  EXPECT_GT(std::abs(without_rad), 0.8 * kPi / 180);
-  EXPECT_LT(std::abs(with_rad), 0.5 * std::abs(without_rad));
-  config.landmark_right_angle_gate_deg = 0.5;  // 1 deg off a quarter turn: outside the gate
-  CornerErrorRad(config, &priors);
-  EXPECT_EQ(priors, 0);
+  const RingResult with = SolveRing(config, square, errors);  // on by default
+  config.landmark_right_angle_std_deg = 0.0;
+  const RingResult without = SolveRing(config, square, errors);
+  EXPECT_EQ(without.priors, 0);
+  std::printf(
+      "square ring, corners turned 0.7 deg wrong: worst corner %.3f deg, ATE %.2f cm "
+      "without the prior; %.3f deg, %.2f cm with %d priors\n",
+      WorstCornerDeg(without), without.ate_m * 100, WorstCornerDeg(with), with.ate_m * 100,
+      with.priors);
+  EXPECT_EQ(with.priors_before_loop, 0);
+  EXPECT_EQ(with.priors, 6);  // every pair of the four walls: 4 corners and 2 parallels
+  EXPECT_GT(WorstCornerDeg(without), 0.5);
+  EXPECT_LT(WorstCornerDeg(with), 0.5 * WorstCornerDeg(without));
+  EXPECT_LT(with.ate_m, 0.5 * without.ate_m);
+}
+
+// A building that is not square (a parallelogram with corners of 92 and 88 deg), driven with
+// exact odometry: its walls spread by 1 deg about the best rectilinear frame, more than
+// landmark_right_angle_max_spread_deg, so no pair gets a prior and the corners stay as built.
+// Without that check, a gate of 1 deg still lets the parallel walls be held (harmless), and a
+// gate of 3 deg squares the corners and bends the building.
+TEST(LineLandmarkTest, TheRightAnglePriorLeavesABuildingThatIsNotSquareAsItIs) {
+  const std::array<double, 4> sheared = {92, 88, 92, 88};
+  const std::array<double, 4> exact = {0, 0, 0, 0};
+  BackendConfig config;
+  const RingResult checked = SolveRing(config, sheared, exact);
+  EXPECT_EQ(checked.priors, 0);
+  EXPECT_LT(WorstCornerDeg(checked), 0.05);
+  EXPECT_LT(checked.ate_m, 0.002);
+  config.landmark_right_angle_max_spread_deg = 10.0;  // the check off
+  const RingResult gated = SolveRing(config, sheared, exact);
+  EXPECT_EQ(gated.priors, 2);
+  EXPECT_LT(WorstCornerDeg(gated), 0.05);
+  config.landmark_right_angle_gate_deg = 3.0;
+  const RingResult wide = SolveRing(config, sheared, exact);
+  std::printf(
+      "sheared ring: worst corner error %.3f deg with the spread check, %.3f deg "
+      "without it and a 3 deg gate\n",
+      WorstCornerDeg(checked), WorstCornerDeg(wide));
+  EXPECT_EQ(wide.priors, 6);
+  EXPECT_GT(WorstCornerDeg(wide), 0.5);
 }
 
 TEST(LineLandmarkTest, AWrongObservationIsRejectedAndDoesNotBendTheMap) {
