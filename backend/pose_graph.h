@@ -24,7 +24,10 @@
 //      loop's within loop_rejection_chi2, every odometry edge within max_odometry_chi2,
 //      and the total chi2 grown by at most trial_loop_chi2; otherwise the map is restored;
 //   5. with final_least_squares, a last solve without loss on the accepted loops
-//      gives the plain least-squares (maximum-likelihood) estimate of the inliers.
+//      gives the plain least-squares (maximum-likelihood) estimate of the inliers;
+//   6. right angles (landmark_right_angle_std_deg > 0): landmark pairs that an accepted loop
+//      now encloses are decided on that solution (backend/pose_graph_right_angles.cc); when a
+//      prior is added, the warm update below runs once more.
 // Later calls (incremental updates) start from the previous solution, which is already
 // the map without the held-back loops: those are tested first (step 3), then one plain
 // least-squares solve runs, and steps 2-4 follow only if some loop changes status.
