@@ -9,6 +9,8 @@
 #include <cmath>
 #include <vector>
 
+#include "core/pose2.h"
+
 namespace uwbsar {
 
 struct RectilinearFit {
@@ -31,8 +33,7 @@ inline RectilinearFit FitRectilinearFrame(const std::vector<double>& normals_rad
   fit.frame_rad = 0.25 * std::atan2(s, c);
   double sum2 = 0.0;
   for (std::size_t i = 0; i < normals_rad.size(); ++i) {
-    const double d4 = 4.0 * (normals_rad[i] - fit.frame_rad);
-    const double d = 0.25 * std::atan2(std::sin(d4), std::cos(d4));  // wrapped to a quarter turn
+    const double d = 0.25 * NormalizeAngle(4.0 * (normals_rad[i] - fit.frame_rad));  // +-45 deg
     sum2 += weights[i] * d * d;
   }
   fit.rms_rad = std::sqrt(sum2 / fit.weight);
