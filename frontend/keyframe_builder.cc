@@ -5,6 +5,13 @@
 #include <cmath>
 
 namespace uwbsar {
+namespace {
+
+void Unite(cv::Rect* acc, const cv::Rect& r) {
+  *acc = acc->empty() ? r : (r.empty() ? *acc : *acc | r);
+}
+
+}  // namespace
 
 KeyframeBuilder::KeyframeBuilder(const KeyframeConfig& keyframe, const ImagingConfig& imaging,
                                  const PulseConfig& pulse, std::vector<SensorGeometry> sensors,
@@ -37,7 +44,10 @@ long long KeyframeBuilder::FlushSubapertures() {
   for (std::size_t sensor = 0; sensor < subapertures_.size(); ++sensor) {
     if (subapertures_[sensor].pending_scans() == 0) continue;
     Layer& layer = LayerOf(seg, static_cast<int>(sensor));
-    pixels += subapertures_[sensor].Flush(seg.grid, &layer.image);
+    cv::Rect touched;
+    pixels += subapertures_[sensor].Flush(seg.grid, &layer.image, &touched);
+    Unite(&layer.touched, touched);
+    Unite(&seg.touched, touched);
   }
   return pixels;
 }
@@ -174,16 +184,12 @@ long long KeyframeBuilder::Add(const ImagedScan& scan) {
   cv::Rect touched;
   const Pose2 T_grid_sensor = scan.T_world_robot * sensor.T_robot_sensor;
   const long long pixels =
-      subapertures_.empty()
-          ? projector_.Accumulate(*scan.profile, T_grid_sensor, sensor, seg.grid, &layer.image,
-                                  &touched)
-          : subapertures_.at(static_cast<std::size_t>(scan.sensor_id))
-                .Add(scan.profile, T_grid_sensor, sensor, seg.grid, &layer.image, &touched);
-  auto unite = [](cv::Rect* acc, const cv::Rect& r) {
-    *acc = acc->empty() ? r : (r.empty() ? *acc : *acc | r);
-  };
-  unite(&layer.touched, touched);
-  unite(&seg.touched, touched);
+      subapertures_.empty() ? projector_.Accumulate(*scan.profile, T_grid_sensor, sensor, seg.grid,
+                                                    &layer.image, &touched)
+                            : subapertures_.at(static_cast<std::size_t>(scan.sensor_id))
+                                  .Add(scan.profile, T_grid_sensor, sensor, seg.grid, &layer.image);
+  Unite(&layer.touched, touched);  // ffbp: at FlushSubapertures
+  Unite(&seg.touched, touched);
   seg.scans.push_back(scan);
   seg.path_end_m = scan.path_m;
   return pixels + flushed;

@@ -52,6 +52,16 @@ void FactorizedBackProjector::Footprint::Add(const Footprint& other) {
   }
 }
 
+cv::Rect FactorizedBackProjector::Bounds(const std::vector<RowSpan>& spans) {
+  if (spans.empty()) return cv::Rect();
+  int c0 = spans.front().col_begin, c1 = spans.front().col_end;
+  for (const RowSpan& s : spans) {
+    c0 = std::min(c0, s.col_begin);
+    c1 = std::max(c1, s.col_end);
+  }
+  return cv::Rect(c0, spans.front().row, c1 - c0, spans.back().row + 1 - spans.front().row);
+}
+
 std::vector<RowSpan> FactorizedBackProjector::Footprint::Spans() const {
   std::vector<RowSpan> spans;
   for (std::size_t r = 0; r < lo.size(); ++r) {
@@ -68,41 +78,45 @@ int FactorizedBackProjector::pending_scans() const {
   return static_cast<int>(n);
 }
 
+namespace {
+void Unite(cv::Rect* acc, const cv::Rect& r) {
+  *acc = acc->empty() ? r : (r.empty() ? *acc : *acc | r);
+}
+}  // namespace
+
 long long FactorizedBackProjector::Add(std::shared_ptr<const RangeProfile> profile,
                                        const Pose2& T_grid_sensor, const SensorGeometry& geometry,
-                                       const ImageGrid& grid, cv::Mat* image, cv::Rect* touched) {
-  if (touched != nullptr) *touched = cv::Rect();
+                                       const ImageGrid& grid, cv::Mat* image) {
   const std::vector<float>& imag = sampling_.coherent ? profile->imag : profile->quadrature;
   if (imag.size() != profile->real.size()) {
     throw std::invalid_argument(
         "imaging.method ffbp needs analytic range profiles (RangeCompressor with quadrature in "
         "paper mode)");
   }
-  const SectorShape sector{geometry.fov_half_angle_rad, geometry.min_range_m,
-                           std::min(geometry.max_range_m, profile->max_valid_range_m)};
-  spans_.clear();
-  if (profile->size() >= 2 && sector.max_range_m > sector.min_range_m &&
-      ComputeSectorSpans(grid, T_grid_sensor, sector, &spans_) > 0) {
-    base_footprint_.Add(spans_, grid.rows);
-    if (touched != nullptr) {
-      int c0 = spans_.front().col_begin, c1 = spans_.front().col_end;
-      for (const RowSpan& s : spans_) {
-        c0 = std::min(c0, s.col_begin);
-        c1 = std::max(c1, s.col_end);
-      }
-      *touched =
-          cv::Rect(c0, spans_.front().row, c1 - c0, spans_.back().row + 1 - spans_.front().row);
-    }
-  }
   geometry_ = geometry;
   base_.push_back({std::move(profile), T_grid_sensor});
+  const int count = static_cast<int>(base_.size());
+  if (count == 1 || count == config_.base_scans) AddToFootprint(base_.back(), grid);
   long long pixels = 0;
-  if (static_cast<int>(base_.size()) >= config_.base_scans) CloseBase(grid, image, &pixels);
+  if (count >= config_.base_scans) CloseBase(grid, image, &pixels);
   return pixels;
+}
+
+void FactorizedBackProjector::AddToFootprint(const SubaperturePulse& pulse, const ImageGrid& grid) {
+  const SectorShape sector{geometry_.fov_half_angle_rad, geometry_.min_range_m,
+                           std::min(geometry_.max_range_m, pulse.profile->max_valid_range_m)};
+  spans_.clear();
+  if (pulse.profile->size() >= 2 && sector.max_range_m > sector.min_range_m &&
+      ComputeSectorSpans(grid, pulse.T_grid_sensor, sector, &spans_) > 0) {
+    base_footprint_.Add(spans_, grid.rows);
+  }
 }
 
 std::optional<FactorizedBackProjector::Pending> FactorizedBackProjector::TakeBase(
     const ImageGrid& grid, cv::Mat* image, long long* pixels) {
+  if (base_.size() >= 2 && static_cast<int>(base_.size()) < config_.base_scans) {
+    AddToFootprint(base_.back(), grid);  // a partial base's last scan
+  }
   std::vector<SubaperturePulse> scans;
   scans.swap(base_);
   Footprint footprint;
@@ -158,7 +172,14 @@ void FactorizedBackProjector::Carry(int level, const ImageGrid& grid, cv::Mat* i
   Carry(level + 1, grid, image, pixels);
 }
 
-long long FactorizedBackProjector::Flush(const ImageGrid& grid, cv::Mat* image) {
+long long FactorizedBackProjector::Flush(const ImageGrid& grid, cv::Mat* image, cv::Rect* touched) {
+  const long long pixels = FlushParts(grid, image);
+  if (touched != nullptr) *touched = touched_;
+  touched_ = cv::Rect();
+  return pixels;
+}
+
+long long FactorizedBackProjector::FlushParts(const ImageGrid& grid, cv::Mat* image) {
   long long pixels = 0;
   // What is pending, oldest scans first: the highest levels, then the base.
   std::vector<Pending> parts;
@@ -182,14 +203,18 @@ long long FactorizedBackProjector::Flush(const ImageGrid& grid, cv::Mat* image) 
 
 long long FactorizedBackProjector::Project(const Pending& part, const ImageGrid& grid,
                                            cv::Mat* image) {
-  return part.image.ProjectInto(grid, part.footprint.Spans(), image, threads_);
+  const std::vector<RowSpan> spans = part.footprint.Spans();
+  Unite(&touched_, Bounds(spans));
+  return part.image.ProjectInto(grid, spans, image, threads_);
 }
 
 long long FactorizedBackProjector::ProjectDirect(const std::vector<SubaperturePulse>& pulses,
                                                  const ImageGrid& grid, cv::Mat* image) {
   long long pixels = 0;
   for (const SubaperturePulse& p : pulses) {
-    pixels += direct_.Accumulate(*p.profile, p.T_grid_sensor, geometry_, grid, image);
+    cv::Rect touched;
+    pixels += direct_.Accumulate(*p.profile, p.T_grid_sensor, geometry_, grid, image, &touched);
+    Unite(&touched_, touched);
   }
   return pixels;
 }

@@ -33,23 +33,24 @@ class FactorizedBackProjector {
 
   /// Hands over one scan of the radar `geometry` for `image` (grid-sized, CV_32FC1 or CV_32FC2
   /// to match the profile). Until Flush, every scan must be for the same radar, grid and image.
-  /// `touched` (if given) receives the bounding box of the scan's sector pixels, which hold its
-  /// contribution by the time Flush returns. Returns the pixels written by this call (when it
-  /// completes a top sub-aperture).
+  /// Returns the pixels written by this call (when it completes a top sub-aperture).
   long long Add(std::shared_ptr<const RangeProfile> profile, const Pose2& T_grid_sensor,
-                const SensorGeometry& geometry, const ImageGrid& grid, cv::Mat* image,
-                cv::Rect* touched = nullptr);
+                const SensorGeometry& geometry, const ImageGrid& grid, cv::Mat* image);
   /// Images everything handed over and not yet written into `image`; the next Add may start a
-  /// new image. Returns the pixels written.
-  long long Flush(const ImageGrid& grid, cv::Mat* image);
+  /// new image. Returns the pixels written. `touched` (if given) receives the bounding box of
+  /// the pixels written since the last Flush: those of every scan's sector, which then hold the
+  /// scan's contribution.
+  long long Flush(const ImageGrid& grid, cv::Mat* image, cv::Rect* touched = nullptr);
 
   /// Scans handed over and not yet written.
   int pending_scans() const;
 
  private:
   /// The pixels a sub-aperture's scans cover: per grid row, the hull of their sector spans
-  /// (empty rows have lo >= hi). Kept beside each pending image so that sector spans are
-  /// computed once per scan.
+  /// (empty rows have lo >= hi). A base's is the hull of its first and last scans' sectors: over
+  /// the centimetres of a base, every scan's sector lies between those two to within
+  /// micrometres (the edges move linearly, the arcs bulge by d^2 / 8 r), so sector spans are
+  /// computed twice per base, not once per scan.
   struct Footprint {
     std::vector<int> lo, hi;
     void Add(const std::vector<RowSpan>& spans, int rows);
@@ -61,6 +62,10 @@ class FactorizedBackProjector {
     Footprint footprint;
   };
 
+  /// What Flush does, but for `touched`.
+  long long FlushParts(const ImageGrid& grid, cv::Mat* image);
+  /// The bounding box of `spans` (rows ascending).
+  static cv::Rect Bounds(const std::vector<RowSpan>& spans);
   /// Writes `part` into the image.
   long long Project(const Pending& part, const ImageGrid& grid, cv::Mat* image);
   /// One image of `parts` (nullopt when they do not fit one polar grid).
@@ -74,6 +79,8 @@ class FactorizedBackProjector {
   void Carry(int level, const ImageGrid& grid, cv::Mat* image, long long* pixels);
   long long ProjectDirect(const std::vector<SubaperturePulse>& pulses, const ImageGrid& grid,
                           cv::Mat* image);
+  /// Adds the sector of `pulse` to the base's footprint.
+  void AddToFootprint(const SubaperturePulse& pulse, const ImageGrid& grid);
 
   FfbpConfig config_;
   PolarSampling sampling_;
@@ -84,6 +91,7 @@ class FactorizedBackProjector {
   std::vector<std::vector<Pending>> levels_;  ///< [l]: fewer than merge_factor images
   BackProjector direct_;
   std::vector<RowSpan> spans_;  ///< reused
+  cv::Rect touched_;            ///< pixels written since the last Flush
 };
 
 }  // namespace uwbsar

@@ -89,8 +89,28 @@ inline void PixelValue(const SpanRow& t, const float* __restrict in_re,
 
 }  // namespace
 
-void AddPulseRow(PulseRow t, const float* __restrict table, int n, float* __restrict out) {
-  // The same lookup as BackProjector's, at the polar samples.
+void FillTapTable(const TapTable& t, const float* __restrict re, const float* __restrict im, int n,
+                  float* __restrict out_re, float* __restrict out_im) {
+  for (int i = 0; i < n; ++i) {
+    const float x = t.x0 + static_cast<float>(i) * t.h;
+    float sum_re = 0.0f, sum_im = 0.0f;
+    for (int m = 0; m < 4; ++m) {
+      const float pos = (x + t.o[m]) * t.inv_step - t.start_index;
+      const int k = std::min(std::max(static_cast<int>(pos), 0), t.last);
+      const float frac = std::min(std::max(pos - static_cast<float>(k), 0.0f), 1.0f);
+      const float v = re[k] + frac * (re[k + 1] - re[k]);
+      const float w = im[k] + frac * (im[k + 1] - im[k]);
+      sum_re += t.w_re[m] * v - t.w_im[m] * w;
+      sum_im += t.w_re[m] * w + t.w_im[m] * v;
+    }
+    out_re[i] = sum_re;
+    out_im[i] = sum_im;
+  }
+}
+
+void AddPulseRow(PulseRow t, const float* __restrict table_re, const float* __restrict table_im,
+                 int n, float* __restrict out_re, float* __restrict out_im) {
+  // The same sector test as BackProjector's, at the polar samples.
   for (int i = 0; i < n; ++i) {
     const float r = t.r0 + static_cast<float>(i) * t.dr;
     const float range = std::sqrt(std::max(0.0f, t.e2 + 2.0f * r * t.e_dir + r * r));
@@ -99,7 +119,8 @@ void AddPulseRow(PulseRow t, const float* __restrict table, int n, float* __rest
     const float pos = range * t.inv_step - t.start_index;
     const int k = std::min(std::max(static_cast<int>(pos), 0), t.last);
     const float frac = pos - static_cast<float>(k);
-    out[i] += keep * (table[k] + frac * (table[k + 1] - table[k]));
+    out_re[i] += keep * (table_re[k] + frac * (table_re[k + 1] - table_re[k]));
+    out_im[i] += keep * (table_im[k] + frac * (table_im[k + 1] - table_im[k]));
   }
 }
 

@@ -7,14 +7,28 @@
 
 namespace uwbsar {
 
+/// One scan's taps at baseband as a function of its range (see FillTapTable): entry n is at
+/// range x0 + n h. The taps are at offsets o[m] with weights w[m] (complex), and the profile's
+/// entry k at range (start_index + k) / inv_step.
+struct TapTable {
+  float x0, h, inv_step, start_index;
+  float o[4], w_re[4], w_im[4];
+  int last;  ///< profile size - 2
+};
+/// Fills `out_re` and `out_im` (n values each) with sum_m w[m] L(x0 + n h + o[m]), L the profile
+/// re + j im linearly interpolated (clamped at its ends).
+void FillTapTable(const TapTable& t, const float* __restrict re, const float* __restrict im, int n,
+                  float* __restrict out_re, float* __restrict out_im);
+
 /// One scan's contribution along a polar row: sample i lies at e + r dir from the antenna.
 struct PulseRow {
   float r0, dr, e_dir, e2, e_b, dir_b, min_r, max_r, cos_fov, inv_step, start_index;
   int last;  ///< table size - 2
 };
-/// Adds one scan's table, linearly interpolated at each sample's range, where its sector holds
-/// the sample (the same lookup as BackProjector's).
-void AddPulseRow(PulseRow t, const float* __restrict table, int n, float* __restrict out);
+/// Adds one scan's complex table (planar), linearly interpolated at each sample's range,
+/// where its sector holds the sample (the same sector test as BackProjector's).
+void AddPulseRow(PulseRow t, const float* __restrict table_re, const float* __restrict table_im,
+                 int n, float* __restrict out_re, float* __restrict out_im);
 
 /// A part's image sampled along a row of the merged grid: sample i lies at e + r dir from the
 /// part's centre, i.e. at range rp and psi (e_a + r dir_a) / rp of the part.

@@ -155,65 +155,94 @@ std::optional<PolarSubaperture> PolarSubaperture::FromPulses(std::vector<Subaper
   const float dr = static_cast<float>(s.range_step_m_);
   // Each sample is the mean of kTaps samples spread over one range bin: linear interpolation of
   // a table leaves artefacts periodic in the table's bin, which a grid this coarse would fold
-  // into the baseband; the mean over a bin cancels them (and is flat over the baseband).
-  // exp(-j kc r) per sample takes the sum to baseband.
+  // into the baseband; the mean over a bin cancels them (and is flat over the baseband). A tap's
+  // offset along the polar range is its offset along the scan's range to well under a micrometre
+  // (the antennas lie within centimetres of C, the samples decimetres away), so the taps' sum at
+  // baseband is, per scan, one function of the scan's range:
+  //   G(rho) = sum_m L(rho + o_m) exp(-j kc o_m) / kTaps,
+  // and the sample at polar range r receives exp(-j kc r) G(rho). G is piecewise linear with
+  // knots at the profile's entries less o_m, all on a grid of a quarter entry from
+  // range_start - o_0 when the bin is a whole number of entries (both modes), so a table of G
+  // on that grid, linearly interpolated, is exact. exp(-j kc r) is applied once per row.
   constexpr int kTaps = 4;
-  std::vector<float> to_base_re(static_cast<std::size_t>(kTaps) * nr);
-  std::vector<float> to_base_im(to_base_re.size());
-  double tap_offset_m[kTaps];
+  TapTable tap_base;
   for (int m = 0; m < kTaps; ++m) {
-    tap_offset_m[m] = g.bin_size_m * ((m + 0.5) / kTaps - 0.5);
-    for (int i = 0; i < nr; ++i) {
-      const double phase = -s.kc_ * (s.range0_m_ + i * s.range_step_m_ + tap_offset_m[m]);
-      to_base_re[static_cast<std::size_t>(m) * nr + i] =
-          static_cast<float>(std::cos(phase) / kTaps);
-      to_base_im[static_cast<std::size_t>(m) * nr + i] =
-          static_cast<float>(std::sin(phase) / kTaps);
-    }
+    const double offset_m = g.bin_size_m * ((m + 0.5) / kTaps - 0.5);
+    tap_base.o[m] = static_cast<float>(offset_m);
+    tap_base.w_re[m] = static_cast<float>(std::cos(-s.kc_ * offset_m) / kTaps);
+    tap_base.w_im[m] = static_cast<float>(std::sin(-s.kc_ * offset_m) / kTaps);
   }
+  std::vector<float> to_base_re(static_cast<std::size_t>(nr)), to_base_im(to_base_re.size());
+  for (int i = 0; i < nr; ++i) {
+    const double phase = -s.kc_ * (s.range0_m_ + i * s.range_step_m_);
+    to_base_re[static_cast<std::size_t>(i)] = static_cast<float>(std::cos(phase));
+    to_base_im[static_cast<std::size_t>(i)] = static_cast<float>(std::sin(phase));
+  }
+  // Per scan: its G table and the row parameters that do not depend on the row.
+  struct ScanTable {
+    std::vector<float> g;  ///< real parts, then imaginary parts
+    int count = 0;
+    PulseRow row{};
+    double ex = 0.0, ey = 0.0, bx = 0.0, by = 0.0;
+  };
+  std::vector<ScanTable> tables(s.pulses_.size());
+  ForStripes(static_cast<int>(s.pulses_.size()), threads, [&](int k_begin, int k_end) {
+    for (int k = k_begin; k < k_end; ++k) {
+      const SubaperturePulse& p = s.pulses_[static_cast<std::size_t>(k)];
+      const RangeProfile& prof = *p.profile;
+      const double max_r = MaxRangeM(p, g);
+      if (max_r <= g.min_range_m || prof.size() < 2) continue;
+      ScanTable& st = tables[static_cast<std::size_t>(k)];
+      const double h = prof.range_step_m / kTaps;
+      const double knot0 = prof.range_start_m - g.bin_size_m * (0.5 / kTaps - 0.5);
+      const double x0 = knot0 + h * std::floor((g.min_range_m - h - knot0) / h);
+      const int count = static_cast<int>(std::ceil((max_r + h - x0) / h)) + 1;
+      TapTable tap = tap_base;
+      tap.x0 = static_cast<float>(x0);
+      tap.h = static_cast<float>(h);
+      tap.inv_step = static_cast<float>(1.0 / prof.range_step_m);
+      tap.start_index = static_cast<float>(prof.range_start_m / prof.range_step_m);
+      tap.last = static_cast<int>(prof.size()) - 2;
+      st.count = count;
+      st.g.resize(2 * static_cast<std::size_t>(count));
+      FillTapTable(tap, prof.real.data(), s.coherent_ ? prof.imag.data() : prof.quadrature.data(),
+                   count, st.g.data(), st.g.data() + count);
+      // Sample (r) relative to this scan's antenna: e + r dir, e = C - U.
+      st.ex = s.cx_m_ - p.T_grid_sensor.x_m;
+      st.ey = s.cy_m_ - p.T_grid_sensor.y_m;
+      st.bx = boresights[static_cast<std::size_t>(k)].first;
+      st.by = boresights[static_cast<std::size_t>(k)].second;
+      PulseRow& t = st.row;
+      t.r0 = static_cast<float>(s.range0_m_);
+      t.dr = dr;
+      t.e2 = static_cast<float>(st.ex * st.ex + st.ey * st.ey);
+      t.e_b = static_cast<float>(st.ex * st.bx + st.ey * st.by);
+      t.min_r = min_r;
+      t.max_r = static_cast<float>(max_r);
+      t.cos_fov = cos_fov;
+      t.inv_step = static_cast<float>(1.0 / h);
+      t.start_index = static_cast<float>(x0 / h);
+      t.last = count - 2;
+    }
+  });
 
   ForStripes(s.angle_samples_, threads, [&](int j_begin, int j_end) {
-    std::vector<float> tap_re(static_cast<std::size_t>(nr)), tap_im(tap_re.size());
     for (int j = j_begin; j < j_end; ++j) {
       double dir_x, dir_y;
       s.RowDirection(j, &dir_x, &dir_y);
       float* __restrict out_re = s.re_.data() + static_cast<std::size_t>(j) * nr;
       float* __restrict out_im = s.im_.data() + static_cast<std::size_t>(j) * nr;
-      for (int m = 0; m < kTaps; ++m) {
-        std::fill(tap_re.begin(), tap_re.end(), 0.0f);
-        std::fill(tap_im.begin(), tap_im.end(), 0.0f);
-        for (std::size_t k = 0; k < s.pulses_.size(); ++k) {
-          const SubaperturePulse& p = s.pulses_[k];
-          const RangeProfile& prof = *p.profile;
-          const Pose2& T = p.T_grid_sensor;
-          const float max_r = static_cast<float>(MaxRangeM(p, g));
-          if (max_r <= min_r || prof.size() < 2) continue;
-          // Sample (r) relative to this scan's antenna: e + r dir, e = C - U.
-          const double ex = s.cx_m_ - T.x_m, ey = s.cy_m_ - T.y_m;
-          const double bx = boresights[k].first, by = boresights[k].second;
-          PulseRow t;
-          t.r0 = static_cast<float>(s.range0_m_ + tap_offset_m[m]);
-          t.dr = dr;
-          t.e_dir = static_cast<float>(ex * dir_x + ey * dir_y);
-          t.e2 = static_cast<float>(ex * ex + ey * ey);
-          t.e_b = static_cast<float>(ex * bx + ey * by);
-          t.dir_b = static_cast<float>(dir_x * bx + dir_y * by);
-          t.min_r = min_r;
-          t.max_r = max_r;
-          t.cos_fov = cos_fov;
-          t.inv_step = static_cast<float>(1.0 / prof.range_step_m);
-          t.start_index = static_cast<float>(prof.range_start_m / prof.range_step_m);
-          t.last = static_cast<int>(prof.size()) - 2;
-          AddPulseRow(t, prof.real.data(), nr, tap_re.data());
-          AddPulseRow(t, s.coherent_ ? prof.imag.data() : prof.quadrature.data(), nr,
-                      tap_im.data());
-        }
-        const float* base_re = to_base_re.data() + static_cast<std::size_t>(m) * nr;
-        const float* base_im = to_base_im.data() + static_cast<std::size_t>(m) * nr;
-        for (int i = 0; i < nr; ++i) {
-          out_re[i] += tap_re[i] * base_re[i] - tap_im[i] * base_im[i];
-          out_im[i] += tap_re[i] * base_im[i] + tap_im[i] * base_re[i];
-        }
+      for (const ScanTable& st : tables) {
+        if (st.g.empty()) continue;
+        PulseRow t = st.row;
+        t.e_dir = static_cast<float>(st.ex * dir_x + st.ey * dir_y);
+        t.dir_b = static_cast<float>(dir_x * st.bx + dir_y * st.by);
+        AddPulseRow(t, st.g.data(), st.g.data() + st.count, nr, out_re, out_im);
+      }
+      for (int i = 0; i < nr; ++i) {
+        const float v = out_re[i], w = out_im[i];
+        out_re[i] = v * to_base_re[i] - w * to_base_im[i];
+        out_im[i] = v * to_base_im[i] + w * to_base_re[i];
       }
     }
   });
