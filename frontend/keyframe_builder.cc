@@ -33,6 +33,24 @@ KeyframeBuilder::KeyframeBuilder(const KeyframeConfig& keyframe, const ImagingCo
   }
 }
 
+void KeyframeBuilder::DropOldestSegment() {
+  for (Layer& layer : segments_.front().layers) {
+    if (layer.image.empty()) continue;
+    if (!layer.touched.empty()) layer.image(layer.touched).setTo(0);
+    spare_canvases_.push_back(layer.image);
+  }
+  segments_.pop_front();
+}
+
+cv::Mat KeyframeBuilder::TakeCanvas(const ImageGrid& grid) {
+  while (!spare_canvases_.empty()) {
+    cv::Mat canvas = spare_canvases_.back();
+    spare_canvases_.pop_back();
+    if (canvas.rows == grid.rows && canvas.cols == grid.cols) return canvas;
+  }
+  return MakeSarImage(grid, coherent_);
+}
+
 KeyframeBuilder::Layer& KeyframeBuilder::LayerOf(Segment& segment, int sensor_id) {
   return segment.layers.at(keep_sensor_images_ ? static_cast<std::size_t>(sensor_id) : 0);
 }
@@ -173,14 +191,14 @@ long long KeyframeBuilder::Add(const ImagedScan& scan) {
     flushed = FlushSubapertures();
     if (static_cast<int>(segments_.size()) == segments_per_tile_) {
       closed_.push_back(MakeTile(0, segments_.size(), /*complete=*/true));
-      segments_.pop_front();
+      DropOldestSegment();
     }
     OpenSegment(scan);
   }
   Segment& seg = segments_.back();
   const SensorGeometry& sensor = sensors_.at(scan.sensor_id);
   Layer& layer = LayerOf(seg, scan.sensor_id);
-  if (layer.image.empty()) layer.image = MakeSarImage(seg.grid, coherent_);
+  if (layer.image.empty()) layer.image = TakeCanvas(seg.grid);
   cv::Rect touched;
   const Pose2 T_grid_sensor = scan.T_world_robot * sensor.T_robot_sensor;
   const long long pixels =

@@ -61,6 +61,10 @@ class KeyframeBuilder {
   };
 
   void OpenSegment(const ImagedScan& scan);
+  /// Drops the oldest segment, keeping its canvases, zeroed, for the next segments.
+  void DropOldestSegment();
+  /// A canvas of zeros for `grid`: a kept one when one fits, else a new one.
+  cv::Mat TakeCanvas(const ImageGrid& grid);
   /// imaging.method ffbp: writes every radar's pending sub-apertures into the newest segment;
   /// returns the pixels written.
   long long FlushSubapertures();
@@ -85,6 +89,10 @@ class KeyframeBuilder {
   /// imaging.method ffbp: one per radar (sub-apertures never mix radars); empty for direct.
   std::vector<FactorizedBackProjector> subapertures_;
   std::deque<Segment> segments_;  ///< the last segments_per_tile_ segments, newest last
+  /// Canvases of dropped segments, all zeros again: only their touched pixels were written, and
+  /// those are zeroed on the way here, which is much cheaper than a new canvas (the page faults
+  /// and zeroing of megabytes per segment; measured in BM_ImageTile).
+  std::vector<cv::Mat> spare_canvases_;
   std::vector<Keyframe> closed_;
   int segments_opened_ = 0;
   int next_id_ = 0;

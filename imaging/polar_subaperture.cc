@@ -161,9 +161,10 @@ std::optional<PolarSubaperture> PolarSubaperture::FromPulses(std::vector<Subaper
   // baseband is, per scan, one function of the scan's range:
   //   G(rho) = sum_m L(rho + o_m) exp(-j kc o_m) / kTaps,
   // and the sample at polar range r receives exp(-j kc r) G(rho). G is piecewise linear with
-  // knots at the profile's entries less o_m, all on a grid of a quarter entry from
-  // range_start - o_0 when the bin is a whole number of entries (both modes), so a table of G
-  // on that grid, linearly interpolated, is exact. exp(-j kc r) is applied once per row.
+  // knots at the profile's entries less o_m (o_m = bin (2m - 3) / 8). When the bin is q entries
+  // (q = 1 in paper mode, 4 in coherent), they all lie on the grid from range_start - o_0 in
+  // steps of min(entry, bin / 4): a quarter entry for q = 1, one entry for q = 4. A table of G on
+  // that grid, linearly interpolated, is exact. exp(-j kc r) is applied once per row.
   constexpr int kTaps = 4;
   TapTable tap_base;
   for (int m = 0; m < kTaps; ++m) {
@@ -193,7 +194,7 @@ std::optional<PolarSubaperture> PolarSubaperture::FromPulses(std::vector<Subaper
       const double max_r = MaxRangeM(p, g);
       if (max_r <= g.min_range_m || prof.size() < 2) continue;
       ScanTable& st = tables[static_cast<std::size_t>(k)];
-      const double h = prof.range_step_m / kTaps;
+      const double h = std::min(prof.range_step_m, g.bin_size_m / kTaps);
       const double knot0 = prof.range_start_m - g.bin_size_m * (0.5 / kTaps - 0.5);
       const double x0 = knot0 + h * std::floor((g.min_range_m - h - knot0) / h);
       const int count = static_cast<int>(std::ceil((max_r + h - x0) / h)) + 1;
