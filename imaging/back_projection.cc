@@ -4,6 +4,8 @@
 #include <cassert>
 #include <cmath>
 
+#include "imaging/zeroed_mat.h"
+
 namespace uwbsar {
 namespace {
 
@@ -64,7 +66,7 @@ void AccumulateComplexSpans(const RowSpan* begin, const RowSpan* end, const Imag
 }  // namespace
 
 cv::Mat MakeSarImage(const ImageGrid& grid, bool coherent) {
-  return cv::Mat::zeros(grid.rows, grid.cols, coherent ? CV_32FC2 : CV_32FC1);
+  return ZeroedMat(grid.rows, grid.cols, coherent ? CV_32FC2 : CV_32FC1);
 }
 
 long long BackProjector::Accumulate(const RangeProfile& profile, const Pose2& T_grid_sensor,

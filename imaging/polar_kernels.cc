@@ -89,22 +89,11 @@ inline void PixelValue(const SpanRow& t, const float* __restrict in_re,
 
 }  // namespace
 
-void FillTapTable(const TapTable& t, const float* __restrict re, const float* __restrict im, int n,
-                  float* __restrict out_re, float* __restrict out_im) {
+void AddComplexScaled(const float* __restrict re, const float* __restrict im, int n, float c_re,
+                      float c_im, float* __restrict out_re, float* __restrict out_im) {
   for (int i = 0; i < n; ++i) {
-    const float x = t.x0 + static_cast<float>(i) * t.h;
-    float sum_re = 0.0f, sum_im = 0.0f;
-    for (int m = 0; m < 4; ++m) {
-      const float pos = (x + t.o[m]) * t.inv_step - t.start_index;
-      const int k = std::min(std::max(static_cast<int>(pos), 0), t.last);
-      const float frac = std::min(std::max(pos - static_cast<float>(k), 0.0f), 1.0f);
-      const float v = re[k] + frac * (re[k + 1] - re[k]);
-      const float w = im[k] + frac * (im[k + 1] - im[k]);
-      sum_re += t.w_re[m] * v - t.w_im[m] * w;
-      sum_im += t.w_re[m] * w + t.w_im[m] * v;
-    }
-    out_re[i] = sum_re;
-    out_im[i] = sum_im;
+    out_re[i] += c_re * re[i] - c_im * im[i];
+    out_im[i] += c_re * im[i] + c_im * re[i];
   }
 }
 

@@ -7,18 +7,9 @@
 
 namespace uwbsar {
 
-/// One scan's taps at baseband as a function of its range (see FillTapTable): entry n is at
-/// range x0 + n h. The taps are at offsets o[m] with weights w[m] (complex), and the profile's
-/// entry k at range (start_index + k) / inv_step.
-struct TapTable {
-  float x0, h, inv_step, start_index;
-  float o[4], w_re[4], w_im[4];
-  int last;  ///< profile size - 2
-};
-/// Fills `out_re` and `out_im` (n values each) with sum_m w[m] L(x0 + n h + o[m]), L the profile
-/// re + j im linearly interpolated (clamped at its ends).
-void FillTapTable(const TapTable& t, const float* __restrict re, const float* __restrict im, int n,
-                  float* __restrict out_re, float* __restrict out_im);
+/// out += (c_re + j c_im) (re + j im), over n values.
+void AddComplexScaled(const float* __restrict re, const float* __restrict im, int n, float c_re,
+                      float c_im, float* __restrict out_re, float* __restrict out_im);
 
 /// One scan's contribution along a polar row: sample i lies at e + r dir from the antenna.
 struct PulseRow {

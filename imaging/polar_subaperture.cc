@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "imaging/polar_kernels.h"
+#include "imaging/tap_table.h"
 
 namespace uwbsar {
 namespace {
@@ -153,26 +154,9 @@ std::optional<PolarSubaperture> PolarSubaperture::FromPulses(std::vector<Subaper
   const float cos_fov = static_cast<float>(std::cos(g.fov_half_angle_rad));
   const float min_r = static_cast<float>(g.min_range_m);
   const float dr = static_cast<float>(s.range_step_m_);
-  // Each sample is the mean of kTaps samples spread over one range bin: linear interpolation of
-  // a table leaves artefacts periodic in the table's bin, which a grid this coarse would fold
-  // into the baseband; the mean over a bin cancels them (and is flat over the baseband). A tap's
-  // offset along the polar range is its offset along the scan's range to well under a micrometre
-  // (the antennas lie within centimetres of C, the samples decimetres away), so the taps' sum at
-  // baseband is, per scan, one function of the scan's range:
-  //   G(rho) = sum_m L(rho + o_m) exp(-j kc o_m) / kTaps,
-  // and the sample at polar range r receives exp(-j kc r) G(rho). G is piecewise linear with
-  // knots at the profile's entries less o_m (o_m = bin (2m - 3) / 8). When the bin is q entries
-  // (q = 1 in paper mode, 4 in coherent), they all lie on the grid from range_start - o_0 in
-  // steps of min(entry, bin / 4): a quarter entry for q = 1, one entry for q = 4. A table of G on
-  // that grid, linearly interpolated, is exact. exp(-j kc r) is applied once per row.
-  constexpr int kTaps = 4;
-  TapTable tap_base;
-  for (int m = 0; m < kTaps; ++m) {
-    const double offset_m = g.bin_size_m * ((m + 0.5) / kTaps - 0.5);
-    tap_base.o[m] = static_cast<float>(offset_m);
-    tap_base.w_re[m] = static_cast<float>(std::cos(-s.kc_ * offset_m) / kTaps);
-    tap_base.w_im[m] = static_cast<float>(std::sin(-s.kc_ * offset_m) / kTaps);
-  }
+  // Each sample holds, per scan, the mean of a few taps over one range bin, at baseband: the
+  // scan's TapTable G (imaging/tap_table.h) at the sample's range from the scan's antenna,
+  // times exp(-j kc r), which is applied once per row.
   std::vector<float> to_base_re(static_cast<std::size_t>(nr)), to_base_im(to_base_re.size());
   for (int i = 0; i < nr; ++i) {
     const double phase = -s.kc_ * (s.range0_m_ + i * s.range_step_m_);
@@ -181,8 +165,7 @@ std::optional<PolarSubaperture> PolarSubaperture::FromPulses(std::vector<Subaper
   }
   // Per scan: its G table and the row parameters that do not depend on the row.
   struct ScanTable {
-    std::vector<float> g;  ///< real parts, then imaginary parts
-    int count = 0;
+    TapTable g;
     PulseRow row{};
     double ex = 0.0, ey = 0.0, bx = 0.0, by = 0.0;
   };
@@ -194,20 +177,8 @@ std::optional<PolarSubaperture> PolarSubaperture::FromPulses(std::vector<Subaper
       const double max_r = MaxRangeM(p, g);
       if (max_r <= g.min_range_m || prof.size() < 2) continue;
       ScanTable& st = tables[static_cast<std::size_t>(k)];
-      const double h = std::min(prof.range_step_m, g.bin_size_m / kTaps);
-      const double knot0 = prof.range_start_m - g.bin_size_m * (0.5 / kTaps - 0.5);
-      const double x0 = knot0 + h * std::floor((g.min_range_m - h - knot0) / h);
-      const int count = static_cast<int>(std::ceil((max_r + h - x0) / h)) + 1;
-      TapTable tap = tap_base;
-      tap.x0 = static_cast<float>(x0);
-      tap.h = static_cast<float>(h);
-      tap.inv_step = static_cast<float>(1.0 / prof.range_step_m);
-      tap.start_index = static_cast<float>(prof.range_start_m / prof.range_step_m);
-      tap.last = static_cast<int>(prof.size()) - 2;
-      st.count = count;
-      st.g.resize(2 * static_cast<std::size_t>(count));
-      FillTapTable(tap, prof.real.data(), s.coherent_ ? prof.imag.data() : prof.quadrature.data(),
-                   count, st.g.data(), st.g.data() + count);
+      MakeTapTable(prof, s.coherent_ ? prof.imag : prof.quadrature, g.bin_size_m, s.kc_,
+                   g.min_range_m, max_r, &st.g);
       // Sample (r) relative to this scan's antenna: e + r dir, e = C - U.
       st.ex = s.cx_m_ - p.T_grid_sensor.x_m;
       st.ey = s.cy_m_ - p.T_grid_sensor.y_m;
@@ -221,9 +192,9 @@ std::optional<PolarSubaperture> PolarSubaperture::FromPulses(std::vector<Subaper
       t.min_r = min_r;
       t.max_r = static_cast<float>(max_r);
       t.cos_fov = cos_fov;
-      t.inv_step = static_cast<float>(1.0 / h);
-      t.start_index = static_cast<float>(x0 / h);
-      t.last = count - 2;
+      t.inv_step = static_cast<float>(1.0 / st.g.step_m);
+      t.start_index = static_cast<float>(st.g.x0_m / st.g.step_m);
+      t.last = static_cast<int>(st.g.re.size()) - 2;
     }
   });
 
@@ -234,11 +205,11 @@ std::optional<PolarSubaperture> PolarSubaperture::FromPulses(std::vector<Subaper
       float* __restrict out_re = s.re_.data() + static_cast<std::size_t>(j) * nr;
       float* __restrict out_im = s.im_.data() + static_cast<std::size_t>(j) * nr;
       for (const ScanTable& st : tables) {
-        if (st.g.empty()) continue;
+        if (st.g.re.empty()) continue;
         PulseRow t = st.row;
         t.e_dir = static_cast<float>(st.ex * dir_x + st.ey * dir_y);
         t.dir_b = static_cast<float>(dir_x * st.bx + dir_y * st.by);
-        AddPulseRow(t, st.g.data(), st.g.data() + st.count, nr, out_re, out_im);
+        AddPulseRow(t, st.g.re.data(), st.g.im.data(), nr, out_re, out_im);
       }
       for (int i = 0; i < nr; ++i) {
         const float v = out_re[i], w = out_im[i];
