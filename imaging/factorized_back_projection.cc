@@ -96,13 +96,20 @@ long long FactorizedBackProjector::Add(std::shared_ptr<const RangeProfile> profi
   geometry_ = geometry;
   base_.push_back({std::move(profile), T_grid_sensor});
   const int count = static_cast<int>(base_.size());
-  if (count == 1 || count == config_.base_scans) AddToFootprint(base_.back(), grid);
+  // The footprint's scans: the first, the last (at TakeBase) and any that turned more than
+  // kFootprintTurnRad since the last of them.
+  if (count == 1 ||
+      std::abs(NormalizeAngle(T_grid_sensor.yaw_rad - footprint_yaw_rad_)) > kFootprintTurnRad) {
+    AddToFootprint(base_.back(), grid);
+  }
   long long pixels = 0;
   if (count >= config_.base_scans) CloseBase(grid, image, &pixels);
   return pixels;
 }
 
 void FactorizedBackProjector::AddToFootprint(const SubaperturePulse& pulse, const ImageGrid& grid) {
+  footprint_scans_ = base_.size();
+  footprint_yaw_rad_ = pulse.T_grid_sensor.yaw_rad;
   const SectorShape sector{geometry_.fov_half_angle_rad, geometry_.min_range_m,
                            std::min(geometry_.max_range_m, pulse.profile->max_valid_range_m)};
   spans_.clear();
@@ -114,9 +121,8 @@ void FactorizedBackProjector::AddToFootprint(const SubaperturePulse& pulse, cons
 
 std::optional<FactorizedBackProjector::Pending> FactorizedBackProjector::TakeBase(
     const ImageGrid& grid, cv::Mat* image, long long* pixels) {
-  if (base_.size() >= 2 && static_cast<int>(base_.size()) < config_.base_scans) {
-    AddToFootprint(base_.back(), grid);  // a partial base's last scan
-  }
+  if (base_.size() >= 2 && footprint_scans_ < base_.size()) AddToFootprint(base_.back(), grid);
+  footprint_scans_ = 0;
   std::vector<SubaperturePulse> scans;
   scans.swap(base_);
   Footprint footprint;

@@ -47,10 +47,12 @@ class FactorizedBackProjector {
 
  private:
   /// The pixels a sub-aperture's scans cover: per grid row, the hull of their sector spans
-  /// (empty rows have lo >= hi). A base's is the hull of its first and last scans' sectors: over
-  /// the centimetres of a base, every scan's sector lies between those two to within
-  /// micrometres (the edges move linearly, the arcs bulge by d^2 / 8 r), so sector spans are
-  /// computed twice per base, not once per scan.
+  /// (empty rows have lo >= hi). A base's is the hull of a few of its scans' sectors: the first,
+  /// the last, and any that turned more than kFootprintTurnRad since the last of those. Between
+  /// two of them, every scan's sector lies within their hull to within a tenth of a millimetre
+  /// (the edges move linearly; the arcs bulge by d^2 / 8 r for a move d, r (1 - cos(a / 2)) for a
+  /// turn a), so sector spans are computed twice per base on a straight path, not once per
+  /// scan.
   struct Footprint {
     std::vector<int> lo, hi;
     void Add(const std::vector<RowSpan>& spans, int rows);
@@ -85,9 +87,12 @@ class FactorizedBackProjector {
   FfbpConfig config_;
   PolarSampling sampling_;
   int threads_;
-  SensorGeometry geometry_;                   ///< of the scans pending
-  std::vector<SubaperturePulse> base_;        ///< scans of the base being filled
-  Footprint base_footprint_;                  ///< their pixels
+  SensorGeometry geometry_;             ///< of the scans pending
+  std::vector<SubaperturePulse> base_;  ///< scans of the base being filled
+  Footprint base_footprint_;            ///< their pixels
+  std::size_t footprint_scans_ = 0;     ///< base_ scans up to the last in the footprint
+  double footprint_yaw_rad_ = 0.0;      ///< yaw of the last scan in the footprint
+  static constexpr double kFootprintTurnRad = M_PI / 180.0;
   std::vector<std::vector<Pending>> levels_;  ///< [l]: fewer than merge_factor images
   BackProjector direct_;
   std::vector<RowSpan> spans_;  ///< reused

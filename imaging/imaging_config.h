@@ -33,10 +33,10 @@ struct EnumNames<ImagingMethod> {
 /// a time for `levels` levels, and the top sub-apertures are interpolated onto the tile. The
 /// defaults were chosen by measurement (docs/measurements.md, "Imaging").
 struct FfbpConfig {
-  int base_scans = 8;    ///< scans of one radar imaged directly on a polar grid
+  int base_scans = 32;   ///< scans of one radar imaged directly on a polar grid
   int merge_factor = 2;  ///< sub-apertures merged into one per level
-  int levels = 3;        ///< merge levels: a top sub-aperture holds base_scans * factor^levels
-  double angular_oversampling = 12.0;  ///< polar angle samples per two-way fringe
+  int levels = 2;        ///< merge levels: a top sub-aperture holds base_scans * factor^levels
+  double angular_oversampling = 8.0;  ///< polar angle samples per two-way fringe
   /// Polar range samples per two-way range fringe of the baseband image, c / (2 bandwidth).
   double range_oversampling = 12.0;
 
@@ -58,7 +58,7 @@ struct FfbpConfig {
 
 /// Back-projection (paper section "Back-projection Algorithm").
 struct ImagingConfig {
-  ImagingMethod method = ImagingMethod::kDirect;  ///< direct or ffbp (see ImagingMethod)
+  ImagingMethod method = ImagingMethod::kFfbp;  ///< ffbp or direct (see ImagingMethod)
   FfbpConfig ffbp;                                ///< imaging.method ffbp only
   ImagingMode mode = ImagingMode::kPaper;         ///< paper or coherent (see ImagingMode)
   double pixel_size_m = 0.005;                    ///< 5 mm per pixel, as the paper

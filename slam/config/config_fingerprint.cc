@@ -12,9 +12,14 @@
 namespace uwbsar {
 namespace {
 
-/// Settings inside the sections below that do not change tiles or features.
+/// Settings inside the sections below that do not change tiles or features enough to matter.
+/// imaging.method and imaging.ffbp.*: ffbp's tiles are direct's to the interpolation error of
+/// its polar grids (NCC >= 0.99 of the detected tiles, BM_ImageTile and FfbpTest), so a session
+/// made with either is resumed, localised in or merged under the other. That keeps the sessions
+/// saved while direct was the default usable now that ffbp is.
 bool Irrelevant(const std::string& key) {
-  return key == "imaging.num_threads" || key == "enhance.colormap";
+  return key == "imaging.num_threads" || key == "enhance.colormap" || key == "imaging.method" ||
+         key.rfind("imaging.ffbp.", 0) == 0;
 }
 
 void Flatten(const YAML::Node& node, const std::string& prefix,
@@ -53,13 +58,6 @@ std::vector<std::pair<std::string, std::string>> CompatibilityKeys(const SystemC
   }
   Flatten(root["place_recognition"]["detectors"], "place_recognition.detectors", &out);
   Flatten(root["slam"]["map_resolution_m"], "slam.map_resolution_m", &out);
-  // imaging.ffbp.* shape tiles only when imaging.method is ffbp.
-  if (config.imaging.method != ImagingMethod::kFfbp) {
-    out.erase(
-        std::remove_if(out.begin(), out.end(),
-                       [](const auto& kv) { return kv.first.rfind("imaging.ffbp.", 0) == 0; }),
-        out.end());
-  }
   return out;
 }
 
@@ -79,10 +77,10 @@ std::string FingerprintDifference(const std::string& stored, const SystemConfig&
       if (!line.empty() && line.back() == ':') saved[line.substr(0, line.size() - 1)] = "";
       continue;
     }
-    saved[line.substr(0, colon)] = line.substr(colon + 2);
+    if (!Irrelevant(line.substr(0, colon))) saved[line.substr(0, colon)] = line.substr(colon + 2);
   }
   // A setting added after a session was saved is not in it: that session was made as the
-  // setting's built-in default makes tiles (e.g. imaging.method, direct, before ffbp existed).
+  // setting's built-in default makes tiles.
   std::map<std::string, std::string> defaults;
   for (const auto& [key, value] : CompatibilityKeys(SystemConfig{})) defaults[key] = value;
   for (const auto& [key, value] : CompatibilityKeys(config)) {

@@ -13,7 +13,8 @@
 namespace uwbsar {
 
 /// (dotted key, value as YAML scalar text) of every compatibility-relevant setting, in a
-/// fixed order: pulse.*, radars[*].*, imaging.* (not num_threads), keyframe.*, enhance.*
+/// fixed order: pulse.*, radars[*].*, imaging.* (not num_threads, method or ffbp.*), keyframe.*,
+/// enhance.*
 /// (not colormap), place_recognition.detectors.*, slam.map_resolution_m.
 std::vector<std::pair<std::string, std::string>> CompatibilityKeys(const SystemConfig& config);
 

@@ -24,8 +24,11 @@ inline cv::Mat PaperDetection(const Config& config, const cv::Mat& sar) {
   return EnhancedFloat(real, config.enhance);
 }
 
+/// The default configuration in `mode` ("paper" or "coherent"), imaged by direct
+/// back-projection: the reference these tests measure (FfbpTest compares ffbp with it).
 inline Config ConfigForMode(const char* mode) {
   Config config;
+  config.imaging.method = ImagingMethod::kDirect;
   if (!EnumFromName(mode, &config.imaging.mode)) throw std::invalid_argument(mode);
   return config;
 }

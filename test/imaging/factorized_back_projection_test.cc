@@ -39,6 +39,7 @@ Comparison CompareTiles(const char* mode, const SyntheticPath& path,
   Config config = ConfigForMode(mode);
   const SyntheticRun run = SimulateRun(config, path, scene, EchoModel{}, 11);
   Comparison c;
+  config.imaging.method = ImagingMethod::kDirect;
   c.direct = Tiles(config, run);
   config.imaging.method = ImagingMethod::kFfbp;
   c.ffbp = Tiles(config, run);

@@ -18,21 +18,29 @@ std::string Without(const std::string& fingerprint, const std::string& key) {
 
 TEST(ConfigFingerprintTest, ASettingAddedLaterCountsAsItsDefaultInOlderSessions) {
   SystemConfig config;
-  const std::string older = Without(ConfigFingerprint(config), "imaging.method");
+  const std::string older = Without(ConfigFingerprint(config), "imaging.coherent_oversampling");
   EXPECT_EQ(FingerprintDifference(older, config), "");
-  config.imaging.method = ImagingMethod::kFfbp;  // tiles an older session was not made with
-  EXPECT_NE(FingerprintDifference(older, config).find("imaging.method"), std::string::npos);
+  config.imaging.coherent_oversampling = 8;  // tiles an older session was not made with
+  EXPECT_NE(FingerprintDifference(older, config).find("imaging.coherent_oversampling"),
+            std::string::npos);
 }
 
-TEST(ConfigFingerprintTest, FfbpSettingsMatterOnlyWhenFfbpMakesTheTiles) {
+TEST(ConfigFingerprintTest, SessionsOfEitherImagingMethodAreReadUnderTheOther) {
+  // A session saved while direct was the default, with the ffbp settings of that time, is
+  // read under today's defaults (ffbp), and the other way round.
   SystemConfig saved, now;
-  now.imaging.ffbp.levels = 2;
+  saved.imaging.method = ImagingMethod::kDirect;
+  saved.imaging.ffbp.levels = 3;
+  saved.imaging.ffbp.base_scans = 8;
+  now.imaging.method = ImagingMethod::kFfbp;
   EXPECT_EQ(FingerprintDifference(ConfigFingerprint(saved), now), "");
-  saved.imaging.method = now.imaging.method = ImagingMethod::kFfbp;
-  EXPECT_NE(FingerprintDifference(ConfigFingerprint(saved), now).find("imaging.ffbp.levels"),
-            std::string::npos);
-  now.imaging.method = ImagingMethod::kDirect;
-  EXPECT_NE(FingerprintDifference(ConfigFingerprint(saved), now).find("imaging.method"),
+  EXPECT_EQ(FingerprintDifference(ConfigFingerprint(now), saved), "");
+  const std::string older_text =
+      ConfigFingerprint(saved) + "imaging.method: direct\nimaging.ffbp.angular_oversampling: 12\n";
+  EXPECT_EQ(FingerprintDifference(older_text, now), "");
+  // What does change tiles still counts.
+  now.imaging.pixel_size_m = 0.01;
+  EXPECT_NE(FingerprintDifference(ConfigFingerprint(saved), now).find("imaging.pixel_size_m"),
             std::string::npos);
 }
 
