@@ -58,7 +58,7 @@ struct FfbpConfig {
 
 /// Back-projection (paper section "Back-projection Algorithm").
 struct ImagingConfig {
-  ImagingMethod method = ImagingMethod::kFfbp;  ///< ffbp or direct (see ImagingMethod)
+  ImagingMethod method = ImagingMethod::kDirect;  ///< direct or ffbp (see ImagingMethod)
   FfbpConfig ffbp;                                ///< imaging.method ffbp only
   ImagingMode mode = ImagingMode::kPaper;         ///< paper or coherent (see ImagingMode)
   double pixel_size_m = 0.005;                    ///< 5 mm per pixel, as the paper

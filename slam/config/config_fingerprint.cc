@@ -15,8 +15,8 @@ namespace {
 /// Settings inside the sections below that do not change tiles or features enough to matter.
 /// imaging.method and imaging.ffbp.*: ffbp's tiles are direct's to the interpolation error of
 /// its polar grids (NCC >= 0.99 of the detected tiles, BM_ImageTile and FfbpTest), so a session
-/// made with either is resumed, localised in or merged under the other. That keeps the sessions
-/// saved while direct was the default usable now that ffbp is.
+/// made with either is resumed, localised in or merged under the other: switching methods (for
+/// speed, or back) loses no saved map.
 bool Irrelevant(const std::string& key) {
   return key == "imaging.num_threads" || key == "enhance.colormap" || key == "imaging.method" ||
          key.rfind("imaging.ffbp.", 0) == 0;
