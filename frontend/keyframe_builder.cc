@@ -60,7 +60,7 @@ long long KeyframeBuilder::FlushSubapertures() {
   if (segments_.empty()) return pixels;
   Segment& seg = segments_.back();
   for (std::size_t sensor = 0; sensor < subapertures_.size(); ++sensor) {
-    if (subapertures_[sensor].pending_scans() == 0) continue;
+    // Even with no scans pending: a top sub-aperture written by the last Add is reported here.
     Layer& layer = LayerOf(seg, static_cast<int>(sensor));
     cv::Rect touched;
     pixels += subapertures_[sensor].Flush(seg.grid, &layer.image, &touched);

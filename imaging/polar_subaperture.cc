@@ -114,8 +114,12 @@ bool PolarSubaperture::PlanGrid(const SensorGeometry& g, const PolarSampling& sa
     extent_m =
         std::max(extent_m, std::abs(ux * ax_ + uy * ay_) + std::abs(ux * bx_ + uy * by_) * max_tan);
   }
-  double step =
-      sampling.min_wavelength_m / (2.0 * std::max(extent_m, 1e-6) * sampling.angular_oversampling);
+  // At least kMinSectorRows rows across the sectors, whose edges the samples resolve: a short
+  // sub-aperture (one scan) has few fringes, but its image still ends at the sector's edges.
+  constexpr double kMinSectorRows = 8.0;
+  const double step = std::min(
+      sampling.min_wavelength_m / (2.0 * std::max(extent_m, 1e-6) * sampling.angular_oversampling),
+      (sin_hi - sin_lo) / kMinSectorRows);
   const double margin = std::min(step, 0.05);  // samples just outside, for interpolation
   psi0_ = std::max(-1.0, sin_lo - margin);
   const double psi1 = std::min(1.0, sin_hi + margin);

@@ -45,6 +45,7 @@ std::shared_ptr<const RangeProfile> Profile(bool coherent, int scan) {
   for (int k = 0; k < 300; ++k) {
     p->real.push_back(static_cast<float>(1.0 + std::sin(0.3 * k + 0.1 * scan)));
     if (coherent) p->imag.push_back(static_cast<float>(std::cos(0.2 * k)));
+    p->quadrature.push_back(static_cast<float>(std::cos(0.3 * k + 0.1 * scan)));  // for ffbp
   }
   p->max_valid_range_m = p->range_start_m + 299 * p->range_step_m;
   return p;
@@ -70,11 +71,13 @@ std::vector<ImagedScan> Scans(bool coherent) {
 }
 
 std::vector<Keyframe> Build(double tile_length_m, const std::string& mode,
-                            bool keep_sensor_images = false) {
+                            bool keep_sensor_images = false,
+                            const ImagingConfig* imaging = nullptr) {
   KeyframeConfig keyframe;
   keyframe.tile_length_m = tile_length_m;
   keyframe.tile_spacing_m = 1.0;
-  KeyframeBuilder builder(keyframe, Imaging(mode), PulseConfig{}, Sensors(), keep_sensor_images);
+  KeyframeBuilder builder(keyframe, imaging != nullptr ? *imaging : Imaging(mode), PulseConfig{},
+                          Sensors(), keep_sensor_images);
   for (const ImagedScan& s : Scans(mode == "coherent")) builder.Add(s);
   builder.Finish();
   return builder.TakeClosed();
@@ -129,6 +132,28 @@ TEST_P(KeyframeBuilderTest, ATileIsTheSumOfItsTwoSegments) {
     EXPECT_EQ(tiles[t].scans.size(), a.scans.size() + b.scans.size());
     EXPECT_DOUBLE_EQ(tiles[t].path_begin_m, a.path_begin_m);
     EXPECT_DOUBLE_EQ(tiles[t].path_end_m, b.path_end_m);
+  }
+}
+
+TEST_P(KeyframeBuilderTest, FfbpTilesCoverDirectsEvenWithNothingPendingWhenASegmentCloses) {
+  // One scan per sub-aperture and no merge levels: each scan is written into its segment's
+  // canvas as it comes, so nothing is pending when the segment closes. What it wrote must
+  // still count as the segment's (its tile's pixels, and the canvas area zeroed for reuse).
+  ImagingConfig ffbp = Imaging(GetParam());
+  ffbp.method = ImagingMethod::kFfbp;
+  ffbp.ffbp.base_scans = 1;
+  ffbp.ffbp.levels = 0;
+  const std::vector<Keyframe> direct = Build(2.0, GetParam());
+  for (bool keep_sensor_images : {false, true}) {
+    const std::vector<Keyframe> fast = Build(2.0, GetParam(), keep_sensor_images, &ffbp);
+    ASSERT_EQ(fast.size(), direct.size());
+    for (std::size_t t = 0; t < fast.size(); ++t) {
+      EXPECT_EQ(fast[t].grid.cols, direct[t].grid.cols) << "tile " << t;
+      EXPECT_EQ(fast[t].grid.rows, direct[t].grid.rows) << "tile " << t;
+      EXPECT_DOUBLE_EQ(fast[t].grid.x0_m, direct[t].grid.x0_m) << "tile " << t;
+      EXPECT_DOUBLE_EQ(fast[t].grid.y0_m, direct[t].grid.y0_m) << "tile " << t;
+      EXPECT_GT(cv::norm(fast[t].image, cv::NORM_INF), 0.0) << "tile " << t;
+    }
   }
 }
 
