@@ -18,21 +18,6 @@ double MsSince(std::chrono::steady_clock::time_point start) {
 
 const FeatureSet kNoFeatures;
 
-/// The whole tile's features: k's grid (at feature resolution), by_detector and refinement image.
-void ExtractWholeTileFeatures(const Keyframe& keyframe, const PlaceRecognizerConfig& config,
-                              KeyframeFeatures* k) {
-  const DetectorConfig& d = config.place_recognition.detectors;
-  const FeatureImage image =
-      DownsampleFeatureImage(MakeFeatureImage(keyframe.image, config.enhance, d.mask_erode_px),
-                             config.feature_downsampling, d.white_percentile, &k->grid);
-  for (DetectorKind kind : config.place_recognition.validation.detectors)
-    k->by_detector[kind] = ComputeFeatures(image, kind, d);
-  if (config.place_recognition.validation.refinement.enabled) {
-    k->refinement_image =
-        std::make_shared<const std::vector<unsigned char>>(PackForRefinement(image));
-  }
-}
-
 }  // namespace
 
 const FeatureSet& KeyframeFeatures::Features(DetectorKind kind) const {
@@ -60,29 +45,22 @@ DetectorMap<MatchResult> MatchDetectorPair(const KeyframeFeatures& older,
 
 KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe,
                                          const PlaceRecognizerConfig& config) {
+  const DetectorConfig& d = config.place_recognition.detectors;
   KeyframeFeatures k;
   k.id = keyframe.id;
   k.grid = keyframe.grid;
   k.path_begin_m = keyframe.path_begin_m;
   k.T_world_anchor = keyframe.T_world_anchor;
-  // The whole tile and (per-radar matching) each radar's tile are independent feature images:
-  // their features are extracted in parallel (on the core imaging leaves free), each into its
-  // own slot, and put together in a fixed order, so they do not depend on the threads.
-  std::vector<RadarTileFeatures> radar_tiles(
-      config.place_recognition.per_radar.enabled ? keyframe.sensor_tiles.size() : 0);
-  cv::parallel_for_(
-      cv::Range(0, 1 + static_cast<int>(radar_tiles.size())), [&](const cv::Range& jobs) {
-        for (int job = jobs.start; job < jobs.end; ++job) {
-          if (job == 0) {
-            ExtractWholeTileFeatures(keyframe, config, &k);
-          } else {
-            radar_tiles[static_cast<std::size_t>(job - 1)] =
-                ExtractRadarTileFeatures(keyframe, static_cast<std::size_t>(job - 1), config);
-          }
-        }
-      });
-  if (config.place_recognition.per_radar.enabled)
-    AddRadarFeatures(keyframe, radar_tiles, config, &k);
+  const FeatureImage image =
+      DownsampleFeatureImage(MakeFeatureImage(keyframe.image, config.enhance, d.mask_erode_px),
+                             config.feature_downsampling, d.white_percentile, &k.grid);
+  for (DetectorKind kind : config.place_recognition.validation.detectors)
+    k.by_detector[kind] = ComputeFeatures(image, kind, d);
+  if (config.place_recognition.validation.refinement.enabled) {
+    k.refinement_image =
+        std::make_shared<const std::vector<unsigned char>>(PackForRefinement(image));
+  }
+  if (config.place_recognition.per_radar.enabled) ExtractRadarFeatures(keyframe, config, &k);
   // Where the robot drove while imaging the tile: a better "position" of the tile than
   // the anchor, which sits at its first scan.
   double sx = 0.0, sy = 0.0;

@@ -55,30 +55,11 @@ cv::Mat PairMask(const FeatureSet& a, const FeatureSet& b,
 
 }  // namespace
 
-RadarTileFeatures ExtractRadarTileFeatures(const Keyframe& keyframe, std::size_t index,
-                                           const PlaceRecognizerConfig& config) {
-  RadarTileFeatures out;
-  const SensorTile& st = keyframe.sensor_tiles.at(index);
-  if (st.sensor_id < 0 ||
-      static_cast<std::size_t>(st.sensor_id) >= config.radar_boresight_yaw_deg.size()) {
-    return out;
-  }
+void ExtractRadarFeatures(const Keyframe& keyframe, const PlaceRecognizerConfig& config,
+                          KeyframeFeatures* k) {
   const DetectorConfig& d = config.place_recognition.detectors;
   DetectorConfig per_radar = d;
   per_radar.max_keypoints = config.place_recognition.per_radar.max_keypoints;
-  out.sensor_id = st.sensor_id;
-  out.grid = st.grid;
-  const FeatureImage image =
-      DownsampleFeatureImage(MakeFeatureImage(st.image, config.enhance, d.mask_erode_px),
-                             config.feature_downsampling, d.white_percentile, &out.grid);
-  for (DetectorKind kind : config.place_recognition.validation.detectors) {
-    out.by_detector[kind] = ComputeFeatures(image, kind, per_radar);
-  }
-  return out;
-}
-
-void AddRadarFeatures(const Keyframe& keyframe, const std::vector<RadarTileFeatures>& tiles,
-                      const PlaceRecognizerConfig& config, KeyframeFeatures* k) {
   const std::vector<DetectorKind>& detectors = config.place_recognition.validation.detectors;
   k->radar_by_detector.clear();
   for (DetectorKind kind : detectors) k->radar_by_detector[kind] = FeatureSet();
@@ -91,10 +72,15 @@ void AddRadarFeatures(const Keyframe& keyframe, const std::vector<RadarTileFeatu
   for (std::size_t s = 0; s < boresight_deg.size(); ++s) {
     k->look_anchor_rad[s] = NormalizeAngle(heading_anchor_rad + boresight_deg[s] * M_PI / 180.0);
   }
-  for (const RadarTileFeatures& tile : tiles) {
-    if (tile.sensor_id < 0) continue;
+  for (const SensorTile& st : keyframe.sensor_tiles) {
+    if (st.sensor_id < 0 || static_cast<std::size_t>(st.sensor_id) >= boresight_deg.size())
+      continue;
+    ImageGrid grid = st.grid;
+    const FeatureImage image =
+        DownsampleFeatureImage(MakeFeatureImage(st.image, config.enhance, d.mask_erode_px),
+                               config.feature_downsampling, d.white_percentile, &grid);
     for (DetectorKind kind : detectors) {
-      Append(tile.by_detector.at(kind), tile.grid, k->grid, tile.sensor_id,
+      Append(ComputeFeatures(image, kind, per_radar), grid, k->grid, st.sensor_id,
              &k->radar_by_detector[kind]);
     }
   }

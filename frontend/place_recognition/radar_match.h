@@ -19,23 +19,11 @@
 
 namespace uwbsar {
 
-/// One radar's features, detected on its own sensor tile.
-struct RadarTileFeatures {
-  int sensor_id = -1;  ///< -1: none (a sensor id the configuration has no boresight for)
-  ImageGrid grid;      ///< the sensor tile's feature grid, which the keypoints are in
-  DetectorMap<FeatureSet> by_detector;
-};
-
-/// The features of keyframe.sensor_tiles[index] for validation.detectors. Each tile's are
-/// independent of the others' and of the whole tile's: callers may extract them in parallel.
-RadarTileFeatures ExtractRadarTileFeatures(const Keyframe& keyframe, std::size_t index,
-                                           const PlaceRecognizerConfig& config);
-
-/// Fills k's per-radar features (radar_by_detector for validation.detectors, look_anchor_rad)
-/// from `tiles` (ExtractRadarTileFeatures of each sensor tile, in order); k.grid must already be
-/// the whole tile's feature grid. They are empty when the keyframe has no sensor tiles.
-void AddRadarFeatures(const Keyframe& keyframe, const std::vector<RadarTileFeatures>& tiles,
-                      const PlaceRecognizerConfig& config, KeyframeFeatures* k);
+/// Fills k's per-radar features (radar_by_detector for validation.detectors, look_anchor_rad) from
+/// the keyframe's sensor tiles; k.grid must already be the whole tile's feature grid. Leaves them
+/// empty when the keyframe has no sensor tiles.
+void ExtractRadarFeatures(const Keyframe& keyframe, const PlaceRecognizerConfig& config,
+                          KeyframeFeatures* k);
 
 /// True when k has per-radar features of at least two radars (counted on the second detector of
 /// pr.validation.detectors).
