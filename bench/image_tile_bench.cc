@@ -77,12 +77,6 @@ const Workload* RailWorkload(std::string* missing) {
 std::vector<Keyframe> ImageTiles(const Workload& w, ImagingMethod method) {
   ImagingConfig imaging = w.config.imaging;
   imaging.method = method;
-  if (const char* e = getenv("THREADS")) imaging.num_threads = atoi(e);
-  if (const char* e = getenv("FFBPCFG")) {
-    sscanf(e, "%d,%d,%d,%lf,%lf", &imaging.ffbp.base_scans, &imaging.ffbp.merge_factor,
-           &imaging.ffbp.levels, &imaging.ffbp.angular_oversampling,
-           &imaging.ffbp.range_oversampling);
-  }
   KeyframeBuilder builder(w.config.keyframe, imaging, w.config.pulse, w.sensors);
   for (const ImagedScan& s : w.scans) builder.Add(s);
   builder.Finish();
@@ -101,7 +95,7 @@ void BM_ImageTile(benchmark::State& state, ImagingMethod method, bool rail) {
     state.SkipWithError(missing.c_str());
     return;
   }
-  cv::setNumThreads(getenv("THREADS") ? atoi(getenv("THREADS")) : w->config.imaging.num_threads);
+  cv::setNumThreads(w->config.imaging.num_threads);
   for (auto _ : state) {
     std::vector<Keyframe> tiles = ImageTiles(*w, method);
     benchmark::DoNotOptimize(tiles.data());
@@ -115,18 +109,8 @@ void BM_ImageTile(benchmark::State& state, ImagingMethod method, bool rail) {
     const std::vector<Keyframe> ffbp = ImageTiles(*w, ImagingMethod::kFfbp);
     double worst = 1.0;
     for (std::size_t i = 0; i < direct.size() && i < ffbp.size(); ++i) {
-      const cv::Mat a = Detected(direct[i].image, w->config.enhance), b = Detected(ffbp[i].image, w->config.enhance);
-      const double ncc = ZeroMeanNcc(a, b);
-      worst = std::min(worst, ncc);
-      if (getenv("DUMP")) {
-        fprintf(stderr, "tile %zu ncc %.5f size %dx%d vs %dx%d\n", i, ncc, a.cols, a.rows, b.cols, b.rows);
-        for (auto [name, m] : {std::pair<const char*, cv::Mat>{"a", a}, {"b", b}, {"ra", direct[i].image}, {"rb", ffbp[i].image}}) {
-          FILE* f = fopen(("/tmp/tile" + std::to_string(i) + name + ".f32").c_str(), "wb");
-          cv::Mat c = m.clone();
-          fwrite(c.data, 4, c.total() * c.channels(), f);
-          fclose(f);
-        }
-      }
+      worst = std::min(worst, ZeroMeanNcc(Detected(direct[i].image, w->config.enhance),
+                                          Detected(ffbp[i].image, w->config.enhance)));
     }
     state.counters["worst_tile_ncc"] = worst;
   }
