@@ -4,14 +4,9 @@
 #include <climits>
 #include <cmath>
 
+#include "imaging/sector_spans.h"
+
 namespace uwbsar {
-namespace {
-
-void Unite(cv::Rect* acc, const cv::Rect& r) {
-  *acc = acc->empty() ? r : (r.empty() ? *acc : *acc | r);
-}
-
-}  // namespace
 
 KeyframeBuilder::KeyframeBuilder(const KeyframeConfig& keyframe, const ImagingConfig& imaging,
                                  const PulseConfig& pulse, std::vector<SensorGeometry> sensors,
@@ -64,8 +59,8 @@ long long KeyframeBuilder::FlushSubapertures() {
     Layer& layer = LayerOf(seg, static_cast<int>(sensor));
     cv::Rect touched;
     pixels += subapertures_[sensor].Flush(seg.grid, &layer.image, &touched);
-    Unite(&layer.touched, touched);
-    Unite(&seg.touched, touched);
+    UniteBounds(&layer.touched, touched);
+    UniteBounds(&seg.touched, touched);
   }
   return pixels;
 }
@@ -206,8 +201,8 @@ long long KeyframeBuilder::Add(const ImagedScan& scan) {
                                                     &layer.image, &touched)
                             : subapertures_.at(static_cast<std::size_t>(scan.sensor_id))
                                   .Add(scan.profile, T_grid_sensor, sensor, seg.grid, &layer.image);
-  Unite(&layer.touched, touched);  // ffbp: at FlushSubapertures
-  Unite(&seg.touched, touched);
+  UniteBounds(&layer.touched, touched);  // ffbp: at FlushSubapertures
+  UniteBounds(&seg.touched, touched);
   seg.scans.push_back(scan);
   seg.path_end_m = scan.path_m;
   return pixels + flushed;

@@ -82,15 +82,7 @@ long long BackProjector::Accumulate(const RangeProfile& profile, const Pose2& T_
   spans_.clear();
   const long long pixels = ComputeSectorSpans(grid, T_grid_sensor, sector, &spans_);
   if (spans_.empty()) return 0;
-  if (touched != nullptr) {
-    int c0 = spans_.front().col_begin, c1 = spans_.front().col_end;
-    for (const RowSpan& s : spans_) {
-      c0 = std::min(c0, s.col_begin);
-      c1 = std::max(c1, s.col_end);
-    }
-    const int r0 = spans_.front().row, r1 = spans_.back().row + 1;  // spans are row-ordered
-    *touched = cv::Rect(c0, r0, c1 - c0, r1 - r0);
-  }
+  if (touched != nullptr) *touched = SpansBounds(spans_);
 
   LookupFrame f;
   f.sx = T_grid_sensor.x_m;

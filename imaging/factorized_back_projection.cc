@@ -52,16 +52,6 @@ void FactorizedBackProjector::Footprint::Add(const Footprint& other) {
   }
 }
 
-cv::Rect FactorizedBackProjector::Bounds(const std::vector<RowSpan>& spans) {
-  if (spans.empty()) return cv::Rect();
-  int c0 = spans.front().col_begin, c1 = spans.front().col_end;
-  for (const RowSpan& s : spans) {
-    c0 = std::min(c0, s.col_begin);
-    c1 = std::max(c1, s.col_end);
-  }
-  return cv::Rect(c0, spans.front().row, c1 - c0, spans.back().row + 1 - spans.front().row);
-}
-
 std::vector<RowSpan> FactorizedBackProjector::Footprint::Spans() const {
   std::vector<RowSpan> spans;
   for (std::size_t r = 0; r < lo.size(); ++r) {
@@ -77,12 +67,6 @@ int FactorizedBackProjector::pending_scans() const {
   }
   return static_cast<int>(n);
 }
-
-namespace {
-void Unite(cv::Rect* acc, const cv::Rect& r) {
-  *acc = acc->empty() ? r : (r.empty() ? *acc : *acc | r);
-}
-}  // namespace
 
 long long FactorizedBackProjector::Add(std::shared_ptr<const RangeProfile> profile,
                                        const Pose2& T_grid_sensor, const SensorGeometry& geometry,
@@ -210,7 +194,7 @@ long long FactorizedBackProjector::FlushParts(const ImageGrid& grid, cv::Mat* im
 long long FactorizedBackProjector::Project(const Pending& part, const ImageGrid& grid,
                                            cv::Mat* image) {
   const std::vector<RowSpan> spans = part.footprint.Spans();
-  Unite(&touched_, Bounds(spans));
+  UniteBounds(&touched_, SpansBounds(spans));
   return part.image.ProjectInto(grid, spans, image, threads_);
 }
 
@@ -220,7 +204,7 @@ long long FactorizedBackProjector::ProjectDirect(const std::vector<SubaperturePu
   for (const SubaperturePulse& p : pulses) {
     cv::Rect touched;
     pixels += direct_.Accumulate(*p.profile, p.T_grid_sensor, geometry_, grid, image, &touched);
-    Unite(&touched_, touched);
+    UniteBounds(&touched_, touched);
   }
   return pixels;
 }

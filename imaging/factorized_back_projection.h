@@ -66,8 +66,6 @@ class FactorizedBackProjector {
 
   /// What Flush does, but for `touched`.
   long long FlushParts(const ImageGrid& grid, cv::Mat* image);
-  /// The bounding box of `spans` (rows ascending).
-  static cv::Rect Bounds(const std::vector<RowSpan>& spans);
   /// Writes `part` into the image.
   long long Project(const Pending& part, const ImageGrid& grid, cv::Mat* image);
   /// One image of `parts` (nullopt when they do not fit one polar grid).

@@ -67,4 +67,14 @@ long long ComputeSectorSpans(const ImageGrid& grid, const Pose2& T_grid_sensor,
   return pixels;
 }
 
+cv::Rect SpansBounds(const std::vector<RowSpan>& spans) {
+  if (spans.empty()) return cv::Rect();
+  int c0 = spans.front().col_begin, c1 = spans.front().col_end;
+  for (const RowSpan& s : spans) {
+    c0 = std::min(c0, s.col_begin);
+    c1 = std::max(c1, s.col_end);
+  }
+  return cv::Rect(c0, spans.front().row, c1 - c0, spans.back().row + 1 - spans.front().row);
+}
+
 }  // namespace uwbsar

@@ -5,6 +5,7 @@
 // inner disk, i.e. at most two column intervals.
 #pragma once
 
+#include <opencv2/core.hpp>
 #include <vector>
 
 #include "core/pose2.h"
@@ -28,5 +29,14 @@ struct SectorShape {
 /// sensor at T_grid_sensor (x along boresight). Returns the number of pixels.
 long long ComputeSectorSpans(const ImageGrid& grid, const Pose2& T_grid_sensor,
                              const SectorShape& sector, std::vector<RowSpan>* spans);
+
+/// The bounding box of `spans`, rows ascending (as ComputeSectorSpans appends them); empty for
+/// none.
+cv::Rect SpansBounds(const std::vector<RowSpan>& spans);
+
+/// *acc becomes the box holding both *acc and r (an empty box adds nothing).
+inline void UniteBounds(cv::Rect* acc, const cv::Rect& r) {
+  *acc = acc->empty() ? r : (r.empty() ? *acc : *acc | r);
+}
 
 }  // namespace uwbsar

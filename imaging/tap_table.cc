@@ -16,8 +16,12 @@ void MakeTapTable(const RangeProfile& profile, const std::vector<float>& imag, d
   const double per_entry = bin_size_m > 0.0 ? kTaps * entry_m / bin_size_m : kTaps;
   const int phases = std::min(kTaps, std::max(1, static_cast<int>(std::ceil(per_entry - 1e-9))));
   const double step_m = entry_m / phases;
-  double offset_m[kTaps];
-  for (int m = 0; m < kTaps; ++m) offset_m[m] = bin_size_m * ((m + 0.5) / kTaps - 0.5);
+  double offset_m[kTaps], w_re[kTaps], w_im[kTaps];  // o_m and exp(-j kc o_m) / kTaps
+  for (int m = 0; m < kTaps; ++m) {
+    offset_m[m] = bin_size_m * ((m + 0.5) / kTaps - 0.5);
+    w_re[m] = std::cos(-kc * offset_m[m]) / kTaps;
+    w_im[m] = std::sin(-kc * offset_m[m]) / kTaps;
+  }
   const double knot0_m = profile.range_start_m - offset_m[0];
   const double x0_m = knot0_m + step_m * std::floor((min_range_m - step_m - knot0_m) / step_m);
   const int count = static_cast<int>(std::ceil((max_range_m + step_m - x0_m) / step_m)) + 1;
@@ -54,15 +58,13 @@ void MakeTapTable(const RangeProfile& profile, const std::vector<float>& imag, d
     std::fill(c_re.begin(), c_re.end(), 0.0f);
     std::fill(c_im.begin(), c_im.end(), 0.0f);
     for (int m = 0; m < kTaps; ++m) {
-      const double w_re = std::cos(-kc * offset_m[m]) / kTaps;
-      const double w_im = std::sin(-kc * offset_m[m]) / kTaps;
       const int a = static_cast<int>(std::floor(u[p][m]));
       const double f = u[p][m] - a;
       const std::size_t j = static_cast<std::size_t>(a - lo);
-      c_re[j] += static_cast<float>(w_re * (1.0 - f));
-      c_im[j] += static_cast<float>(w_im * (1.0 - f));
-      c_re[j + 1] += static_cast<float>(w_re * f);
-      c_im[j + 1] += static_cast<float>(w_im * f);
+      c_re[j] += static_cast<float>(w_re[m] * (1.0 - f));
+      c_im[j] += static_cast<float>(w_im[m] * (1.0 - f));
+      c_re[j + 1] += static_cast<float>(w_re[m] * f);
+      c_im[j + 1] += static_cast<float>(w_im[m] * f);
     }
     std::fill(phase_re.begin(), phase_re.end(), 0.0f);
     std::fill(phase_im.begin(), phase_im.end(), 0.0f);
