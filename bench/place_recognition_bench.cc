@@ -11,6 +11,7 @@
 #include "frontend/place_recognition/feature_matcher.h"
 #include "frontend/place_recognition/features.h"
 #include "frontend/place_recognition/loop_validator.h"
+#include "frontend/place_recognition/place_recognizer.h"
 #include "slam/app_config.h"
 #include "test/frontend/place_recognition/sar_scene.h"
 
@@ -110,6 +111,24 @@ void BM_MatchAndValidateAkazeOrb(benchmark::State& state) {
   state.counters["accepted"] = accepted ? 1 : 0;
 }
 
+// Everything place recognition computes for one new keyframe (the feature images of the tile
+// and of each radar's tile, and both validation detectors on each): what `map` spends most of
+// its time on once imaging is fast.
+void BM_ExtractKeyframeFeatures(benchmark::State& state) {
+  const TilePair& p = Tiles();
+  const Config config;
+  const PlaceRecognizerConfig pr(config);
+  int keypoints = 0;
+  for (auto _ : state) {
+    const KeyframeFeatures f = ExtractKeyframeFeatures(p.d, pr);
+    keypoints = f.Features(DetectorKind::kAkaze).size();
+    benchmark::DoNotOptimize(keypoints);
+  }
+  state.counters["tile_px"] = static_cast<double>(p.d.image.total());
+  state.counters["radar_tiles"] = static_cast<double>(p.d.sensor_tiles.size());
+  state.counters["akaze_kp"] = keypoints;
+}
+
 // Candidate query with a pose prior in a database of N keyframes laid along a long
 // meandering run: the cost must stay flat as N grows (spatial hash).
 void BM_CandidateQuery(benchmark::State& state) {
@@ -143,6 +162,7 @@ BENCHMARK(BM_MatchPair)
     ->DenseRange(0, static_cast<int>(AvailableDetectors().size()) - 1)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MatchAndValidateAkazeOrb)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ExtractKeyframeFeatures)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CandidateQuery)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
