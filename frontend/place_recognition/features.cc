@@ -75,11 +75,27 @@ FeatureImage MakeFeatureImage(const cv::Mat& sar, const EnhanceConfig& enhance, 
   return out;
 }
 
+namespace {
+
+cv::Size DownsampledSize(int cols, int rows, double factor) {
+  if (factor <= 1.0) return {cols, rows};
+  return {std::max(1, static_cast<int>(std::lround(cols / factor))),
+          std::max(1, static_cast<int>(std::lround(rows / factor)))};
+}
+
+}  // namespace
+
+ImageGrid DownsampledGrid(const ImageGrid& grid, double factor) {
+  if (factor <= 1.0) return grid;
+  const cv::Size size = DownsampledSize(grid.cols, grid.rows, factor);
+  return grid.Resized(size.width, size.height);
+}
+
 FeatureImage DownsampleFeatureImage(FeatureImage image, double factor, double white_percentile,
                                     ImageGrid* grid) {
   if (factor > 1.0 && !image.gray.empty()) {
-    const int cols = std::max(1, static_cast<int>(std::lround(image.gray.cols / factor)));
-    const int rows = std::max(1, static_cast<int>(std::lround(image.gray.rows / factor)));
+    const cv::Size size = DownsampledSize(image.gray.cols, image.gray.rows, factor);
+    const int cols = size.width, rows = size.height;
     cv::Mat gray, mask;
     cv::resize(image.gray, gray, cv::Size(cols, rows), 0, 0, cv::INTER_AREA);
     cv::resize(image.mask, mask, cv::Size(cols, rows), 0, 0, cv::INTER_AREA);

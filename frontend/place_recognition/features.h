@@ -37,6 +37,8 @@ FeatureImage MakeFeatureImage(const cv::Mat& sar, const EnhanceConfig& enhance, 
 /// (ImageGrid::Resized). Then stretches the contrast (NormalizeFeatureContrast).
 FeatureImage DownsampleFeatureImage(FeatureImage image, double factor, double white_percentile,
                                     ImageGrid* grid = nullptr);
+/// The grid DownsampleFeatureImage gives an image on `grid` (known before the image is made).
+ImageGrid DownsampledGrid(const ImageGrid& grid, double factor);
 /// Maps the darkest measured (mask) pixel to 0 and the `white_percentile` percentile of the
 /// measured pixels to 255, saturating brighter ones (100 = min-max normalisation). A few
 /// very bright scatterers would otherwise leave the rest of the scene in a handful of gray

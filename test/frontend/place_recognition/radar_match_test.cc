@@ -186,5 +186,38 @@ TEST(RadarMatchTest, RadarsArePairedByTheirLookDirectionInTheWorld) {
   EXPECT_FALSE(a.cross_side);
 }
 
+// ExtractKeyframeFeatures computes the radars' features on a thread of their own, beside the
+// combined tile's: the same features, in the same pixels, as one after the other.
+TEST(RadarMatchTest, RadarFeaturesBesideTheTilesAreThoseComputedAlone) {
+  SystemConfig config;
+  const PlaceRecognizerConfig pr(config);
+  const Keyframe keyframe = WayOut();
+  const KeyframeFeatures both = ExtractKeyframeFeatures(keyframe, pr);
+  KeyframeFeatures alone;
+  alone.grid = keyframe.grid;
+  ImageGrid tile_grid = keyframe.grid;
+  const DetectorConfig& d = pr.place_recognition.detectors;
+  DownsampleFeatureImage(MakeFeatureImage(keyframe.image, pr.enhance, d.mask_erode_px),
+                         pr.feature_downsampling, d.white_percentile, &tile_grid);
+  EXPECT_EQ(both.grid.cols, tile_grid.cols);
+  EXPECT_EQ(both.grid.rows, tile_grid.rows);
+  EXPECT_DOUBLE_EQ(both.grid.resolution_m, tile_grid.resolution_m);
+  EXPECT_DOUBLE_EQ(both.grid.x0_m, tile_grid.x0_m);
+  EXPECT_DOUBLE_EQ(both.grid.y0_m, tile_grid.y0_m);
+  alone.grid = tile_grid;
+  ExtractRadarFeatures(keyframe, pr, &alone);
+  for (DetectorKind kind : {DetectorKind::kAkaze, DetectorKind::kOrb}) {
+    const FeatureSet& a = both.RadarFeatures(kind);
+    const FeatureSet& b = alone.RadarFeatures(kind);
+    ASSERT_GT(a.size(), 20);
+    ASSERT_EQ(a.size(), b.size());
+    for (int k = 0; k < a.size(); ++k) {
+      EXPECT_EQ(a.keypoints[k].pt, b.keypoints[k].pt);
+      EXPECT_EQ(a.keypoints[k].class_id, b.keypoints[k].class_id);
+    }
+    EXPECT_EQ(cv::norm(a.descriptors, b.descriptors, cv::NORM_INF), 0.0);
+  }
+}
+
 }  // namespace
 }  // namespace uwbsar
