@@ -121,9 +121,8 @@ void BM_ImageTile(benchmark::State& state, ImagingMethod method, bool rail) {
     const PlaceRecognizerConfig pr(w->config);
     const DetectorConfig& d = pr.place_recognition.detectors;
     const auto feature_image = [&](const cv::Mat& sar) {
-      ImageGrid g;
       return DownsampleFeatureImage(MakeFeatureImage(sar, pr.enhance, d.mask_erode_px),
-                                    pr.feature_downsampling, d.white_percentile, &g);
+                                    pr.feature_downsampling, d.white_percentile);
     };
     const auto db = [&](const cv::Mat& sar) {
       cv::Mat e = Detected(sar, w->config.enhance), out;

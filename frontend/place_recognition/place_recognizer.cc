@@ -60,10 +60,9 @@ KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe,
   if (config.place_recognition.per_radar.enabled) {
     radars = std::async(std::launch::async, [&] { ExtractRadarFeatures(keyframe, config, &k); });
   }
-  ImageGrid tile_grid = keyframe.grid;
-  const FeatureImage image =
+  const FeatureImage image =  // on k.grid, set above
       DownsampleFeatureImage(MakeFeatureImage(keyframe.image, config.enhance, d.mask_erode_px),
-                             config.feature_downsampling, d.white_percentile, &tile_grid);
+                             config.feature_downsampling, d.white_percentile);
   for (DetectorKind kind : config.place_recognition.validation.detectors)
     k.by_detector[kind] = ComputeFeatures(image, kind, d);
   if (config.place_recognition.validation.refinement.enabled) {
