@@ -240,10 +240,7 @@ OccupancyGrid BuildNavigationGrid(const std::vector<NavigationKeyframe>& keyfram
 
   Fusion fusion(num_cells, config);
   const double step_rad = config.ray_angle_step_deg * M_PI / 180.0;
-  const int num_side =
-      config.ray_half_angle_deg > 0
-          ? static_cast<int>(std::floor(config.ray_half_angle_deg * M_PI / 180.0 / step_rad + 1e-9))
-          : 0;
+  const int num_side = config.SideLines();
   for (const NavigationKeyframe& k : keyframes) {
     KeyframeCaster caster(k, config, lattice, reference_level, &fusion);
     Point2 last{INFINITY, INFINITY};

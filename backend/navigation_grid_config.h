@@ -3,6 +3,8 @@
 // the slam section (slam/config/system_config.h nests it), which owns map.pgm.
 #pragma once
 
+#include <cmath>
+
 namespace uwbsar {
 
 struct NavigationGridConfig {
@@ -39,6 +41,15 @@ struct NavigationGridConfig {
                                          ///< at least this fraction of the reference level
                                          ///< within wall_thickness_m of it (a doorway in a
                                          ///< wall stays open)
+
+  /// The lines cast either side of boresight from each antenna position: ray_half_angle_deg
+  /// over ray_angle_step_deg, rounded down (0 without a half angle). Each position casts
+  /// 2 SideLines() + 1 per antenna; limits.max_navigation_rays budgets them per keyframe.
+  int SideLines() const {
+    if (!(ray_half_angle_deg > 0)) return 0;
+    const double step_rad = ray_angle_step_deg * M_PI / 180.0;
+    return static_cast<int>(std::floor(ray_half_angle_deg * M_PI / 180.0 / step_rad + 1e-9));
+  }
 
   template <class V>
   void Visit(V& v) {

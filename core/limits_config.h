@@ -24,6 +24,8 @@ struct LimitsConfig {
                                         ///< maps for simulate / compare / export-pcd, float maps)
   double tile_cache_mb = 64.0;  ///< detected tiles kept decoded in memory; the others wait in
                                 ///< an anonymous temporary file (slam/session/tile_store.h)
+  double max_navigation_rays = 2.0e4;  ///< lines the navigation grid casts per keyframe
+                                       ///< (slam.navigation: positions x radars x fan; default 202)
 
   template <class V>
   void Visit(V& v) {
@@ -34,6 +36,7 @@ struct LimitsConfig {
     v("max_image_pixels", max_image_pixels);
     v("max_map_image_pixels", max_map_image_pixels);
     v("tile_cache_mb", tile_cache_mb);
+    v("max_navigation_rays", max_navigation_rays);
   }
 };
 

@@ -47,6 +47,40 @@ void ValidateRangeSamples(const SystemConfig& c, const std::string& src) {
   }
 }
 
+/// "<n> <word>s" ("1 <word>"), whole numbers in full below 1e9.
+std::string Count(double n, const std::string& word) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), n < 1e9 ? "%.0f" : "%.3g", n);
+  return buf + (" " + word) + (n == 1 ? "" : "s");
+}
+
+/// The lines map.pgm's sensor model casts per keyframe (backend/navigation_grid.h: a fan of
+/// 2 SideLines() + 1 from each antenna every ray_spacing_m of the tile's path) within
+/// limits.max_navigation_rays, blaming the fan when the positions alone fit.
+void ValidateNavigationRays(const SystemConfig& c, const std::string& src) {
+  const NavigationGridConfig& n = c.slam.navigation;
+  const double positions = std::floor(c.keyframe.tile_length_m / n.ray_spacing_m + 1e-9) + 1.0;
+  const double radars = static_cast<double>(c.radars.size());
+  const double lines = 2.0 * n.SideLines() + 1.0;
+  const double budget = c.limits.max_navigation_rays;
+  const std::string count =
+      Count(positions, "position") + " x " + Count(radars, "radar") + " x " + Count(lines, "line");
+  const std::string k = "slam.navigation.";
+  const std::string what = "navigation rays per keyframe";
+  if (lines > 1 && positions * radars <= budget) {
+    RequireWithin(
+        positions * radars * lines, budget, src, k + "ray_half_angle_deg", n.ray_half_angle_deg,
+        what + " (at " + k + "ray_angle_step_deg " + Num(n.ray_angle_step_deg) + ": " + count + ")",
+        "max_navigation_rays");
+  }
+  // Too many positions: a fine ray spacing, else a long tile.
+  const bool fine = n.ray_spacing_m < NavigationGridConfig{}.ray_spacing_m;
+  RequireWithin(positions * radars * lines, budget, src,
+                fine ? k + "ray_spacing_m" : "keyframe.tile_length_m",
+                fine ? n.ray_spacing_m : c.keyframe.tile_length_m, what + " (" + count + ")",
+                "max_navigation_rays");
+}
+
 /// A segment's canvas (frontend/keyframe_builder.h SegmentCanvasFor, the size KeyframeBuilder
 /// allocates) against limits.max_tile_pixels, blaming the setting that makes it too large.
 SegmentCanvas ValidateSegmentCanvas(const SystemConfig& c, const std::string& src) {
@@ -91,7 +125,8 @@ void ValidateLimits(const SystemConfig& c, const std::string& src) {
                                    std::make_pair("max_range_samples", l.max_range_samples),
                                    std::make_pair("max_image_pixels", l.max_image_pixels),
                                    std::make_pair("max_map_image_pixels", l.max_map_image_pixels),
-                                   std::make_pair("tile_cache_mb", l.tile_cache_mb)}) {
+                                   std::make_pair("tile_cache_mb", l.tile_cache_mb),
+                                   std::make_pair("max_navigation_rays", l.max_navigation_rays)}) {
     Require(value > 0, src, std::string("limits.") + key, "must be > 0");
   }
   ValidateRangeSamples(c, src);
@@ -116,6 +151,7 @@ void ValidateLimits(const SystemConfig& c, const std::string& src) {
   RequireWithin(tile_side_m * tile_side_m / (map_m * map_m), l.max_tile_pixels, src,
                 "slam.map_resolution_m", map_m, "one tile's footprint in the map (pixels)",
                 "max_tile_pixels");
+  ValidateNavigationRays(c, src);  // after the tile's budgets, which name tile_length_m first
 }
 
 }  // namespace uwbsar

@@ -10,14 +10,17 @@ namespace uwbsar {
 using config_validation::Require;
 
 void Validate(const SlamConfig& s, const std::string& src) {
-  Require(s.map_resolution_m > 0, src, "slam.map_resolution_m", "must be > 0");
+  Require(s.map_resolution_m > 0 && s.map_resolution_m <= 10, src, "slam.map_resolution_m",
+          "must be in (0, 10]");
   Require(s.mosaic_redraw_px >= 0 && s.mosaic_redraw_px <= 100, src, "slam.mosaic_redraw_px",
           "must be in [0, 100]");
   Require(s.optimize_every_keyframes >= 0, src, "slam.optimize_every_keyframes", "must be >= 0");
   Require(s.keyframe_queue_size >= 1, src, "slam.keyframe_queue_size", "must be >= 1");
   Require(!s.odometry_topic.empty(), src, "slam.odometry_topic", "must not be empty");
-  Require(s.occupancy_resolution_m >= s.map_resolution_m, src, "slam.occupancy_resolution_m",
-          "must be >= slam.map_resolution_m");
+  // A cell beyond 10 m is no map (1e9 m made a 4 x 4 grid 2e9 m away); 10 m is also the
+  // coarsest grid a session file holds (slam/session/session_reader.h).
+  Require(s.occupancy_resolution_m >= s.map_resolution_m && s.occupancy_resolution_m <= 10, src,
+          "slam.occupancy_resolution_m", "must be in [slam.map_resolution_m, 10]");
   Require(s.occupied_fraction > 0 && s.occupied_fraction <= 1, src, "slam.occupied_fraction",
           "must be in (0, 1]");
   const NavigationGridConfig& n = s.navigation;
@@ -42,6 +45,18 @@ void Validate(const SlamConfig& s, const std::string& src) {
   Require(n.log_odds_clamp > 0, src, k + "log_odds_clamp", "must be > 0");
   Require(n.occupied_log_odds > 0, src, k + "occupied_log_odds", "must be > 0");
   Require(n.free_log_odds < 0, src, k + "free_log_odds", "must be < 0");
+  // A cell's log-odds stay within the clamp (a float): a threshold at or beyond it is never
+  // reached, and the grid would have no occupied (or no free) cell.
+  const float clamp = static_cast<float>(n.log_odds_clamp);
+  Require(n.occupied_log_odds < n.log_odds_clamp && n.occupied_log_odds <= clamp, src,
+          k + "occupied_log_odds",
+          "must be below " + k +
+              "log_odds_clamp: log-odds never pass the clamp, so no cell would be occupied");
+  Require(n.free_log_odds > -n.log_odds_clamp && n.free_log_odds >= -clamp, src,
+          k + "free_log_odds",
+          "must be above minus " + k +
+              "log_odds_clamp: log-odds never pass the clamp, so only the robot's swept disc "
+              "would be free");
   Require(n.ridge_max_heading_change_deg > 0 && n.ridge_max_heading_change_deg <= 45, src,
           k + "ridge_max_heading_change_deg", "must be in (0, 45]");
   Require(n.ridge_min_contrast >= 1, src, k + "ridge_min_contrast", "must be >= 1");

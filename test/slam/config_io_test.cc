@@ -174,5 +174,29 @@ TEST(ConfigIoTest, ANumberWithALeadingZeroIsRefusedNamingTheKey) {
   EXPECT_EQ(RefusalOf("imaging:\n  pixel_size_m: 0.005\n"), "");  // 0.x is no leading zero
 }
 
+// Issue 45 item 9: navigation thresholds beyond the clamp, which log-odds never pass, made a
+// grid with no occupied cell (or none freed but the robot's disc), and a 1e9 m cell a 4 x 4 grid
+// 2e9 m away, exit 0. Each is refused naming the keys it contradicts.
+TEST(ConfigIoTest, NavigationSettingsThatCancelThemselvesAreRefusedNamingTheKeys) {
+  const std::string nav = "slam:\n  navigation:\n";
+  EXPECT_EQ(RefusalOf(nav + "    log_odds_clamp: 2.0\n    occupied_log_odds: 3.0\n"),
+            "x.yaml: 'slam.navigation.occupied_log_odds' must be below "
+            "slam.navigation.log_odds_clamp: log-odds never pass the clamp, so no cell would be "
+            "occupied");
+  EXPECT_NE(RefusalOf(nav + "    occupied_log_odds: 5.0\n").find("log_odds_clamp"),
+            std::string::npos);  // equal to the default clamp
+  EXPECT_EQ(RefusalOf(nav + "    free_log_odds: -6.0\n"),
+            "x.yaml: 'slam.navigation.free_log_odds' must be above minus "
+            "slam.navigation.log_odds_clamp: log-odds never pass the clamp, so only the robot's "
+            "swept disc would be free");
+  EXPECT_EQ(RefusalOf("slam:\n  occupancy_resolution_m: 1.0e9\n"),
+            "x.yaml: 'slam.occupancy_resolution_m' must be in [slam.map_resolution_m, 10]");
+  EXPECT_EQ(RefusalOf("slam:\n  map_resolution_m: 20\n  occupancy_resolution_m: 20\n"),
+            "x.yaml: 'slam.map_resolution_m' must be in (0, 10]");
+  // Within the clamp, and at 10 m cells, they stand.
+  EXPECT_EQ(RefusalOf(nav + "    occupied_log_odds: 4.9\n    free_log_odds: -4.9\n"), "");
+  EXPECT_EQ(RefusalOf("slam:\n  occupancy_resolution_m: 10\n"), "");
+}
+
 }  // namespace
 }  // namespace uwbsar

@@ -71,6 +71,28 @@ TEST(ConfigLimitsTest, BudgetsAreConfigurable) {
             std::string::npos);
 }
 
+// Issue 45 item 12: a fan of lines every 0.1 degree across 180 degrees took a run from 7 s to
+// 158 s. The lines the navigation grid casts per keyframe are budgeted like image sizes:
+// (keyframe.tile_length_m / ray_spacing_m + 1) positions x radars x (2 floor(half angle /
+// step) + 1) lines; the defaults cast 101 x 2 x 1 = 202.
+TEST(ConfigLimitsTest, NavigationRaysPerKeyframeAreBudgetedNamingTheKeys) {
+  const std::string nav = "slam:\n  navigation:\n";
+  EXPECT_EQ(Refusal(nav + "    ray_half_angle_deg: 90\n    ray_angle_step_deg: 0.1\n"),
+            "cfg.yaml: 'slam.navigation.ray_half_angle_deg' (90) makes navigation rays per "
+            "keyframe (at slam.navigation.ray_angle_step_deg 0.1: 101 positions x 2 radars x 1801 "
+            "lines) 3.64e+05, more than limits.max_navigation_rays (2e+04)");
+  EXPECT_EQ(
+      Refusal(nav + "    ray_spacing_m: 1.0e-5\n"),
+      "cfg.yaml: 'slam.navigation.ray_spacing_m' (1e-05) makes navigation rays per keyframe "
+      "(200001 positions x 2 radars x 1 line) 4e+05, more than limits.max_navigation_rays (2e+04)");
+  // A moderate fan fits (45 degrees every degree: 101 x 2 x 91 = 18382), and the budget is a
+  // setting.
+  EXPECT_EQ(Refusal(nav + "    ray_half_angle_deg: 45\n    ray_angle_step_deg: 1\n"), "");
+  EXPECT_EQ(Refusal(nav + "    ray_half_angle_deg: 90\n    ray_angle_step_deg: 0.1\n" +
+                    "limits:\n  max_navigation_rays: 4.0e5\n"),
+            "");
+}
+
 class BoundedFileTest : public ::testing::Test {
  protected:
   void SetUp() override {
