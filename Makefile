@@ -9,7 +9,7 @@ VENV := .venv
 
 DEB_PACKAGES := build-essential cmake ninja-build pkg-config git \
   libceres-dev libopencv-dev libpcl-dev libgpiod-dev libyaml-cpp-dev libsqlite3-dev \
-  libzstd-dev liblz4-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev \
+  libzstd-dev liblz4-dev libxxhash-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev \
   libeigen3-dev libfftw3-dev nlohmann-json3-dev python3-venv python3-pip clang-format \
   chromium clang libclang-rt-14-dev cyclonedds-dev cyclonedds-tools
 

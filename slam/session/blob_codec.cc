@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 
 #include "core/errors.h"
 
@@ -15,6 +16,13 @@ namespace {
 
 constexpr std::size_t kKeypointBytes = 28;  // x, y, size, angle, response, octave, class_id
 constexpr std::size_t kMaxBlobBytes = std::size_t{1} << 31;
+
+/// Whether `step` makes every level 1..kTileLevels a positive, normal, finite float: a
+/// denormal or zero step would read the levels as 0 (a blank tile), a huge one as infinity.
+bool UsableStep(float step) {
+  return std::isnormal(step) && step > 0.0f &&
+         static_cast<double>(step) * kTileLevels <= std::numeric_limits<float>::max();
+}
 
 std::vector<unsigned char> Compress(const unsigned char* data, std::size_t n, int level) {
   std::vector<unsigned char> out(ZSTD_compressBound(n));
@@ -104,6 +112,8 @@ std::vector<unsigned char> EncodeTile(const cv::Mat& tile, bool lossless, int zs
   double max_value = 0.0;
   cv::minMaxLoc(tile, nullptr, &max_value);
   const float step = max_value > 0.0 ? static_cast<float>(max_value / kTileLevels) : 1.0f;
+  // A tile too faint (or too bright) for float levels of its maximum keeps its bytes.
+  if (!UsableStep(step)) return EncodeMat(tile, zstd_level);
   cv::Mat levels(tile.rows, tile.cols, CV_16UC1);
   for (int r = 0; r < tile.rows; ++r) {
     const float* x = tile.ptr<float>(r);
@@ -135,13 +145,23 @@ cv::Mat DecodeTile(const std::vector<unsigned char>& blob, const std::string& wh
     throw InputError(what + ": damaged blob (no step)");
   }
   std::memcpy(&step, blob.data() + sizeof(header), sizeof(step));
-  if (!std::isfinite(step) || step <= 0.0f) {
-    throw InputError(what + ": damaged blob (step " + std::to_string(step) + ")");
+  if (!UsableStep(step)) {
+    char text[96];
+    std::snprintf(text, sizeof(text), "step %.6g is not a normal float in [%.6g, %.6g]",
+                  static_cast<double>(step), static_cast<double>(std::numeric_limits<float>::min()),
+                  static_cast<double>(std::numeric_limits<float>::max()) / kTileLevels);
+    throw InputError(what + ": damaged blob (" + text + ")");
   }
   std::vector<unsigned char> inner(blob.begin(), blob.begin() + sizeof(header));
   inner.insert(inner.end(), blob.begin() + sizeof(header) + sizeof(step), blob.end());
   tile_budget.types = {CV_16UC1};
   const cv::Mat levels = DecodeMat(inner, what, tile_budget);
+  double max_level = 0.0;
+  if (!levels.empty()) cv::minMaxLoc(levels, nullptr, &max_level);
+  if (max_level > kTileLevels) {
+    throw InputError(what + ": damaged blob (level " + std::to_string(static_cast<int>(max_level)) +
+                     ", more than " + std::to_string(kTileLevels) + ")");
+  }
   cv::Mat tile;
   levels.convertTo(tile, CV_32F, step);
   return tile;

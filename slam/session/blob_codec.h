@@ -35,10 +35,12 @@ cv::Mat DecodeMat(const std::vector<unsigned char>& blob, const std::string& wha
 inline constexpr int kTileLevels = 1023;
 
 /// A detected keyframe tile (CV_32FC1, >= 0): `lossless` as EncodeMat, else compact:
-/// [int32 rows, cols, CV_16UC1][float32 step] + zstd of the byte-shuffled levels.
+/// [int32 rows, cols, CV_16UC1][float32 step] + zstd of the byte-shuffled levels (lossless
+/// too when the step would not be a normal float: a tile fainter than ~1e-35).
 std::vector<unsigned char> EncodeTile(const cv::Mat& tile, bool lossless, int zstd_level);
 /// Either form back as CV_32FC1; the same errors as DecodeMat (`budget.types` is ignored),
-/// and a compact tile's step must be finite and positive.
+/// and a compact tile's step must be a normal positive float32 whose kTileLevels steps are
+/// finite (a denormal step would read as a blank tile), its levels at most kTileLevels.
 cv::Mat DecodeTile(const std::vector<unsigned char>& blob, const std::string& what,
                    const MatBudget& budget = MatBudget());
 

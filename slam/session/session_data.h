@@ -31,7 +31,10 @@ namespace uwbsar {
 /// 6: the anchors table (keyframes the map retired, slam.place_views); 1 to 5 still read (none).
 /// 7: the landmarks and line_observations tables (walls as line landmarks,
 /// place_recognition.wall_profiles.landmarks); 1 to 6 still read (none).
-constexpr int kSessionFormatVersion = 7;
+/// 8: every blob has a checksum column beside it (blob_checksum.h) and every run a fingerprint
+/// (kUnknownRunFingerprint where none is known); 1 to 7 still read (blobs unverified, an empty
+/// fingerprint read as unknown).
+constexpr int kSessionFormatVersion = 8;
 
 struct SessionKeyframe {
   int id = 0;          ///< unique in the session (graph node id)
@@ -82,12 +85,17 @@ struct SessionOdometry {
   double path_m = 0.0;
 };
 
+/// How the file (from format version 8) stores the fingerprint of a run mapped before format
+/// version 3, whose identity is unknown (SessionTrajectory::fingerprint ""): never empty, so
+/// that a NULL or empty fingerprint is damage, refused, and never a new run.
+inline constexpr const char* kUnknownRunFingerprint = "unknown: mapped before session format 3";
+
 struct SessionTrajectory {
   int id = 0;
   std::string input;  ///< what was mapped (bag path or simulation description)
   /// Identity of the recording it was mapped from (RunFingerprint: storage id, first and last
-  /// stamps, message count), so that joining the same recording twice is refused; "" in
-  /// sessions written before format version 3.
+  /// stamps, message count), so that joining the same recording twice is refused; "" (unknown)
+  /// for runs mapped before format version 3 (kUnknownRunFingerprint in the file).
   std::string fingerprint;
 };
 

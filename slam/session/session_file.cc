@@ -8,6 +8,7 @@
 
 #include "core/errors.h"
 #include "slam/config/config_fingerprint.h"
+#include "slam/session/blob_checksum.h"
 #include "slam/session/blob_codec.h"
 #include "slam/session/session_landmarks.h"
 #include "slam/session/session_loops.h"
@@ -35,14 +36,16 @@ CREATE TABLE keyframes (
   path_begin_m REAL, path_end_m REAL,
   tile_x0_m REAL, tile_y0_m REAL, tile_resolution_m REAL, tile BLOB NOT NULL,
   feature_x0_m REAL, feature_y0_m REAL, feature_resolution_m REAL,
-  feature_rows INTEGER, feature_cols INTEGER, centre_x_m REAL, centre_y_m REAL);
+  feature_rows INTEGER, feature_cols INTEGER, centre_x_m REAL, centre_y_m REAL,
+  tile_xxh3 INTEGER NOT NULL);
 CREATE TABLE features (
   keyframe_id INTEGER NOT NULL, detector TEXT NOT NULL, norm_type INTEGER NOT NULL,
-  keypoints BLOB NOT NULL, descriptors BLOB NOT NULL, PRIMARY KEY (keyframe_id, detector));
+  keypoints BLOB NOT NULL, descriptors BLOB NOT NULL, keypoints_xxh3 INTEGER NOT NULL,
+  descriptors_xxh3 INTEGER NOT NULL, PRIMARY KEY (keyframe_id, detector));
 CREATE TABLE edges (
   idx INTEGER PRIMARY KEY, from_id INTEGER NOT NULL, to_id INTEGER NOT NULL, kind TEXT NOT NULL,
   x_m REAL, y_m REAL, yaw_rad REAL, information BLOB NOT NULL, rejected INTEGER NOT NULL,
-  trajectory INTEGER NOT NULL, path_m REAL, turn_rad REAL);
+  trajectory INTEGER NOT NULL, path_m REAL, turn_rad REAL, information_xxh3 INTEGER NOT NULL);
 CREATE TABLE odometry (
   trajectory INTEGER NOT NULL, stamp_ns INTEGER NOT NULL, x_m REAL, y_m REAL, yaw_rad REAL,
   path_m REAL);
@@ -61,12 +64,19 @@ std::vector<unsigned char> InformationBlob(const Eigen::Matrix3d& m) {
   return out;
 }
 
+/// Binds `blob` at `index` and its checksum (blob_checksum.h) at `checksum_index`.
+void BindChecksummed(SqliteStatement& s, int index, int checksum_index,
+                     const std::vector<unsigned char>& blob) {
+  s.BindBlob(index, blob);
+  s.Bind(checksum_index, session::BlobChecksum(blob));
+}
+
 void WriteFeatures(SqliteStatement& s, int id, const char* name, const FeatureSet& f) {
   s.Bind(1, id);
   s.Bind(2, std::string(name));
   s.Bind(3, f.norm_type);
-  s.BindBlob(4, session::EncodeKeypoints(f.keypoints, kZstdLevel));
-  s.BindBlob(5, session::EncodeMat(f.descriptors, kZstdLevel));
+  BindChecksummed(s, 4, 6, session::EncodeKeypoints(f.keypoints, kZstdLevel));
+  BindChecksummed(s, 5, 7, session::EncodeMat(f.descriptors, kZstdLevel));
   s.Run();
 }
 
@@ -84,13 +94,13 @@ void WriteMeta(SqliteDb& db, const SessionData& d) {
   }
 }
 
-/// The trajectories table: one row per run.
+/// The trajectories table: one row per run (a run of unknown identity as kUnknownRunFingerprint).
 void WriteTrajectories(SqliteDb& db, const SessionData& d) {
   SqliteStatement s(db, "INSERT INTO trajectories (id, input, fingerprint) VALUES (?, ?, ?)");
   for (const SessionTrajectory& t : d.trajectories) {
     s.Bind(1, t.id);
     s.Bind(2, t.input);
-    s.Bind(3, t.fingerprint);
+    s.Bind(3, t.fingerprint.empty() ? std::string(kUnknownRunFingerprint) : t.fingerprint);
     s.Run();
   }
 }
@@ -99,8 +109,8 @@ void WriteTrajectories(SqliteDb& db, const SessionData& d) {
 void WriteKeyframes(SqliteDb& db, const SessionData& d, bool lossless_tiles) {
   SqliteStatement s(db,
                     "INSERT INTO keyframes VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
-                    "?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-  SqliteStatement f(db, "INSERT INTO features VALUES (?, ?, ?, ?, ?)");
+                    "?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  SqliteStatement f(db, "INSERT INTO features VALUES (?, ?, ?, ?, ?, ?, ?)");
   for (const SessionKeyframe& k : d.keyframes) {
     int i = 1;
     s.Bind(i++, k.id);
@@ -117,7 +127,7 @@ void WriteKeyframes(SqliteDb& db, const SessionData& d, bool lossless_tiles) {
     s.Bind(i++, k.detected_grid.x0_m);
     s.Bind(i++, k.detected_grid.y0_m);
     s.Bind(i++, k.detected_grid.resolution_m);
-    s.BindBlob(i++, session::EncodeTile(k.detected.Load(), lossless_tiles, kZstdLevel));
+    const int tile_index = i++;  // its checksum goes last (tile_xxh3)
     const ImageGrid& g = k.features.grid;
     s.Bind(i++, g.x0_m);
     s.Bind(i++, g.y0_m);
@@ -126,6 +136,8 @@ void WriteKeyframes(SqliteDb& db, const SessionData& d, bool lossless_tiles) {
     s.Bind(i++, g.cols);
     s.Bind(i++, k.features.centre_anchor.x_m);
     s.Bind(i++, k.features.centre_anchor.y_m);
+    BindChecksummed(s, tile_index, i++,
+                    session::EncodeTile(k.detected.Load(), lossless_tiles, kZstdLevel));
     s.Run();
     for (const auto& [kind, features] : k.features.by_detector)
       WriteFeatures(f, k.id, DetectorName(kind), features);
@@ -134,7 +146,7 @@ void WriteKeyframes(SqliteDb& db, const SessionData& d, bool lossless_tiles) {
 
 /// The edges table, in the pose graph's order (idx).
 void WriteEdges(SqliteDb& db, const SessionData& d) {
-  SqliteStatement s(db, "INSERT INTO edges VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  SqliteStatement s(db, "INSERT INTO edges VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   int idx = 0;
   for (const SessionEdge& e : d.edges) {
     s.Bind(1, idx++);
@@ -144,7 +156,7 @@ void WriteEdges(SqliteDb& db, const SessionData& d) {
     s.Bind(5, e.edge.T_from_to.x_m);
     s.Bind(6, e.edge.T_from_to.y_m);
     s.Bind(7, e.edge.T_from_to.yaw_rad);
-    s.BindBlob(8, InformationBlob(e.edge.information));
+    BindChecksummed(s, 8, 13, InformationBlob(e.edge.information));
     s.Bind(9, e.rejected ? 1 : 0);
     s.Bind(10, e.edge.trajectory);
     s.Bind(11, e.edge.path_m);
@@ -257,9 +269,11 @@ SessionData ReadSession(const std::string& path, const SystemConfig* config) {
   // uncalibrated, as they were), versions 1 and 2 the trajectories' fingerprints (""), versions
   // 1 to 3 the loop_matches table (their loops' akaze_good and orb_good columns stand for it).
   // Version 4 and older hold float32 tiles only (version 5 also compact ones); version 5 and
-  // older have no anchors table (every keyframe was kept), version 6 and older no landmarks.
-  if (version != "1" && version != "2" && version != "3" && version != "4" && version != "5" &&
-      version != "6" && version != std::to_string(kSessionFormatVersion)) {
+  // older have no anchors table (every keyframe was kept), version 6 and older no landmarks,
+  // version 7 and older no checksums (their blobs are read unverified).
+  bool known = false;
+  for (int v = 1; v <= kSessionFormatVersion; ++v) known = known || version == std::to_string(v);
+  if (!known) {
     throw InputError(path + ": session format version " + version.substr(0, 40) +
                      ", this uwbsar reads 1 to " + std::to_string(kSessionFormatVersion));
   }

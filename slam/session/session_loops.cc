@@ -74,6 +74,8 @@ std::vector<std::pair<int, SessionLoop>> ReadLoopRows(SqliteDb& db, const Sessio
     if (!seen.insert(idx).second) t.Refuse("idx", std::to_string(idx) + " appears twice");
     l.query_id = KeyframeRef(t, "query_id", keyframes);
     l.match_id = KeyframeRef(t, "match_id", keyframes);
+    if (l.match_id == l.query_id)
+      t.Refuse("match_id", std::to_string(l.match_id) + " equals query_id");
     l.validated = t.Flag("validated");
     l.accepted = t.Flag("accepted");
     if (l.accepted && !l.validated) t.Refuse("accepted", "is 1 for a loop not validated");

@@ -4,13 +4,16 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <map>
 #include <set>
 #include <tuple>
+#include <utility>
 
 #include "core/errors.h"
+#include "slam/session/blob_checksum.h"
 #include "slam/session/blob_codec.h"
 #include "slam/session/session_loops.h"
 #include "slam/session/table_reader.h"
@@ -34,6 +37,19 @@ double Resolution(const TableReader& t, const std::string& column) {
   return t.Real(column, kMinResolutionM, kMaxResolutionM);
 }
 
+/// A run's fingerprint (format version 3 on): what tells a join that a recording is already in
+/// the map, so a missing one is refused, never read as a new run. NULL was never written;
+/// versions 3 to 7 wrote "" for a run carried over from a version 1 or 2 session, version 8
+/// kUnknownRunFingerprint (read as "").
+std::string Fingerprint(const TableReader& t, int format_version) {
+  const std::string f = t.Text("fingerprint");
+  if (format_version >= kFirstChecksummedVersion) {
+    if (f.empty()) t.Refuse("fingerprint", "is empty");
+    if (f == kUnknownRunFingerprint) return "";
+  }
+  return f;
+}
+
 /// The trajectories table, by id; format version 3 adds the recordings' fingerprints.
 void ReadTrajectories(SqliteDb& db, SessionData* d) {
   std::vector<std::string> required = {"id", "input"};
@@ -45,7 +61,7 @@ void ReadTrajectories(SqliteDb& db, SessionData* d) {
     s.id = t.Id("id");
     if (!ids.insert(s.id).second) t.Refuse("id", std::to_string(s.id) + " appears twice");
     s.input = t.Text("input");
-    if (t.Has("fingerprint")) s.fingerprint = t.Text("fingerprint", /*required=*/false);
+    if (t.Has("fingerprint")) s.fingerprint = Fingerprint(t, d->format_version);
     d->trajectories.push_back(s);
   }
   std::stable_sort(
@@ -85,7 +101,8 @@ SessionKeyframe ReadKeyframeRow(const TableReader& t, const SessionData& d,
   k.detected_grid.resolution_m = Resolution(t, "tile_resolution_m");
   MatBudget tile_budget;
   tile_budget.max_pixels = limits.max_tile_pixels;
-  const cv::Mat tile = DecodeTile(t.Blob("tile"), t.Where("tile"), tile_budget);
+  const cv::Mat tile =
+      DecodeTile(t.Blob("tile", "keyframe " + std::to_string(k.id)), t.Where("tile"), tile_budget);
   if (tile.empty()) t.Refuse("tile", "is empty");
   if (!cv::checkRange(tile)) t.Refuse("tile", "has non-finite pixels");
   k.detected_grid.rows = tile.rows;
@@ -118,7 +135,9 @@ std::string DetectorList(const KeyframeFeatures& k) {
 }
 
 /// One row of the features table (its keypoints and descriptors within `limits`).
-FeatureSet ReadFeatureRow(const TableReader& t, DetectorKind kind, const LimitsConfig& limits) {
+FeatureSet ReadFeatureRow(const TableReader& t, int id, DetectorKind kind,
+                          const LimitsConfig& limits) {
+  const std::string owner = "keyframe " + std::to_string(id) + " (" + DetectorName(kind) + ")";
   FeatureSet f;
   f.detector = kind;
   f.norm_type = static_cast<int>(t.Integer("norm_type", 0, 64));
@@ -126,7 +145,7 @@ FeatureSet ReadFeatureRow(const TableReader& t, DetectorKind kind, const LimitsC
       f.norm_type != cv::NORM_HAMMING && f.norm_type != cv::NORM_HAMMING2) {
     t.Refuse("norm_type", std::to_string(f.norm_type) + " is not a descriptor norm");
   }
-  f.keypoints = DecodeKeypoints(t.Blob("keypoints"), t.Where("keypoints"));
+  f.keypoints = DecodeKeypoints(t.Blob("keypoints", owner), t.Where("keypoints"));
   for (const cv::KeyPoint& k : f.keypoints) {
     if (!std::isfinite(k.pt.x) || !std::isfinite(k.pt.y) || !std::isfinite(k.size) ||
         !std::isfinite(k.angle) || !std::isfinite(k.response)) {
@@ -136,7 +155,7 @@ FeatureSet ReadFeatureRow(const TableReader& t, DetectorKind kind, const LimitsC
   MatBudget budget;
   budget.types = {CV_8UC1, CV_32FC1};
   budget.max_pixels = limits.max_tile_pixels;
-  f.descriptors = DecodeMat(t.Blob("descriptors"), t.Where("descriptors"), budget);
+  f.descriptors = DecodeMat(t.Blob("descriptors", owner), t.Where("descriptors"), budget);
   if (f.descriptors.rows != f.size()) {
     t.Refuse("descriptors", std::to_string(f.descriptors.rows) + " rows for " +
                                 std::to_string(f.size()) + " keypoints");
@@ -154,7 +173,9 @@ void ReadFeatures(SqliteDb& db, const LimitsConfig& limits, SessionData* d) {
   std::map<int, SessionKeyframe*> by_id;
   for (SessionKeyframe& k : d->keyframes) by_id[k.id] = &k;
   TableReader t(db, "features",
-                {"keyframe_id", "detector", "norm_type", "keypoints", "descriptors"});
+                WithChecksums(d->format_version,
+                              {"keyframe_id", "detector", "norm_type", "keypoints", "descriptors"},
+                              {"keypoints", "descriptors"}));
   while (t.Next()) {
     const int id = t.Id("keyframe_id");
     const auto it = by_id.find(id);
@@ -167,7 +188,7 @@ void ReadFeatures(SqliteDb& db, const LimitsConfig& limits, SessionData* d) {
     if (sets.count(kind)) {
       t.Refuse("detector", name + " of keyframe " + std::to_string(id) + " appears twice");
     }
-    sets[kind] = ReadFeatureRow(t, kind, limits);
+    sets[kind] = ReadFeatureRow(t, id, kind, limits);
   }
   for (const SessionKeyframe& k : d->keyframes) {
     const SessionKeyframe& first = d->keyframes.front();
@@ -182,33 +203,33 @@ void ReadFeatures(SqliteDb& db, const LimitsConfig& limits, SessionData* d) {
 
 /// The keyframes table (sorted by trajectory, time and id) with their features.
 void ReadKeyframes(SqliteDb& db, const LimitsConfig& limits, SessionData* d) {
-  TableReader t(db, "keyframes",
-                {"id",
-                 "trajectory",
-                 "stamp_ns",
-                 "odom_x_m",
-                 "odom_y_m",
-                 "odom_yaw_rad",
-                 "robot_x_m",
-                 "robot_y_m",
-                 "robot_yaw_rad",
-                 "x_m",
-                 "y_m",
-                 "yaw_rad",
-                 "fixed",
-                 "path_begin_m",
-                 "path_end_m",
-                 "tile_x0_m",
-                 "tile_y0_m",
-                 "tile_resolution_m",
-                 "tile",
-                 "feature_x0_m",
-                 "feature_y0_m",
-                 "feature_resolution_m",
-                 "feature_rows",
-                 "feature_cols",
-                 "centre_x_m",
-                 "centre_y_m"});
+  std::vector<std::string> columns = {"id",
+                                      "trajectory",
+                                      "stamp_ns",
+                                      "odom_x_m",
+                                      "odom_y_m",
+                                      "odom_yaw_rad",
+                                      "robot_x_m",
+                                      "robot_y_m",
+                                      "robot_yaw_rad",
+                                      "x_m",
+                                      "y_m",
+                                      "yaw_rad",
+                                      "fixed",
+                                      "path_begin_m",
+                                      "path_end_m",
+                                      "tile_x0_m",
+                                      "tile_y0_m",
+                                      "tile_resolution_m",
+                                      "tile",
+                                      "feature_x0_m",
+                                      "feature_y0_m",
+                                      "feature_resolution_m",
+                                      "feature_rows",
+                                      "feature_cols",
+                                      "centre_x_m",
+                                      "centre_y_m"};
+  TableReader t(db, "keyframes", WithChecksums(d->format_version, columns, {"tile"}));
   std::set<int> ids;
   while (t.Next()) {
     SessionKeyframe k = ReadKeyframeRow(t, *d, limits);
@@ -224,8 +245,8 @@ void ReadKeyframes(SqliteDb& db, const LimitsConfig& limits, SessionData* d) {
 }
 
 /// 9 doubles, row-major: finite, symmetric and positive definite (as the pose graph needs).
-Eigen::Matrix3d ReadInformation(const TableReader& t) {
-  const std::vector<unsigned char> info = t.Blob("information");
+Eigen::Matrix3d ReadInformation(const TableReader& t, std::int64_t idx) {
+  const std::vector<unsigned char> info = t.Blob("information", "edge " + std::to_string(idx));
   if (info.size() != 9 * sizeof(double)) {
     t.Refuse("information", "holds " + std::to_string(info.size()) + " bytes, not 9 doubles");
   }
@@ -249,7 +270,7 @@ void ReadEdges(SqliteDb& db, SessionData* d) {
   std::vector<std::string> columns = {"idx", "from_id", "to_id",       "kind",    "x_m",
                                       "y_m", "yaw_rad", "information", "rejected"};
   if (d->format_version >= 2) columns.insert(columns.end(), {"trajectory", "path_m", "turn_rad"});
-  TableReader t(db, "edges", columns);
+  TableReader t(db, "edges", WithChecksums(d->format_version, columns, {"information"}));
   std::set<int> keyframes;
   for (const SessionKeyframe& k : d->keyframes) keyframes.insert(k.id);
   std::vector<std::pair<std::int64_t, SessionEdge>> edges;
@@ -272,7 +293,7 @@ void ReadEdges(SqliteDb& db, SessionData* d) {
       t.Refuse("kind", "'" + kind.substr(0, 40) + "' is not an edge kind");
     }
     e.edge.T_from_to = ReadPose(t, "");
-    e.edge.information = ReadInformation(t);
+    e.edge.information = ReadInformation(t, idx);
     e.rejected = t.Flag("rejected");
     if (d->format_version >= 2) {
       e.edge.trajectory = static_cast<int>(t.Integer("trajectory", -1, INT_MAX));
@@ -289,13 +310,23 @@ void ReadEdges(SqliteDb& db, SessionData* d) {
   for (const auto& [idx, e] : edges) d->edges.push_back(e);
 }
 
-/// The odometry table, by trajectory and time.
+/// The odometry table, by trajectory and time: each run's rows in strictly increasing time, as
+/// written (the odometry buffer drops a sample not after the one before).
 void ReadOdometry(SqliteDb& db, SessionData* d) {
   TableReader t(db, "odometry", {"trajectory", "stamp_ns", "x_m", "y_m", "yaw_rad", "path_m"});
+  std::map<int, std::pair<std::int64_t, TimestampNs>> last;  // by trajectory: row, stamp
   while (t.Next()) {
     SessionOdometry o;
     o.trajectory = TrajectoryRef(t, "trajectory", *d);
     o.stamp_ns = static_cast<TimestampNs>(t.Integer("stamp_ns", 0, kMaxStamp));
+    const auto before = last.find(o.trajectory);
+    if (before != last.end() && o.stamp_ns <= before->second.second) {
+      t.Refuse("stamp_ns", std::to_string(o.stamp_ns) + " is not after row " +
+                               std::to_string(before->second.first) + "'s (" +
+                               std::to_string(before->second.second) + ") of trajectory " +
+                               std::to_string(o.trajectory));
+    }
+    last[o.trajectory] = {t.row(), o.stamp_ns};
     o.T_odom_robot = ReadPose(t, "");
     o.path_m = t.Real("path_m", -kMaxPathM, kMaxPathM);
     d->odometry.push_back(o);

@@ -2,9 +2,11 @@
 
 #include <climits>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 
 #include "core/errors.h"
+#include "slam/session/blob_checksum.h"
 
 namespace uwbsar::session {
 namespace {
@@ -121,11 +123,18 @@ std::string TableReader::Text(const std::string& column, bool required) const {
   return stmt_->Text(i);
 }
 
-std::vector<unsigned char> TableReader::Blob(const std::string& column) const {
+std::vector<unsigned char> TableReader::Blob(const std::string& column,
+                                             const std::string& owner) const {
   const int i = Index(column);
   if (stmt_->IsNull(i)) Refuse(column, "is NULL");
   if (!stmt_->IsBlob(i)) Refuse(column, "is not a blob");
-  return stmt_->Blob(i);
+  std::vector<unsigned char> blob = stmt_->Blob(i);
+  const std::string checksum = ChecksumColumn(column);
+  if (Has(checksum) && Integer(checksum, INT64_MIN, INT64_MAX) != BlobChecksum(blob)) {
+    Refuse(column, (owner.empty() ? "" : "of " + owner + " ") + "does not match its checksum " +
+                       checksum + ": the blob is damaged");
+  }
+  return blob;
 }
 
 }  // namespace uwbsar::session

@@ -4,7 +4,8 @@
 // required, the wrong storage class (text where a number belongs) and values outside the
 // range the caller gives. Every refusal is one InputError line
 // "<file>: <table> row <n>: <column> <what is wrong>", n counting the rows from 1 in the order
-// `SELECT * FROM <table>` lists them.
+// `SELECT * FROM <table>` lists them. A blob is checked against its checksum column when
+// the caller selects it (format version 8), before anything decodes it.
 #pragma once
 
 #include <cstdint>
@@ -49,8 +50,10 @@ class TableReader {
   double RealOrNaN(const std::string& column, double lo, double hi) const;
   /// Text; NULL is refused with `required`, else read as "".
   std::string Text(const std::string& column, bool required = true) const;
-  /// A blob (NULL or another storage class refused).
-  std::vector<unsigned char> Blob(const std::string& column) const;
+  /// A blob (NULL or another storage class refused). When its checksum column
+  /// (blob_checksum.h, `<column>_xxh3`) is selected, the blob must match it: else refused as
+  /// damaged, naming `owner` (e.g. "keyframe 12") after the column.
+  std::vector<unsigned char> Blob(const std::string& column, const std::string& owner = "") const;
 
  private:
   int Index(const std::string& column) const;

@@ -20,6 +20,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "slam/session/blob_checksum.h"
 #include "slam/session/blob_codec.h"
 #include "slam/session/session_file.h"
 #include "slam/session/session_merge.h"
@@ -49,20 +50,29 @@ class SessionHostileTest : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   void Sql(const std::string& sql) { ::uwbsar::testing::RunSql(path_, sql); }
-  /// Sets `column` of the keyframe `id` to `blob`.
-  void SetBlob(const std::string& column, int id, const std::vector<unsigned char>& blob) {
+  /// Sets blob `column` of `table`'s rows `where` to `blob`, and its checksum column (format
+  /// version 8) to match: a hostile file, not a damaged one, so the checks behind the checksum
+  /// are what refuses it.
+  void SetBlob(const std::string& table, const std::string& column, const std::string& where,
+               const std::vector<unsigned char>& blob) {
+    const std::string checksum = session::ChecksumColumn(column);
+    const bool has_checksum =
+        ::uwbsar::testing::SqlText(path_, "SELECT count(*) FROM pragma_table_info('" + table +
+                                              "') WHERE name = '" + checksum + "'") == "1";
     sqlite3* db = nullptr;
     ASSERT_EQ(sqlite3_open(path_.c_str(), &db), SQLITE_OK);
     sqlite3_stmt* s = nullptr;
-    ASSERT_EQ(
-        sqlite3_prepare_v2(db, ("UPDATE keyframes SET " + column + " = ? WHERE id = ?").c_str(), -1,
-                           &s, nullptr),
-        SQLITE_OK);
+    const std::string sql = "UPDATE " + table + " SET " + column + " = ?1" +
+                            (has_checksum ? ", " + checksum + " = ?2" : "") + " WHERE " + where;
+    ASSERT_EQ(sqlite3_prepare_v2(db, sql.c_str(), -1, &s, nullptr), SQLITE_OK);
     sqlite3_bind_blob64(s, 1, blob.data(), blob.size(), SQLITE_TRANSIENT);
-    sqlite3_bind_int(s, 2, id);
+    if (has_checksum) sqlite3_bind_int64(s, 2, session::BlobChecksum(blob));
     EXPECT_EQ(sqlite3_step(s), SQLITE_DONE);
     sqlite3_finalize(s);
     sqlite3_close(db);
+  }
+  void SetBlob(const std::string& column, int id, const std::vector<unsigned char>& blob) {
+    SetBlob("keyframes", column, "id = " + std::to_string(id), blob);
   }
 
   std::string dir_, path_;
@@ -126,16 +136,7 @@ TEST_F(SessionHostileTest, InformationThatIsNotPositiveDefiniteIsRefused) {
   const double v[9] = {100, 0, 0, 0, 100, 0, 0, 0, -400};
   std::vector<unsigned char> blob(sizeof(v));
   std::memcpy(blob.data(), v, sizeof(v));
-  sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open(path_.c_str(), &db), SQLITE_OK);
-  sqlite3_stmt* s = nullptr;
-  ASSERT_EQ(
-      sqlite3_prepare_v2(db, "UPDATE edges SET information = ? WHERE idx = 2", -1, &s, nullptr),
-      SQLITE_OK);
-  sqlite3_bind_blob(s, 1, blob.data(), static_cast<int>(blob.size()), SQLITE_TRANSIENT);
-  EXPECT_EQ(sqlite3_step(s), SQLITE_DONE);
-  sqlite3_finalize(s);
-  sqlite3_close(db);
+  SetBlob("edges", "information", "idx = 2", blob);
   EXPECT_EQ(
       ErrorOf([&] { ReadSession(path_); }),
       path_ + ": edges row 3: information is not a finite symmetric positive definite matrix");
@@ -163,6 +164,39 @@ TEST_F(SessionHostileTest, AnchorsAreReadAndOneFollowingNoKeyframeIsRefused) {
             path_ + ": anchors row 1: hub_id 7 is not a keyframe");
   Sql("UPDATE anchors SET hub_id = 1, id = 1 WHERE id = 50");
   EXPECT_EQ(ErrorOf([&] { ReadSession(path_); }), path_ + ": anchors row 1: id 1 is already used");
+}
+
+TEST_F(SessionHostileTest, DenormalTileStepRepeatedOdometryStampAndSelfLoopAreRefused) {
+  // A compact tile whose step is the smallest denormal: every level would read as 0 or a
+  // denormal, a blank tile.
+  std::vector<unsigned char> tile =
+      session::EncodeTile(saved_.keyframes[1].detected.Load(), false, 3);
+  const float denormal = 1e-45f;
+  std::memcpy(tile.data() + 12, &denormal, sizeof(denormal));
+  SetBlob("tile", 1, tile);
+  EXPECT_EQ(ErrorOf([&] {
+              ReadSession(path_);
+            }).rfind(path_ + ": keyframes row 2: tile: damaged blob (step 1.4013e-45 ", 0),
+            0u)
+      << ErrorOf([&] { ReadSession(path_); });
+  // Odometry stamps repeated or going back within a run.
+  WriteSession(path_, saved_);
+  const std::string second = std::to_string(saved_.odometry[1].stamp_ns);
+  Sql("UPDATE odometry SET stamp_ns = " + second + " WHERE rowid = 3");
+  EXPECT_EQ(ErrorOf([&] { ReadSession(path_); }), path_ + ": odometry row 3: stamp_ns " + second +
+                                                      " is not after row 2's (" + second +
+                                                      ") of trajectory 0");
+  Sql("UPDATE odometry SET stamp_ns = " + std::to_string(saved_.odometry[0].stamp_ns) +
+      " WHERE rowid = 3");
+  EXPECT_EQ(ErrorOf([&] { ReadSession(path_); }),
+            path_ + ": odometry row 3: stamp_ns " + std::to_string(saved_.odometry[0].stamp_ns) +
+                " is not after row 2's (" + second + ") of trajectory 0");
+  // A loop from a keyframe to itself.
+  WriteSession(path_, saved_);
+  Sql("UPDATE loops SET match_id = query_id");
+  EXPECT_EQ(ErrorOf([&] { ReadSession(path_); }), path_ + ": loops row 1: match_id " +
+                                                      std::to_string(saved_.loops[0].query_id) +
+                                                      " equals query_id");
 }
 
 TEST_F(SessionHostileTest, IdBeyondIntMaxIsRefusedNotWrapped) {

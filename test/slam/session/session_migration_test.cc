@@ -9,6 +9,8 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "slam/app_config.h"
@@ -110,6 +112,51 @@ TEST_F(SessionMigrationTest, AnotherDetectorPairRoundTripsAndIsRefusedUnderThePa
             path +
                 ": incompatible configuration: place_recognition.validation.detectors names "
                 "AKAZE, the session holds features of BRISK, ORB");
+}
+
+TEST_F(SessionMigrationTest, Version7FilesWithoutChecksumsStillRead) {
+  const std::string v8 = dir_ + "/v8.uwbsar", v7 = dir_ + "/v7.uwbsar";
+  WriteSession(v8, testing::TinySession());
+  fs::copy_file(v8, v7);
+  Sql(v7,
+      "ALTER TABLE keyframes DROP COLUMN tile_xxh3; "
+      "ALTER TABLE features DROP COLUMN keypoints_xxh3; "
+      "ALTER TABLE features DROP COLUMN descriptors_xxh3; "
+      "ALTER TABLE edges DROP COLUMN information_xxh3; "
+      "UPDATE meta SET value = '7' WHERE key = 'format_version'");
+  const SessionData d = ReadSession(v7), checked = ReadSession(v8);
+  EXPECT_EQ(d.format_version, 7);
+  ExpectTinyLoopsAndFeatures(d);
+  for (std::size_t i = 0; i < d.keyframes.size(); ++i) {
+    EXPECT_EQ(cv::norm(d.keyframes[i].detected.Load(), checked.keyframes[i].detected.Load(),
+                       cv::NORM_INF),
+              0.0);
+  }
+  // A version 8 file without its checksums is refused naming the column.
+  Sql(v7, "UPDATE meta SET value = '8' WHERE key = 'format_version'");
+  EXPECT_EQ(ErrorOf([&] { ReadSession(v7); }), v7 + ": table keyframes has no column tile_xxh3");
+  Sql(v7, "UPDATE meta SET value = '7' WHERE key = 'format_version'");
+  // Version 7 stored a run carried over from a version 1 or 2 session as "": still read so.
+  Sql(v7, "UPDATE trajectories SET fingerprint = ''");
+  const SessionData carried = ReadSession(v7);
+  EXPECT_EQ(carried.trajectories.at(0).fingerprint, "");
+  // Saved again (version 8: checksums), such a run is stored as unknown, never empty.
+  const std::string again = dir_ + "/again.uwbsar";
+  WriteSession(again, carried);
+  EXPECT_EQ(testing::SqlText(again, "SELECT fingerprint FROM trajectories"),
+            kUnknownRunFingerprint);
+  EXPECT_EQ(ReadSession(again).trajectories.at(0).fingerprint, "");
+}
+
+TEST(SessionFormatDocTest, FormatsMdNamesTheVersionThisUwbsarWrites) {
+  std::ifstream in(std::string(UWBSAR_SOURCE_DIR) + "/docs/formats.md");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string v = std::to_string(kSessionFormatVersion);
+  EXPECT_NE(text.str().find("(format version " + v + ", which also reads versions 1 to " +
+                            std::to_string(kSessionFormatVersion - 1)),
+            std::string::npos)
+      << "docs/formats.md, Session file: the version is " << v;
 }
 
 }  // namespace
