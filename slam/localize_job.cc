@@ -175,14 +175,15 @@ nlohmann::json WriteLocalizeFiles(const LocalizeRun& run, const std::string& out
 }  // namespace
 
 nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& out_dir,
-                                    const SessionData* map, const Config* config) {
+                                    const SessionData* map, const Config* config,
+                                    const OccupancyGrid* map_grid) {
   MapOutputStage stage(out_dir);
   nlohmann::json summary;
   stage.CommitWritten([&](const std::string& dir) {
     summary = WriteLocalizeFiles(run, dir);
     std::vector<std::string> names = {"trajectory.tum", "localize.csv"};
-    if (map != nullptr && config != nullptr && config->slam.results_mcap) {
-      WriteLocalizeResultsMcap(dir + "/" + kResultsMcapName, run, *map, *config);
+    if (map != nullptr && config != nullptr && map_grid != nullptr && config->slam.results_mcap) {
+      WriteLocalizeResultsMcap(dir + "/" + kResultsMcapName, run, *map, *config, *map_grid);
       names.push_back(kResultsMcapName);
     }
     return names;

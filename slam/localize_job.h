@@ -16,6 +16,7 @@
 #include "backend/trajectory_metrics.h"
 #include "core/message.h"
 #include "frontend/odometry_buffer.h"
+#include "imaging/occupancy_grid.h"
 #include "slam/app_config.h"
 #include "slam/localizer.h"
 #include "slam/session/session_data.h"
@@ -57,11 +58,13 @@ LocalizeRun LocalizeSimulation(const SessionData& map, const Config& config,
 
 /// trajectory.tum, localize.csv and summary.json (last) into out_dir, staged and committed as
 /// one set under out_dir's lock (slam/map_outputs.h MapOutputStage), replacing an earlier
-/// run's outputs; returns the summary. With the saved `map` and a `config` asking for it
+/// run's outputs; returns the summary. With the saved `map`, its navigation grid `map_grid`
+/// (slam/navigation_map.h SavedNavigationGrid) and a `config` asking for it
 /// (slam.results_mcap), also results.mcap (slam/results_timeline.h). The commands refuse a
 /// map's folder first (slam/saved_session.h RefuseMapFolderForLocalize).
 nlohmann::json WriteLocalizeOutputs(const LocalizeRun& run, const std::string& out_dir,
                                     const SessionData* map = nullptr,
-                                    const Config* config = nullptr);
+                                    const Config* config = nullptr,
+                                    const OccupancyGrid* map_grid = nullptr);
 
 }  // namespace uwbsar::slam

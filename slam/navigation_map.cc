@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <map>
 
 #include "frontend/wall_profile.h"
@@ -184,6 +185,16 @@ OccupancyGrid SessionNavigationGrid(const SessionData& session, const Config& co
   }
   AddWallRidges(&keyframes, sensors, config);
   return Build(keyframes, path, sensors, config);
+}
+
+OccupancyGrid SavedNavigationGrid(const std::string& dir, const SessionData& session,
+                                  const Config& config) {
+  const std::filesystem::path yaml = std::filesystem::path(dir) / "map.yaml";
+  std::error_code ec;
+  if (!std::filesystem::exists(std::filesystem::symlink_status(yaml, ec))) {
+    return SessionNavigationGrid(session, config);
+  }
+  return LoadOccupancyGrid(yaml.string(), config.limits.max_map_image_pixels);
 }
 
 }  // namespace uwbsar::slam

@@ -45,4 +45,13 @@ OccupancyGrid RunNavigationGrid(const SlamSnapshot& slam, const RunNavigationInp
 /// The grid of a session (every run in the map frame; unplaced keyframes are left out).
 OccupancyGrid SessionNavigationGrid(const SessionData& session, const Config& config);
 
+/// The grid of a saved map as its folder `dir` holds it: map.yaml and its image (map.pgm), read
+/// as map_server reads them (an image beyond limits.max_map_image_pixels refused from its
+/// header), which `map`, `map --resume` and `merge` made from the runs themselves. Made again
+/// from `session` (SessionNavigationGrid) only where the folder has no map.yaml: the session
+/// keeps odometry thinned (session.odometry_spacing_m), so lines are cast from other poses and
+/// a few cells differ. Throws InputError naming a map.yaml or image that cannot be read.
+OccupancyGrid SavedNavigationGrid(const std::string& dir, const SessionData& session,
+                                  const Config& config);
+
 }  // namespace uwbsar::slam

@@ -146,11 +146,12 @@ void WriteSessionResultsMcap(const std::string& path, const SessionData& session
 }
 
 void WriteLocalizeResultsMcap(const std::string& path, const LocalizeRun& run,
-                              const SessionData& map, const Config& config) {
+                              const SessionData& map, const Config& config,
+                              const OccupancyGrid& map_grid) {
   ResultsMcapWriter out(path);
   if (run.odometry.empty()) return out.Close();
   const TimestampNs first = run.odometry.front().stamp_ns;
-  out.WriteMap(first, SessionNavigationGrid(map, config));
+  out.WriteMap(first, map_grid);
   SarMosaic sar;
   sar.map = RenderSessionMosaic(map, config, &sar.grid, &sar.observed);
   out.WriteSar(first, MakeSarPreview(sar, config.slam.results_mcap_sar_max_pixels));

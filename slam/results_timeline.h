@@ -8,8 +8,8 @@
 // - a session of several runs (`map --resume`, `merge`): the final map and mosaic at the newest
 //   run's first stamp, every run's path (/uwbsar/run_<id>/path; /path is the newest run),
 //   the loops, and /tf over the newest run.
-// - `localize`: the saved map and mosaic at the first stamp, /tf from the localisation's
-//   correction, and the trajectory in the map frame (/path) at the end.
+// - `localize`: the saved map (its map.pgm) and mosaic at the first stamp, /tf from the
+//   localisation's correction, and the trajectory in the map frame (/path) at the end.
 #pragma once
 
 #include <map>
@@ -41,8 +41,9 @@ void WriteSessionResultsMcap(const std::string& path, const SessionData& session
                              const Config& config, const OccupancyGrid& grid, const SarMosaic& sar,
                              const std::map<int, std::vector<OdometrySample>>& ground_truth);
 
-/// A localisation run in the saved map `map`.
+/// A localisation run in the saved map `map`, whose navigation grid (its map.pgm) is `map_grid`.
 void WriteLocalizeResultsMcap(const std::string& path, const LocalizeRun& run,
-                              const SessionData& map, const Config& config);
+                              const SessionData& map, const Config& config,
+                              const OccupancyGrid& map_grid);
 
 }  // namespace uwbsar::slam

@@ -5,6 +5,7 @@
 #include "slam/app_config.h"
 #include "slam/localize_job.h"
 #include "slam/map_outputs.h"
+#include "slam/navigation_map.h"
 #include "slam/results_timeline.h"
 #include "slam/saved_session.h"
 #include "slam/session/session_file.h"
@@ -29,8 +30,13 @@ void AddLocalizeCommand(CLI::App& app, const GlobalOptions& globals) {
     const FolderLock out_lock = slam::LockOutputFolder(opts->out_dir);
     slam::RefuseMapFolderForLocalize(opts->out_dir);
     const slam::SavedSession map = slam::OpenSavedSession(opts->map, config);
+    // results.mcap's /map is the map's own map.pgm, read (and checked) before the work.
+    const OccupancyGrid map_grid = config.slam.results_mcap
+                                       ? slam::SavedNavigationGrid(map.dir, map.data, config)
+                                       : OccupancyGrid{};
     const slam::LocalizeRun run = slam::LocalizeBag(map.data, config, opts->bag, !globals.quiet);
-    const nlohmann::json s = slam::WriteLocalizeOutputs(run, opts->out_dir, &map.data, &config);
+    const nlohmann::json s =
+        slam::WriteLocalizeOutputs(run, opts->out_dir, &map.data, &config, &map_grid);
     if (globals.quiet) return;
     std::printf(
         "localised %.1f s of log in %.2f s: %zu keyframes (%d tracking, %d lost, %d "
