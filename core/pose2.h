@@ -6,6 +6,10 @@
 
 namespace uwbsar {
 
+/// |x|, |y| in metres of any position uwbsar reads from a file (a pose, a map's or grid's
+/// origin): 1000 km, where a float (PCL, images) still resolves 6 cm. Beyond, a value is damage.
+inline constexpr double kMaxWorldCoordinateM = 1e6;
+
 /// Wraps an angle to [-pi, pi).
 inline double NormalizeAngle(double angle_rad) {
   constexpr double kTwoPi = 2.0 * M_PI;

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
+#include <utility>
 
 #include "core/yaml_file.h"
 #include "imaging/image_header.h"
@@ -147,6 +148,14 @@ MapMetadata LoadMapMetadata(const std::string& yaml_path) {
   }
   m.origin = {GetFinite(yaml_path, origin[0], "origin"), GetFinite(yaml_path, origin[1], "origin"),
               NormalizeAngle(GetFinite(yaml_path, origin[2], "origin"))};
+  const std::pair<const char*, double> coordinates[] = {{"x", m.origin.x_m}, {"y", m.origin.y_m}};
+  for (const auto& [axis, v] : coordinates) {
+    if (std::abs(v) <= kMaxWorldCoordinateM) continue;
+    std::ostringstream what;
+    what << YamlWhere(yaml_path, origin) << ": map key 'origin' " << axis << " is " << v
+         << " m, beyond " << kMaxWorldCoordinateM << " m";
+    throw InputError(what.str());
+  }
   if (const YAML::Node mode = root["mode"]) {
     m.mode = Get<std::string>(yaml_path, mode, "mode");
     if (m.mode != "trinary" && m.mode != "scale" && m.mode != "raw") {

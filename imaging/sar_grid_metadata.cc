@@ -5,8 +5,10 @@
 #include <cmath>
 #include <filesystem>
 #include <sstream>
+#include <utility>
 
 #include "core/errors.h"
+#include "core/pose2.h"
 #include "core/yaml_file.h"
 
 namespace uwbsar {
@@ -43,6 +45,14 @@ SarGridMetadata LoadSarGridMetadata(const std::string& yaml_path) {
   }
   if (!std::isfinite(g.x0_m) || !std::isfinite(g.y0_m)) {
     throw InputError(yaml_path + ": grid keys 'x0_m' and 'y0_m' must be finite");
+  }
+  const std::pair<const char*, double> corner[] = {{"x0_m", g.x0_m}, {"y0_m", g.y0_m}};
+  for (const auto& [key, v] : corner) {
+    if (std::abs(v) <= kMaxWorldCoordinateM) continue;
+    std::ostringstream what;
+    what << YamlWhere(yaml_path, root[key]) << ": grid key '" << key << "' is " << v
+         << " m, beyond " << kMaxWorldCoordinateM << " m";
+    throw InputError(what.str());
   }
   if (!(g.resolution_m > 0.0) || !std::isfinite(g.resolution_m)) {
     throw InputError(YamlWhere(yaml_path, root["resolution_m"]) +

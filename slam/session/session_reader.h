@@ -15,9 +15,10 @@
 namespace uwbsar::session {
 
 /// Sane bounds on the values of a session (beyond them a value is damage, not data).
-constexpr double kMaxCoordinateM = 1e6;  ///< |x|, |y| of any pose or grid origin
-constexpr double kMaxAngleRad = 1e6;     ///< |yaw| (yaws need not be normalised)
-constexpr double kMaxPathM = 1e9;        ///< |path| of odometry and keyframes
+/// |x|, |y| of any pose or grid origin: what uwbsar reads from any file (core/pose2.h).
+constexpr double kMaxCoordinateM = kMaxWorldCoordinateM;
+constexpr double kMaxAngleRad = 1e6;  ///< |yaw| (yaws need not be normalised)
+constexpr double kMaxPathM = 1e9;     ///< |path| of odometry and keyframes
 constexpr double kMinResolutionM = 1e-4;
 constexpr double kMaxResolutionM = 10.0;
 

@@ -95,6 +95,22 @@ TEST(CompareCliTest, BadInputIsExitCode3NamingTheFileAndWritesNothing) {
   }
 }
 
+// Issue 45 item 14: an origin of 1e300 m reached PCL, which printed a line of its own before
+// uwbsar's error. A map's origin lies within 1000 km, like a session's coordinates.
+TEST(CompareCliTest, AFarOriginIsRefusedNamingFileAndKeyBeforePclSeesIt) {
+  const std::string dir = testing::FreshDir("cli_far_origin");
+  const std::string hall = std::string(UWBSAR_SOURCE_DIR) + "/config/maps/seed_hall/seed_hall";
+  std::ofstream(dir + "/far.yaml")
+      << "image: " << hall << ".pgm\nresolution: 0.05\norigin: [1e300, 0, 0]\n";
+  const CliRun r = Uwbsar("compare " + dir + "/far.yaml " + hall + ".yaml --out " + dir + "/out");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("far.yaml:3: map key 'origin' x is 1e+300 m, beyond 1e+06 m"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find('\n'), r.output.size() - 1) << "one line: " << r.output;
+  EXPECT_FALSE(fs::exists(dir + "/out"));
+}
+
 TEST(ExportPcdCliTest, WritesOccupiedCellsThatPclReadsBack) {
   UWBSAR_NEED_SEED_LAB_MAP();
   const std::string dir = testing::FreshDir("cli_pcd");
