@@ -16,13 +16,8 @@ constexpr const char* kMapFrame = "map";
 constexpr const char* kOdomFrame = "odom";
 constexpr const char* kBaseFrame = "base_link";
 
-rosbag::RosTime ToRosTime(TimestampNs stamp_ns) {
-  const TimestampNs sec = stamp_ns >= 0 ? stamp_ns / 1000000000 : (stamp_ns + 1) / 1000000000 - 1;
-  return {static_cast<std::int32_t>(sec), static_cast<std::uint32_t>(stamp_ns - sec * 1000000000)};
-}
-
 rosbag::RosHeader Header(TimestampNs stamp_ns, const char* frame) {
-  return {ToRosTime(stamp_ns), frame};
+  return {rosbag::ToRosTime(stamp_ns), frame};
 }
 
 rosbag::RosPose ToRosPose(const Pose2& p) {

@@ -2,6 +2,7 @@
 
 #include "core/errors.h"
 #include "core/log.h"
+#include "core/stamp_range.h"
 #include "drivers/rosbag/bag_reader.h"
 #include "drivers/rosbag/ros_codecs.h"
 
@@ -120,6 +121,9 @@ class MessageDispatcher {
         static_cast<TimestampNs>(odom_.header.stamp.sec) * 1000000000 + odom_.header.stamp.nanosec;
     const TimestampNs stamp =
         options_.odometry_header_stamp && header_ns != 0 ? header_ns : m.log_time_ns;
+    if (plan.role != Role::kNone && !IsOutputStamp(stamp)) {
+      throw InputError("header " + StampOutsideOutputRange(stamp));
+    }
     if (plan.role == Role::kOdometry) {
       visitor_.OnOdometry(ToOdometrySample(odom_, stamp));
       ++stats_.odometry;
@@ -180,8 +184,15 @@ RobotBagStats ReadRobotBag(BagReader& reader, const RobotBagOptions& options,
     ++stats.messages;
     const TopicInfo& topic = info.topics[static_cast<std::size_t>(m.topic)];
     const MessageContext ctx{topic.name, topic.type, m.log_time_ns};
+    const TopicPlan& plan = plans[static_cast<std::size_t>(m.topic)];
+    // The stamps uwbsar uses go into its outputs, which cannot hold every stamp a bag can.
+    if (plan.role != Role::kNone && !IsOutputStamp(m.log_time_ns)) {
+      throw InputError(info.files[static_cast<std::size_t>(m.file)] + ": message " +
+                       std::to_string(stats.messages - 1) + " on " + topic.name + " (" +
+                       topic.type + "): log time " + StampOutsideOutputRange(m.log_time_ns));
+    }
     try {
-      dispatcher.Dispatch(m, plans[static_cast<std::size_t>(m.topic)], ctx);
+      dispatcher.Dispatch(m, plan, ctx);
     } catch (const InputError& e) {
       throw InputError(info.files[static_cast<std::size_t>(m.file)] + ": message at " +
                        std::to_string(m.log_time_ns) + " ns on " + topic.name + " (" + topic.type +

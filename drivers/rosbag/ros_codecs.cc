@@ -1,7 +1,9 @@
 #include "drivers/rosbag/ros_codecs.h"
 
 #include <cmath>
+#include <stdexcept>
 
+#include "core/stamp_range.h"
 #include "drivers/rosbag/cdr_reader.h"
 #include "drivers/rosbag/cdr_writer.h"
 
@@ -222,6 +224,12 @@ void EncodeCdr(const MarkerArray& msg, std::vector<std::uint8_t>* out) {
   CdrWriter w(out);
   w.WriteSequenceLength(msg.markers.size());
   for (const Marker& m : msg.markers) Write(w, m);
+}
+
+RosTime ToRosTime(TimestampNs stamp_ns) {
+  if (!IsOutputStamp(stamp_ns)) throw std::out_of_range(StampOutsideOutputRange(stamp_ns));
+  return {static_cast<std::int32_t>(stamp_ns / 1000000000),
+          static_cast<std::uint32_t>(stamp_ns % 1000000000)};
 }
 
 double YawFromQuaternion(const Quaternion& q) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/types.h"
 #include "drivers/rosbag/ros_messages.h"
 
 namespace uwbsar::rosbag {
@@ -31,6 +32,11 @@ void EncodeCdr(const MarkerArray& msg, std::vector<std::uint8_t>* out);
 /// The `ros2msg` text of a known type with its dependencies appended in the
 /// rosbag2/MCAP convention ("=====...\nMSG: pkg/Type\n..."); empty if unknown.
 std::string RosMessageDefinition(const std::string& type);
+
+/// `stamp_ns` as a ROS 2 time (floor seconds, nanoseconds 0 .. 999999999). Throws
+/// std::out_of_range outside core/stamp_range.h's range, which int32 seconds would wrap
+/// (readers refuse such stamps first: this is a bug, never an input).
+RosTime ToRosTime(TimestampNs stamp_ns);
 
 /// Yaw of a unit quaternion about +z (rotation from the child to the parent frame).
 double YawFromQuaternion(const Quaternion& q);

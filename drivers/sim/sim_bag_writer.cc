@@ -5,27 +5,15 @@
 
 #include "core/errors.h"
 #include "drivers/rosbag/bag_writer.h"
+#include "drivers/rosbag/ros_codecs.h"
 #include "drivers/sim/sim_recorder.h"
 
 namespace uwbsar::sim {
 
-rosbag::RosTime ToRosTime(TimestampNs stamp_ns) {
-  rosbag::RosTime t;
-  std::int64_t sec = stamp_ns / 1'000'000'000;
-  std::int64_t nsec = stamp_ns % 1'000'000'000;
-  if (nsec < 0) {
-    nsec += 1'000'000'000;
-    --sec;
-  }
-  t.sec = static_cast<std::int32_t>(sec);
-  t.nanosec = static_cast<std::uint32_t>(nsec);
-  return t;
-}
-
 rosbag::Odometry ToRosOdometry(const OdometrySample& pose, const std::string& frame_id,
                                const std::string& child_frame_id, bool with_covariance) {
   rosbag::Odometry msg;
-  msg.header.stamp = ToRosTime(pose.stamp_ns);
+  msg.header.stamp = rosbag::ToRosTime(pose.stamp_ns);
   msg.header.frame_id = frame_id;
   msg.child_frame_id = child_frame_id;
   msg.position = {pose.T_world_robot.x_m, pose.T_world_robot.y_m, 0.0};
@@ -47,7 +35,7 @@ rosbag::Odometry ToRosOdometry(const OdometrySample& pose, const std::string& fr
 
 rosbag::LaserScan ToRosLaserScan(const SimLaserScan& scan) {
   rosbag::LaserScan msg;
-  msg.header.stamp = ToRosTime(scan.stamp_ns);
+  msg.header.stamp = rosbag::ToRosTime(scan.stamp_ns);
   msg.header.frame_id = "base_scan";
   msg.angle_min = scan.angle_min_rad;
   msg.angle_increment = scan.angle_increment_rad;

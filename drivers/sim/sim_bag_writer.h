@@ -37,6 +37,5 @@ SimBagSummary WriteSimBag(SimStream* stream, const SimSettings& config, const st
 rosbag::Odometry ToRosOdometry(const OdometrySample& pose, const std::string& frame_id,
                                const std::string& child_frame_id, bool with_covariance);
 rosbag::LaserScan ToRosLaserScan(const SimLaserScan& scan);
-rosbag::RosTime ToRosTime(TimestampNs stamp_ns);
 
 }  // namespace uwbsar::sim

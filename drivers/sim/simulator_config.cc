@@ -77,8 +77,9 @@ void Validate(const SimulatorConfig& s, const std::string& src) {
   Require(l.min_range_m >= 0, src, k + "laser.min_range_m", "must be >= 0");
   Require(l.max_range_m > l.min_range_m, src, k + "laser.max_range_m", "must exceed min_range_m");
   Require(l.noise_std_m >= 0, src, k + "laser.noise_std_m", "must be >= 0");
-  Require(s.start_time_s >= 0 && s.start_time_s < 9e9, src, k + "start_time_s",
-          "must be in [0, 9e9)");
+  // The simulated bag's headers hold ROS 2 times (core/stamp_range.h).
+  Require(s.start_time_s >= 0 && s.start_time_s < 2147483647.0, src, k + "start_time_s",
+          "must be in [0, 2147483647) (seconds since 1970, until 2038-01-19: a ROS 2 time)");
 }
 
 }  // namespace uwbsar

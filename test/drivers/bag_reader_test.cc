@@ -170,6 +170,51 @@ TEST(BagReaderTest, BadCdrInABagNamesFileTopicAndTime) {
   }
 }
 
+/// The InputError ReadRobotBag gives `path` ("no error" if none).
+std::string RobotBagError(const std::string& path) {
+  RobotBagVisitor ignore;
+  try {
+    ReadRobotBag(path, RobotBagOptions{}, ignore);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+// Issue 45 item 8: a bag in 2150 was mapped with exit 0, its results.mcap header stamps
+// wrapped to 2014; stamps crossing 0 made /tf log times run backwards. uwbsar's outputs hold
+// ROS 2 times (int32 seconds) and MCAP log times (from 1970): 1970 .. 2038-01-19 03:14:07 UTC.
+TEST(BagReaderTest, StampsTheOutputsCannotHoldAreRefusedNamingMessageTopicAndStamp) {
+  TempDir tmp;
+  const auto write = [&tmp](const std::string& name, const std::string& storage,
+                            std::vector<TimestampNs> odometry_stamps) {
+    BagWriterOptions o;
+    o.storage = storage;
+    BagWriter w(tmp.path + "/" + name, o);
+    const int chatter = w.AddTopic("/chatter", "std_msgs/msg/String");
+    const int odom = w.AddTopic("/odom", kOdometryType);
+    w.Write(chatter, odometry_stamps.front(), std::vector<std::uint8_t>{0, 1, 0, 0, 0, 0, 0, 0});
+    Odometry msg;
+    msg.orientation.w = 1.0;
+    for (const TimestampNs t : odometry_stamps) w.WriteMessage(odom, t, msg);
+    w.Close();
+  };
+  const TimestampNs k2150 = 5680281600LL * 1000000000LL;  // 2150-01-01
+  write("future", "mcap", {k2150, k2150 + 10000000});
+  ExpectError(RobotBagError(tmp.path + "/future"), tmp.path + "/future/future_0.mcap",
+              ": message 1 on /odom (nav_msgs/msg/Odometry): log time stamp 5680281600.000000000 s "
+              "(2150-01-01 00:00:00 UTC) is outside 1970-01-01 00:00:00 .. 2038-01-19 03:14:07 "
+              "UTC, the times ROS 2 messages (int32 seconds) can hold");
+  // Crossing 0 (a bare .db3: a bag folder's metadata refuses a negative start itself).
+  write("zero", "sqlite3", {-500000000, 500000000});
+  ExpectError(RobotBagError(tmp.path + "/zero/zero_0.db3"), tmp.path + "/zero/zero_0.db3",
+              ": message 1 on /odom (nav_msgs/msg/Odometry): log time stamp -0.500000000 s "
+              "(1969-12-31 23:59:59 UTC) is outside");
+  // The last second a ROS 2 time holds is a time.
+  write("last", "mcap", {2147483647LL * 1000000000LL});
+  EXPECT_EQ(RobotBagError(tmp.path + "/last"), "no error");
+}
+
 TEST(BagInfoTextTest, LooksLikeRos2BagInfo) {
   const BagReader reader(FixtureDir() + "/humble_sqlite3");
   const std::string text = FormatBagInfo(reader.Info());

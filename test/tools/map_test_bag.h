@@ -45,6 +45,8 @@ struct BagEdits {
   std::optional<float> radar_sample_value = std::nullopt;
   /// The odometry restarts from zero at this time into the run (a base reset), if set.
   std::optional<double> odometry_reset_at_s = std::nullopt;
+  /// The stamp of the run's first message (a recording made in another year), if set.
+  std::optional<TimestampNs> start_stamp_ns = std::nullopt;
 };
 
 /// Writes the bag as `dir`/run; `truth_tum`, if given, receives the run's true poses (TUM).
@@ -55,6 +57,7 @@ inline std::string WriteRunBag(const std::string& dir, const BagEdits& edits,
   path.length_m = edits.length_m;
   path.speed_mps = 0.5;
   path.radar_rate_hz = 100;
+  if (edits.start_stamp_ns) path.start_stamp_ns = *edits.start_stamp_ns;
   std::vector<Scatterer> scene = WallScatterers({-1, 1.6}, {6, 1.6}, 0.01, 0.05);
   for (int i = 0; i < 8; ++i) scene.push_back({{0.5 * i, i % 2 ? -1.2 : 1.0}, 1.0});
   const SyntheticRun run = SimulateRun(config, path, scene, EchoModel{}, 3);
