@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -141,24 +142,30 @@ void RequireStampOrder(const std::vector<OdometrySample>& samples, const std::st
   }
 }
 
-/// Throws at the first odometry step that is a jump (options.max_step_m, max_speed_mps,
-/// max_turn_rate_radps): a reset or two runs in one recording would fit nonsense.
-void RequireNoJump(const std::vector<OdometrySample>& odometry,
+/// Throws at the first step of `samples` (`what`: odometry or ground truth) that is a jump
+/// (options.max_step_m, max_speed_mps, max_turn_rate_radps): a reset or two runs in one
+/// recording would fit nonsense. Steps longer than `max_gap_ns` are not checked: the fit does
+/// not interpolate across them. `lines` (optional) names each sample's line of `source`.
+void RequireNoJump(const std::vector<OdometrySample>& samples, const char* what,
+                   const std::string& source, const std::vector<int>& lines, TimestampNs max_gap_ns,
                    const CalibrationFitOptions& options) {
-  for (std::size_t i = 1; i < odometry.size(); ++i) {
-    const Pose2 step = Between(odometry[i - 1].T_world_robot, odometry[i].T_world_robot);
+  for (std::size_t i = 1; i < samples.size(); ++i) {
+    if (samples[i].stamp_ns - samples[i - 1].stamp_ns > max_gap_ns) continue;
+    const Pose2 step = Between(samples[i - 1].T_world_robot, samples[i].T_world_robot);
     const double d = std::hypot(step.x_m, step.y_m), turn = std::abs(step.yaw_rad);
-    const double dt = NsToSeconds(odometry[i].stamp_ns - odometry[i - 1].stamp_ns);
+    const double dt = NsToSeconds(samples[i].stamp_ns - samples[i - 1].stamp_ns);
     const bool too_fast =
         dt > 0.0 ? d / dt > options.max_speed_mps || turn / dt > options.max_turn_rate_radps
                  : d > 0.0 || turn > 0.0;
     if (d <= options.max_step_m && !(too_fast && (d > 0.05 || turn > 0.5))) continue;
-    std::ostringstream what;
-    what << std::fixed << std::setprecision(3) << options.odometry_source << ": odometry jumps "
-         << d << " m and " << turn << " rad in " << dt << " s at t=" << std::setprecision(6)
-         << NsToSeconds(odometry[i].stamp_ns) << " s (sample " << i
-         << "): a reset or two runs in one recording; calibrate needs one continuous run";
-    throw InputError(what.str());
+    std::ostringstream msg;
+    msg << source;
+    if (i < lines.size()) msg << ":" << lines[i];
+    msg << std::fixed << std::setprecision(3) << ": " << what << " jumps " << d << " m and " << turn
+        << " rad in " << dt << " s at t=" << std::setprecision(6)
+        << NsToSeconds(samples[i].stamp_ns) << " s (sample " << i
+        << "): a reset or two runs in one recording; calibrate needs one continuous run";
+    throw InputError(msg.str());
   }
 }
 
@@ -268,7 +275,11 @@ CalibrationFit FitOdometryCalibration(const std::vector<OdometrySample>& odometr
                                       const CalibrationFitOptions& options) {
   RequireStampOrder(odometry, options.odometry_source);
   RequireStampOrder(ground_truth, options.truth_source);
-  RequireNoJump(odometry, options);
+  RequireNoJump(odometry, "odometry", options.odometry_source, {},
+                std::numeric_limits<TimestampNs>::max(), options);
+  // TruthAt interpolates between samples up to twice max_truth_gap_s apart.
+  RequireNoJump(ground_truth, "ground truth", options.truth_source, options.truth_lines,
+                2 * static_cast<TimestampNs>(options.max_truth_gap_s * 1e9), options);
   const std::vector<Segment> segments = CutSegments(odometry, ground_truth, options);
   if (segments.size() < 10) {
     std::ostringstream what;

@@ -30,6 +30,7 @@ struct CalibrationFitOptions {
   /// An odometry step longer than this, or faster than max_speed_mps / max_turn_rate_radps
   /// (and longer than 5 cm or 0.5 rad), is a jump (a reset, two runs in one recording): the
   /// run is refused (gating.max_odom_jump_m, max_odom_speed_mps, max_odom_turn_rate_radps).
+  /// So is a ground-truth step the fit interpolates across (a glitch or a reset of the truth).
   double max_step_m = 0.5;
   double max_speed_mps = 10.0;
   double max_turn_rate_radps = 12.0;
@@ -39,6 +40,9 @@ struct CalibrationFitOptions {
   double max_path_ratio = 1.5;
   std::string odometry_source = "odometry";   ///< names the odometry in messages
   std::string truth_source = "ground truth";  ///< names the ground truth in messages
+  /// The line of truth_source holding each ground-truth sample (a TUM file), to name it in
+  /// messages; empty when the truth is not a text file.
+  std::vector<int> truth_lines;
 };
 
 struct CalibrationFit {
@@ -56,7 +60,8 @@ struct CalibrationFit {
 
 /// Fits the calibration of `odometry` against `ground_truth` (both in stamp order, each in its
 /// own world frame). Throws InputError (one line naming the source) when the stamps of either
-/// go back, the odometry jumps, fewer than 10 segments overlap the truth (naming how many
+/// go back, either jumps (the ground truth: between samples the fit interpolates across, up to
+/// twice max_truth_gap_s apart), fewer than 10 segments overlap the truth (naming how many
 /// there were), the truth moves less than min_truth_path_m over them, the two paths differ by
 /// more than max_path_ratio, or a fitted value lies outside what backend.calibration_*_mean
 /// accept (kMaxCalibration*): a result uwbsar would refuse to load is never returned.

@@ -130,6 +130,35 @@ TEST(OdometryCalibrationFitTest, AnOdometryResetIsRefusedNamingTheSample) {
       << msg;
 }
 
+// Issue 45 item 7: a 3 m jump in the ground truth fitted half the real scale (sigma 0.72) with
+// exit 0. The truth's steps are held to the odometry's rule, where the fit interpolates.
+TEST(OdometryCalibrationFitTest, AGroundTruthJumpIsRefusedNamingTheLineAndTheStamp) {
+  Streams run = StraightRun();
+  for (std::size_t i = 1000; i < run.truth.size(); ++i) run.truth[i].T_world_robot.x_m += 3.0;
+  EXPECT_EQ(RefusalOf(run.odometry, run.truth)
+                .rfind("truth.tum: ground truth jumps 3.020 m and 0.000 rad in 0.020 s at "
+                       "t=21.000000 s (sample 1000): a reset or two runs in one recording",
+                       0),
+            0u)
+      << RefusalOf(run.odometry, run.truth);
+  CalibrationFitOptions options;
+  options.truth_source = "truth.tum";
+  for (std::size_t i = 0; i < run.truth.size(); ++i) {
+    options.truth_lines.push_back(static_cast<int>(i) + 3);  // two comment lines first
+  }
+  try {
+    FitOdometryCalibration(run.odometry, run.truth, BackendConfig{}, options);
+    ADD_FAILURE() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("truth.tum:1003: ground truth jumps 3.020 m", 0), 0u)
+        << e.what();
+  }
+  // A gap in the truth is no jump: the fit does not interpolate across it.
+  Streams gappy = StraightRun();
+  gappy.truth.erase(gappy.truth.begin() + 100, gappy.truth.begin() + 400);
+  EXPECT_EQ(RefusalOf(gappy.odometry, gappy.truth), "");
+}
+
 TEST(OdometryCalibrationFitTest, StampsGoingBackAreRefused) {
   Streams run = StraightRun();
   std::swap(run.odometry[300].stamp_ns, run.odometry[301].stamp_ns);
