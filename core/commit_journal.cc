@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -10,13 +11,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
 
 #include "core/errors.h"
 #include "core/interrupt_cleanup.h"
+#include "core/plain_file.h"
 
 namespace uwbsar {
 namespace fs = std::filesystem;
@@ -24,6 +25,9 @@ namespace {
 
 constexpr const char* kJournalHeader = "uwbsar-commit 1";
 constexpr const char* kStagePrefix = ".uwbsar-partial-";
+constexpr std::size_t kMaxJournalBytes = 64 << 10;  // uwbsar's are a few hundred bytes
+constexpr const char* kRemoveIt =
+    " (not a commit journal uwbsar wrote; remove it to use the folder)";
 
 /// The test hook of the interruption tests (test/core/commit_journal_test.cc,
 /// test/slam/session/session_safety_cli_test.cc): UWBSAR_TEST_INTERRUPT_COMMIT=<step>:<kill|int>
@@ -88,16 +92,41 @@ bool IsPlainName(const std::string& name) {
          name.find('\0') == std::string::npos;
 }
 
+/// The journal's bytes: a regular file, neither followed through a link nor waited on (a FIFO).
+std::string ReadJournalText(const std::string& journal) {
+  std::string why;
+  int error = 0;
+  const int fd = OpenRegularFile(journal, O_RDONLY, &why, &error);
+  if (fd < 0) throw InputError(journal + ": " + why + kRemoveIt);
+  std::string text(kMaxJournalBytes + 1, '\0');
+  std::size_t size = 0;
+  for (ssize_t n; size < text.size() && (n = ::read(fd, &text[size], text.size() - size)) != 0;) {
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      error = errno;
+      ::close(fd);
+      throw InputError(journal + ": cannot read the commit journal: " + std::strerror(error));
+    }
+    size += static_cast<std::size_t>(n);
+  }
+  ::close(fd);
+  if (size > kMaxJournalBytes) throw InputError(journal + ": larger than 64 KiB" + kRemoveIt);
+  text.resize(size);
+  return text;
+}
+
+/// A name of uwbsar's own (the lock file, the journal, a stage), which no commit publishes or
+/// removes.
+bool IsUwbsarsOwnName(const std::string& name) { return name.rfind(".uwbsar", 0) == 0; }
+
 CommitPlan ReadJournal(const std::string& journal) {
-  std::ifstream in(journal);
-  if (!in) throw std::runtime_error(journal + ": cannot read the commit journal");
+  std::istringstream in(ReadJournalText(journal));
   CommitPlan plan;
   std::string line;
   int number = 0;
   bool ended = false;
   auto bad = [&](const std::string& what) -> InputError {
-    return InputError(journal + " line " + std::to_string(number) + ": " + what +
-                      " (not a commit journal uwbsar wrote; remove it to use the folder)");
+    return InputError(journal + " line " + std::to_string(number) + ": " + what + kRemoveIt);
   };
   while (std::getline(in, line)) {
     ++number;
@@ -115,7 +144,10 @@ CommitPlan ReadJournal(const std::string& journal) {
     if (!IsPlainName(name)) throw bad("'" + name + "' is not a file name inside the folder");
     if (key == "stage" && name.rfind(kStagePrefix, 0) == 0) {
       plan.stage_name = name;
-    } else if (key == "remove") {
+      continue;
+    }
+    if (IsUwbsarsOwnName(name)) throw bad("'" + name + "' is uwbsar's own file, not an output");
+    if (key == "remove") {
       plan.remove.push_back(name);
     } else if (key == "publish") {
       plan.publish.push_back(name);
@@ -127,6 +159,55 @@ CommitPlan ReadJournal(const std::string& journal) {
     throw bad("incomplete journal");
   }
   return plan;
+}
+
+/// What `path` is without following a link, and its mode (0 unless lstat says); "" when it is
+/// not there.
+std::string KindAt(const fs::path& path, mode_t* mode) {
+  struct stat st {};
+  *mode = 0;
+  if (::lstat(path.c_str(), &st) != 0) {
+    return errno == ENOENT ? "" : std::string("unreadable (") + std::strerror(errno) + ")";
+  }
+  *mode = st.st_mode;
+  return FileKindName(st.st_mode);
+}
+
+/// Refuses a journal that does not match the folder as an interrupted commit leaves it: its
+/// stage a folder of DIR's own (not a link), every file to publish a regular file in it or,
+/// published before an interruption of the completion (in order: only names before the first
+/// one still staged), in DIR; nothing to replace or remove a folder.
+void CheckJournalMatchesFolder(const std::string& journal, const fs::path& out,
+                               const CommitPlan& plan) {
+  const auto refuse = [&](const std::string& what) {
+    return InputError(journal + ": " + what + "; not completed, nothing moved" + kRemoveIt);
+  };
+  const fs::path stage = out / plan.stage_name;
+  mode_t mode = 0;
+  const std::string stage_kind = KindAt(stage, &mode);
+  if (stage_kind.empty()) throw refuse("its stage " + plan.stage_name + " is missing");
+  if (!S_ISDIR(mode)) throw refuse("its stage " + plan.stage_name + " is " + stage_kind);
+  bool staged_seen = false;
+  for (const std::string& name : plan.publish) {
+    const std::string staged = KindAt(stage / name, &mode);
+    if (!staged.empty() && !S_ISREG(mode)) {
+      throw refuse("'" + name + "' in its stage is " + staged + ", not a regular file");
+    }
+    const bool in_stage = !staged.empty();
+    staged_seen = staged_seen || in_stage;
+    const std::string there = KindAt(out / name, &mode);
+    if (in_stage && !there.empty() && S_ISDIR(mode)) {
+      throw refuse("'" + name + "' would replace a folder");
+    }
+    if (!in_stage && (staged_seen || there.empty() || !S_ISREG(mode))) {
+      throw refuse("'" + name + "' is not in its stage");
+    }
+  }
+  for (const std::string& name : plan.remove) {
+    if (!KindAt(out / name, &mode).empty() && S_ISDIR(mode)) {
+      throw refuse("'" + name + "' to remove is a folder");
+    }
+  }
 }
 
 void RemoveIfThere(const fs::path& path) {
@@ -180,6 +261,7 @@ bool RecoverInterruptedCommit(const std::string& dir) {
   const std::string journal = dir + "/" + kCommitJournalName;
   if (!HasInterruptedCommit(dir)) return false;
   const CommitPlan plan = ReadJournal(journal);
+  CheckJournalMatchesFolder(journal, dir, plan);
   const DeferInterrupts hold_signals;
   int step = 1;  // the journal is there
   Complete(dir, plan, &step);
@@ -187,8 +269,8 @@ bool RecoverInterruptedCommit(const std::string& dir) {
 }
 
 bool HasInterruptedCommit(const std::string& dir) {
-  std::error_code ec;
-  return fs::exists(fs::path(dir) / kCommitJournalName, ec);
+  struct stat st {};  // whatever is there, a link to nothing or a FIFO included
+  return ::lstat((fs::path(dir) / kCommitJournalName).c_str(), &st) == 0;
 }
 
 }  // namespace uwbsar

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/plain_file.h"
 
 namespace uwbsar {
 namespace {
@@ -56,28 +57,60 @@ std::string HolderText() {
   return "pid " + std::to_string(::getpid()) + ": " + cmdline + ", since " + when + "\n";
 }
 
-void WriteHolder(int fd) {
+/// The first line of the lock file that names a live process other than this one; "" if none.
+std::string LiveHolder(int fd) {
+  std::string text(4096, '\0');
+  const ssize_t n = ::pread(fd, text.data(), text.size(), 0);
+  text.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    long pid = 0;
+    if (std::sscanf(line.c_str(), "pid %ld:", &pid) != 1 || pid <= 0 || pid == ::getpid()) {
+      continue;
+    }
+    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) return line;
+  }
+  return {};
+}
+
+/// Names this process in the lock file (opened O_APPEND) once its flock is held: a writer
+/// alone, a reader after the other readers still there (the file emptied first when none is,
+/// so that it does not grow). The text is a courtesy: the flock is the lock.
+void WriteHolder(int fd, FolderLock::Mode mode) {
+  if (mode == FolderLock::Mode::kExclusive || LiveHolder(fd).empty()) {
+    if (::ftruncate(fd, 0) != 0) return;
+  }
   const std::string text = HolderText();
-  if (::ftruncate(fd, 0) != 0) return;  // the text is a courtesy: the flock is the lock
-  if (::pwrite(fd, text.data(), text.size(), 0) < 0) return;
+  if (::write(fd, text.data(), text.size()) < 0) return;
 }
 
-/// The holder named in the lock file, when that process still exists.
-std::string ReadHolder(const std::string& lock_path) {
-  std::ifstream in(lock_path);
-  std::string line;
-  std::getline(in, line);
-  long pid = 0;
-  if (std::sscanf(line.c_str(), "pid %ld:", &pid) != 1 || pid <= 0) return {};
-  if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) return {};
-  return line;
-}
-
-[[noreturn]] void RefuseHeld(const std::string& dir, const std::string& lock_path) {
-  const std::string holder = ReadHolder(lock_path);
+[[noreturn]] void RefuseHeld(const std::string& dir, const std::string& holder) {
   throw InputError(dir + ": in use by another uwbsar process (" +
                    (holder.empty() ? std::string("holder unknown") : holder) +
                    "); run again when it has finished");
+}
+
+/// Opens DIR's lock file, never through a link and never truncated (the holder line is written
+/// once the flock is held). A reader on read-only media locks through an existing lock file,
+/// or with none there not at all (-1: nothing can write the folder). Any other lock file that
+/// cannot be opened is refused, naming it.
+int OpenLockFile(const std::string& dir, const std::string& lock_path, FolderLock::Mode mode) {
+  std::string why, why_read;
+  int error = 0, error_read = 0;
+  int fd = OpenRegularFile(lock_path, O_RDWR | O_CREAT | O_APPEND, &why, &error);
+  if (fd < 0 && mode == FolderLock::Mode::kShared &&
+      (error == EROFS || error == EACCES || error == EPERM)) {
+    fd = OpenRegularFile(lock_path, O_RDONLY, &why_read, &error_read);
+    if (fd < 0 && error == EROFS && error_read == ENOENT) return -1;
+  }
+  if (fd >= 0) return fd;
+  const std::string shown = dir + "/" + kFolderLockName;
+  if (error == 0) {
+    throw InputError(shown + ": the folder's lock file " + why +
+                     "; refused (remove it: uwbsar makes a new one)");
+  }
+  throw InputError(shown + ": cannot open the folder's lock file (" + why +
+                   "), so the folder cannot be locked; refused");
 }
 
 bool TryFlock(int fd, FolderLock::Mode mode) {
@@ -107,22 +140,23 @@ FolderLock::FolderLock(const std::string& dir, Mode mode) : dir_(dir) {
   if (it == Registry().end()) {
     Held held;
     held.pid = ::getpid();
-    held.fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (held.fd < 0) held.fd = ::open(lock_path.c_str(), O_RDONLY | O_CLOEXEC);
+    held.fd = OpenLockFile(dir, lock_path, mode);
     if (held.fd >= 0 && !TryFlock(held.fd, mode)) {
+      const std::string holder = LiveHolder(held.fd);
       ::close(held.fd);
-      RefuseHeld(dir, lock_path);
+      RefuseHeld(dir, holder);
     }
-    if (held.fd >= 0 && mode == Mode::kExclusive) WriteHolder(held.fd);
+    if (held.fd >= 0) WriteHolder(held.fd, mode);
     it = Registry().emplace(canonical.string(), held).first;
-  } else if (mode == Mode::kExclusive && it->second.exclusive == 0 && it->second.fd >= 0) {
+  } else if (mode == Mode::kExclusive && it->second.exclusive == 0) {
+    if (it->second.fd < 0) throw InputError(dir + ": cannot lock for writing: read-only media");
     // Upgrade in place. flock(2) drops the shared lock before it tries the exclusive one, so
     // on refusal the shared lock is taken again for the holds that remain.
     if (!TryFlock(it->second.fd, Mode::kExclusive)) {
       TryFlock(it->second.fd, Mode::kShared);
-      RefuseHeld(dir, lock_path);
+      RefuseHeld(dir, LiveHolder(it->second.fd));
     }
-    WriteHolder(it->second.fd);
+    WriteHolder(it->second.fd, Mode::kExclusive);
   }
   (mode == Mode::kExclusive ? it->second.exclusive : it->second.shared) += 1;
   key_ = mode == Mode::kExclusive ? "x" + canonical.string() : "s" + canonical.string();

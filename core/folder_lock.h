@@ -3,7 +3,9 @@
 // reads a saved session holds a shared lock on the session's folder, so that no second process
 // can write a folder being written or read. The lock is flock(2) on `DIR/.uwbsar.lock`: the
 // kernel releases it when the process ends however it ends (kill -9 included), so a lock is
-// never stale. The file also names the holder (pid, command line, start time) for the refusal.
+// never stale. The file also names the holders (pid, command line, start time; a writer, or
+// the readers) for the refusal. It is opened without following links and never truncated
+// before the lock is held: a lock file that is a link could point at a saved map.
 #pragma once
 
 #include <memory>
@@ -23,9 +25,10 @@ class FolderLock {
   /// exit 3) naming `dir` and the process that holds it when another process holds a
   /// conflicting lock. Within one process the locks on a folder are shared: a second lock on
   /// a folder this process holds exclusively is granted, and a shared lock is upgraded in place
-  /// when an exclusive one is asked for. A folder where no lock file can be created (read-only
-  /// media) is locked through an existing lock file or, without one, not at all: nothing can
-  /// write it then.
+  /// when an exclusive one is asked for. A lock file that is not a regular file (a link, even
+  /// to nothing, a FIFO, a folder) or that cannot be opened is refused naming it (InputError),
+  /// but for a reader on read-only media: it locks through an existing lock file or, on a
+  /// read-only file system without one, not at all (nothing can write the folder then).
   FolderLock(const std::string& dir, Mode mode);
   ~FolderLock();
   FolderLock(FolderLock&&) noexcept;

@@ -1,7 +1,9 @@
 #include "core/interrupt_cleanup.h"
 
+#include <fcntl.h>
 #include <pthread.h>
 #include <signal.h>
+#include <stdio.h>
 
 #include <condition_variable>
 #include <filesystem>
@@ -27,6 +29,21 @@ Registry& TheRegistry() {
   return *registry;
 }
 
+/// Removes `path` while other threads may still be writing into it (the process goes on until
+/// the watcher ends it): renamed away first, never onto a name that exists, so that no file
+/// they create by name afterwards lands in it. A creation already on its way when it was
+/// renamed may still land: removed again until it is gone (a few passes at most).
+void RemoveWhileWritten(const std::string& path) {
+  const std::string doomed = path + ".removing";
+  const bool renamed =
+      ::renameat2(AT_FDCWD, path.c_str(), AT_FDCWD, doomed.c_str(), RENAME_NOREPLACE) == 0;
+  std::error_code ec;
+  for (int pass = 0; pass < 100; ++pass) {
+    std::filesystem::remove_all(renamed ? doomed : path, ec);
+    if (!ec) return;
+  }
+}
+
 void WatchSignals(sigset_t set) {
   for (;;) {
     int sig = 0;
@@ -39,10 +56,7 @@ void WatchSignals(sigset_t set) {
       if (!handler) {
         r.terminating = true;
         r.deferred_done.wait(lock, [&r] { return r.deferring == 0; });
-        for (const auto& [id, path] : r.paths) {
-          std::error_code ec;
-          std::filesystem::remove_all(path, ec);
-        }
+        for (const auto& [id, path] : r.paths) RemoveWhileWritten(path);
         r.paths.clear();
       }
     }

@@ -123,6 +123,9 @@ MapOutputStage::MapOutputStage(const std::string& out_dir)
     : out_dir_(out_dir), created_dir_(Missing(out_dir)), lock_(LockOutputFolder(out_dir)) {
   RefuseFolderOutputs(out_dir);
   stage_ = (fs::path(out_dir) / (std::string(kStagePrefix) + std::to_string(::getpid()))).string();
+  // Registered and made as one step: a Ctrl-C watcher that has already removed the registered
+  // paths cannot see a stage made after it (DeferInterrupts does not return then).
+  const DeferInterrupts hold_signals;
   guard_ = std::make_unique<RemoveOnInterrupt>(stage_);
   std::error_code ec;
   fs::remove_all(stage_, ec);
@@ -133,7 +136,9 @@ MapOutputStage::MapOutputStage(const std::string& out_dir)
 
 MapOutputStage::~MapOutputStage() {
   std::error_code ec;
-  fs::remove_all(stage_, ec);
+  // A commit that failed past its commit point leaves its journal: the stage is what the next
+  // command completes it from.
+  if (!HasInterruptedCommit(out_dir_)) fs::remove_all(stage_, ec);
   // A run that failed leaves no empty folder it created behind (nothing was committed: it
   // holds only its lock file). The lock is still held here, so no other command is in it.
   if (!created_dir_) return;

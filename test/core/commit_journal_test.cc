@@ -1,7 +1,8 @@
 // A commit publishes a staged set of files as one: interrupted at any step (kill -9 through
 // the test hook, in a child process), the folder holds the old complete set until the next
 // command completes the journal, and then the new one; a SIGINT during the commit waits for it
-// to end. The folder lock refuses a second process, naming the holder.
+// to end. A journal that does not match its stage, or names uwbsar's own files, is refused
+// and nothing in the folder moves.
 #include "core/commit_journal.h"
 
 #include <gtest/gtest.h>
@@ -16,7 +17,6 @@
 #include <string>
 
 #include "core/errors.h"
-#include "core/folder_lock.h"
 #include "core/interrupt_cleanup.h"
 
 namespace uwbsar {
@@ -147,56 +147,78 @@ TEST(CommitJournalTest, AJournalNotWrittenByUwbsarIsRefusedNamingItsLine) {
   fs::remove_all(dir);
 }
 
-/// Tries to lock `dir` in a child process: 0 when granted, 3 when refused (the message goes
-/// to `message`).
-int LockInChild(const fs::path& dir, FolderLock::Mode mode, std::string* message) {
-  int fds[2];
-  if (::pipe(fds) != 0) return -1;
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::close(fds[0]);
-    try {
-      const FolderLock lock(dir.string(), mode);
-      ::_exit(0);
-    } catch (const InputError& e) {
-      const std::string text = e.what();
-      if (::write(fds[1], text.data(), text.size()) < 0) ::_exit(4);
-      ::_exit(3);
-    }
-  }
-  ::close(fds[1]);
-  char buf[512];
-  message->clear();
-  for (ssize_t n; (n = ::read(fds[0], buf, sizeof buf)) > 0;) message->append(buf, n);
-  ::close(fds[0]);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+/// The journal uwbsar would write for `plan`, with `extra` lines before its end.
+std::string JournalText(const CommitPlan& plan, const std::string& extra = "") {
+  std::string text = "uwbsar-commit 1\nstage " + plan.stage_name + "\n";
+  for (const std::string& name : plan.remove) text += "remove " + name + "\n";
+  for (const std::string& name : plan.publish) text += "publish " + name + "\n";
+  return text + extra + "end\n";
 }
 
-TEST(FolderLockTest, ASecondProcessIsRefusedNamingTheHolder) {
-  const fs::path dir = FreshFolder("lock");
-  std::string message;
-  {
-    const FolderLock lock(dir.string(), FolderLock::Mode::kExclusive);
-    const FolderLock again(dir.string(), FolderLock::Mode::kShared);  // same process: granted
-    EXPECT_EQ(LockInChild(dir, FolderLock::Mode::kShared, &message), 3);
-    EXPECT_NE(message.find("in use by another uwbsar process (pid " + std::to_string(::getpid())),
-              std::string::npos)
-        << message;
-    EXPECT_EQ(LockInChild(dir, FolderLock::Mode::kExclusive, &message), 3);
+/// Completing `dir`'s journal is refused naming the journal and `what`, and nothing moves.
+void ExpectJournalRefused(const fs::path& dir, const std::string& what) {
+  const Files before = ReadFiles(dir);
+  try {
+    RecoverInterruptedCommit(dir.string());
+    ADD_FAILURE() << "accepted: " << what;
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find((dir / kCommitJournalName).string()), std::string::npos) << message;
+    EXPECT_NE(message.find(what), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
   }
-  {
-    const FolderLock reader(dir.string(), FolderLock::Mode::kShared);
-    EXPECT_EQ(LockInChild(dir, FolderLock::Mode::kShared, &message), 0);  // readers share
-    EXPECT_EQ(LockInChild(dir, FolderLock::Mode::kExclusive, &message), 3);
-    {
-      const FolderLock writer(dir.string(), FolderLock::Mode::kExclusive);  // upgraded
-      EXPECT_EQ(LockInChild(dir, FolderLock::Mode::kShared, &message), 3);
-    }
-    EXPECT_EQ(LockInChild(dir, FolderLock::Mode::kShared, &message), 0);  // back to shared
+  EXPECT_EQ(ReadFiles(dir), before) << what;
+  EXPECT_TRUE(fs::exists(fs::symlink_status(dir / kCommitJournalName))) << what;
+}
+
+TEST(CommitJournalTest, AJournalThatDoesNotMatchItsStageIsRefusedAndNothingMoves) {
+  const fs::path dir = FreshFolder("mismatch");
+  const fs::path other = dir.string() + "_other";  // another folder's files
+  WriteFiles(other, kNew);
+  std::ofstream(dir / kCommitJournalName) << JournalText(Plan());
+  const fs::path stage = dir / kStage;
+  fs::remove_all(stage);  // a user who cleans up hidden folders
+  ExpectJournalRefused(dir, "stage .uwbsar-partial-1 is missing");
+  fs::create_directory_symlink(other, stage);
+  ExpectJournalRefused(dir, "stage .uwbsar-partial-1 is a symbolic link");
+  fs::remove(stage);
+  WriteFiles(stage, kNew);
+  fs::remove(stage / "b.txt");
+  fs::create_symlink(other / "b.txt", stage / "b.txt");
+  ExpectJournalRefused(dir, "b.txt");
+  fs::remove(stage / "b.txt");  // neither staged nor published
+  ExpectJournalRefused(dir, "b.txt");
+  WriteFiles(stage, kNew);
+  fs::remove(dir / kCommitJournalName);  // the journal itself not a regular file
+  fs::create_directory(dir / kCommitJournalName);
+  ExpectJournalRefused(dir, "not a regular file");
+  fs::remove(dir / kCommitJournalName);
+  std::ofstream(other / "journal") << JournalText(Plan());
+  fs::create_symlink(other / "journal", dir / kCommitJournalName);
+  ExpectJournalRefused(dir, "not a regular file");
+  EXPECT_EQ(ReadFiles(other).at("b.txt"), kNew.at("b.txt"));
+  fs::remove(dir / kCommitJournalName);  // a sound journal still completes
+  std::ofstream(dir / kCommitJournalName) << JournalText(Plan());
+  EXPECT_TRUE(RecoverInterruptedCommit(dir.string()));
+  EXPECT_EQ(ReadFiles(dir), kNew);
+  fs::remove_all(dir);
+  fs::remove_all(other);
+}
+
+TEST(CommitJournalTest, AJournalNamingUwbsarsOwnFilesIsRefused) {
+  const fs::path dir = FreshFolder("own");
+  std::ofstream(dir / ".uwbsar.lock") << "the lock\n";
+  std::ofstream(dir / kStage / ".uwbsar.lock") << "not the lock\n";
+  for (const std::string line : {"publish .uwbsar.lock", "remove .uwbsar.lock",
+                                 "publish .uwbsar-commit", "remove .uwbsar-partial-1"}) {
+    std::ofstream(dir / kCommitJournalName) << JournalText(Plan(), line + "\n");
+    ExpectJournalRefused(dir, ".uwbsar-commit line 8");
+    std::ifstream lock(dir / ".uwbsar.lock");
+    std::string text;
+    std::getline(lock, text);
+    EXPECT_EQ(text, "the lock") << line;
+    EXPECT_TRUE(fs::is_directory(dir / kStage)) << line;
   }
-  EXPECT_EQ(LockInChild(dir, FolderLock::Mode::kExclusive, &message), 0);  // all released
   fs::remove_all(dir);
 }
 
