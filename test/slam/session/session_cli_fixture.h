@@ -30,6 +30,13 @@ inline int Lines(const std::string& text) {
   return n;
 }
 
+/// A copy of the folder `from` (a saved map) at `to`, replacing what was there; returns `to`.
+inline std::string CopyOf(const std::string& from, const std::string& to) {
+  fs::remove_all(to);
+  fs::copy(from, to, fs::copy_options::recursive);
+  return to;
+}
+
 class SessionCliTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {

@@ -16,16 +16,10 @@ namespace {
 
 namespace fs = std::filesystem;
 using testing::CliRun;
+using testing::CopyOf;
 using testing::RunCommand;
 using testing::SessionCliTest;
 using testing::Uwbsar;
-
-/// A copy of the saved map `from` in `to` (replacing it).
-std::string CopyMap(const std::string& from, const std::string& to) {
-  fs::remove_all(to);
-  fs::copy(from, to, fs::copy_options::recursive);
-  return to;
-}
 
 /// sha256sum of every file of the map folder `dir` (not its hidden lock file).
 std::string Sha256s(const std::string& dir) {
@@ -46,7 +40,7 @@ void ExpectRefusedAndUnchanged(const std::string& command, const std::string& ma
 
 TEST_F(SessionCliTest, ARunWithoutItsFingerprintRefusesTheJoinNamingTheRow) {
   for (const std::string value : {"NULL", "''"}) {
-    const std::string map = CopyMap(Map("a"), *dir_ + "/no_fingerprint");
+    const std::string map = CopyOf(Map("a"), *dir_ + "/no_fingerprint");
     const std::string session = map + "/session.uwbsar";
     testing::RunSql(session, "UPDATE trajectories SET fingerprint = " + value);
     const std::string where = session + ": trajectories row 1: fingerprint is ";
@@ -61,7 +55,7 @@ TEST_F(SessionCliTest, ARunWithoutItsFingerprintRefusesTheJoinNamingTheRow) {
 }
 
 TEST_F(SessionCliTest, BytesFlippedInATileAreRefusedNamingTheKeyframe) {
-  const std::string map = CopyMap(Map("a"), *dir_ + "/flipped_tile");
+  const std::string map = CopyOf(Map("a"), *dir_ + "/flipped_tile");
   const std::string session = map + "/session.uwbsar";
   const std::string id = testing::SqlText(session, "SELECT min(id) FROM keyframes");
   ASSERT_FALSE(id.empty());
