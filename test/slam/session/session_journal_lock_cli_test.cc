@@ -20,17 +20,12 @@ namespace {
 
 namespace fs = std::filesystem;
 using testing::CliRun;
+using testing::CopyOf;
 using testing::Lines;
 using testing::RunCommand;
 using testing::SessionCliTest;
 using testing::Uwbsar;
 using testing::WriteTextFile;
-
-std::string CopyOf(const std::string& from, const std::string& to) {
-  fs::remove_all(to);
-  fs::copy(from, to, fs::copy_options::recursive);
-  return to;
-}
 
 std::string Sha256(const std::string& path) {
   return RunCommand("sha256sum " + path, false).output.substr(0, 64);
