@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "backend/se2_edge_cost.h"
+#include "core/bounded_file.h"
 #include "core/errors.h"
 #include "imaging/image_io.h"
 
@@ -173,8 +174,7 @@ G2oGraph ParseG2o(std::istream& in, const std::string& source, const G2oReadOpti
 }
 
 G2oGraph ReadG2o(const std::string& path, const G2oReadOptions& options) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open g2o file");
+  std::ifstream in = OpenTextInput(path, "g2o", options.max_file_mb);
   return ParseG2o(in, path, options);
 }
 

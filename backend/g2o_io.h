@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "backend/pose_graph.h"
+#include "core/limits_config.h"
 #include "core/pose2.h"
 
 namespace uwbsar {
@@ -45,11 +46,13 @@ struct G2oGraph {
 
 struct G2oReadOptions {
   bool skip_bad_lines = false;  ///< skip and report bad lines instead of throwing
+  double max_file_mb = LimitsConfig{}.max_input_file_mb;  ///< ReadG2o: the largest file read
 };
 
 G2oGraph ParseG2o(std::istream& in, const std::string& source_name,
                   const G2oReadOptions& options = {});
-/// Throws InputError when the file cannot be opened (and on bad lines, see above).
+/// Throws InputError when the file cannot be opened, is not a regular file or is larger than
+/// options.max_file_mb (and on bad lines, see above).
 G2oGraph ReadG2o(const std::string& path, const G2oReadOptions& options = {});
 
 /// Edges marked `# uwbsar:wall` are wall edges, `# uwbsar:marginal` marginal ones; of the others,

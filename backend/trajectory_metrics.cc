@@ -6,7 +6,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/bounded_file.h"
 #include "core/errors.h"
+#include "core/limits_config.h"
 
 namespace uwbsar {
 
@@ -61,8 +63,7 @@ std::vector<Pose2> ComposeChain(const std::vector<Pose2>& steps) {
 }
 
 std::vector<Pose2> ReadGroundTruthChain(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open ground-truth file");
+  std::ifstream in = OpenTextInput(path, "ground-truth", LimitsConfig{}.max_input_file_mb);
   std::map<int, Pose2> steps;  // from id -> motion to id + 1
   std::string line;
   int line_no = 0;

@@ -27,6 +27,9 @@ struct LimitsConfig {
   double max_navigation_rays = 2.0e4;  ///< lines the navigation grid casts per keyframe
                                        ///< (slam.navigation: positions x radars x fan; default 202)
 
+  double max_input_file_mb = 1024.0;  ///< a text input read whole: a TUM trajectory, a text log,
+                                      ///< a g2o graph, a CSV of pair statistics, waypoints
+
   template <class V>
   void Visit(V& v) {
     v("max_tile_pixels", max_tile_pixels);
@@ -37,6 +40,7 @@ struct LimitsConfig {
     v("max_map_image_pixels", max_map_image_pixels);
     v("tile_cache_mb", tile_cache_mb);
     v("max_navigation_rays", max_navigation_rays);
+    v("max_input_file_mb", max_input_file_mb);
   }
 };
 

@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/bounded_file.h"
 #include "core/errors.h"
 
 namespace uwbsar {
@@ -130,9 +131,9 @@ std::vector<PairStats> ParsePairStats(const std::string& csv_text, const std::st
 }
 
 std::vector<PairStats> ReadPairStatsFile(const std::string& path,
-                                         const std::vector<DetectorKind>& detectors) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open statistics file");
+                                         const std::vector<DetectorKind>& detectors,
+                                         double max_mb) {
+  std::ifstream in = OpenTextInput(path, "statistics", max_mb);
   std::stringstream text;
   text << in.rdbuf();
   return ParsePairStats(text.str(), path, detectors);

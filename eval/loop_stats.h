@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/limits_config.h"
 #include "frontend/place_recognition/loop_rule.h"
 #include "frontend/place_recognition/place_recognition_config.h"
 
@@ -30,8 +31,10 @@ std::vector<std::string> PairStatsColumns(
 std::vector<PairStats> ParsePairStats(
     const std::string& csv_text, const std::string& source,
     const std::vector<DetectorKind>& detectors = PaperDetectorPair());
+/// The file must be a regular file of at most `max_mb` MiB (limits.max_input_file_mb).
 std::vector<PairStats> ReadPairStatsFile(
-    const std::string& path, const std::vector<DetectorKind>& detectors = PaperDetectorPair());
+    const std::string& path, const std::vector<DetectorKind>& detectors = PaperDetectorPair(),
+    double max_mb = LimitsConfig{}.max_input_file_mb);
 
 /// One CSV row (canonical order) for `stats`, without a newline.
 std::string PairStatsRow(const PairStats& stats,

@@ -7,6 +7,7 @@
 #include <set>
 #include <vector>
 
+#include "core/bounded_file.h"
 #include "core/errors.h"
 
 namespace uwbsar {
@@ -16,9 +17,7 @@ namespace {
 /// may be anywhere, so reads are by offset).
 class Bytes {
  public:
-  explicit Bytes(const std::string& path) : path_(path), in_(path, std::ios::binary) {
-    if (!in_) throw InputError(path + ": cannot open image");
-  }
+  explicit Bytes(const std::string& path) : path_(path), in_(OpenInputFile(path, "image")) {}
   /// Reads n bytes at `offset`; false if the file ends first.
   bool Read(std::uint64_t offset, std::size_t n, std::uint8_t* out) {
     in_.clear();

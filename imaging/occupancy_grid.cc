@@ -10,6 +10,7 @@
 #include <sstream>
 #include <utility>
 
+#include "core/bounded_file.h"
 #include "core/yaml_file.h"
 #include "imaging/image_header.h"
 
@@ -50,8 +51,7 @@ bool NextToken(std::istream& in, std::string* token) {
 /// silently accepts some truncated files). The samples are returned raw, 0..maxval, as 16-bit:
 /// OpenCV scales some maxvals and not others (P2 below 256 to 255, P5 never).
 cv::Mat ReadPgm(const std::string& path, double max_pixels, long* maxval) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open map image");
+  std::ifstream in = OpenInputFile(path, "map image");
   std::string magic, token;
   NextToken(in, &magic);
   if (magic != "P2" && magic != "P5") {
@@ -218,7 +218,8 @@ std::vector<std::int8_t> PixelsToCells(const std::vector<double>& pixels, double
 OccupancyGrid LoadOccupancyGrid(const std::string& yaml_path, double max_image_pixels,
                                 MapPixels* pixels_out) {
   const MapMetadata m = LoadMapMetadata(yaml_path);
-  if (!std::filesystem::is_regular_file(m.image_path)) {
+  std::error_code ec;  // a FIFO or a device is named by the image's reader
+  if (!std::filesystem::exists(m.image_path, ec)) {
     throw InputError(yaml_path + ": map image '" + m.image_path + "' does not exist");
   }
   std::string extension = std::filesystem::path(m.image_path).extension().string();

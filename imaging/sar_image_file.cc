@@ -7,6 +7,7 @@
 #include <sstream>
 #include <vector>
 
+#include "core/bounded_file.h"
 #include "core/errors.h"
 #include "core/log.h"
 #include "imaging/image_header.h"
@@ -35,9 +36,7 @@ std::vector<cv::Mat> DecodePages(const std::string& path, double max_pixels) {
     throw InputError(path + ": cannot read SAR image: " + ec.message());  // e.g. a symlink loop
   }
   if (!fs::exists(status)) throw InputError(path + ": SAR image does not exist");
-  if (!fs::is_regular_file(status)) {
-    throw InputError(path + ": SAR image is not a regular file (a folder, device or FIFO)");
-  }
+  CheckInputFile(path, "SAR image");  // a folder, FIFO or device, named
   CheckImageSize(path, max_pixels, "SAR image");
   std::vector<cv::Mat> pages;
   try {

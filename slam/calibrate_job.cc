@@ -95,7 +95,8 @@ CalibrateJobResult RunCalibrateJob(const Config& config, const CalibrateJobOptio
   OdometryAndTruth streams;
   rosbag::ReadRobotBag(options.bag, rosbag::RobotBagOptionsFromConfig(config), streams);
   if (!options.ground_truth_tum.empty()) {
-    streams.ground_truth = ReadGroundTruthFile(options.ground_truth_tum);
+    streams.ground_truth =
+        ReadGroundTruthFile(options.ground_truth_tum, config.limits.max_input_file_mb);
   }
   if (streams.ground_truth.empty()) {
     throw InputError(options.bag + ": no ground truth (topic " + config.slam.ground_truth_topic +

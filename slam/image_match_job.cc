@@ -71,9 +71,10 @@ ImageMatchJobResult RunImageMatchJob(const Config& config, const ImageMatchJobOp
 
 LoopMatrixJobResult LoopMatrixFromStats(const Config& config, const std::string& stats_csv) {
   LoopMatrixJobResult result;
-  result.matrix = EvaluateLoopMatrix(
-      ReadPairStatsFile(stats_csv, config.place_recognition.validation.detectors),
-      config.place_recognition.validation);
+  result.matrix =
+      EvaluateLoopMatrix(ReadPairStatsFile(stats_csv, config.place_recognition.validation.detectors,
+                                           config.limits.max_input_file_mb),
+                         config.place_recognition.validation);
   const LoopMatrix& m = result.matrix;
   result.json = {{"loops", m.loops}, {"d", m.d_ids}, {"r", m.r_ids}};
   return result;

@@ -51,8 +51,8 @@ void CheckImaged(const FrontendStats& s) {
 
 }  // namespace
 
-ImagingInput ReadImagingLog(const std::string& path) {
-  TextLog log = ReadTextLog(path);
+ImagingInput ReadImagingLog(const std::string& path, double max_mb) {
+  TextLog log = ReadTextLog(path, max_mb);
   // An empty log used to give a 1 x 1 strip and exit 0.
   if (log.scans.empty()) {
     throw InputError(path + ": no scans (no 'scan' records): nothing to image");

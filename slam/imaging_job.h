@@ -28,8 +28,9 @@ struct ImagingInput {
 
 /// A text log's records (drivers/logs/text_log.h). Throws InputError naming the log on a
 /// malformed record, and when it holds no scans (nothing to image) or no odometry (the
-/// scans cannot be placed).
-ImagingInput ReadImagingLog(const std::string& path);
+/// scans cannot be placed), or when it is not a regular file of at most `max_mb` MiB
+/// (limits.max_input_file_mb).
+ImagingInput ReadImagingLog(const std::string& path, double max_mb);
 
 /// A built-in synthetic run past DemoScatterers (seed 1, EchoModel defaults): `scene`
 /// "straight" (SyntheticPath's defaults) or "arc" (the same path on a 4 m turn radius).

@@ -224,8 +224,8 @@ AteResult TrajectoryError(const std::vector<std::pair<TimestampNs, Pose2>>& esti
   return ComputeAte(est_poses, ref_poses);
 }
 
-std::vector<OdometrySample> ReadGroundTruthFile(const std::string& tum_path) {
-  return ReadTum(tum_path);
+std::vector<OdometrySample> ReadGroundTruthFile(const std::string& tum_path, double max_mb) {
+  return ReadTum(tum_path, max_mb);
 }
 
 double PeakMemoryMiB() {

@@ -73,8 +73,9 @@ void CheckMappable(const MapRun& run);
 /// The ground truth of a run given as a file (`--ground-truth` of `uwbsar map` and
 /// `calibrate`), which takes the place of the bag's slam.ground_truth_topic: a TUM trajectory
 /// (drivers/logs/tum_reader.h), planar poses with their stamps in file order. Throws
-/// InputError naming the file and line on a malformed line or an empty file.
-std::vector<OdometrySample> ReadGroundTruthFile(const std::string& tum_path);
+/// InputError naming the file and line on a malformed line or an empty file, and naming the
+/// file when it is not a regular file of at most `max_mb` MiB (limits.max_input_file_mb).
+std::vector<OdometrySample> ReadGroundTruthFile(const std::string& tum_path, double max_mb);
 
 /// Trajectory error of `estimate` against `reference`: poses paired by nearest stamp
 /// within `max_dt_s` (as evo does), then ATE after SE(2) alignment. num_poses = 0 when

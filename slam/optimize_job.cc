@@ -101,6 +101,7 @@ OptimizeJobResult RunOptimizeJob(const Config& config, const OptimizeJobOptions&
   }
   G2oReadOptions read;
   read.skip_bad_lines = options.skip_bad_lines;
+  read.max_file_mb = config.limits.max_input_file_mb;
   const G2oGraph file = ReadG2o(options.input, read);
   if (on_skipped_line) {
     for (const std::string& s : file.skipped) on_skipped_line(s);

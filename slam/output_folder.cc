@@ -54,6 +54,45 @@ void CheckOutputFolder(const std::string& dir) {
   if (!error.empty()) throw InputError(dir + ": output folder is not writable: " + error);
 }
 
+namespace {
+
+/// `path` absolute, links resolved as far as it exists, without a trailing '/' ("" when it
+/// cannot be resolved).
+std::filesystem::path Canonical(const std::string& path) {
+  std::error_code ec;
+  std::filesystem::path p = std::filesystem::weakly_canonical(path, ec);
+  if (ec) return {};
+  while (!p.has_filename() && p.has_relative_path()) p = p.parent_path();
+  return p;
+}
+
+/// `inner` is `outer` or lies inside it (both canonical).
+bool WithinOrSame(const std::filesystem::path& inner, const std::filesystem::path& outer) {
+  auto i = inner.begin();
+  for (auto o = outer.begin(); o != outer.end(); ++o, ++i) {
+    if (i == inner.end() || *i != *o) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+void RefuseOutputOnInput(const std::string& option, const std::string& path,
+                         const std::vector<CommandInput>& inputs) {
+  if (path.empty()) return;
+  const std::filesystem::path out = Canonical(path);
+  if (out.empty()) return;  // unresolvable: the output checks name it
+  for (const CommandInput& input : inputs) {
+    if (input.path.empty()) continue;
+    const std::filesystem::path in = Canonical(input.path);
+    if (in.empty() || !WithinOrSame(out, in)) continue;
+    const bool same = out == in;
+    if (input.may_hold_output && !same) continue;
+    throw InputError(option + " " + path + (same ? " is " : " lies inside ") + input.what + " " +
+                     input.path + ": writing there would change an input; give another " + option);
+  }
+}
+
 void CheckOutputFile(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {

@@ -46,9 +46,13 @@ void AddCalibrateCommand(CLI::App& app, const GlobalOptions& globals) {
       ->check(InputFile());
   cmd->add_option("--segment-m", opts->segment_m, "Odometry path per fitted segment")
       ->check(CheckPositiveFinite);
-  cmd->add_option("--out", opts->out, "Write the calibration as a configuration file (YAML)");
+  cmd->add_option("--out", opts->out, "Write the calibration as a configuration file (YAML)")
+      ->check(OutputPath("--out"));
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
+    RefuseOutputsOnInputs(
+        globals, {{"--out", opts->out}},
+        {{"the input bag", opts->bag}, {"the --ground-truth file", opts->ground_truth}});
     slam::CalibrateJobOptions options;
     options.bag = opts->bag;
     options.ground_truth_tum = opts->ground_truth;

@@ -51,7 +51,7 @@ void AddCompareOptions(CLI::App* cmd, CompareOptions* opts) {
       ->required();
   cmd->add_option("LIDAR_MAP", opts->lidar, "LiDAR ground-truth grid (map_server YAML)")
       ->required();
-  cmd->add_option("--out", opts->out_dir, "Output folder")->required();
+  cmd->add_option("--out", opts->out_dir, "Output folder")->required()->check(OutputPath("--out"));
   cmd->add_option("--align", opts->align,
                   "icp (default: ICP from the map origins), origin (trust the origins), or a "
                   "fixed transform x,y,yaw (m, m, deg) of the SAR frame in the LiDAR frame")
@@ -85,6 +85,8 @@ AlignRequest MakeAlignRequest(const CompareOptions& opts, const Config& config) 
 
 void RunCompare(const CompareOptions& opts, const GlobalOptions& globals) {
   Config config = LoadConfigFor(globals);
+  RefuseOutputsOnInputs(globals, {{"--out", opts.out_dir}},
+                        {{"the SAR map", opts.sar}, {"the LiDAR map", opts.lidar}});
   slam::CheckOutputFolder(opts.out_dir);  // before the work, creating nothing
   if (opts.tolerance_cells >= 0) config.compare.tolerance_cells = opts.tolerance_cells;
   const AlignRequest request = MakeAlignRequest(opts, config);

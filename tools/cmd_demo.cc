@@ -31,7 +31,9 @@ void AddDemoCommand(CLI::App& app, const GlobalOptions& globals) {
   auto opts = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
       "demo", "Simulate the paper's depart-and-return run, map it and compare with ground truth");
-  cmd->add_option("--out", opts->out_dir, "Output folder")->capture_default_str();
+  cmd->add_option("--out", opts->out_dir, "Output folder")
+      ->capture_default_str()
+      ->check(OutputPath("--out"));
   cmd->add_option("--seed", opts->seed, "Simulation seed")
       ->check(CheckSeed, "integer 0..2^64-1")
       ->capture_default_str();
@@ -41,11 +43,12 @@ void AddDemoCommand(CLI::App& app, const GlobalOptions& globals) {
       ->check(InputFile());
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
+    const std::string map = opts->map_path.empty() ? BundledMap() : opts->map_path;
+    RefuseOutputsOnInputs(globals, {{"--out", opts->out_dir}}, {{"the --map file", map}});
     slam::MapOutputStage stage(opts->out_dir);
     slam::RefuseToReplaceSavedMap(opts->out_dir, {}, false, "give another --out");
     slam::MapRun run =
-        slam::MapSimulation(config, opts->map_path.empty() ? BundledMap() : opts->map_path,
-                            "depart-return", opts->seed, nullptr, !globals.quiet);
+        slam::MapSimulation(config, map, "depart-return", opts->seed, nullptr, !globals.quiet);
     slam::SaveSessionWithOutputs(&stage, run);  // `map --resume DIR` extends the demo's map
     const slam::MapOutputs outputs = stage.Commit(run);
     PrintMapSummary(run, outputs, opts->out_dir, globals);

@@ -17,7 +17,9 @@ void AddDetectorsOptions(CLI::App* cmd, slam::DetectorsJobOptions* opts) {
   cmd->add_option("BAG", opts->bag, "ROS 2 bag (directory, .db3 or .mcap)")
       ->required()
       ->check(InputPath());
-  cmd->add_option("--out", opts->out_dir, "Output folder")->capture_default_str();
+  cmd->add_option("--out", opts->out_dir, "Output folder")
+      ->capture_default_str()
+      ->check(OutputPath("--out"));
   cmd->add_option("--regions", opts->regions, "Region length and step in metres (default 2,1)")
       ->expected(2)
       ->delimiter(',');
@@ -31,6 +33,7 @@ void AddDetectorsOptions(CLI::App* cmd, slam::DetectorsJobOptions* opts) {
 
 void RunDetectors(slam::DetectorsJobOptions opts, const GlobalOptions& globals) {
   const Config config = LoadConfigFor(globals);
+  RefuseOutputsOnInputs(globals, {{"--out", opts.out_dir}}, {{"the input bag", opts.bag}});
   opts.progress = !globals.quiet;
   const slam::DetectorsJobResult r = slam::RunDetectorsJob(config, opts);
   if (globals.quiet) return;

@@ -20,12 +20,14 @@ void AddExportPcdCommand(CLI::App& app, const GlobalOptions& globals) {
       "Write a map as a PCD v0.7 cloud (x y z intensity): the occupied cells of a map_server "
       "YAML, or the peaks of a float SAR map (*_float.tif + *_grid.yaml) with their intensity");
   cmd->add_option("MAP", opts->map, "map_server YAML, or float SAR TIFF")->required();
-  cmd->add_option("--out", opts->out, "Output .pcd file")->required();
+  cmd->add_option("--out", opts->out, "Output .pcd file")->required()->check(OutputPath("--out"));
   cmd->add_option("--grid", opts->grid,
                   "Pixel geometry of a float TIFF (default: <prefix>_grid.yaml)");
   cmd->add_flag("--ascii", opts->ascii, "ASCII PCD instead of binary");
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
+    RefuseOutputsOnInputs(globals, {{"--out", opts->out}},
+                          {{"the input map", opts->map}, {"the --grid file", opts->grid}});
     slam::CheckOutputFile(opts->out);  // before the work
     if (!opts->grid.empty() && !slam::IsFloatSarMapPath(opts->map)) {
       throw CLI::ValidationError("--grid", "only for a float TIFF MAP");

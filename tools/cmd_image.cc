@@ -22,7 +22,9 @@ void AddImageCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--synthetic", opts->synthetic, "Built-in scene: straight or arc")
       ->check(CLI::IsMember({"straight", "arc"}))
       ->excludes(log);
-  cmd->add_option("--out", opts->out_dir, "Output folder")->capture_default_str();
+  cmd->add_option("--out", opts->out_dir, "Output folder")
+      ->capture_default_str()
+      ->check(OutputPath("--out"));
   cmd->add_option("--mode", opts->mode, "paper or coherent (overrides imaging.mode)")
       ->check(CLI::IsMember({"paper", "coherent"}));
   cmd->add_option("--resolution", opts->resolution_m, "Pixel size in metres")
@@ -30,6 +32,8 @@ void AddImageCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--prefix", opts->prefix, "Output file prefix")->capture_default_str();
   cmd->callback([opts, &globals] {
     Config config = LoadConfigFor(globals);
+    RefuseOutputsOnInputs(globals, {{"--out", opts->out_dir}},
+                          {{"the --log file", opts->log_path}});
     slam::EnsureDirectory(opts->out_dir);  // every output is checked before the work
     if (!opts->mode.empty()) EnumFromName(opts->mode, &config.imaging.mode);  // checked above
     if (opts->resolution_m > 0) {
@@ -38,7 +42,7 @@ void AddImageCommand(CLI::App& app, const GlobalOptions& globals) {
     }
     slam::ImagingInput input;
     if (!opts->log_path.empty()) {
-      input = slam::ReadImagingLog(opts->log_path);
+      input = slam::ReadImagingLog(opts->log_path, config.limits.max_input_file_mb);
     } else if (!opts->synthetic.empty()) {
       input = slam::SyntheticImagingRun(config, opts->synthetic);
     } else {

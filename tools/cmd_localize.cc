@@ -22,18 +22,25 @@ void AddLocalizeCommand(CLI::App& app, const GlobalOptions& globals) {
       "localize", "Localise a ROS 2 bag in a saved map (session.uwbsar); the map is not changed");
   cmd->add_option("bag", opts->bag, "Bag directory, .db3 or .mcap")->required();
   cmd->add_option("--map", opts->map, "Saved session (folder or session.uwbsar)")->required();
-  cmd->add_option("--out", opts->out_dir, "Output folder")->required();
+  cmd->add_option("--out", opts->out_dir, "Output folder")->required()->check(OutputPath("--out"));
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
-    // The output folder is locked for the whole run and the map's folder shared: neither can
-    // change under the run, and the outputs never go into a map's folder.
-    const FolderLock out_lock = slam::LockOutputFolder(opts->out_dir);
+    // Nothing is created before the inputs are accepted: the outputs are checked, the map
+    // read (its folder locked shared), and only then the output folder made and locked for
+    // the whole run. Neither can change under the run, and the outputs never go into a
+    // map's folder (checked again under the lock).
     slam::RefuseMapFolderForLocalize(opts->out_dir);
+    RefuseOutputsOnInputs(
+        globals, {{"--out", opts->out_dir}},
+        {{"the input bag", opts->bag}, SessionInput("the --map session", opts->map)});
+    slam::CheckOutputFolder(opts->out_dir);
     const slam::SavedSession map = slam::OpenSavedSession(opts->map, config);
     // results.mcap's /map is the map's own map.pgm, read (and checked) before the work.
     const OccupancyGrid map_grid = config.slam.results_mcap
                                        ? slam::SavedNavigationGrid(map.dir, map.data, config)
                                        : OccupancyGrid{};
+    const FolderLock out_lock = slam::LockOutputFolder(opts->out_dir);
+    slam::RefuseMapFolderForLocalize(opts->out_dir);
     const slam::LocalizeRun run = slam::LocalizeBag(map.data, config, opts->bag, !globals.quiet);
     const nlohmann::json s =
         slam::WriteLocalizeOutputs(run, opts->out_dir, &map.data, &config, &map_grid);

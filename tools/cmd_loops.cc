@@ -62,7 +62,8 @@ void AddLoopsCommand(CLI::App& app, const GlobalOptions& globals) {
                   "--images: comma-separated detectors (default: the loop rule's pair, "
                   "place_recognition.validation.detectors)");
   cmd->add_option("--out", opts->out_dir,
-                  "--images: write pairs.csv, pairs.md, loops.json and matrix.png here");
+                  "--images: write pairs.csv, pairs.md, loops.json and matrix.png here")
+      ->check(OutputPath("--out"));
   cmd->add_flag("--json", opts->json,
                 "Print {\"loops\": [[...], ...], \"d\": [...], \"r\": [...]} (rows d, columns r; "
                 "with --images also \"pairs\")");
@@ -75,6 +76,9 @@ void AddLoopsCommand(CLI::App& app, const GlobalOptions& globals) {
       throw CLI::ValidationError("--out", "needs --images");
     }
     const Config config = LoadConfigFor(globals);
+    RefuseOutputsOnInputs(
+        globals, {{"--out", opts->out_dir}},
+        {{"the --from-stats file", opts->stats_path}, {"the --images folder", opts->images_dir}});
     const slam::LoopMatrixJobResult result =
         !opts->stats_path.empty()
             ? slam::LoopMatrixFromStats(config, opts->stats_path)

@@ -44,7 +44,7 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
   auto opts = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("map", "Map a ROS 2 bag: trajectory, loops, global SAR map");
   cmd->add_option("bag", opts->bag, "Bag directory, .db3 or .mcap")->required();
-  cmd->add_option("--out", opts->out_dir, "Output folder")->required();
+  cmd->add_option("--out", opts->out_dir, "Output folder")->required()->check(OutputPath("--out"));
   cmd->add_option("--ground-truth", opts->ground_truth,
                   "TUM trajectory to evaluate against (default: the bag's ground-truth topic)")
       ->check(InputFile());
@@ -63,13 +63,18 @@ void AddMapCommand(CLI::App& app, const GlobalOptions& globals) {
                 "a folder is refused unless it is the --resume session's own");
   cmd->callback([opts, &globals] {
     Config config = LoadConfigFor(globals);
+    // The --resume session's folder may be the output: the join replaces its outputs as one
+    // set (slam::RefuseToReplaceSavedMap).
+    RefuseOutputsOnInputs(
+        globals, {{"--out", opts->out_dir}},
+        {{"the input bag", opts->bag}, {"the --ground-truth file", opts->ground_truth}});
     if (opts->exact) config.slam.keep_scan_profiles = true;  // the exact map re-images them
     // Every input and output is checked before the work: the ground truth is read, the
     // output folder locked and its staging folder created, the saved session read (an
     // incompatible one, or one that holds this recording already, is refused first).
     std::vector<OdometrySample> ground_truth;
     if (!opts->ground_truth.empty()) {
-      ground_truth = slam::ReadGroundTruthFile(opts->ground_truth);
+      ground_truth = slam::ReadGroundTruthFile(opts->ground_truth, config.limits.max_input_file_mb);
     }
     slam::MapOutputStage stage(opts->out_dir);
     std::optional<slam::SavedSession> saved;

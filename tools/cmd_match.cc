@@ -56,9 +56,12 @@ void AddMatchCommand(CLI::App& app, const GlobalOptions& globals) {
                   "Comma-separated detectors (default: the loop rule's pair, "
                   "place_recognition.validation.detectors; also sift,surf,brisk,akaze,orb)");
   cmd->add_flag("--json", opts->json, "Print the result as one JSON document");
-  cmd->add_option("--out", opts->out_dir, "Also write match.png (good matches) and match.json");
+  cmd->add_option("--out", opts->out_dir, "Also write match.png (good matches) and match.json")
+      ->check(OutputPath("--out"));
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
+    RefuseOutputsOnInputs(globals, {{"--out", opts->out_dir}},
+                          {{"the image", opts->a}, {"the image", opts->b}});
     const slam::ImageMatchJobResult result = slam::RunImageMatchJob(config, *opts);
     const nlohmann::json& json = result.json;
     if (opts->json) {

@@ -26,9 +26,11 @@ void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("session_a", opts->a, "The map kept fixed (folder or session.uwbsar)")
       ->required();
   cmd->add_option("session_b", opts->b, "The session joined to it")->required();
-  cmd->add_option("--out", opts->out_dir, "Output folder")->required();
+  cmd->add_option("--out", opts->out_dir, "Output folder")->required()->check(OutputPath("--out"));
   cmd->callback([opts, &globals] {
     const Config config = LoadConfigFor(globals);
+    // Either session's folder may be the output: the join replaces its outputs as one set.
+    RefuseOutputsOnInputs(globals, {{"--out", opts->out_dir}}, {});
     slam::MapOutputStage stage(opts->out_dir);  // locked; the outputs committed as one set
     if (slam::SamePlace(ResolveSessionPath(opts->a), ResolveSessionPath(opts->b))) {
       throw InputError(opts->b + ": the same session as " + opts->a +

@@ -24,9 +24,12 @@ void AddOptimizeOptions(CLI::App* cmd, OptimizeOptions* opts) {
   cmd->add_option("input", opts->in, "g2o file (VERTEX_SE2, EDGE_SE2, FIX)")
       ->required()
       ->check(InputFile());
-  cmd->add_option("--out", opts->out, "Write the optimised graph (g2o)");
-  cmd->add_option("--tum", opts->tum, "Write the optimised trajectory (TUM; time = vertex id)");
-  cmd->add_option("--png", opts->png, "Write a picture of the optimised graph");
+  cmd->add_option("--out", opts->out, "Write the optimised graph (g2o)")
+      ->check(OutputPath("--out"));
+  cmd->add_option("--tum", opts->tum, "Write the optimised trajectory (TUM; time = vertex id)")
+      ->check(OutputPath("--tum"));
+  cmd->add_option("--png", opts->png, "Write a picture of the optimised graph")
+      ->check(OutputPath("--png"));
   cmd->add_option("--init", opts->init,
                   "First solve starts from: guess or chordal "
                   "(overrides backend.initialization)")
@@ -78,6 +81,8 @@ void PrintOptimizeText(const OptimizeResult& r) {
 
 void Optimize(const OptimizeOptions& opts, const GlobalOptions& globals) {
   Config config = LoadConfigFor(globals);
+  RefuseOutputsOnInputs(globals, {{"--out", opts.out}, {"--tum", opts.tum}, {"--png", opts.png}},
+                        {{"the input graph", opts.in}});
   if (!opts.init.empty()) EnumFromName(opts.init, &config.backend.initialization);  // checked
   slam::OptimizeJobOptions options;
   options.input = opts.in;

@@ -13,6 +13,7 @@
 #include "slam/app_config.h"
 #include "slam/live/live_emulation.h"
 #include "slam/live/live_runner.h"
+#include "slam/saved_session.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -38,9 +39,11 @@ struct RunOptions {
 
 void AddRunOptions(CLI::App* cmd, RunOptions* opts) {
   cmd->add_option("--out", opts->out_dir, "Output folder (snapshots, final outputs, live.json)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(OutputPath("--out"));
   cmd->add_option("--recording", opts->recording,
-                  "Recording bag directory (default: <out>/rosbag2_<date>-<time>)");
+                  "Recording bag directory (default: <out>/rosbag2_<date>-<time>)")
+      ->check(OutputPath("--recording"));
   cmd->add_option("--source", opts->source,
                   "serial: the robot's LT102 radars, Kobuki base and GPIO (live.*); ros2: a ROS 2 "
                   "robot's radar and odometry topics over DDS, results published for RViz2 (dds.*)")
@@ -118,6 +121,13 @@ void Run(const RunOptions& opts, const GlobalOptions& globals) {
   options.quiet = globals.quiet;
   options.localize_in = opts.localize_in;
   options.overwrite = opts.overwrite;
+  if (!opts.localize_in.empty()) slam::RefuseMapFolderForLocalize(opts.out_dir);  // its own words
+  RefuseOutputsOnInputs(
+      globals, {{"--out", opts.out_dir}, {"--recording", opts.recording}},
+      {{"the --map file",
+        opts.emulate ? (opts.map_path.empty() ? BundledMap() : opts.map_path) : ""},
+       opts.localize_in.empty() ? slam::CommandInput{}
+                                : SessionInput("the --localize-in session", opts.localize_in)});
   // Locked and checked before any emulated device is made inside it.
   const FolderLock out_lock = slam::LockLiveOutputFolder(options);
   std::optional<slam::LiveEmulation> emulation;

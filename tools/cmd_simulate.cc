@@ -8,6 +8,7 @@
 // (slam/simulate_job.h).
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include "slam/app_config.h"
@@ -31,6 +32,10 @@ struct SimulateOptions {
 
 void RunSimulate(const SimulateOptions& o, const GlobalOptions& globals) {
   Config config = LoadConfigFor(globals);
+  RefuseOutputsOnInputs(globals, {{"--out", o.out_dir}, {"--text-log", o.text_log_path}},
+                        {{"the --map file", o.map_path},
+                         {"the --route file", std::filesystem::exists(o.route) ? o.route : ""},
+                         {"the --targets file", o.targets_path}});
   if (o.laser) config.simulator.laser.enabled = true;
   slam::SimulateJobOptions options;
   options.map_yaml = o.map_path;
@@ -77,7 +82,9 @@ void AddSimulateCommand(CLI::App& app, const GlobalOptions& globals) {
   cmd->add_option("--route", o->route,
                   "depart-return, loop, or a waypoints file (lines 'x_m y_m', world frame)")
       ->capture_default_str();
-  cmd->add_option("--out", o->out_dir, "Bag folder to create (must not exist)")->required();
+  cmd->add_option("--out", o->out_dir, "Bag folder to create (must not exist)")
+      ->required()
+      ->check(OutputPath("--out"));
   cmd->add_option("--storage", o->storage, "Bag storage: sqlite3 (Humble) or mcap")
       ->check(CLI::IsMember({"sqlite3", "mcap"}))
       ->capture_default_str();
@@ -93,7 +100,8 @@ void AddSimulateCommand(CLI::App& app, const GlobalOptions& globals) {
                   "Point targets file (YAML: point_targets: [{x_m, y_m, rcs_m2}, ...])")
       ->check(InputFile());
   cmd->add_option("--text-log", o->text_log_path,
-                  "Also write odometry and scans as a plain text log to this file");
+                  "Also write odometry and scans as a plain text log to this file")
+      ->check(OutputPath("--text-log"));
   cmd->add_flag("--laser", o->laser, "Also simulate a 2-D LiDAR on simulator.laser.topic");
   cmd->callback([o, &globals] { RunSimulate(*o, globals); });
 }

@@ -48,6 +48,25 @@ void LoadGlobalConfig(GlobalOptions* globals);
 /// command-line errors, exit 2). Other kinds of path are left to the loaders.
 CLI::Validator InputFile();
 CLI::Validator InputPath();
+/// CLI11 check of an output path given as `option`: an empty one is refused with one line,
+/// "--out: empty path" (exit 3).
+CLI::Validator OutputPath(const std::string& option);
+
+/// An output of a command: its option and path ("" when it was not given).
+struct CommandOutput {
+  std::string option;
+  std::string path;
+};
+
+/// Refuses (InputError, naming both) an output that is or lies inside something the command
+/// reads (slam::RefuseOutputOnInput): each of `outputs` against `inputs` and every --config
+/// file. Every command that writes calls it first, before it creates or locks anything.
+void RefuseOutputsOnInputs(const GlobalOptions& globals, const std::vector<CommandOutput>& outputs,
+                           std::vector<slam::CommandInput> inputs);
+/// A saved session named by a folder or its session file, as an input: its folder (the path
+/// itself when there is nothing there), which may hold the output's folder. A session that is
+/// joined (`map --resume`, `merge`) is not one: its folder may be the output by design.
+slam::CommandInput SessionInput(const std::string& what, const std::string& dir_or_file);
 
 /// CLI11 check functions ("" when valid). --seed: a decimal integer in [0, 2^64 - 1]
 /// (CLI11 itself wraps -1 and saturates 2^64).

@@ -7,6 +7,7 @@
 
 #include "core/errors.h"
 #include "slam/app_config_io.h"
+#include "slam/session/session_file.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -41,6 +42,34 @@ CLI::Validator InputCheck(bool file) {
 
 CLI::Validator InputFile() { return InputCheck(true); }
 CLI::Validator InputPath() { return InputCheck(false); }
+
+CLI::Validator OutputPath(const std::string& option) {
+  return CLI::Validator(
+      [option](std::string& path) {
+        if (path.empty()) throw InputError(option + ": empty path");
+        return std::string();
+      },
+      "PATH");
+}
+
+void RefuseOutputsOnInputs(const GlobalOptions& globals, const std::vector<CommandOutput>& outputs,
+                           std::vector<slam::CommandInput> inputs) {
+  for (const std::string& config : globals.config_paths) {
+    inputs.push_back({"the --config file", config});
+  }
+  for (const CommandOutput& out : outputs) slam::RefuseOutputOnInput(out.option, out.path, inputs);
+}
+
+slam::CommandInput SessionInput(const std::string& what, const std::string& dir_or_file) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  std::string folder = dir_or_file;
+  if (fs::is_regular_file(dir_or_file, ec)) {
+    folder = fs::path(dir_or_file).parent_path().string();
+    if (folder.empty()) folder = ".";
+  }
+  return {what, folder, /*may_hold_output=*/true};
+}
 
 std::string CheckSeed(const std::string& text) {
   const std::string error =

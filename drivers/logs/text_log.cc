@@ -8,6 +8,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/bounded_file.h"
+
 namespace uwbsar {
 namespace {
 
@@ -35,9 +37,8 @@ void ExpectEnd(std::istringstream& in, const std::string& where, const char* rec
 
 }  // namespace
 
-TextLog ReadTextLog(const std::string& path) {
-  std::ifstream file(path);
-  if (!file) throw InputError(path + ": cannot open log file");
+TextLog ReadTextLog(const std::string& path, double max_mb) {
+  std::ifstream file = OpenTextInput(path, "log", max_mb);
   TextLog log;
   std::string line;
   for (int line_no = 1; std::getline(file, line); ++line_no) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/limits_config.h"
 #include "core/types.h"
 
 namespace uwbsar {
@@ -18,8 +19,9 @@ struct TextLog {
   std::vector<RadarScan> scans;
 };
 
-/// Throws InputError naming the file, line and field on any malformed record.
-TextLog ReadTextLog(const std::string& path);
+/// Throws InputError naming the file, line and field on any malformed record, and naming the
+/// file when it is not a regular file of at most `max_mb` MiB (limits.max_input_file_mb).
+TextLog ReadTextLog(const std::string& path, double max_mb = LimitsConfig{}.max_input_file_mb);
 /// Writes atomically (temporary name, then rename).
 void WriteTextLog(const std::string& path, const TextLog& log);
 

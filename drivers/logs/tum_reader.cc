@@ -4,11 +4,12 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/bounded_file.h"
+
 namespace uwbsar {
 
-std::vector<OdometrySample> ReadTum(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open trajectory file");
+std::vector<OdometrySample> ReadTum(const std::string& path, double max_mb) {
+  std::ifstream in = OpenTextInput(path, "trajectory", max_mb);
   std::vector<OdometrySample> out;
   std::string line;
   for (int line_no = 1; std::getline(in, line); ++line_no) {

@@ -6,12 +6,16 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/limits_config.h"
 #include "core/types.h"
 
 namespace uwbsar {
 
 /// Planar poses (yaw from the quaternion) with their stamps, in file order.
-/// Throws InputError naming the file and line on a malformed line or an empty file.
-std::vector<OdometrySample> ReadTum(const std::string& path);
+/// Throws InputError naming the file and line on a malformed line or an empty file, and
+/// naming the file when it is not a regular file of at most `max_mb` MiB
+/// (limits.max_input_file_mb).
+std::vector<OdometrySample> ReadTum(const std::string& path,
+                                    double max_mb = LimitsConfig{}.max_input_file_mb);
 
 }  // namespace uwbsar

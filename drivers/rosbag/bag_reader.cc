@@ -12,6 +12,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "core/bounded_file.h"
 #include "core/errors.h"
 #include "core/interrupt_cleanup.h"
 #include "drivers/rosbag/bag_metadata.h"
@@ -217,6 +218,7 @@ void BagReader::OpenDirectory(const std::string& dir) {
     if (!fs::exists(p)) {
       throw InputError(meta_path + ": lists storage file '" + rel + "' which does not exist");
     }
+    CheckInputFile(p.string(), "bag storage");  // a FIFO would block the open
     auto file = std::make_unique<File>();
     std::string open_path = p.string();
     if (mode == "file") {
@@ -243,6 +245,7 @@ void BagReader::OpenDirectory(const std::string& dir) {
 }
 
 void BagReader::OpenBareFile(const std::string& path) {
+  CheckInputFile(path, "bag");  // a FIFO would block the open
   const std::string kind = DetectStorage(path);
   if (kind.empty()) {
     throw InputError(path +

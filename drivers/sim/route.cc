@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/bounded_file.h"
+
 namespace uwbsar::sim {
 
 std::vector<std::string> BuiltInRouteNames() { return {"depart-return", "loop"}; }
@@ -27,9 +29,8 @@ Route BuiltInRoute(const std::string& name, const SimRouteConfig& c) {
   return route;
 }
 
-Route ReadWaypointsFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open waypoints file");
+Route ReadWaypointsFile(const std::string& path, double max_mb) {
+  std::ifstream in = OpenTextInput(path, "waypoints", max_mb);
   Route route;
   route.name = std::filesystem::path(path).stem().string();
   std::string line;
@@ -68,17 +69,18 @@ Route ReadWaypointsFile(const std::string& path) {
   return route;
 }
 
-Route ResolveRoute(const std::string& spec, const SimRouteConfig& config) {
+Route ResolveRoute(const std::string& spec, const SimRouteConfig& config, double max_mb) {
   for (const std::string& name : BuiltInRouteNames()) {
     if (spec == name) return BuiltInRoute(name, config);
   }
-  if (!std::filesystem::is_regular_file(spec)) {
+  std::error_code ec;
+  if (!std::filesystem::exists(spec, ec)) {
     std::string names;
     for (const std::string& name : BuiltInRouteNames()) names += (names.empty() ? "" : ", ") + name;
     throw InputError("route '" + spec + "' is neither a built-in route (" + names +
                      ") nor a waypoints file");
   }
-  return ReadWaypointsFile(spec);
+  return ReadWaypointsFile(spec, max_mb);  // a FIFO or a device is named as such
 }
 
 }  // namespace uwbsar::sim

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/limits_config.h"
 #include "core/pose2.h"
 #include "drivers/sim/simulator_config.h"
 #include "imaging/occupancy_grid.h"
@@ -30,7 +31,9 @@ std::vector<std::string> BuiltInRouteNames();
 
 /// A built-in route name, or else a waypoints file. Throws InputError naming the
 /// file and line on malformed input, or listing the built-in names when `spec` is neither.
-Route ResolveRoute(const std::string& spec, const SimRouteConfig& config);
-Route ReadWaypointsFile(const std::string& path);
+/// A waypoints file must be a regular file of at most `max_mb` MiB (limits.max_input_file_mb).
+Route ResolveRoute(const std::string& spec, const SimRouteConfig& config,
+                   double max_mb = LimitsConfig{}.max_input_file_mb);
+Route ReadWaypointsFile(const std::string& path, double max_mb = LimitsConfig{}.max_input_file_mb);
 
 }  // namespace uwbsar::sim

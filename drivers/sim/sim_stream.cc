@@ -27,7 +27,8 @@ SimScenario MakeScenario(const SimSettings& config, const std::string& map_yaml,
   SimScenario scenario;
   scenario.environment = std::make_shared<const SimEnvironment>(
       LoadOccupancyGrid(map_yaml, config.limits.max_map_image_pixels), radar, seed);
-  scenario.route = ResolveRoute(route_spec, config.simulator.route);
+  scenario.route =
+      ResolveRoute(route_spec, config.simulator.route, config.limits.max_input_file_mb);
   scenario.trajectory = Trajectory::Plan(scenario.route, config.simulator.route);
   scenario.trajectory.CheckClearance(scenario.environment->grid(),
                                      config.simulator.route.clearance_m);

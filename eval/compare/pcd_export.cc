@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/bounded_file.h"
 #include "core/errors.h"
 
 namespace uwbsar {
@@ -18,8 +19,7 @@ namespace {
 /// PCL 1.13's reader crashes on some files without a PCD header: check the header's keys
 /// before handing the file over.
 void CheckPcdHeader(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open PCD file");
+  std::ifstream in = OpenInputFile(path, "PCD");
   std::set<std::string> keys;
   std::string line;
   for (int n = 0; n < 64 && std::getline(in, line); ++n) {

@@ -16,7 +16,8 @@ FloatSarMap LoadFloatSarMap(const std::string& tiff_path, const std::string& gri
                             double max_image_pixels) {
   FloatSarMap map;
   map.grid = LoadSarGridMetadata(grid_yaml_path);
-  if (!std::filesystem::is_regular_file(tiff_path)) {
+  std::error_code ec;  // a FIFO or a device is named by CheckImageSize
+  if (!std::filesystem::exists(tiff_path, ec)) {
     throw InputError(tiff_path + ": float SAR map does not exist");
   }
   CheckImageSize(tiff_path, max_image_pixels, "float SAR map");

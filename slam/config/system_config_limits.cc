@@ -126,7 +126,8 @@ void ValidateLimits(const SystemConfig& c, const std::string& src) {
                                    std::make_pair("max_image_pixels", l.max_image_pixels),
                                    std::make_pair("max_map_image_pixels", l.max_map_image_pixels),
                                    std::make_pair("tile_cache_mb", l.tile_cache_mb),
-                                   std::make_pair("max_navigation_rays", l.max_navigation_rays)}) {
+                                   std::make_pair("max_navigation_rays", l.max_navigation_rays),
+                                   std::make_pair("max_input_file_mb", l.max_input_file_mb)}) {
     Require(value > 0, src, std::string("limits.") + key, "must be > 0");
   }
   ValidateRangeSamples(c, src);

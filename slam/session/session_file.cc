@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "core/bounded_file.h"
 #include "core/errors.h"
 #include "slam/config/config_fingerprint.h"
 #include "slam/session/blob_checksum.h"
@@ -249,7 +250,8 @@ std::string ResolveSessionPath(const std::string& dir_or_file) {
 
 SessionData ReadSession(const std::string& path, const SystemConfig* config) {
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw InputError(path + ": no session file there");
+  if (!fs::exists(path, ec)) throw InputError(path + ": no session file there");
+  CheckInputFile(path, "session");  // a folder, FIFO or device, named
   SqliteDb db(path, /*create=*/false);
   {
     // A foreign sqlite file (or not sqlite at all) fails here, with a clear line.

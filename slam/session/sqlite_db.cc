@@ -1,11 +1,14 @@
 #include "slam/session/sqlite_db.h"
 
 #include <sqlite3.h>
+#include <sys/stat.h>
 #include <sys/statvfs.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <stdexcept>
 
@@ -26,12 +29,56 @@ std::string WriteFailureCause(const std::string& path, int code, int os_error) {
   return os_error != 0 ? std::strerror(os_error) : sqlite3_errstr(code);
 }
 
+/// Refuses a file whose last changes are not in it: a write-ahead log (`-wal`) with frames, or
+/// a rollback journal (`-journal`) that is still live, both left by a program that wrote the
+/// file in place (uwbsar never does: it writes a new file and renames it). Reading the file
+/// alone would miss them, and letting sqlite settle them would change the user's folder.
+void RefusePendingChanges(const std::string& path, const std::string& name) {
+  for (const char* suffix : {"-wal", "-journal"}) {
+    const std::string side = path + suffix;
+    struct stat st {};
+    if (::stat(side.c_str(), &st) != 0 || (S_ISREG(st.st_mode) && st.st_size == 0)) continue;
+    if (S_ISREG(st.st_mode) && suffix[1] == 'j') {
+      char header[8] = {};  // a finished journal kept (journal_mode=PERSIST) starts with zeros
+      std::ifstream(side, std::ios::binary).read(header, sizeof header);
+      if (std::all_of(header, header + sizeof header, [](char c) { return c == 0; })) continue;
+    }
+    throw InputError(name + ": " + side +
+                     " holds changes not yet in the session (left by a program that wrote it "
+                     "in place); nothing read or changed: open it once with sqlite3 to settle "
+                     "them");
+  }
+}
+
+/// An sqlite URI opening `path` as immutable: sqlite then reads the file alone and creates
+/// nothing beside it (a session in WAL mode would otherwise get -wal and -shm files).
+std::string ImmutableUri(const std::string& path) {
+  std::error_code ec;
+  const std::string absolute = std::filesystem::absolute(path, ec).lexically_normal().string();
+  std::string uri = "file:";
+  for (const char c : ec ? path : absolute) {
+    if (c == '%' || c == '?' || c == '#') {
+      static const char* kHex = "0123456789abcdef";
+      const auto u = static_cast<unsigned char>(c);
+      uri += {'%', kHex[u >> 4], kHex[u & 15]};
+    } else {
+      uri += c;
+    }
+  }
+  return uri + "?immutable=1";
+}
+
 }  // namespace
 
 SqliteDb::SqliteDb(const std::string& path, bool create, const std::string& name_in_errors)
     : name_(name_in_errors.empty() ? path : name_in_errors), writing_(create) {
-  const int flags = create ? (SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE) : SQLITE_OPEN_READONLY;
-  if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
+  // Reading leaves the folder as it was (docs/refusals.md): immutable, after refusing
+  // changes that only a -wal or -journal beside the file holds.
+  if (!create) RefusePendingChanges(path, name_);
+  const int flags = create ? (SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE)
+                           : (SQLITE_OPEN_READONLY | SQLITE_OPEN_URI);
+  const std::string target = create ? path : ImmutableUri(path);
+  if (sqlite3_open_v2(target.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
     const std::string message = db_ ? sqlite3_errmsg(db_) : "out of memory";
     const int code = db_ ? sqlite3_extended_errcode(db_) : SQLITE_NOMEM;
     const int os_error = db_ ? sqlite3_system_errno(db_) : 0;

@@ -299,8 +299,7 @@ TEST(HostileInputsCliTest, AConfigThatIsAFolderOrADeviceIsBadInput) {
   r = Uwbsar("--config /dev/zero config");
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_EQ(r.output,
-            "uwbsar: error: /dev/zero: configuration file is not a regular file (a device, FIFO "
-            "or folder)\n");
+            "uwbsar: error: /dev/zero: configuration file is not a regular file (a device)\n");
 }
 
 // Item 13: the same YAML reader for every file: a duplicate key in a grid YAML, a second

@@ -144,7 +144,7 @@ TEST(CliRefusalTest, UnwritableOutputIsRefusedBeforeTheWorkWithOneExitCode) {
       {"optimize " + dir + "/graph.g2o --out " + dir + "/folder", "output file is a folder"},
       {"export-pcd " + kMap + " --out " + dir + "/folder", "output file is a folder"},
       {"image --synthetic straight --out " + dir + "/file", "output folder is a file"},
-      {"detectors " + dir + " --out " + dir + "/file", "output folder is a file"},
+      {"detectors " + dir + "/folder --out " + dir + "/file", "output folder is a file"},
       {"compare " + kMap + " " + kMap + " --out " + dir + "/file", "output folder is a file"},
       {"demo --out " + dir + "/file", "output folder is a file"},
       {"simulate --map " + kMap + " --out " + dir + "/file/bag", "is a file"},
