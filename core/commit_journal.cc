@@ -180,7 +180,8 @@ std::string KindAt(const fs::path& path, mode_t* mode) {
 void CheckJournalMatchesFolder(const std::string& journal, const fs::path& out,
                                const CommitPlan& plan) {
   const auto refuse = [&](const std::string& what) {
-    return InputError(journal + ": " + what + "; not completed, nothing moved" + kRemoveIt);
+    return InputError(journal + ": " + what +
+                      "; not completed, nothing moved (remove it to use the folder)");
   };
   const fs::path stage = out / plan.stage_name;
   mode_t mode = 0;
