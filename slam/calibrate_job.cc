@@ -94,15 +94,15 @@ CalibrateJobResult RunCalibrateJob(const Config& config, const CalibrateJobOptio
   if (!options.out_yaml.empty()) CheckOutputFile(options.out_yaml);  // before the work
   OdometryAndTruth streams;
   rosbag::ReadRobotBag(options.bag, rosbag::RobotBagOptionsFromConfig(config), streams);
+  CalibrationFitOptions fit_options;
   if (!options.ground_truth_tum.empty()) {
-    streams.ground_truth =
-        ReadGroundTruthFile(options.ground_truth_tum, config.limits.max_input_file_mb);
+    streams.ground_truth = ReadGroundTruthFile(
+        options.ground_truth_tum, config.limits.max_input_file_mb, &fit_options.truth_lines);
   }
   if (streams.ground_truth.empty()) {
     throw InputError(options.bag + ": no ground truth (topic " + config.slam.ground_truth_topic +
                      "); give one with --ground-truth");
   }
-  CalibrationFitOptions fit_options;
   fit_options.segment_m = options.segment_m;
   fit_options.max_step_m = config.gating.max_odom_jump_m;
   fit_options.max_speed_mps = config.gating.max_odom_speed_mps;

@@ -224,8 +224,9 @@ AteResult TrajectoryError(const std::vector<std::pair<TimestampNs, Pose2>>& esti
   return ComputeAte(est_poses, ref_poses);
 }
 
-std::vector<OdometrySample> ReadGroundTruthFile(const std::string& tum_path, double max_mb) {
-  return ReadTum(tum_path, max_mb);
+std::vector<OdometrySample> ReadGroundTruthFile(const std::string& tum_path, double max_mb,
+                                                std::vector<int>* lines) {
+  return ReadTum(tum_path, max_mb, lines);
 }
 
 double PeakMemoryMiB() {

@@ -75,7 +75,9 @@ void CheckMappable(const MapRun& run);
 /// (drivers/logs/tum_reader.h), planar poses with their stamps in file order. Throws
 /// InputError naming the file and line on a malformed line or an empty file, and naming the
 /// file when it is not a regular file of at most `max_mb` MiB (limits.max_input_file_mb).
-std::vector<OdometrySample> ReadGroundTruthFile(const std::string& tum_path, double max_mb);
+/// `lines` (optional) receives each pose's line number, to name it in later messages.
+std::vector<OdometrySample> ReadGroundTruthFile(const std::string& tum_path, double max_mb,
+                                                std::vector<int>* lines = nullptr);
 
 /// Trajectory error of `estimate` against `reference`: poses paired by nearest stamp
 /// within `max_dt_s` (as evo does), then ATE after SE(2) alignment. num_poses = 0 when

@@ -5,10 +5,12 @@
 #include <sstream>
 
 #include "core/bounded_file.h"
+#include "core/stamp_range.h"
 
 namespace uwbsar {
 
-std::vector<OdometrySample> ReadTum(const std::string& path, double max_mb) {
+std::vector<OdometrySample> ReadTum(const std::string& path, double max_mb,
+                                    std::vector<int>* lines) {
   std::ifstream in = OpenTextInput(path, "trajectory", max_mb);
   std::vector<OdometrySample> out;
   std::string line;
@@ -30,6 +32,14 @@ std::vector<OdometrySample> ReadTum(const std::string& path, double max_mb) {
         throw InputError(path + ":" + std::to_string(line_no) + ": non-finite value");
       }
     }
+    // Compared in seconds first: SecondsToNs of 1e30 s would overflow.
+    if (!(std::abs(v[0]) < 1e10) || !IsOutputStamp(SecondsToNs(v[0]))) {
+      std::ostringstream what;
+      what.precision(12);
+      what << path << ":" << line_no << ": stamp " << v[0] << " s is outside "
+           << OutputStampRange();
+      throw InputError(what.str());
+    }
     OdometrySample s;
     s.stamp_ns = SecondsToNs(v[0]);
     s.T_world_robot.x_m = v[1];
@@ -38,6 +48,7 @@ std::vector<OdometrySample> ReadTum(const std::string& path, double max_mb) {
     s.T_world_robot.yaw_rad =
         std::atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz));
     out.push_back(s);
+    if (lines != nullptr) lines->push_back(line_no);
   }
   if (out.empty()) throw InputError(path + ": no poses in trajectory file");
   return out;

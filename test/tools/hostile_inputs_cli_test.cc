@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -160,6 +161,62 @@ TEST_F(HostileCalibrateCliTest, GroundTruthThatDoesNotMoveOrGoesBackIsRefused) {
   r = Uwbsar("calibrate " + good_ + " --ground-truth " + dir_ + "/back.tum");
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("back.tum: stamps go back at sample 6"), std::string::npos) << r.output;
+}
+
+// Issue 45 item 7: a 3 m jump in --ground-truth fitted half the real scale with exit 0. The truth
+// is held to the odometry's jump rule; the refusal names the file, the line and the stamp.
+TEST_F(HostileCalibrateCliTest, AGroundTruthJumpIsRefusedNamingTheLine) {
+  std::ifstream in(dir_ + "/truth.tum");
+  std::ofstream jump(dir_ + "/jump.tum");
+  jump.precision(17);
+  int line_no = 0;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream fields(line);
+    double v[8];
+    for (double& x : v) fields >> x;
+    if (++line_no >= 201) v[1] += 3.0;  // the motion capture's origin moved by 3 m
+    for (int i = 0; i < 8; ++i) jump << v[i] << (i < 7 ? " " : "\n");
+  }
+  jump.close();
+  const CliRun r = Uwbsar("calibrate " + good_ + " --ground-truth " + dir_ + "/jump.tum --out " +
+                          dir_ + "/jump.yaml");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("jump.tum:201: ground truth jumps 3.0"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(" s (sample 200): a reset"), std::string::npos) << r.output;
+  EXPECT_EQ(uwbsar::testing::LineCount(r.output), 1) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ + "/jump.yaml"));
+}
+
+// Issue 45 item 8: a bag in 2150 was mapped with exit 0 and its results.mcap said 2014. Stamps
+// the outputs' ROS 2 times cannot hold are refused where they are read, bag or TUM file.
+TEST(HostileInputsCliTest, MapRefusesStampsBeyond2038NamingTheMessageOrLine) {
+  const std::string dir = TempDir("year_2150");
+  fs::create_directories(dir + "/future");
+  uwbsar::map_test::BagEdits in_2150;
+  in_2150.start_stamp_ns = 5680281600LL * 1000000000LL;  // 2150-01-01
+  const std::string future = uwbsar::map_test::WriteRunBag(dir + "/future", in_2150);
+  CliRun r = Uwbsar("map " + future + " --out " + dir + "/out");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(
+      r.output.find(future + "/run_0.db3: message 0 on /odom (nav_msgs/msg/Odometry): "
+                             "log time stamp 5680281600.000000000 s (2150-01-01 00:00:00 UTC) is "
+                             "outside 1970-01-01 00:00:00 .. 2038-01-19 03:14:07 UTC"),
+      std::string::npos)
+      << r.output;
+  EXPECT_EQ(uwbsar::testing::LineCount(r.output), 1) << r.output;
+  EXPECT_FALSE(fs::exists(dir + "/out/results.mcap"));
+  // A TUM ground truth in 2150 would have gone into results.mcap's /ground_truth path.
+  const std::string bag = uwbsar::map_test::WriteRunBag(dir, uwbsar::map_test::BagEdits{});
+  uwbsar::testing::WriteTextFile(dir + "/truth.tum",
+                                 "# t x y z qx qy qz qw\n5680281600 0 0 0 0 0 0 1\n");
+  r = Uwbsar("map " + bag + " --ground-truth " + dir + "/truth.tum --out " + dir + "/out");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("truth.tum:2: stamp 5680281600 s is outside 1970-01-01 00:00:00 .. "
+                          "2038-01-19 03:14:07 UTC"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(uwbsar::testing::LineCount(r.output), 1) << r.output;
+  EXPECT_FALSE(fs::exists(dir + "/out/results.mcap"));
 }
 
 // -q did not quiet calibrate: it prints only its result, the configuration keys, and nothing
