@@ -75,7 +75,9 @@ const Workload* RailWorkload(std::string* missing) {
   *missing = testing::MissingSharedData("real/pulson440_rail/rail_sar2.log");
   if (!missing->empty()) return nullptr;
   static const Workload w = [] {
-    Config config = LoadConfig(testing::SharedDataPath("real/pulson440_rail/p440_team5.yaml"));
+    Config config =  // the file lists its one radar as the whole list
+        LoadConfigs({std::string(UWBSAR_SOURCE_DIR) + "/config/without_default_radars.yaml",
+                     testing::SharedDataPath("real/pulson440_rail/p440_team5.yaml")});
     config.imaging.mode = ImagingMode::kCoherent;
     config.imaging.pixel_size_m = 0.01;
     const TextLog log = ReadTextLog(testing::SharedDataPath("real/pulson440_rail/rail_sar2.log"));

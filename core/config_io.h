@@ -7,6 +7,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -41,6 +42,15 @@ template <class T>
 struct IsVector : std::false_type {};
 template <class T>
 struct IsVector<std::vector<T>> : std::true_type {};
+
+/// A list whose items have a `name` and declare kListAddRequires is merged by name when read
+/// over a list in effect, not replaced (see Reader::MergeByName).
+template <class T, class = void>
+struct MergesByName : std::false_type {};
+template <class T>
+struct MergesByName<std::vector<T>,
+                    std::void_t<decltype(T::kListAddRequires), decltype(std::declval<T&>().name)>>
+    : std::true_type {};
 
 inline std::string Where(const std::string& source, const YAML::Node& node) {
   const YAML::Mark mark = node.Mark();
@@ -87,6 +97,8 @@ class Reader {
       Reader nested(node, source_, key + ".");
       value.Visit(nested);
       nested.CheckUnknownKeys();
+    } else if constexpr (MergesByName<T>::value) {
+      MergeByName(node, value, key);
     } else if constexpr (IsVector<T>::value) {
       if (!node.IsSequence()) {
         throw ConfigError(Where(source_, node) + ": '" + key + "' must be a list");
@@ -127,6 +139,74 @@ class Reader {
   }
 
  private:
+  /// Each entry names the item it changes (only the keys it gives), adds (a new name: the
+  /// item's defaults, and it must give T::kListAddRequires) or removes (`remove: true`, and
+  /// nothing else but the name); a list that adds must name every item in effect. An empty
+  /// list or an entry without a name is refused: either would otherwise change nothing,
+  /// silently.
+  template <class T>
+  void MergeByName(const YAML::Node& node, std::vector<T>& items, const std::string& key) {
+    if (!node.IsSequence())
+      throw ConfigError(Where(source_, node) + ": '" + key + "' must be a list");
+    if (node.size() == 0) {
+      throw ConfigError(Where(source_, node) + ": '" + key +
+                        "' is empty; its entries change, add or remove items by name (remove "
+                        "one with {name: NAME, remove: true})");
+    }
+    std::set<std::string> seen;
+    std::string added_at;             // where the list first adds an item
+    std::vector<std::string> before;  // the names in effect before this list
+    for (const T& item : items) before.push_back(item.name);
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      const YAML::Node entry = node[i];
+      const std::string entry_key = key + "[" + std::to_string(i) + "]";
+      const std::string at = Where(source_, entry) + ": '" + entry_key + "'";
+      if (!entry.IsMap()) throw ConfigError(at + " must be a mapping");
+      const YAML::Node name = entry["name"];
+      if (!name || !name.IsScalar() || name.Scalar().empty()) {
+        throw ConfigError(at + " has no 'name': entries of '" + key +
+                          "' change, add or remove the item of that name");
+      }
+      const std::string n = name.Scalar();
+      if (!seen.insert(n).second) throw ConfigError(at + " names '" + n + "' a second time");
+      auto it = std::find_if(items.begin(), items.end(), [&](const T& t) { return t.name == n; });
+      if (const YAML::Node remove = entry["remove"]) {
+        bool yes = false;
+        if (!remove.IsScalar() || !YAML::convert<bool>::decode(remove, yes) || !yes) {
+          throw ConfigError(Where(source_, remove) + ": '" + entry_key +
+                            ".remove' must be true (leave it out to change '" + n + "')");
+        }
+        if (entry.size() != 2) {
+          throw ConfigError(at + " removes '" + n + "' and gives only name and remove");
+        }
+        if (it == items.end()) throw ConfigError(at + " removes '" + n + "', which is not listed");
+        items.erase(it);
+      } else if (it != items.end()) {
+        Read(entry, *it, entry_key);  // only the keys it gives
+      } else {
+        T added;
+        Read(entry, added, entry_key);
+        if (!entry[T::kListAddRequires]) {
+          throw ConfigError(at + " adds '" + n + "' (no item of that name) and must give '" +
+                            T::kListAddRequires + "'");
+        }
+        items.push_back(std::move(added));
+        added_at = added_at.empty() ? at + " adds '" + n + "'" : added_at;
+      }
+    }
+    // A list that adds an item names every item it keeps: a file written as the whole list
+    // (one radar of another name) would otherwise run with the defaults beside it, silently.
+    std::string unnamed;
+    for (const std::string& n : before) {
+      if (!seen.count(n)) unnamed += (unnamed.empty() ? "'" : ", '") + n + "'";
+    }
+    if (!added_at.empty() && !unnamed.empty()) {
+      throw ConfigError(added_at + " beside " + unnamed +
+                        ", which this list does not name: keep each with '- name: NAME' or "
+                        "remove it with '- {name: NAME, remove: true}'");
+    }
+  }
+
   const YAML::Node& node_;
   std::string source_;
   std::string prefix_;
@@ -175,7 +255,8 @@ class Writer {
 }  // namespace config_yaml
 
 /// As ReadConfigYaml, over `base` instead of the defaults: the keys of the text replace
-/// base's, a list as a whole (repeated --config files merged in order, later wins).
+/// base's, a list as a whole except one merged by name (MergesByName: radars), repeated
+/// --config files merged in order, later wins.
 template <class T>
 T ReadConfigYamlOver(const std::string& yaml_text, const std::string& source_name, T base) {
   YAML::Node root;

@@ -24,6 +24,12 @@ struct RadarConfig {
   int num_samples = 1000;                     ///< expected samples per scan
   int zero_leading_samples = 1;               ///< samples zeroed before use (reference zeroes 1)
 
+  /// A `radars:` list read over one in effect merges into it by `name` (core/config_io.h): a
+  /// robot file that changes one radar's key keeps the other radar. An entry with a new name
+  /// adds a radar from the defaults above, which must give this key (another radar's topic
+  /// would be read twice).
+  static constexpr const char* kListAddRequires = "topic";
+
   template <class V>
   void Visit(V& v) {
     v("name", name);

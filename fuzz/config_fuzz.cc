@@ -12,7 +12,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
     const uwbsar::Config config = uwbsar::LoadConfigFromString(text, "fuzz.yaml");
-    uwbsar::LoadConfigFromString(uwbsar::ConfigToYaml(config), "round-trip");
+    uwbsar::LoadConfigFromString(uwbsar::ConfigFileYaml(config), "round-trip");
   } catch (const uwbsar::ConfigError& e) {
     const std::string what = e.what();
     if (what.rfind("fuzz.yaml", 0) != 0) __builtin_trap();  // names the file

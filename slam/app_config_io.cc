@@ -1,5 +1,7 @@
 #include "slam/app_config_io.h"
 
+#include <algorithm>
+
 #include "core/bounded_file.h"
 
 namespace uwbsar {
@@ -55,6 +57,27 @@ Config LoadConfigs(const std::vector<std::string>& paths) {
   for (const std::string& path : paths) sources += (sources.empty() ? "" : " + ") + path;
   if (!paths.empty()) ValidateConfig(config, sources);
   return config;
+}
+
+std::string ConfigFileYaml(const Config& config) {
+  const std::string yaml = ConfigToYaml(config);
+  YAML::Node root;
+  bool removes = false;
+  for (const RadarConfig& d : DefaultRadars()) {
+    const bool kept = std::any_of(config.radars.begin(), config.radars.end(),
+                                  [&d](const RadarConfig& r) { return r.name == d.name; });
+    if (kept) continue;
+    if (!removes) root = YAML::Load(yaml);
+    removes = true;
+    YAML::Node removed;
+    removed["name"] = d.name;
+    removed["remove"] = true;
+    root["radars"].push_back(removed);
+  }
+  if (!removes) return yaml;  // the usual case, unchanged
+  YAML::Emitter out;
+  out << root;
+  return out.c_str();
 }
 
 std::vector<PointTargetConfig> LoadPointTargets(const std::string& path) {

@@ -21,6 +21,12 @@ Config LoadConfig(const std::string& path);
 /// the files ("a.yaml + b.yaml"). No files: the defaults.
 Config LoadConfigs(const std::vector<std::string>& paths);
 
+/// The configuration as a --config file that loads back to it (`uwbsar config`): every field,
+/// and, since a file's radars merge by name into the defaults, `{name: N, remove: true}` for
+/// each default radar it lacks. Radars kept in another order than the defaults' load back in
+/// the defaults' order.
+std::string ConfigFileYaml(const Config& config);
+
 /// Same as LoadConfig, from YAML text; `source_name` is used in messages.
 Config LoadConfigFromString(const std::string& yaml_text, const std::string& source_name);
 

@@ -127,7 +127,7 @@ void PrintOdometryCalibration(const Config& config, const GlobalOptions& globals
 
 void AddConfigCommand(CLI::App& app, const GlobalOptions& globals) {
   CLI::App* cmd = app.add_subcommand("config", "Print the effective configuration as YAML");
-  cmd->callback([&globals] { std::cout << ConfigToYaml(LoadConfigFor(globals)) << "\n"; });
+  cmd->callback([&globals] { std::cout << ConfigFileYaml(LoadConfigFor(globals)) << "\n"; });
 }
 
 }  // namespace uwbsar::tools

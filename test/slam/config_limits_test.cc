@@ -37,9 +37,10 @@ TEST(ConfigLimitsTest, SizeExplodingValuesAreRefusedNamingTheKey) {
       {"keyframe:\n  tile_length_m: 0.001\n  tile_spacing_m: 0.001\n", "'keyframe.tile_spacing_m'"},
       {"keyframe:\n  tile_length_m: 1000\n", "'keyframe.tile_length_m'"},
       {"keyframe:\n  margin_m: 1000\n", "'keyframe.margin_m'"},
-      {"radars:\n  - max_range_m: 10000\n", "'radars[0].max_range_m'"},
-      {"radars:\n  - num_samples: 100000000\n", "'radars[0].num_samples'"},
-      {"imaging:\n  mode: coherent\n  coherent_oversampling: 64\nradars:\n  - num_samples: "
+      {"radars:\n  - name: left\n    max_range_m: 10000\n", "'radars[0].max_range_m'"},
+      {"radars:\n  - name: left\n    num_samples: 100000000\n", "'radars[0].num_samples'"},
+      {"imaging:\n  mode: coherent\n  coherent_oversampling: 64\nradars:\n  - name: left\n    "
+       "num_samples: "
        "100000\n",
        "'imaging.coherent_oversampling'"},
   };
@@ -59,7 +60,7 @@ TEST(ConfigLimitsTest, DefaultsAndBundledConfigsFitTheBudgets) {
   EXPECT_EQ(Refusal("imaging:\n  pixel_size_m: 0.002\nslam:\n  map_resolution_m: 0.005\n"
                     "keyframe:\n  tile_length_m: 0.5\n  tile_spacing_m: 0.25\n"),
             "");
-  EXPECT_EQ(Refusal("radars:\n  - max_range_m: 8.0\n"), "");
+  EXPECT_EQ(Refusal("radars:\n  - name: left\n    max_range_m: 8.0\n"), "");
 }
 
 TEST(ConfigLimitsTest, BudgetsAreConfigurable) {

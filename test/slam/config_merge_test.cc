@@ -22,18 +22,24 @@ std::string WriteTemp(const std::string& name, const std::string& text) {
   return path;
 }
 
-TEST(ConfigMergeTest, LaterFilesWinKeyByKeyAndListsWhole) {
+// Radars merge by name rather than as a whole list since issue 49 (radar_list_merge_test.cc).
+TEST(ConfigMergeTest, LaterFilesWinKeyByKeyAndRadarsByName) {
   const std::string robot = WriteTemp("robot.yaml",
                                       "slam:\n  occupied_fraction: 0.5\n"
                                       "radars:\n  - name: left\n    topic: /a\n"
                                       "  - name: right\n    topic: /b\n");
   const std::string calib =
-      WriteTemp("calib.yaml", "slam:\n  occupancy_resolution_m: 0.1\nradars:\n  - name: only\n");
+      WriteTemp("calib.yaml",
+                "slam:\n  occupancy_resolution_m: 0.1\nradars:\n  - name: right\n"
+                "    max_range_m: 2.5\n  - name: only\n    topic: /c\n  - name: left\n");
   const Config c = LoadConfigs({robot, calib});
   EXPECT_DOUBLE_EQ(c.slam.occupied_fraction, 0.5);       // kept from the first
   EXPECT_DOUBLE_EQ(c.slam.occupancy_resolution_m, 0.1);  // from the second
-  ASSERT_EQ(c.radars.size(), 1u);                        // a list replaced whole
-  EXPECT_EQ(c.radars[0].name, "only");
+  ASSERT_EQ(c.radars.size(), 3u);                        // merged by name, one added
+  EXPECT_EQ(c.radars[0].topic, "/a");
+  EXPECT_EQ(c.radars[1].topic, "/b");              // kept from the first ...
+  EXPECT_DOUBLE_EQ(c.radars[1].max_range_m, 2.5);  // ... with the second's key
+  EXPECT_EQ(c.radars[2].name, "only");
   EXPECT_EQ(ConfigToYaml(LoadConfigs({})), ConfigToYaml(Config{}));
   EXPECT_EQ(ConfigToYaml(LoadConfigs({robot})), ConfigToYaml(LoadConfig(robot)));
   // The merged result is validated, naming both files.

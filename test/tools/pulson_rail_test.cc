@@ -27,11 +27,14 @@ struct Peak {
   double value = 0.0;
 };
 
-/// The rail run imaged as `uwbsar --config CONFIG image --log LOG --mode coherent
-/// --resolution 0.01` does (with `method`: imaging.method); |I| of the strip.
+/// The rail run imaged as `uwbsar --config config/without_default_radars.yaml --config CONFIG
+/// image --log LOG --mode coherent --resolution 0.01` does (with `method`: imaging.method); |I|
+/// of the strip. CONFIG lists its one radar as the whole list, so the default radars go first.
 slam::StripResult ImageRail(const std::string& log, const std::string& config_file,
                             ImagingMethod method = ImagingMethod::kDirect) {
-  Config config = LoadConfig(testing::SharedDataPath("real/pulson440_rail/" + config_file));
+  Config config =
+      LoadConfigs({std::string(UWBSAR_SOURCE_DIR) + "/config/without_default_radars.yaml",
+                   testing::SharedDataPath("real/pulson440_rail/" + config_file)});
   config.imaging.mode = ImagingMode::kCoherent;
   config.imaging.pixel_size_m = 0.01;
   config.imaging.method = method;
