@@ -4,6 +4,7 @@
 #include <string>
 
 #include "slam/app_config_io.h"
+#include "test/slam/config_refusal.h"
 
 namespace uwbsar {
 namespace {
@@ -124,16 +125,6 @@ TEST(ConfigIoTest, WrongShapeIsBadInputNamingFileLineAndKey) {
       EXPECT_NE(std::string(e.what()).find(c.expect), std::string::npos) << e.what();
     }
   }
-}
-
-/// The one-line message LoadConfigFromString(yaml, "x.yaml") refuses `yaml` with ("" if none).
-std::string RefusalOf(const std::string& yaml) {
-  try {
-    LoadConfigFromString(yaml, "x.yaml");
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 // The first of two equal keys used to win silently: a robot file overriding a key it already

@@ -10,19 +10,12 @@
 #include "core/bounded_file.h"
 #include "core/yaml_file.h"
 #include "slam/app_config_io.h"
+#include "test/slam/config_refusal.h"
 
 namespace uwbsar {
 namespace {
 
-/// The ConfigError message for `yaml`, or "" when it loads.
-std::string Refusal(const std::string& yaml) {
-  try {
-    LoadConfigFromString(yaml, "cfg.yaml");
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string Refusal(const std::string& yaml) { return RefusalOf(yaml, "cfg.yaml"); }
 
 TEST(ConfigLimitsTest, SizeExplodingValuesAreRefusedNamingTheKey) {
   struct Case {

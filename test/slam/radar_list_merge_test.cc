@@ -9,20 +9,12 @@
 #include <string>
 
 #include "slam/app_config_io.h"
+#include "test/slam/config_refusal.h"
 
 namespace uwbsar {
 namespace {
 
 std::string Yaml(const RadarConfig& radar) { return ConfigToYaml(radar); }
-
-std::string RefusalOf(const std::string& yaml) {
-  try {
-    LoadConfigFromString(yaml, "x.yaml");
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(RadarListMergeTest, ChangingOneKeyOfOneRadarKeepsTheOtherRadarExactly) {
   const Config c =
