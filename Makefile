@@ -53,12 +53,15 @@ demo: build
 bench: build
 	$(BUILD_DIR)/bin/uwbsar_bench
 
-# Unit tests once more under AddressSanitizer + UndefinedBehaviorSanitizer (CI).
+# Unit tests once more under AddressSanitizer + UndefinedBehaviorSanitizer (CI). Instrumented code
+# runs 2-3x slower, so the live tests judge their real-time bounds as on a busy machine
+# (UWBSAR_UNDER_LOAD): the 100 frames/s poll test missed 1.6% of frames under ASan in CI.
 sanitize-test: deps venv
 	cmake -S . -B $(SAN_BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DUWBSAR_SANITIZE=ON -DUWBSAR_WERROR=ON -DUWBSAR_BUILD_BENCH=OFF $(CMAKE_FLAGS)
 	cmake --build $(SAN_BUILD_DIR) -j $(JOBS) --target unit_tests
-	cd $(SAN_BUILD_DIR) && UWBSAR_VENV=$(CURDIR)/$(VENV) ctest --output-on-failure -j $(JOBS) -L unit
+	cd $(SAN_BUILD_DIR) && UWBSAR_VENV=$(CURDIR)/$(VENV) UWBSAR_UNDER_LOAD=1 \
+	  ctest --output-on-failure -j $(JOBS) -L unit
 
 # libFuzzer targets of the input parsers (fuzz/: CDR, MCAP, bag metadata.yaml, the
 # configuration, the session reader), built with clang, each run briefly from the seed corpus; fails on any
