@@ -87,9 +87,11 @@ format-check:
 layering-check:
 	python3 cmake/check_layering.py
 
-# Every repository path named in a comment, README or document exists.
+# Every repository path named in a comment, README or document exists; the documents' lines
+# fit, the user pages name no code and explain every configuration key (cmake/check_docs.py).
 path-check:
 	python3 cmake/check_paths.py
+	python3 cmake/check_docs.py
 
 clean:
 	rm -rf $(BUILD_DIR) $(SAN_BUILD_DIR)
