@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -16,6 +17,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/closest_name.h"
 #include "core/errors.h"
 #include "core/named_enum.h"
 #include "core/shortest_number.h"
@@ -28,6 +30,11 @@ class ConfigError : public InputError {
  public:
   using InputError::InputError;
 };
+
+/// Where each key of a configuration was last set: the dotted key as messages name it (an item
+/// of a list merged by name as `radars[NAME]`) -> "file:line". Validation messages name the line
+/// of the key they refuse (slam/app_config_io.cc).
+using ConfigOrigins = std::map<std::string, std::string>;
 
 namespace config_yaml {
 
@@ -60,11 +67,13 @@ inline std::string Where(const std::string& source, const YAML::Node& node) {
   return out.str();
 }
 
-/// Reads a YAML mapping into a struct, recording which keys it knows.
+/// Reads a YAML mapping into a struct, recording which keys it knows and, given `origins`,
+/// where each key it reads is set.
 class Reader {
  public:
-  Reader(const YAML::Node& node, std::string source, std::string prefix)
-      : node_(node), source_(std::move(source)), prefix_(std::move(prefix)) {}
+  Reader(const YAML::Node& node, std::string source, std::string prefix,
+         ConfigOrigins* origins = nullptr)
+      : node_(node), source_(std::move(source)), prefix_(std::move(prefix)), origins_(origins) {}
 
   template <class T>
   void operator()(const char* key, T& value) {
@@ -84,17 +93,21 @@ class Reader {
       }
       const std::string key = kv.first.Scalar();
       if (!known_.count(key)) {
-        throw ConfigError(Where(source_, kv.first) + ": unknown key '" + prefix_ + key + "'");
+        std::vector<std::string> known;
+        for (const std::string& k : known_) known.push_back(prefix_ + k);
+        throw ConfigError(Where(source_, kv.first) + ": unknown key '" + prefix_ + key + "'" +
+                          DidYouMean(prefix_ + key, known));
       }
     }
   }
 
   template <class T>
   void Read(const YAML::Node& node, T& value, const std::string& key) {
+    if (origins_) (*origins_)[key] = Where(source_, node);
     if constexpr (HasVisit<T>::value) {
       if (!node.IsMap())
         throw ConfigError(Where(source_, node) + ": '" + key + "' must be a mapping");
-      Reader nested(node, source_, key + ".");
+      Reader nested(node, source_, key + ".", origins_);
       value.Visit(nested);
       nested.CheckUnknownKeys();
     } else if constexpr (MergesByName<T>::value) {
@@ -104,6 +117,7 @@ class Reader {
         throw ConfigError(Where(source_, node) + ": '" + key + "' must be a list");
       }
       T items(node.size());
+      Forget(key + "[");  // the items of the list it replaces
       for (std::size_t i = 0; i < node.size(); ++i) {
         Read(node[i], items[i], key + "[" + std::to_string(i) + "]");
       }
@@ -181,11 +195,12 @@ class Reader {
         }
         if (it == items.end()) throw ConfigError(at + " removes '" + n + "', which is not listed");
         items.erase(it);
+        Forget(key + "[" + n + "]");
       } else if (it != items.end()) {
-        Read(entry, *it, entry_key);  // only the keys it gives
+        Read(entry, *it, key + "[" + n + "]");  // only the keys it gives
       } else {
         T added;
-        Read(entry, added, entry_key);
+        Read(entry, added, key + "[" + n + "]");
         if (!entry[T::kListAddRequires]) {
           throw ConfigError(at + " adds '" + n + "' (no item of that name) and must give '" +
                             T::kListAddRequires + "'");
@@ -207,9 +222,19 @@ class Reader {
     }
   }
 
+  /// Drops the origins of the keys under `prefix` (a list replaced, an item removed).
+  void Forget(const std::string& prefix) {
+    if (!origins_) return;
+    for (auto it = origins_->lower_bound(prefix);
+         it != origins_->end() && it->first.compare(0, prefix.size(), prefix) == 0;) {
+      it = origins_->erase(it);
+    }
+  }
+
   const YAML::Node& node_;
   std::string source_;
   std::string prefix_;
+  ConfigOrigins* origins_;
   std::set<std::string> known_;
 };
 
@@ -256,9 +281,11 @@ class Writer {
 
 /// As ReadConfigYaml, over `base` instead of the defaults: the keys of the text replace
 /// base's, a list as a whole except one merged by name (MergesByName: radars), repeated
-/// --config files merged in order, later wins.
+/// --config files merged in order, later wins. Given `origins`, each key the text sets is
+/// recorded there with its file and line (over those of earlier files).
 template <class T>
-T ReadConfigYamlOver(const std::string& yaml_text, const std::string& source_name, T base) {
+T ReadConfigYamlOver(const std::string& yaml_text, const std::string& source_name, T base,
+                     ConfigOrigins* origins = nullptr) {
   YAML::Node root;
   try {
     root = ParseYamlDocument(yaml_text, source_name);
@@ -271,7 +298,7 @@ T ReadConfigYamlOver(const std::string& yaml_text, const std::string& source_nam
   if (root.IsNull()) return config;  // an empty file changes nothing
   if (!root.IsMap()) throw ConfigError(source_name + ": the top level must be a mapping");
   try {
-    config_yaml::Reader reader(root, source_name, "");
+    config_yaml::Reader reader(root, source_name, "", origins);
     config.Visit(reader);
     reader.CheckUnknownKeys();
   } catch (const YAML::Exception& e) {
@@ -288,8 +315,9 @@ T ReadConfigYamlOver(const std::string& yaml_text, const std::string& source_nam
 /// on syntax errors, duplicate keys, a second document (ParseYamlDocument), unknown keys,
 /// wrong types and numbers with a leading zero; `source_name` is used in messages.
 template <class T>
-T ReadConfigYaml(const std::string& yaml_text, const std::string& source_name) {
-  return ReadConfigYamlOver(yaml_text, source_name, T{});
+T ReadConfigYaml(const std::string& yaml_text, const std::string& source_name,
+                 ConfigOrigins* origins = nullptr) {
+  return ReadConfigYamlOver(yaml_text, source_name, T{}, origins);
 }
 
 /// The configuration (any struct with Visit) as YAML: every field, no comments, e.g. for

@@ -13,7 +13,7 @@ void Validate(const std::vector<RadarConfig>& radars, const std::string& src) {
   Require(!radars.empty(), src, "radars", "must list at least one radar");
   for (std::size_t i = 0; i < radars.size(); ++i) {
     const RadarConfig& r = radars[i];
-    const std::string k = "radars[" + std::to_string(i) + "].";
+    const std::string k = RadarKey(radars, i) + ".";
     Require(r.fov_half_angle_deg > 0 && r.fov_half_angle_deg <= 90, src, k + "fov_half_angle_deg",
             "must be in (0, 90]");
     Require(r.min_range_m >= 0, src, k + "min_range_m", "must be >= 0");

@@ -56,6 +56,12 @@ inline std::vector<RadarConfig> DefaultRadars() {
   right.boresight_yaw_deg = -90.0;
   return {left, right};
 }
+/// "radars[NAME]", the radar as configuration messages name it (its index when it has no name):
+/// a file's entries merge by name, so its index there need not be its index in effect.
+inline std::string RadarKey(const std::vector<RadarConfig>& radars, std::size_t i) {
+  return "radars[" + (radars[i].name.empty() ? std::to_string(i) : radars[i].name) + "]";
+}
+
 /// Semantic checks of radars[*]; throws ConfigError naming the dotted key.
 void Validate(const std::vector<RadarConfig>& radars, const std::string& source_name);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/bounded_file.h"
+#include "core/config_require.h"
 
 namespace uwbsar {
 namespace {
@@ -25,6 +26,19 @@ std::string ReadConfigFile(const std::string& path, const char* what) {
   }
 }
 
+/// ValidateConfig, its refusal of a value that a file set naming the file and line that set it
+/// last (a key left at its default, or refused with another, keeps naming the files).
+void ValidateLoaded(const Config& config, const std::string& sources,
+                    const ConfigOrigins& origins) {
+  try {
+    ValidateConfig(config, sources);
+  } catch (const ConfigValueError& e) {
+    const auto origin = origins.find(e.key());
+    if (origin == origins.end()) throw;
+    throw ConfigError(origin->second + ": '" + e.key() + "' " + e.rule());
+  }
+}
+
 }  // namespace
 
 void ValidateConfig(const Config& c, const std::string& src) {
@@ -37,8 +51,9 @@ void ValidateConfig(const Config& c, const std::string& src) {
 }
 
 Config LoadConfigFromString(const std::string& yaml_text, const std::string& source_name) {
-  Config config = ReadConfigYaml<Config>(yaml_text, source_name);
-  ValidateConfig(config, source_name);
+  ConfigOrigins origins;
+  Config config = ReadConfigYaml<Config>(yaml_text, source_name, &origins);
+  ValidateLoaded(config, source_name, origins);
   return config;
 }
 
@@ -49,13 +64,15 @@ Config LoadConfig(const std::string& path) {
 Config LoadConfigs(const std::vector<std::string>& paths) {
   if (paths.size() == 1) return LoadConfig(paths.front());
   Config config;
+  ConfigOrigins origins;
   for (const std::string& path : paths) {
-    config = ReadConfigYamlOver(ReadConfigFile(path, "configuration"), path, std::move(config));
+    config = ReadConfigYamlOver(ReadConfigFile(path, "configuration"), path, std::move(config),
+                                &origins);
   }
   // Checked merged: a calibration file alone need not be a whole valid configuration.
   std::string sources;
   for (const std::string& path : paths) sources += (sources.empty() ? "" : " + ") + path;
-  if (!paths.empty()) ValidateConfig(config, sources);
+  if (!paths.empty()) ValidateLoaded(config, sources, origins);
   return config;
 }
 

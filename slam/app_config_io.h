@@ -17,8 +17,9 @@ Config LoadConfig(const std::string& path);
 /// Loads the files in order, each over the result of the ones before (the defaults for the
 /// first): a key of a later file replaces the earlier value, a list as a whole (a robot's
 /// configuration, then a calibration file from `uwbsar calibrate`). Each file is read and
-/// checked for syntax, unknown keys and types; the merged result is validated once, naming
-/// the files ("a.yaml + b.yaml"). No files: the defaults.
+/// checked for syntax, unknown keys and types; the merged result is validated once: a refused
+/// value names the file and line that set it last ("b.yaml:4: 'slam.x' must be > 0"), one no
+/// file set names the files ("a.yaml + b.yaml"). No files: the defaults.
 Config LoadConfigs(const std::vector<std::string>& paths);
 
 /// The configuration as a --config file that loads back to it (`uwbsar config`): every field,

@@ -27,8 +27,9 @@ std::string Num(double v) {
 void RequireWithin(double size, double budget, const std::string& src, const std::string& key,
                    double value, const std::string& what, const std::string& limit) {
   if (size <= budget) return;  // NaN/Inf sizes fail too
-  throw ConfigError(src + ": '" + key + "' (" + Num(value) + ") makes " + what + " " + Num(size) +
-                    ", more than limits." + limit + " (" + Num(budget) + ")");
+  throw ConfigValueError(src, key,
+                         "(" + Num(value) + ") makes " + what + " " + Num(size) +
+                             ", more than limits." + limit + " (" + Num(budget) + ")");
 }
 
 /// Range samples per scan (oversampled in coherent mode) within limits.max_range_samples.
@@ -39,11 +40,11 @@ void ValidateRangeSamples(const SystemConfig& c, const std::string& src) {
     const double samples = static_cast<double>(c.radars[i].num_samples) *
                            (coherent ? c.imaging.coherent_oversampling : 1);
     const bool oversampling = coherent && c.radars[i].num_samples <= l.max_range_samples;
-    RequireWithin(samples, l.max_range_samples, src,
-                  oversampling ? "imaging.coherent_oversampling"
-                               : "radars[" + std::to_string(i) + "].num_samples",
-                  oversampling ? c.imaging.coherent_oversampling : c.radars[i].num_samples,
-                  "range samples per scan", "max_range_samples");
+    RequireWithin(
+        samples, l.max_range_samples, src,
+        oversampling ? "imaging.coherent_oversampling" : RadarKey(c.radars, i) + ".num_samples",
+        oversampling ? c.imaging.coherent_oversampling : c.radars[i].num_samples,
+        "range samples per scan", "max_range_samples");
   }
 }
 
@@ -97,7 +98,7 @@ SegmentCanvas ValidateSegmentCanvas(const SystemConfig& c, const std::string& sr
     double value = pixel_m;
     if (canvas.Pixels(std::max(pixel_m, ImagingConfig{}.pixel_size_m)) > l.max_tile_pixels) {
       if (canvas.reach_m >= canvas.spacing_term_m && canvas.reach_m >= k.margin_m) {
-        key = "radars[" + std::to_string(canvas.reach_sensor) + "].max_range_m";
+        key = RadarKey(c.radars, canvas.reach_sensor) + ".max_range_m";
         value = c.radars[canvas.reach_sensor].max_range_m;
       } else if (k.margin_m >= canvas.spacing_term_m) {
         key = "keyframe.margin_m", value = k.margin_m;

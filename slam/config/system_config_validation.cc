@@ -88,12 +88,12 @@ void ValidateAcrossSections(const SystemConfig& c, const std::string& src) {
           src, "place_recognition.detectors.feature_resolution_m",
           "must be 0 or >= imaging.pixel_size_m");
   for (std::size_t i = 0; i < c.radars.size(); ++i) {
-    const std::string key = "radars[" + std::to_string(i) + "].topic";
+    const std::string key = RadarKey(c.radars, i) + ".topic";
     Require(c.radars[i].topic != c.slam.odometry_topic, src, key,
             "must differ from slam.odometry_topic ('" + c.slam.odometry_topic + "')");
     for (std::size_t j = 0; j < i; ++j) {
       Require(c.radars[i].topic != c.radars[j].topic, src, key,
-              "must differ from radars[" + std::to_string(j) + "].topic");
+              "must differ from " + RadarKey(c.radars, j) + ".topic");
     }
   }
 }

@@ -152,7 +152,7 @@ TEST(ConfigIoTest, ASecondDocumentIsRefusedNamingItsLine) {
 // refused naming the key and the models there are.
 TEST(ConfigIoTest, AnUnknownRadarModelIsRefusedNamingTheKnownModels) {
   EXPECT_EQ(RefusalOf("live:\n  radar_model: lt103\n"),
-            "x.yaml: 'live.radar_model' is 'lt103', not a known radar model (lt102)");
+            "x.yaml:2: 'live.radar_model' is 'lt103', not a known radar model (lt102)");
   EXPECT_EQ(RefusalOf("live:\n  radar_model: lt102\n"), "");
 }
 
@@ -171,19 +171,19 @@ TEST(ConfigIoTest, ANumberWithALeadingZeroIsRefusedNamingTheKey) {
 TEST(ConfigIoTest, NavigationSettingsThatCancelThemselvesAreRefusedNamingTheKeys) {
   const std::string nav = "slam:\n  navigation:\n";
   EXPECT_EQ(RefusalOf(nav + "    log_odds_clamp: 2.0\n    occupied_log_odds: 3.0\n"),
-            "x.yaml: 'slam.navigation.occupied_log_odds' must be below "
+            "x.yaml:4: 'slam.navigation.occupied_log_odds' must be below "
             "slam.navigation.log_odds_clamp: log-odds never pass the clamp, so no cell would be "
             "occupied");
   EXPECT_NE(RefusalOf(nav + "    occupied_log_odds: 5.0\n").find("log_odds_clamp"),
             std::string::npos);  // equal to the default clamp
   EXPECT_EQ(RefusalOf(nav + "    free_log_odds: -6.0\n"),
-            "x.yaml: 'slam.navigation.free_log_odds' must be above minus "
+            "x.yaml:3: 'slam.navigation.free_log_odds' must be above minus "
             "slam.navigation.log_odds_clamp: log-odds never pass the clamp, so only the robot's "
             "swept disc would be free");
   EXPECT_EQ(RefusalOf("slam:\n  occupancy_resolution_m: 1.0e9\n"),
-            "x.yaml: 'slam.occupancy_resolution_m' must be in [slam.map_resolution_m, 10]");
+            "x.yaml:2: 'slam.occupancy_resolution_m' must be in [slam.map_resolution_m, 10]");
   EXPECT_EQ(RefusalOf("slam:\n  map_resolution_m: 20\n  occupancy_resolution_m: 20\n"),
-            "x.yaml: 'slam.map_resolution_m' must be in (0, 10]");
+            "x.yaml:2: 'slam.map_resolution_m' must be in (0, 10]");
   // Within the clamp, and at 10 m cells, they stand.
   EXPECT_EQ(RefusalOf(nav + "    occupied_log_odds: 4.9\n    free_log_odds: -4.9\n"), "");
   EXPECT_EQ(RefusalOf("slam:\n  occupancy_resolution_m: 10\n"), "");

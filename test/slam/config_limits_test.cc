@@ -30,8 +30,10 @@ TEST(ConfigLimitsTest, SizeExplodingValuesAreRefusedNamingTheKey) {
       {"keyframe:\n  tile_length_m: 0.001\n  tile_spacing_m: 0.001\n", "'keyframe.tile_spacing_m'"},
       {"keyframe:\n  tile_length_m: 1000\n", "'keyframe.tile_length_m'"},
       {"keyframe:\n  margin_m: 1000\n", "'keyframe.margin_m'"},
-      {"radars:\n  - name: left\n    max_range_m: 10000\n", "'radars[0].max_range_m'"},
-      {"radars:\n  - name: left\n    num_samples: 100000000\n", "'radars[0].num_samples'"},
+      {"radars:\n  - name: left\n    max_range_m: 10000\n",
+       "cfg.yaml:3: 'radars[left].max_range_m'"},
+      {"radars:\n  - name: left\n    num_samples: 100000000\n",
+       "cfg.yaml:3: 'radars[left].num_samples'"},
       {"imaging:\n  mode: coherent\n  coherent_oversampling: 64\nradars:\n  - name: left\n    "
        "num_samples: "
        "100000\n",
@@ -72,12 +74,12 @@ TEST(ConfigLimitsTest, BudgetsAreConfigurable) {
 TEST(ConfigLimitsTest, NavigationRaysPerKeyframeAreBudgetedNamingTheKeys) {
   const std::string nav = "slam:\n  navigation:\n";
   EXPECT_EQ(Refusal(nav + "    ray_half_angle_deg: 90\n    ray_angle_step_deg: 0.1\n"),
-            "cfg.yaml: 'slam.navigation.ray_half_angle_deg' (90) makes navigation rays per "
+            "cfg.yaml:3: 'slam.navigation.ray_half_angle_deg' (90) makes navigation rays per "
             "keyframe (at slam.navigation.ray_angle_step_deg 0.1: 101 positions x 2 radars x 1801 "
             "lines) 3.64e+05, more than limits.max_navigation_rays (2e+04)");
   EXPECT_EQ(
       Refusal(nav + "    ray_spacing_m: 1.0e-5\n"),
-      "cfg.yaml: 'slam.navigation.ray_spacing_m' (1e-05) makes navigation rays per keyframe "
+      "cfg.yaml:3: 'slam.navigation.ray_spacing_m' (1e-05) makes navigation rays per keyframe "
       "(200001 positions x 2 radars x 1 line) 4e+05, more than limits.max_navigation_rays (2e+04)");
   // A moderate fan fits (45 degrees every degree: 101 x 2 x 91 = 18382), and the budget is a
   // setting.

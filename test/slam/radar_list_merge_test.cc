@@ -82,7 +82,7 @@ TEST(RadarListMergeTest, ARadarIsRemovedByName) {
   EXPECT_EQ(RefusalOf("radars:\n  - {name: right, remove: false}\n"),
             "x.yaml:2: 'radars[0].remove' must be true (leave it out to change 'right')");
   EXPECT_EQ(RefusalOf("radars:\n  - {name: left, remove: true}\n  - {name: right, remove: true}\n"),
-            "x.yaml: 'radars' must list at least one radar");
+            "x.yaml:2: 'radars' must list at least one radar");
   // `uwbsar config` prints a file that loads back to the same radars.
   EXPECT_EQ(ConfigToYaml(LoadConfigFromString(ConfigFileYaml(c), "printed.yaml")), ConfigToYaml(c));
   EXPECT_EQ(ConfigFileYaml(Config{}), ConfigToYaml(Config{}));
