@@ -99,6 +99,7 @@ const std::vector<std::string>& AllMapOutputNames() {
                                                  "results.mcap",
                                                  "report.html",
                                                  "ground_truth.tum",
+                                                 kAlignedTrajectoryName,
                                                  "map_exact_float.tif",
                                                  "map_exact_grid.yaml",
                                                  "map_exact.png",

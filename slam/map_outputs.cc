@@ -150,6 +150,13 @@ MapTrajectories WriteTrajectories(const MapState& run, const fs::path& stage, Ma
     WriteTum(staged("ground_truth.tum"), InSeconds(traj.ground_truth));
     result->ate = TrajectoryError(traj.slam, run.ground_truth);
     result->odometry_ate = TrajectoryError(traj.odometry, run.ground_truth);
+    if (result->ate.num_poses > 0) {
+      // The ATE aligns in the plane, which a straight route allows and evo's 3-D `-a` refuses:
+      // the trajectory so aligned lets evo_ape reproduce the ATE without `-a` on any route.
+      StampedPoses aligned = traj.slam;
+      for (auto& [stamp, pose] : aligned) pose = result->ate.T_reference_estimate * pose;
+      WriteTum(staged(kAlignedTrajectoryName), InSeconds(aligned));
+    }
   }
   return traj;
 }
@@ -334,6 +341,7 @@ MapOutputs MapOutputStage::CommitState(const MapState& run, const MapRun* exact_
   names.push_back("report.html");
   // ground_truth.tum is listed here so that MapOutputs::files keeps its order.
   if (!run.ground_truth.empty()) names.push_back("ground_truth.tum");
+  if (result.ate.num_poses > 0) names.push_back(kAlignedTrajectoryName);
   if (exact_from != nullptr) {
     for (const std::string& f : WriteExactMap(*exact_from, stage.string())) {
       names.push_back(fs::path(f).filename().string());

@@ -97,6 +97,9 @@ class MapOutputStage {
   IncrementalMosaic* mosaic_ = nullptr;
 };
 
+/// trajectory.tum moved onto ground_truth.tum by the ATE's alignment (written with an ATE).
+inline constexpr const char* kAlignedTrajectoryName = "trajectory_aligned.tum";
+
 /// Every file name a uwbsar command may commit into an output folder (map, joined session,
 /// localize, live), but the per-run trajectory_<run>.tum of a joined session.
 const std::vector<std::string>& AllMapOutputNames();
