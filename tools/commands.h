@@ -108,5 +108,6 @@ void AddExportPcdCommand(CLI::App& app, const GlobalOptions& globals);
 void AddRunCommand(CLI::App& app, const GlobalOptions& globals);
 void AddMergeCommand(CLI::App& app, const GlobalOptions& globals);
 void AddLocalizeCommand(CLI::App& app, const GlobalOptions& globals);
+void AddCheckCommand(CLI::App& app, const GlobalOptions& globals);
 
 }  // namespace uwbsar::tools

@@ -95,6 +95,7 @@ int main(int argc, char** argv) {
   AddRunCommand(app, globals);
   AddMergeCommand(app, globals);
   AddLocalizeCommand(app, globals);
+  AddCheckCommand(app, globals);
 
   try {
     app.parse(argc, argv);
