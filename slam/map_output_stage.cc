@@ -39,16 +39,20 @@ void RemoveStaleStagingFolders(const std::string& out_dir) {
   }
 }
 
-/// trajectory_<digits>.tum: one run of a joined session (slam/session_outputs.h).
+/// trajectory_<digits>.tum or ground_truth_<digits>.tum: one run of a joined session
+/// (slam/session_outputs.h, slam/session_files.h).
 bool IsRunTrajectoryName(const std::string& name) {
-  const std::string prefix = "trajectory_", suffix = ".tum";
-  if (name.size() <= prefix.size() + suffix.size() || name.rfind(prefix, 0) != 0 ||
-      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
-    return false;
+  const std::string suffix = ".tum";
+  for (const std::string prefix : {"trajectory_", "ground_truth_"}) {
+    if (name.size() <= prefix.size() + suffix.size() || name.rfind(prefix, 0) != 0 ||
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
+      continue;
+    }
+    const std::string digits =
+        name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+    if (digits.find_first_not_of("0123456789") == std::string::npos) return true;
   }
-  const std::string digits =
-      name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
-  return digits.find_first_not_of("0123456789") == std::string::npos;
+  return false;
 }
 
 /// Output names that exist in `out_dir` as folders: found before the work, not after it.

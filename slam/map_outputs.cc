@@ -34,6 +34,7 @@
 #include "slam/navigation_map.h"
 #include "slam/report_html.h"
 #include "slam/results_timeline.h"
+#include "slam/summary_json.h"
 
 namespace uwbsar::slam {
 namespace fs = std::filesystem;
@@ -223,62 +224,30 @@ MapExtent WriteMapAndOccupancy(const MapState& run, const StampedPoses& trajecto
 nlohmann::json SummaryJson(const MapState& run, const MapOutputs& outputs,
                            const MapExtent& extent) {
   const SlamSnapshot& slam = run.slam;
-  const FrontendStats& fs_stats = slam.frontend_stats;
   const LoopCounts counts = CountLoops(slam);
   nlohmann::json s;
   s["input"] = run.input;
-  s["log_duration_s"] = run.log_duration_s;
-  s["processing_s"] = run.processing_s;
-  s["real_time_factor"] = run.processing_s > 0 ? run.log_duration_s / run.processing_s : 0.0;
-  s["peak_memory_mib"] = PeakMemoryMiB();
+  AddCommandWork({run.log_duration_s, run.processing_s, slam.frontend_stats, slam.times, true,
+                  slam.num_solves, slam.last_optimization},
+                 &s);
   s["keyframes"] = slam.tiles.size();
   s["path_length_m"] = slam.odometry.empty() ? 0.0 : slam.odometry.back().path_m;
   s["loops"] = {{"candidates", slam.loops.size()},
                 {"validated", counts.validated},
                 {"accepted", counts.accepted},
                 {"rejected_by_backend", counts.backend_rejected}};
-  s["scans"] = {{"received", fs_stats.scans_received},
-                {"imaged", fs_stats.scans_imaged},
-                {"gated", fs_stats.scans_gated},
-                {"rejected", fs_stats.scans_rejected()},
-                {"rejected_wrong_length", fs_stats.scans_rejected_length},
-                {"rejected_non_finite", fs_stats.scans_rejected_nonfinite},
-                {"rejected_no_odometry",
-                 fs_stats.scans_rejected_no_odometry + fs_stats.scans_rejected_stale}};
-  s["odometry"] = {
-      {"received", fs_stats.odometry_received},
-      {"jumps_corrected", fs_stats.odometry_jumps_corrected},
-      {"rejected", fs_stats.odometry_rejected_out_of_order + fs_stats.odometry_rejected_nonfinite +
-                       fs_stats.odometry_rejected_implausible},
-      {"rejected_implausible", fs_stats.odometry_rejected_implausible}};
-  const StageTimes& t = slam.times;
-  s["time_s"] = {{"imaging", t.imaging_s},
-                 {"features", t.features_s},
-                 {"matching", t.matching_s},
-                 {"optimization", t.optimization_s},
-                 {"total", run.processing_s}};
-  const OptimizeResult& opt = slam.last_optimization;
-  s["optimization"] = {{"solves", slam.num_solves},
-                       {"converged", opt.converged},
-                       {"termination", opt.termination},
-                       {"iterations", opt.iterations},
-                       {"final_cost", opt.final_cost}};
   // The base calibration the run applied (`uwbsar calibrate`; all 0: uncalibrated), so that a
   // figure says whether it was calibrated.
-  const BackendConfig& backend = slam.config->backend;
-  s["odometry_calibration"] = {
-      {"scale", backend.calibration_scale_mean},
-      {"heading_drift_rad_per_m", backend.calibration_heading_drift_mean_rad_per_m},
-      {"rotation", backend.calibration_rotation_mean}};
-  s["map"] = {{"resolution_m", extent.grid.resolution_m},
-              {"rows", extent.grid.rows},
-              {"cols", extent.grid.cols},
-              {"blocks", extent.blocks},
-              {"memory_mib", static_cast<double>(extent.memory_bytes) / 1048576.0}};
+  s["odometry_calibration"] = OdometryCalibrationJson(slam.config->backend);
+  s["map"] = MapExtentJson(extent.grid, extent.blocks, extent.memory_bytes);
   // The shape every map summary shares with a joined one (docs/formats.md): runs[], and the
   // newest run's ATE at the top.
-  nlohmann::json only_run = {
-      {"id", 0}, {"input", run.input}, {"keyframes", slam.tiles.size()}, {"tum", "trajectory.tum"}};
+  // keyframes: those the run made, keyframes_kept: those the map holds (a revisit retires views).
+  nlohmann::json only_run = {{"id", 0},
+                             {"input", run.input},
+                             {"keyframes", slam.tiles.size() + slam.retired.size()},
+                             {"keyframes_kept", slam.tiles.size()},
+                             {"tum", "trajectory.tum"}};
   if (outputs.ate.num_poses > 0) {
     s["ate"] = AteJson(outputs.ate);
     s["odometry_ate"] = AteJson(outputs.odometry_ate);

@@ -101,10 +101,11 @@ class MapOutputStage {
 inline constexpr const char* kAlignedTrajectoryName = "trajectory_aligned.tum";
 
 /// Every file name a uwbsar command may commit into an output folder (map, joined session,
-/// localize, live), but the per-run trajectory_<run>.tum of a joined session.
+/// localize, live), but the per-run trajectory_<run>.tum and ground_truth_<run>.tum of a joined
+/// session.
 const std::vector<std::string>& AllMapOutputNames();
 
-/// The outputs of earlier runs in `out_dir` (AllMapOutputNames and trajectory_<run>.tum) that
+/// The outputs of earlier runs in `out_dir` (AllMapOutputNames and the per-run files) that
 /// are not in `names`: a commit of `names` removes them.
 std::vector<std::string> EarlierOutputsNotIn(const std::string& out_dir,
                                              const std::vector<std::string>& names);

@@ -53,7 +53,7 @@ SavedSession OpenSavedSession(const std::string& dir_or_file, const Config& conf
           std::to_string(
               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()) +
           " s");
-  return SavedSession{path, dir, std::move(lock), std::move(data)};
+  return SavedSession{path, dir, std::move(lock), std::move(data), {}};
 }
 
 bool SamePlace(const std::string& a, const std::string& b) {

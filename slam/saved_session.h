@@ -18,6 +18,9 @@ struct SavedSession {
   std::string dir;   ///< its folder
   FolderLock lock;   ///< shared, on `dir`, while the command runs
   SessionData data;
+  /// The ground truth of each of data.trajectories (slam/session_files.h SavedGroundTruth),
+  /// read by the commands that join the map, before their work; empty otherwise.
+  std::vector<std::vector<OdometrySample>> ground_truth;
 };
 
 /// Locks the folder of the session `dir_or_file` (a folder or its session.uwbsar) shared,

@@ -24,9 +24,11 @@
 #include "slam/results_timeline.h"
 #include "slam/session/session_file.h"
 #include "slam/session/session_merge.h"
+#include "slam/session_files.h"
 #include "slam/session_mosaic.h"
 #include "slam/session_report.h"
 #include "slam/slam_snapshot.h"
+#include "slam/summary_json.h"
 
 namespace uwbsar::slam {
 namespace {
@@ -94,9 +96,13 @@ nlohmann::json WriteRun(const SessionData& session, const Config& config, int id
   std::string input;
   for (const SessionTrajectory& t : session.trajectories)
     if (t.id == id) input = t.input;
-  int keyframes = 0;
-  for (const SessionKeyframe& k : session.keyframes) keyframes += k.trajectory == id;
-  nlohmann::json rj = {{"id", id}, {"input", input}, {"keyframes", keyframes}, {"tum", name}};
+  int kept = 0;
+  for (const SessionKeyframe& k : session.keyframes) kept += k.trajectory == id;
+  nlohmann::json rj = {{"id", id},
+                       {"input", input},
+                       {"keyframes", KeyframesMade(session, id)},
+                       {"keyframes_kept", kept},
+                       {"tum", name}};
   report->trajectories.push_back({"run " + std::to_string(id), colour.css, points});
   AteResult ate;
   auto gt = ground_truth.find(id);
@@ -108,6 +114,37 @@ nlohmann::json WriteRun(const SessionData& session, const Config& config, int id
   }
   report->sections.push_back(SessionRunSection(session, config, id, ate));
   return rj;
+}
+
+/// summary.json's `loops` over every loop record of the map, as a single run's, and
+/// `between_runs`: the accepted ones whose ends are keyframes of two runs.
+nlohmann::json LoopsJson(const SessionData& session) {
+  int validated = 0, accepted = 0, between = 0;
+  for (const SessionLoop& l : session.loops) {
+    validated += l.validated;
+    accepted += l.accepted;
+    between +=
+        l.accepted && RunOfKeyframe(session, l.query_id) != RunOfKeyframe(session, l.match_id);
+  }
+  return {{"candidates", session.loops.size()},
+          {"validated", validated},
+          {"accepted", accepted},
+          {"rejected_by_backend", validated - accepted},
+          {"between_runs", between}};
+}
+
+/// summary.json's `map`: the mosaic's grid and the blocks of GlobalMap's lattice its keyframes
+/// reach, as a single run's sparse canvas would hold them.
+nlohmann::json MapJson(const SessionData& session, const Config& config, const ImageGrid& grid) {
+  const GlobalMap lattice(config.slam.map_resolution_m);
+  GlobalMap::BlockSet blocks;
+  for (const SessionKeyframe& k : session.keyframes) {
+    const GlobalMap::BlockSet reached = lattice.TileBlocks(k.detected_grid, k.T_map_anchor).Keys();
+    blocks.insert(reached.begin(), reached.end());
+  }
+  const std::size_t block_px = static_cast<std::size_t>(lattice.block_px());
+  return MapExtentJson(grid, blocks.size(),
+                       blocks.size() * 2u * block_px * block_px * sizeof(float));
 }
 
 }  // namespace
@@ -191,12 +228,13 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
         WriteRun(session, config, runs[n], n, grid, ground_truth, path, &png, &report));
   }
   report.loop_segments = SessionLoopSegments(session);
-  const int accepted = static_cast<int>(report.loop_segments.size());
   for (const auto& [a, b] : report.loop_segments) {
     cv::line(png, Pixel(grid, {a.x_m, a.y_m, 0.0}), Pixel(grid, {b.x_m, b.y_m, 0.0}),
              FigurePalette::kLoop.bgr, 1, cv::LINE_AA);
   }
   WriteImageAtomic(path("map.png"), png);
+  for (const std::string& name : WriteJoinedRunFiles(session, config, runs, ground_truth, out_dir))
+    result.files.push_back(out_dir + "/" + name);
   const OccupancyGrid navigation = SessionNavigationGrid(session, config);
   WriteOccupancyGrid(path("map.yaml"), "map.pgm", navigation);
   result.files.push_back(out_dir + "/map.pgm");
@@ -212,23 +250,47 @@ SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& con
   WriteTextAtomic(path("graph.g2o"), G2oText(poses, edges, fixed));
   WriteSession(path(kSessionFileName), session, config.session.lossless_tiles);
 
+  // A single run's keys (docs/formats.md): `extra` holds what the command did (CommandWork),
+  // the rest describes the whole map.
   nlohmann::json& s = result.summary;
   s = extra;
   s["keyframes"] = session.keyframes.size();
-  s["loops"] = {{"accepted", accepted}};
+  double path_m = 0.0;
+  for (int run : runs) {
+    double run_m = 0.0;
+    for (const SessionOdometry& o : session.odometry)
+      if (o.trajectory == run) run_m = std::max(run_m, o.path_m);
+    path_m += run_m;
+  }
+  s["path_length_m"] = path_m;
+  s["loops"] = LoopsJson(session);
   s["runs"] = runs_json;
-  // As a plain map's summary (docs/formats.md): the newest run's ATE at the top.
-  if (!runs_json.empty() && runs_json.back().contains("ate")) s["ate"] = runs_json.back()["ate"];
+  s["odometry_calibration"] = OdometryCalibrationJson(config.backend);
+  s["map"] = MapJson(session, config, grid);
+  // As a plain map's summary: the newest run's ATE (and its odometry's) at the top.
+  if (!runs_json.empty() && runs_json.back().contains("ate")) {
+    s["ate"] = runs_json.back()["ate"];
+    const int newest = runs.back();
+    s["odometry_ate"] =
+        AteJson(TrajectoryError(PlacedOdometry(session, newest), ground_truth.at(newest)));
+  }
   if (ground_truth.size() >= 2) {
     const AteResult common = CommonFrameError(session, ground_truth);
     s["ate_common"] = AteJson(common);
     report.summary.push_back(
         {"ATE RMSE, all runs in one frame", Fixed(common.rmse_m * 100, 2) + " cm"});
   }
-  report.summary.insert(report.summary.begin(),
-                        {{"runs", std::to_string(runs.size())},
-                         {"keyframes", std::to_string(session.keyframes.size())},
-                         {"loops accepted", std::to_string(accepted)}});
+  // The loop counts as summary.json and the command's output name them.
+  std::vector<std::pair<std::string, std::string>> head = {
+      {"runs", std::to_string(runs.size())},
+      {"keyframes", std::to_string(session.keyframes.size())},
+      {"loops accepted", s["loops"]["accepted"].dump()},
+      {"loops accepted between runs", s["loops"]["between_runs"].dump()}};
+  if (extra.contains("merge")) {
+    head.push_back(
+        {"loops between the runs found by the join", extra["merge"]["loop_edges"].dump()});
+  }
+  report.summary.insert(report.summary.begin(), head.begin(), head.end());
   report.images.push_back(
       {std::string("All runs in the map frame, each in its colour. ") + kMapFigureCaption,
        EncodePng(SessionFigure(session, config, raster, grid))});

@@ -1,10 +1,12 @@
 // The outputs of a session with several runs in one map frame (`uwbsar map --resume`,
 // `uwbsar merge`): map.png (the mosaic with each run's trajectory in its own colour and the
 // accepted loops), map_float.tif + map_grid.yaml, map.pgm + map.yaml, trajectory_<run>.tum
-// per run (in the map frame), graph.g2o, session.uwbsar, report.html (as full as a plain
-// map's: the annotated figures, the timings, the loop table and one section per run with
-// its own figure; slam/session_report.h) and summary.json (last). Every file is written to
-// a temporary name and renamed.
+// per run (in the map frame), a single run's trajectory.tum, odometry.tum, ground_truth.tum
+// and loops.csv over every run (slam/session_files.h), graph.g2o, session.uwbsar, report.html
+// (as full as a plain map's: the annotated figures, the timings, the loop table and one
+// section per run with its own figure; slam/session_report.h) and summary.json (last), with
+// every key a single run's has (slam/summary_json.h). Every file is written to a temporary
+// name and renamed.
 #pragma once
 
 #include <map>
@@ -30,9 +32,9 @@ struct SessionOutputs {
 /// Writes the outputs of `session` into `out_dir` (created when missing). `ground_truth`
 /// (optional) by trajectory id: that run's ATE goes into the summary, and the ATE of all
 /// runs together after one common alignment ("ate_common"). `extra` is merged into
-/// summary.json (e.g. the merge report). `title` heads report.html; `timing`: the tables of
-/// what this command timed (StageTimingTable of a resumed run, the merge), shown before the
-/// loop table.
+/// summary.json: the merge report and what the command did (AddCommandWork). `title` heads
+/// report.html; `timing`: the tables of what this command timed (StageTimingTable of a resumed run,
+/// the merge), shown before the loop table.
 SessionOutputs WriteSessionOutputs(const SessionData& session, const Config& config,
                                    const std::string& out_dir,
                                    const std::map<int, std::vector<OdometrySample>>& ground_truth,

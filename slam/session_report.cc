@@ -5,35 +5,11 @@
 
 #include "slam/map_figure.h"
 #include "slam/map_report.h"
+#include "slam/session_files.h"
 #include "slam/session_mosaic.h"
 #include "slam/session_outputs.h"
 
 namespace uwbsar::slam {
-namespace {
-
-int RunOf(const SessionData& s, int keyframe) {
-  const SessionKeyframe* k = s.Find(keyframe);
-  return k == nullptr ? -1 : k->trajectory;
-}
-
-/// Run `run`'s odometry in the map frame, placed where its first keyframe was optimised to:
-/// how far the uncorrected odometry drifts from the corrected path.
-std::vector<std::pair<TimestampNs, Pose2>> PlacedOdometry(const SessionData& s, int run) {
-  const SessionKeyframe* first = nullptr;
-  for (const SessionKeyframe& k : s.keyframes) {
-    if (k.trajectory == run && (first == nullptr || k.stamp_ns < first->stamp_ns)) first = &k;
-  }
-  std::vector<std::pair<TimestampNs, Pose2>> out;
-  if (first == nullptr) return out;
-  const Pose2 T_map_odom = first->T_map_anchor * first->T_odom_anchor.Inverse();
-  for (const SessionOdometry& o : s.odometry) {
-    if (o.trajectory == run) out.push_back({o.stamp_ns, T_map_odom * o.T_odom_robot});
-  }
-  return out;
-}
-
-}  // namespace
-
 ReportTable SessionLoopTable(const SessionData& session) {
   std::vector<DetectorKind> detectors;
   for (const SessionLoop& l : session.loops) {
@@ -50,8 +26,8 @@ ReportTable SessionLoopTable(const SessionData& session) {
   for (const SessionLoop& l : session.loops) {
     const bool v = l.validated;
     std::vector<std::string> row = {std::to_string(l.query_id), std::to_string(l.match_id),
-                                    std::to_string(RunOf(session, l.query_id)),
-                                    std::to_string(RunOf(session, l.match_id))};
+                                    std::to_string(RunOfKeyframe(session, l.query_id)),
+                                    std::to_string(RunOfKeyframe(session, l.match_id))};
     for (DetectorKind d : detectors) {
       const auto it = l.good_matches.find(d);
       row.push_back(it == l.good_matches.end() ? "" : std::to_string(it->second));
@@ -119,7 +95,8 @@ RunReport SessionRunSection(const SessionData& session, const Config& config, in
   RunReport section;
   section.title = "Run " + std::to_string(run) + ": " + input;
   section.summary = {{"input", input},
-                     {"keyframes", std::to_string(own.keyframes.size())},
+                     {"keyframes", std::to_string(KeyframesMade(session, run)) + " (" +
+                                       std::to_string(own.keyframes.size()) + " kept in the map)"},
                      {"path length", Fixed(path_m, 2) + " m"}};
   if (ate.num_poses > 0) {
     section.summary.push_back({"ATE RMSE (own alignment)", Fixed(ate.rmse_m * 100, 2) + " cm"});

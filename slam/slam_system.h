@@ -78,6 +78,7 @@ class SlamSystem {
   FrontendStats frontend_stats() const;
   const std::vector<SensorGeometry>& sensors() const { return frontend_->sensors(); }
   const OptimizeResult& last_optimization() const { return last_optimization_; }
+  int num_solves() const { return num_solves_; }  ///< pose-graph solves so far
   /// Stage times so far (any thread).
   StageTimes times() const;
   const PoseGraph& graph() const { return *graph_; }

@@ -10,8 +10,11 @@
 #include "slam/saved_session.h"
 #include "slam/session/session_file.h"
 #include "slam/session/session_merge.h"
+#include "slam/session_files.h"
 #include "slam/session_outputs.h"
+#include "slam/summary_json.h"
 #include "tools/commands.h"
+#include "tools/map_resume.h"
 
 namespace uwbsar::tools {
 
@@ -36,8 +39,10 @@ void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
       throw InputError(opts->b + ": the same session as " + opts->a +
                        "; merging a session with itself would count its data twice");
     }
-    const slam::SavedSession saved_a = slam::OpenSavedSession(opts->a, config);
-    const slam::SavedSession saved_b = slam::OpenSavedSession(opts->b, config);
+    slam::SavedSession saved_a = slam::OpenSavedSession(opts->a, config);
+    slam::SavedSession saved_b = slam::OpenSavedSession(opts->b, config);
+    saved_a.ground_truth = slam::SavedGroundTruth(saved_a.dir, saved_a.data, config);
+    saved_b.ground_truth = slam::SavedGroundTruth(saved_b.dir, saved_b.data, config);
     slam::RefuseToReplaceSavedMap(opts->out_dir, {saved_a.dir, saved_b.dir}, false,
                                   "give another --out, or one of the merged sessions' folders");
     slam::RefuseRunsAlreadyJoined(saved_a.data, saved_a.path, saved_b.data.trajectories,
@@ -59,7 +64,19 @@ void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
     nlohmann::json extra;
     extra["input"] = opts->a + " + " + opts->b;
     extra["inputs"] = {opts->a, opts->b};
+    // What this command did: the join alone (no log read, one solve).
+    slam::CommandWork work;
+    work.processing_s = merge_s;
+    work.times.optimization_s = report.optimization.solve_time_s;
+    work.solves = 1;
+    work.optimization = report.optimization;
+    slam::AddCommandWork(work, &extra);
     extra["merge"] = slam::MergeReportJson(report);
+    // Every run keeps its ground truth: the sessions' runs in order, A's then B's.
+    std::vector<std::vector<OdometrySample>> per_run = saved_a.ground_truth;
+    per_run.insert(per_run.end(), saved_b.ground_truth.begin(), saved_b.ground_truth.end());
+    const std::map<int, std::vector<OdometrySample>> ground_truth =
+        slam::GroundTruthByRun(merged, per_run);
     const std::vector<slam::ReportTable> timing = {
         {"Time to merge",
          {"step", "seconds"},
@@ -67,16 +84,16 @@ void AddMergeCommand(CLI::App& app, const GlobalOptions& globals) {
            "graph",
            slam::Fixed(merge_s, 3)}},
          ""}};
-    const slam::SessionOutputs outputs = slam::CommitSessionOutputs(
-        &stage, merged, config, {}, extra, "uwbsar merge: " + opts->a + " + " + opts->b, timing);
+    const slam::SessionOutputs outputs =
+        slam::CommitSessionOutputs(&stage, merged, config, ground_truth, extra,
+                                   "uwbsar merge: " + opts->a + " + " + opts->b, timing);
     if (globals.quiet) return;
     std::printf(
-        "merged: %zu + %zu keyframes, %d loops between the sessions (%d rejected by the "
-        "backend), placed after %.2f m of the second; %zu keyframes in the map (%d older views "
-        "retired), %zu wall landmarks (%d seen again)\n",
+        "merged: %zu + %zu keyframes, %d loops between the runs found by the join (%d rejected "
+        "by the backend), placed after %.2f m of the second\n",
         a.keyframes.size(), b.keyframes.size(), report.loop_edges, report.loop_edges_rejected,
-        report.connect_path_m, merged.keyframes.size(), report.retired, merged.landmarks.size(),
-        report.walls_reused);
+        report.connect_path_m);
+    PrintJoinedMap(outputs.summary, report, merged.landmarks.size());
     std::printf("report: %s/report.html\n", opts->out_dir.c_str());
     PrintWrittenFolder(opts->out_dir, outputs.files, globals);
   });

@@ -10,7 +10,9 @@
 #include "slam/session/session_file.h"
 #include "slam/session/session_merge.h"
 #include "slam/session_capture.h"
+#include "slam/session_files.h"
 #include "slam/session_outputs.h"
+#include "slam/summary_json.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -22,7 +24,17 @@ slam::SavedSession OpenSessionToResume(const std::string& dir_or_file, const std
   run.input = bag;
   run.fingerprint = fingerprint;
   slam::RefuseRunsAlreadyJoined(saved.data, saved.path, {run}, bag);
+  saved.ground_truth = slam::SavedGroundTruth(saved.dir, saved.data, config);
   return saved;
+}
+
+void PrintJoinedMap(const nlohmann::json& summary, const MergeReport& report,
+                    std::size_t landmarks) {
+  std::printf(
+      "%d keyframes in the map (%d older views retired, with their loops), %d loops accepted in "
+      "the map (%d between runs), %zu wall landmarks (%d seen again)\n",
+      summary["keyframes"].get<int>(), report.retired, summary["loops"]["accepted"].get<int>(),
+      summary["loops"]["between_runs"].get<int>(), landmarks, report.walls_reused);
 }
 
 void WriteResumedMap(const slam::SavedSession& saved, const slam::MapRun& run,
@@ -39,11 +51,23 @@ void WriteResumedMap(const slam::SavedSession& saved, const slam::MapRun& run,
                      report.reason + "); nothing written. Map it on its own: uwbsar map " +
                      run.input + " --out ANOTHER_DIR");
   }
-  std::map<int, std::vector<OdometrySample>> ground_truth;
-  if (!run.ground_truth.empty()) ground_truth[report.trajectory_offset] = run.ground_truth;
+  // Every run's ground truth: the saved map's runs' from its folder, the new run's from its bag.
+  std::vector<std::vector<OdometrySample>> per_run = saved.ground_truth;
+  per_run.push_back(run.ground_truth);
+  const std::map<int, std::vector<OdometrySample>> ground_truth =
+      slam::GroundTruthByRun(merged, per_run);
   nlohmann::json extra;
   extra["input"] = run.input;
-  extra["processing_s"] = run.processing_s;
+  // What this command did: the new run (its log, scans, stage times and solves), then the join.
+  slam::CommandWork work{run.log_duration_s(),
+                         run.processing_s + join_s,
+                         run.slam->frontend_stats(),
+                         run.slam->times(),
+                         true,
+                         run.slam->num_solves() + 1,
+                         report.optimization};
+  work.times.optimization_s += report.optimization.solve_time_s;
+  slam::AddCommandWork(work, &extra);
   extra["merge"] = slam::MergeReportJson(report);
   // The report times what this command did: the new run's stages, then the join.
   const std::vector<slam::ReportTable> timing = {
@@ -63,14 +87,11 @@ void WriteResumedMap(const slam::SavedSession& saved, const slam::MapRun& run,
               run.processing_s, run.slam->keyframes().size());
   std::printf(
       "joined the saved map as run %d after %.2f m (keyframe %d): %d loops between the runs "
-      "(%d rejected by the backend), %d dropped before placement\n",
+      "found by the join (%d rejected by the backend), %d dropped before placement\n",
       report.trajectory_offset, report.connect_path_m, report.connect_keyframe_id,
       report.loop_edges, report.loop_edges_rejected, report.dropped);
-  std::printf(
-      "%zu keyframes in the map (%d older views retired), %zu wall landmarks (%d seen again); "
-      "report: %s/report.html\n",
-      merged.keyframes.size(), report.retired, merged.landmarks.size(), report.walls_reused,
-      out_dir.c_str());
+  PrintJoinedMap(outputs.summary, report, merged.landmarks.size());
+  std::printf("report: %s/report.html\n", out_dir.c_str());
   PrintOdometryCalibration(config, globals);
   PrintWrittenFolder(out_dir, outputs.files, globals);
 }

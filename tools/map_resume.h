@@ -4,6 +4,8 @@
 // the saved map is never replaced by a run that is not part of it.
 #pragma once
 
+#include <cstddef>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -12,6 +14,7 @@
 #include "slam/map_outputs.h"
 #include "slam/saved_session.h"
 #include "slam/session/session_data.h"
+#include "slam/session/session_merge.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -21,6 +24,11 @@ namespace uwbsar::tools {
 /// holds the recording `bag` of identity `fingerprint`).
 slam::SavedSession OpenSessionToResume(const std::string& dir_or_file, const std::string& bag,
                                        const std::string& fingerprint, const Config& config);
+
+/// The joined map's keyframes and loops as its summary.json counts them (and report.html shows
+/// them), after a join that found report.loop_edges loops between the runs.
+void PrintJoinedMap(const nlohmann::json& summary, const MergeReport& report,
+                    std::size_t landmarks);
 
 /// Joins `run` to `saved` and writes the outputs into out_dir; prints a summary unless quiet.
 /// Throws InputError naming the bag and the session, writing nothing, when the run does not
