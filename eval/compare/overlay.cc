@@ -36,6 +36,11 @@ void Text(cv::Mat& img, const std::string& text, int x, int y) {
               cv::LINE_AA);
 }
 
+int TextWidth(const std::string& text) {
+  int baseline = 0;
+  return cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, kFontScale, 1, &baseline).width;
+}
+
 /// One colour per cell of `crop` (lattice of the LiDAR grid), as the legend keys them.
 cv::Mat ColourCells(const GridComparison& g, const OccupancyGrid& lidar, const cv::Rect& crop) {
   const OccupancyGrid& sar = g.sar_on_lidar;
@@ -64,6 +69,24 @@ cv::Mat ColourCells(const GridComparison& g, const OccupancyGrid& lidar, const c
 
 }  // namespace
 
+std::vector<std::pair<cv::Vec3b, std::string>> OverlayKey() {
+  return {{OverlayColors::Both(), "occupied in both"},
+          {OverlayColors::SarOnly(), "SAR only (LiDAR free)"},
+          {OverlayColors::LidarOnly(), "LiDAR only (SAR free)"},
+          {OverlayColors::Free(), "free in both"},
+          {OverlayColors::NotEvaluated(), "not scored: a map unknown"},
+          {OverlayColors::LidarContext(), "LiDAR the radar did not see (not scored)"},
+          {OverlayColors::SarContext(), "SAR where LiDAR is unknown (not scored)"}};
+}
+
+std::vector<std::string> OverlayScoringNote(int tolerance_cells) {
+  return {
+      "Scored: the cells both maps know. The radar sees a wall's face, not the cells behind it,",
+      "so a SAR wall a cell off the LiDAR's is SAR only beside an unscored LiDAR line "
+      "(precision and F1 allow " +
+          std::to_string(tolerance_cells) + (tolerance_cells == 1 ? " cell)." : " cells).")};
+}
+
 cv::Mat RenderOverlay(const ComparisonReport& report, int pixels_per_cell) {
   const GridComparison& g = report.comparison;
   const OccupancyGrid& lidar = report.lidar;
@@ -77,34 +100,26 @@ cv::Mat RenderOverlay(const ComparisonReport& report, int pixels_per_cell) {
   cv::resize(cells, map, cv::Size(crop.width * scale, crop.height * scale), 0, 0,
              cv::INTER_NEAREST);
 
-  // Legend: colour key, then the summary lines.
-  const std::vector<std::pair<cv::Vec3b, std::string>> key = {
-      {OverlayColors::Both(), "occupied in both"},
-      {OverlayColors::SarOnly(), "SAR only"},
-      {OverlayColors::LidarOnly(), "LiDAR only"},
-      {OverlayColors::Free(), "free in both"},
-      {OverlayColors::NotEvaluated(), "not evaluated"},
-      {OverlayColors::LidarContext(), "LiDAR (not evaluated)"},
-      {OverlayColors::SarContext(), "SAR (outside LiDAR)"}};
+  // Legend: colour key, the scoring note, then the summary lines.
+  const std::vector<std::pair<cv::Vec3b, std::string>> key = OverlayKey();
   std::vector<std::string> lines = ComparisonSummaryLines(report);
+  const std::vector<std::string> note = OverlayScoringNote(g.metrics.tolerance_cells);
+  lines.insert(lines.begin(), note.begin(), note.end());
   lines.insert(lines.begin(), "SAR " + report.sar_path + "  vs  LiDAR " + report.lidar_path);
-  int text_width = 0;
-  for (const std::string& line : lines) {
-    int baseline = 0;
-    text_width =
-        std::max(text_width,
-                 cv::getTextSize(line, cv::FONT_HERSHEY_SIMPLEX, kFontScale, 1, &baseline).width);
-  }
-  const int key_rows = 2;
+  int text_width = 0, label_width = 0;
+  for (const std::string& line : lines) text_width = std::max(text_width, TextWidth(line));
+  for (const auto& entry : key) label_width = std::max(label_width, TextWidth(entry.second));
+  const int key_rows = 3;
   const int key_per_row = static_cast<int>((key.size() + key_rows - 1) / key_rows);
-  const int key_width = key_per_row * 190;
+  const int key_column = label_width + 40;
+  const int key_width = key_per_row * key_column;
   const int width = std::max({map.cols, text_width + 20, key_width + 20});
   const int legend_height = (key_rows + static_cast<int>(lines.size())) * kLineHeightPx + 20;
   cv::Mat out(map.rows + legend_height, width, CV_8UC3, cv::Scalar(255, 255, 255));
   map.copyTo(out(cv::Rect(0, 0, map.cols, map.rows)));
   int y = map.rows + kLineHeightPx;
   for (std::size_t i = 0; i < key.size(); ++i) {
-    const int x = 10 + static_cast<int>(i % key_per_row) * 190;
+    const int x = 10 + static_cast<int>(i % key_per_row) * key_column;
     const int ky = y + static_cast<int>(i / key_per_row) * kLineHeightPx;
     const cv::Vec3b c = key[i].first;
     cv::rectangle(out, cv::Rect(x, ky - 11, 14, 14), cv::Scalar(c[0], c[1], c[2]), cv::FILLED);

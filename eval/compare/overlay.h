@@ -3,6 +3,9 @@
 #pragma once
 
 #include <opencv2/core.hpp>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "eval/compare/map_comparison.h"
 
@@ -18,6 +21,13 @@ struct OverlayColors {
   static cv::Vec3b SarContext() { return {140, 140, 220}; }   ///< SAR-occupied, not evaluated
   static cv::Vec3b NotEvaluated() { return {205, 205, 205}; }
 };
+
+/// The overlay's colour key: each colour with what it means, in the legend's order.
+std::vector<std::pair<cv::Vec3b, std::string>> OverlayKey();
+
+/// The legend's lines on which cells are scored: why a SAR wall can show as "SAR only" beside
+/// a LiDAR line that is not scored (the radar sees a wall's face, not the cells behind it).
+std::vector<std::string> OverlayScoringNote(int tolerance_cells);
 
 /// The map part covers the bounding box of the SAR map's known cells on the LiDAR grid plus a
 /// margin (the whole grid if none); each cell is `pixels_per_cell` pixels square (reduced so

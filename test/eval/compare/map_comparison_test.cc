@@ -173,3 +173,50 @@ TEST_F(BadInputTest, MapsThatDoNotOverlapAreRefusedInEveryAlignMode) {
 
 }  // namespace
 }  // namespace uwbsar
+
+namespace uwbsar {
+namespace {
+
+// A SAR wall one cell in front of the LiDAR's, nothing seen behind it (the radar sees a wall's
+// face): the overlay drew it all red "SAR only" beside a "LiDAR (not evaluated)" line, and
+// nothing said why. The key now says what each colour means and the legend why.
+TEST(MapComparisonTest, OverlayLegendExplainsASarOnlyWallBesideAnUnscoredLidarLine) {
+  OccupancyGrid lidar = testing::FreeGrid(40, 40, 0.05);
+  OccupancyGrid sar = testing::FreeGrid(40, 40, 0.05);
+  for (int r = 0; r < 40; ++r) {
+    lidar.cells[static_cast<std::size_t>(r) * 40 + 30] = OccupancyGrid::kOccupied;
+    sar.cells[static_cast<std::size_t>(r) * 40 + 29] = OccupancyGrid::kOccupied;
+    for (int c = 30; c < 40; ++c) sar.cells[static_cast<std::size_t>(r) * 40 + c] = -1;
+  }
+  ComparisonReport report;
+  report.lidar = lidar;
+  report.sar = sar;
+  report.comparison = CompareOnLidarGrid(sar, lidar, Pose2{}, 1);
+  const cv::Mat overlay = RenderOverlay(report, 4);
+  int sar_only = 0, lidar_unscored = 0;
+  for (int row = 0; row < overlay.rows; ++row) {
+    for (int col = 0; col < overlay.cols; ++col) {
+      sar_only += overlay.at<cv::Vec3b>(row, col) == OverlayColors::SarOnly();
+      lidar_unscored += overlay.at<cv::Vec3b>(row, col) == OverlayColors::LidarContext();
+    }
+  }
+  EXPECT_GT(sar_only, 40 * 16 / 2);  // the wall, beside the unscored LiDAR line
+  EXPECT_GT(lidar_unscored, 40 * 16 / 2);
+  auto of = [](const cv::Vec3b& colour) {
+    for (const auto& [c, text] : OverlayKey()) {
+      if (c == colour) return text;
+    }
+    return std::string();
+  };
+  EXPECT_EQ(of(OverlayColors::SarOnly()), "SAR only (LiDAR free)");
+  EXPECT_EQ(of(OverlayColors::LidarContext()), "LiDAR the radar did not see (not scored)");
+  const std::vector<std::string> note = OverlayScoringNote(1);
+  std::string joined;
+  for (const std::string& line : note) joined += line + " ";
+  EXPECT_NE(joined.find("Scored: the cells both maps know"), std::string::npos) << joined;
+  EXPECT_NE(joined.find("SAR only beside an unscored LiDAR line"), std::string::npos) << joined;
+  EXPECT_NE(joined.find("allow 1 cell)"), std::string::npos) << joined;
+}
+
+}  // namespace
+}  // namespace uwbsar
