@@ -71,8 +71,9 @@ double Into(const rosbag::BagInfo& info, TimestampNs t) { return NsToSeconds(t -
 void AddRadarLines(const rosbag::BagInfo& info, const Config& config, std::size_t i,
                    const TopicFound& found, const RadarTally& r, std::vector<CheckLine>* lines) {
   const RadarConfig& radar = config.radars[i];
-  const std::string key = Text("radars[%zu]", i);
-  const std::string who = key + " '" + radar.name + "': ";
+  // Named as the configuration's messages name a radar: by name, as entries merge by name.
+  const std::string key = "radars[" + radar.name + "]";
+  const std::string who = "radar " + radar.name + ": ";
   const std::string problem = TopicProblem(info, config, found, radar.topic,
                                            rosbag::kFloat32MultiArrayType, key + ".topic");
   if (!problem.empty()) {

@@ -91,8 +91,8 @@ TEST(CheckJobTest, RecordingAsTheRobotMakesItIsAllOk) {
   EXPECT_EQ(check.Count(CheckLevel::kError), 0) << LinesOf(check, CheckLevel::kError);
   EXPECT_EQ(check.Count(CheckLevel::kWarning), 0) << LinesOf(check, CheckLevel::kWarning);
   const std::string ok = LinesOf(check, CheckLevel::kOk);
-  EXPECT_TRUE(Has(ok, "radars[1] 'right': /UWBradar1/readings, 401 scans at 100.0 Hz")) << ok;
-  EXPECT_TRUE(Has(ok, "every scan has 1000 samples (radars[0].num_samples)")) << ok;
+  EXPECT_TRUE(Has(ok, "radar right: /UWBradar1/readings, 401 scans at 100.0 Hz")) << ok;
+  EXPECT_TRUE(Has(ok, "every scan has 1000 samples (radars[left].num_samples)")) << ok;
   EXPECT_TRUE(Has(ok, "odometry: /odom, 201 messages at 50.0 Hz")) << ok;
   EXPECT_TRUE(Has(ok, "odometry covers all 802 scans")) << ok;
   EXPECT_TRUE(Has(LinesOf(check, CheckLevel::kInfo), "ground truth: /ground_truth/odom, 201 poses"))
@@ -105,7 +105,7 @@ TEST(CheckJobTest, MissingTopicIsAnErrorNamingTheKeyAndTheClosestTopic) {
   const BagCheck check = CheckBag(Config{}, WriteBag("missing", spec));
   ASSERT_EQ(check.Count(CheckLevel::kError), 1) << LinesOf(check, CheckLevel::kError);
   EXPECT_EQ(LinesOf(check, CheckLevel::kError),
-            "radars[1] 'right': no topic /UWBradar1/readings (radars[1].topic) in the bag (did "
+            "radar right: no topic /UWBradar1/readings (radars[right].topic) in the bag (did "
             "you mean '/UWBradar1/reading'?)\n");
 }
 
@@ -116,8 +116,8 @@ TEST(CheckJobTest, WrongSampleCountIsAnErrorNamingBothCounts) {
   const std::string errors = LinesOf(check, CheckLevel::kError);
   EXPECT_EQ(check.Count(CheckLevel::kError), 2) << errors;  // each radar
   EXPECT_TRUE(Has(errors,
-                  "radars[0] 'left': 401 of 401 scans do not have 1000 samples "
-                  "(radars[0].num_samples); the first has 500, 0.00 s into the bag: map drops"))
+                  "radar left: 401 of 401 scans do not have 1000 samples "
+                  "(radars[left].num_samples); the first has 500, 0.00 s into the bag: map drops"))
       << errors;
 }
 
@@ -126,7 +126,7 @@ TEST(CheckJobTest, RadarTopicWithoutMessagesIsAnError) {
   spec.right_messages = false;
   const BagCheck check = CheckBag(Config{}, WriteBag("empty", spec));
   EXPECT_EQ(LinesOf(check, CheckLevel::kError),
-            "radars[1] 'right': /UWBradar1/readings holds no messages: map images nothing from "
+            "radar right: /UWBradar1/readings holds no messages: map images nothing from "
             "this radar\n");
 }
 

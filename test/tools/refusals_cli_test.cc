@@ -38,7 +38,7 @@ TEST(CliRefusalTest, ConfigIsAcceptedAfterEverySubcommand) {
   for (const std::string& command : std::vector<std::string>{
            "config", "image --synthetic straight --out " + dir + "/o", "demo --out " + dir + "/o",
            "optimize " + any_file, "loops --from-stats " + any_file, "detectors " + dir,
-           "map " + dir + " --out " + dir + "/o", "info " + dir,
+           "map " + dir + " --out " + dir + "/o", "info " + dir, "check " + dir,
            "simulate --map " + any_file + " --out " + dir + "/b",
            "compare " + any_file + " " + any_file + " --out " + dir + "/o",
            "export-pcd " + any_file + " --out " + dir + "/o.pcd", "run --emulate"}) {
