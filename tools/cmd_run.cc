@@ -71,8 +71,10 @@ void AddRunOptions(CLI::App* cmd, RunOptions* opts) {
                 "otherwise)");
 }
 
-void PrintRunResult(const slam::LiveRunResult& result, const std::string& out_dir,
-                    const GlobalOptions& globals) {
+/// What the run did, and the odometry calibration it applied (once: PrintMapSummary prints
+/// it with a map's summary).
+void PrintRunResult(const slam::LiveRunResult& result, const Config& config,
+                    const std::string& out_dir, const GlobalOptions& globals) {
   std::printf(
       "live run: %lld scans, %lld odometry, %lld recorded messages, %lld dropped from "
       "processing\n",
@@ -96,11 +98,11 @@ void PrintRunResult(const slam::LiveRunResult& result, const std::string& out_di
     }
     std::printf("outputs: %s/trajectory.tum, localize.csv, summary.json, live.json\n",
                 out_dir.c_str());
+  } else if (result.run.slam && !result.run.slam->keyframes().empty()) {
+    PrintMapSummary(result.run, result.outputs, out_dir, globals);
     return;
   }
-  if (result.run.slam && !result.run.slam->keyframes().empty()) {
-    PrintMapSummary(result.run, result.outputs, out_dir, globals);
-  }
+  PrintOdometryCalibration(config, globals);
 }
 
 void Run(const RunOptions& opts, const GlobalOptions& globals) {
@@ -141,8 +143,7 @@ void Run(const RunOptions& opts, const GlobalOptions& globals) {
   }
   slam::LiveRunResult result = slam::RunLive(config, std::move(options));
   if (emulation) emulation->Finish();
-  if (!globals.quiet) PrintRunResult(result, opts.out_dir, globals);
-  PrintOdometryCalibration(config, globals);
+  if (!globals.quiet) PrintRunResult(result, config, opts.out_dir, globals);
 }
 
 }  // namespace

@@ -14,8 +14,11 @@ LiveEmulation::LiveEmulation(const EmulationOptions& emulation, Config* config,
                              LiveRunOptions* options, std::atomic<bool>* stop)
     : stop_(stop) {
   EnsureDirectory(options->out_dir);
-  const std::string dev_dir = (std::filesystem::path(options->out_dir) / "dev").string();
-  EnsureDirectory(dev_dir);
+  dev_dir_ = (std::filesystem::path(options->out_dir) / "dev").string();
+  std::error_code ec;
+  created_dev_dir_ = !std::filesystem::exists(dev_dir_, ec) && !ec;
+  EnsureDirectory(dev_dir_);
+  const std::string& dev_dir = dev_dir_;
   config->live.radar_devices.clear();
   for (std::size_t i = 0; i < config->radars.size(); ++i) {
     config->live.radar_devices.push_back(dev_dir + "/radar" + std::to_string(i));
@@ -51,7 +54,10 @@ LiveEmulation::~LiveEmulation() {
 
 void LiveEmulation::Finish() {
   if (watcher_.joinable()) watcher_.join();
-  if (player_) player_->Stop();
+  player_.reset();  // stops the devices and unplugs them: their links in <out>/dev go
+  // The folder made for the links is no output of the run. (remove() leaves one not empty.)
+  std::error_code ec;
+  if (created_dev_dir_) std::filesystem::remove(dev_dir_, ec);
 }
 
 }  // namespace uwbsar::slam

@@ -44,11 +44,13 @@ class LiveEmulation {
   LiveEmulation& operator=(const LiveEmulation&) = delete;
 
   /// After the run: waits for the watcher (until the playback ends or `*stop` is set), then
-  /// stops the devices.
+  /// stops the devices and removes <out>/dev when this made it and it is empty.
   void Finish();
 
  private:
   std::atomic<bool>* stop_;
+  std::string dev_dir_;           ///< <out>/dev, the devices' folder
+  bool created_dev_dir_ = false;  ///< made here: removed once the devices are stopped
   // Destroyed in reverse order: the watcher (reads the player), the player (reads the
   // clock), the clock.
   std::unique_ptr<live::HostClock> truth_clock_;

@@ -2,11 +2,13 @@
 // it), one summary.json shape, localize's trajectory from the first fix, progress on every
 // long command (UWBSAR_PROGRESS=1 draws it without a terminal), -v's per-stage log, every
 // command lists what it wrote, a failed map leaves no folder it created, and the results.mcap
-// of map, map --resume and localize read back with the Python mcap readers. One demo and one
+// of map, map --resume and localize read back with the Python mcap readers; localize prints
+// its ATE, an emulated `run` its calibration once and no device folder. One demo and one
 // simulated bag serve every test (seconds each).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -213,6 +215,51 @@ TEST_F(CliContractRunTest, ResultsMcapOfMapResumeAndLocalizeReadBackInPython) {
                             "/demo --out " + *dir_ + "/localized_plain");
   ASSERT_EQ(off.exit_code, 0) << off.output;
   EXPECT_FALSE(fs::exists(*dir_ + "/localized_plain/results.mcap"));
+}
+
+}  // namespace
+
+namespace {
+
+int Occurrences(const std::string& text, const std::string& part) {
+  int n = 0;
+  for (std::size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) {
+    ++n;
+  }
+  return n;
+}
+
+// README's `uwbsar run --emulate`: it printed the odometry-calibration line twice and left an
+// empty <out>/dev, the folder of the emulated devices' links.
+TEST(CliContractLiveTest, EmulatedRunPrintsTheCalibrationOnceAndLeavesNoDeviceFolder) {
+  const std::string dir =
+      (fs::temp_directory_path() / ("uwbsar_contract_live_" + std::to_string(::getpid()))).string();
+  fs::remove_all(dir);
+  const CliRun r = Uwbsar("run --emulate --speed 4 --duration 12 --out " + dir + "/live");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(Has(r.output, "keyframes")) << r.output;  // a map's summary, with its calibration
+  EXPECT_EQ(Occurrences(r.output, "odometry calibration: "), 1) << r.output;
+  EXPECT_TRUE(fs::exists(dir + "/live/summary.json"));
+  EXPECT_FALSE(fs::exists(dir + "/live/dev"));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+
+namespace {
+
+// `localize` wrote its ATE to summary.json only; `map` prints its own.
+TEST_F(CliContractRunTest, LocalizePrintsItsAteWhenTheBagHasGroundTruth) {
+  const std::string out = *dir_ + "/localized_ate";
+  const CliRun r = Uwbsar("localize " + *dir_ + "/bag2 --map " + *dir_ + "/demo --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json s = Json(out + "/summary.json");
+  ASSERT_TRUE(s.contains("ate_tracking")) << s.dump();
+  char line[96];
+  std::snprintf(line, sizeof line, "ATE RMSE %.2f cm over %d poses",
+                s["ate_tracking"]["rmse_m"].get<double>() * 100,
+                s["ate_tracking"]["poses"].get<int>());
+  EXPECT_TRUE(Has(r.output, line)) << line << " in " << r.output;
 }
 
 }  // namespace
