@@ -21,6 +21,23 @@ void Validate(const BackendConfig& b, const std::string& src) {
   Require(b.odometry_xy_information > 0, src, "backend.odometry_xy_information", "must be > 0");
   Require(b.odometry_yaw_information > 0, src, "backend.odometry_yaw_information", "must be > 0");
   Require(b.odometry_min_distance_m > 0, src, "backend.odometry_min_distance_m", "must be > 0");
+  Require(b.gyro_bias_sigma_dps > 0 && b.gyro_bias_sigma_dps < 10, src,
+          "backend.gyro_bias_sigma_dps", "must be in (0, 10)");
+  Require(b.gyro_bias_walk_dps_per_sqrt_s >= 0 && b.gyro_bias_walk_dps_per_sqrt_s < 1, src,
+          "backend.gyro_bias_walk_dps_per_sqrt_s", "must be in [0, 1) (0: a constant bias)");
+  Require(b.gyro_bias_segment_s >= 1, src, "backend.gyro_bias_segment_s", "must be >= 1");
+  Require(b.gyro_rate_noise_dps_per_sqrt_hz > 0 && b.gyro_rate_noise_dps_per_sqrt_hz < 10, src,
+          "backend.gyro_rate_noise_dps_per_sqrt_hz", "must be in (0, 10)");
+  Require(b.gyro_still_min_s > 0, src, "backend.gyro_still_min_s", "must be > 0");
+  // A heading drift per metre is a wheel-only base's. On a gyro base it was a run's bias at that
+  // run's speed, and applied to another run (whose bias may have the other sign) it made the
+  // odometry worse than none.
+  Require(b.odometry_model == OdometryModel::kWheel ||
+              b.calibration_heading_drift_mean_rad_per_m == 0.0,
+          src, "backend.calibration_heading_drift_mean_rad_per_m",
+          "must be 0 with backend.odometry_model gyro: a gyro's heading error is the run's bias, "
+          "estimated in each run (remove the key, or set odometry_model: wheel for a wheel-only "
+          "base)");
   Require(b.calibration_scale_sigma > 0, src, "backend.calibration_scale_sigma", "must be > 0");
   Require(b.calibration_heading_drift_sigma_rad_per_m > 0, src,
           "backend.calibration_heading_drift_sigma_rad_per_m", "must be > 0");

@@ -28,6 +28,17 @@ struct EnumNames<RobustLoss> {
       {RobustLoss::kCauchy, "cauchy"}, {RobustLoss::kHuber, "huber"}, {RobustLoss::kNone, "none"}};
 };
 
+/// backend.odometry_model: how the base's odometry errs (backend/odometry_calibration.h).
+/// gyro: heading from a yaw gyro (the Kobuki's kobuki_node default): the turns' scale belongs to
+/// the robot, the bias to the run (backend/gyro_bias_track.h). wheel: heading from the wheels:
+/// a heading drift per metre (unequal wheel radii) belongs to the robot.
+enum class OdometryModel { kGyro, kWheel };
+template <>
+struct EnumNames<OdometryModel> {
+  static constexpr std::pair<OdometryModel, const char*> kNames[] = {
+      {OdometryModel::kGyro, "gyro"}, {OdometryModel::kWheel, "wheel"}};
+};
+
 /// The largest calibration backend.calibration_*_mean accept (config validation), and the
 /// largest `uwbsar calibrate` reports: a base off by more than 20 % (distance or turns) or
 /// 0.1 rad per metre needs mending, not a calibration.
@@ -64,6 +75,14 @@ struct BackendConfig {
   bool odometry_calibration = true;  ///< estimate each trajectory's odometry intrinsics (distance
                                      ///< scale, heading drift per metre, rotation scale) while
                                      ///< loops constrain them (backend/odometry_calibration.h)
+  OdometryModel odometry_model = OdometryModel::kGyro;  ///< gyro or wheel (see the enum)
+  double gyro_bias_sigma_dps = 0.03;  ///< gyro: spread of the turn-on bias, the prior of a run's
+                                      ///< bias before standstills and loops observe it
+  double gyro_bias_walk_dps_per_sqrt_s = 0.0005;  ///< gyro: the bias's random walk (0: constant)
+  double gyro_bias_segment_s = 30.0;  ///< gyro: the bias is estimated per this much time
+  double gyro_rate_noise_dps_per_sqrt_hz = 0.03;  ///< gyro: white rate noise (standstills'
+                                                  ///< measurement of the bias)
+  double gyro_still_min_s = 0.5;  ///< gyro: a standstill this long or longer measures the bias
   double calibration_scale_sigma = 0.02;  ///< prior sigma of the distance scale (fraction)
   double calibration_heading_drift_sigma_rad_per_m = 0.005;  ///< prior sigma of the heading
                                                              ///< drift per metre travelled
@@ -116,6 +135,12 @@ struct BackendConfig {
     v("odometry_yaw_information", odometry_yaw_information);
     v("odometry_min_distance_m", odometry_min_distance_m);
     v("odometry_calibration", odometry_calibration);
+    v("odometry_model", odometry_model);
+    v("gyro_bias_sigma_dps", gyro_bias_sigma_dps);
+    v("gyro_bias_walk_dps_per_sqrt_s", gyro_bias_walk_dps_per_sqrt_s);
+    v("gyro_bias_segment_s", gyro_bias_segment_s);
+    v("gyro_rate_noise_dps_per_sqrt_hz", gyro_rate_noise_dps_per_sqrt_hz);
+    v("gyro_still_min_s", gyro_still_min_s);
     v("calibration_scale_sigma", calibration_scale_sigma);
     v("calibration_heading_drift_sigma_rad_per_m", calibration_heading_drift_sigma_rad_per_m);
     v("calibration_rotation_sigma", calibration_rotation_sigma);

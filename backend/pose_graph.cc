@@ -71,6 +71,12 @@ int PoseGraph::AddEdge(const PoseGraphEdge& edge) {
     throw InputError("pose graph: " + name +
                      " has an information matrix that is not symmetric positive definite");
   }
+  // Both times or neither; a step never runs backwards (a gyro's bias acts over its duration).
+  if (std::isnan(edge.begin_s) != std::isnan(edge.end_s) || std::isinf(edge.begin_s) ||
+      std::isinf(edge.end_s) || edge.end_s < edge.begin_s) {
+    throw InputError("pose graph: " + name + " has times " + std::to_string(edge.begin_s) + " .. " +
+                     std::to_string(edge.end_s) + " s (both finite, end >= begin)");
+  }
   std::lock_guard<std::mutex> lock(data_mutex_);
   for (const int id : {edge.from_id, edge.to_id}) {
     if (!estimates_.count(id)) {
@@ -91,7 +97,7 @@ int PoseGraph::AddEdge(const PoseGraphEdge& edge) {
 }
 
 int PoseGraph::AddOdometryEdge(int from_id, int to_id, const Pose2& T_from_to, int trajectory,
-                               double path_m, double turn_rad) {
+                               double path_m, double turn_rad, double begin_s, double end_s) {
   const double d =
       std::max(std::hypot(T_from_to.x_m, T_from_to.y_m), config_.odometry_min_distance_m);
   PoseGraphEdge e;
@@ -102,6 +108,8 @@ int PoseGraph::AddOdometryEdge(int from_id, int to_id, const Pose2& T_from_to, i
   e.trajectory = trajectory;
   e.path_m = path_m;
   e.turn_rad = turn_rad;
+  e.begin_s = begin_s;
+  e.end_s = end_s;
   e.information =
       Eigen::Vector3d(config_.odometry_xy_information / d, config_.odometry_xy_information / d,
                       config_.odometry_yaw_information / d)
@@ -155,7 +163,10 @@ void PoseGraph::InsertPending(std::vector<PendingNode> nodes, const std::vector<
     if (se->edge.kind == EdgeKind::kOdometry && se->edge.trajectory >= 0 &&
         config_.odometry_calibration) {
       se->calibration = CalibrationFor(se->edge.trajectory);
+      se->gyro_bias = GyroBiasFor(se->edge);
       se->travel = TravelOf(se->edge.T_from_to, se->edge.path_m, se->edge.turn_rad);
+      if (se->gyro_bias != &no_gyro_bias_)
+        se->travel.duration_s = se->edge.end_s - se->edge.begin_s;
       node_trajectory_[se->edge.from_id] = se->edge.trajectory;
       node_trajectory_[se->edge.to_id] = se->edge.trajectory;
     }
@@ -163,11 +174,7 @@ void PoseGraph::InsertPending(std::vector<PendingNode> nodes, const std::vector<
       auto it = reseed.find(se->edge.to_id);
       if (it != reseed.end() && it->second) {
         const Pose2 T_world_from{se->from->x[0], se->from->x[1], se->from->x[2]};
-        const Pose2 T_world_to =
-            T_world_from *
-            (se->calibration != nullptr
-                 ? CorrectedOdometryStep(se->calibration->x, se->edge.T_from_to, se->travel)
-                 : se->edge.T_from_to);
+        const Pose2 T_world_to = T_world_from * se->CorrectedMeasurement();
         se->to->x = {T_world_to.x_m, T_world_to.y_m, T_world_to.yaw_rad};
         it->second = false;
       }
@@ -177,7 +184,7 @@ void PoseGraph::InsertPending(std::vector<PendingNode> nodes, const std::vector<
     if (se->calibration != nullptr) {
       se->residual = problem_->AddResidualBlock(
           CalibratedOdometryCost::Create(se->edge.T_from_to, se->travel, se->sqrt_information),
-          nullptr, se->from->x.data(), se->to->x.data(), se->calibration->x.data());
+          nullptr, se->from->x.data(), se->to->x.data(), se->calibration->x.data(), se->gyro_bias);
     } else {
       se->residual =
           problem_->AddResidualBlock(new Se2EdgeCost(se->edge.T_from_to, se->sqrt_information),
@@ -268,8 +275,10 @@ void PoseGraph::TakePending() {
   std::vector<std::pair<int, Line2>> landmarks;
   std::vector<int> observation_indices;
   std::vector<LineObservation> observations;
+  std::vector<PendingBiasMeasurement> bias_measurements;
   {
     std::lock_guard<std::mutex> lock(data_mutex_);
+    bias_measurements.swap(pending_bias_measurements_);
     nodes.swap(pending_nodes_);
     edge_indices.swap(pending_edges_);
     fixed.swap(pending_fixed_);
@@ -281,6 +290,9 @@ void PoseGraph::TakePending() {
   }
   InsertPending(std::move(nodes), edge_indices, edges, fixed);
   InsertPendingLandmarks(landmarks, observation_indices, observations);
+  for (const PendingBiasMeasurement& m : bias_measurements) {
+    GyroBiasTrackFor(m.trajectory)->AddMeasurement(m.t_s, m.bias_radps, m.sigma_radps);
+  }
 }
 
 void PoseGraph::SolveWithLoopHandling(bool first, OptimizeResult* result) {
@@ -318,6 +330,8 @@ void PoseGraph::PublishSolution(OptimizeResult* result) {
         Pose2{node->x[0] + solver_origin_.x_m, node->x[1] + solver_origin_.y_m, node->x[2]};
   }
   for (const auto& [trajectory, block] : calibrations_) calibrations_out_[trajectory] = block->x;
+  for (const auto& [trajectory, track] : gyro_bias_tracks_)
+    gyro_biases_out_[trajectory] = track->Segments();
   PublishLandmarks();
   for (const auto& se : solver_edges_) {
     EdgeReport& r = reports_[static_cast<std::size_t>(se->index)];
@@ -376,6 +390,11 @@ std::vector<int> PoseGraph::FixedNodes() const {
 std::map<int, std::array<double, 3>> PoseGraph::OdometryCalibrations() const {
   std::lock_guard<std::mutex> lock(data_mutex_);
   return calibrations_out_;
+}
+
+std::map<int, std::vector<std::pair<double, double>>> PoseGraph::GyroBiases() const {
+  std::lock_guard<std::mutex> lock(data_mutex_);
+  return gyro_biases_out_;
 }
 
 int PoseGraph::NumNodes() const {

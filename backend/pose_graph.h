@@ -73,6 +73,8 @@ class Problem;
 
 namespace uwbsar {
 
+class GyroBiasTrack;  // backend/gyro_bias_track.h
+
 /// kWall: the sideways offset between two keyframes of one straight stretch, measured by their
 /// wall profiles (frontend/wall_profile.h); its information constrains (almost) only that
 /// direction. It is robust and rejected by its chi2 like a loop, but never held back for
@@ -111,6 +113,8 @@ struct PoseGraphEdge {
   double path_m = -1.0;  ///< odometry: the robot's path over the edge (calibration); < 0: |t|
   double turn_rad = std::numeric_limits<double>::quiet_NaN();  ///< odometry: the robot's own
                                                                ///< turn; NaN: the yaw of T
+  double begin_s = std::numeric_limits<double>::quiet_NaN();   ///< odometry: the step's times
+  double end_s = std::numeric_limits<double>::quiet_NaN();     ///< (gyro bias); NaN: unknown
 };
 
 /// The state of one edge after the last Optimize().
@@ -177,9 +181,13 @@ class PoseGraph {
   /// `path_m` and `turn_rad`: the robot's own path and turn over the edge when the nodes'
   /// frames are not the robot's (keyframe anchors keep the world orientation; defaults:
   /// |t| and the yaw of T_from_to).
+  /// `begin_s`, `end_s`: the times of the two nodes (s, any fixed origin), over which a gyro
+  /// base's bias acted (backend.odometry_model gyro; NaN: unknown, no bias applies).
   int AddOdometryEdge(int from_id, int to_id, const Pose2& T_from_to, int trajectory = 0,
                       double path_m = -1.0,
-                      double turn_rad = std::numeric_limits<double>::quiet_NaN());
+                      double turn_rad = std::numeric_limits<double>::quiet_NaN(),
+                      double begin_s = std::numeric_limits<double>::quiet_NaN(),
+                      double end_s = std::numeric_limits<double>::quiet_NaN());
 
   /// The next node of an odometry chain: adds node `to_id` and the odometry edge
   /// AddOdometryEdge(from_id, to_id, ...) with the same arguments. The node starts on the
@@ -190,7 +198,14 @@ class PoseGraph {
   /// AddOdometryEdge, and std::out_of_range on an unknown `from_id` (graph unchanged).
   Pose2 AddOdometryNode(int from_id, int to_id, const Pose2& T_from_to, int trajectory = 0,
                         double path_m = -1.0,
-                        double turn_rad = std::numeric_limits<double>::quiet_NaN());
+                        double turn_rad = std::numeric_limits<double>::quiet_NaN(),
+                        double begin_s = std::numeric_limits<double>::quiet_NaN(),
+                        double end_s = std::numeric_limits<double>::quiet_NaN());
+
+  /// A direct measurement of `trajectory`'s gyro bias at time `t_s` (a standstill:
+  /// backend/gyro_stillness.h), `bias_radps` +- `sigma_radps`. Ignored unless odometry_model is
+  /// gyro and odometry_calibration is on. Throws InputError on a non-finite value or sigma <= 0.
+  void AddGyroBiasMeasurement(int trajectory, double t_s, double bias_radps, double sigma_radps);
 
   /// A loop edge with the configured default information.
   int AddLoopEdge(int from_id, int to_id, const Pose2& T_from_to);
@@ -246,6 +261,9 @@ class PoseGraph {
   /// Each calibrated trajectory's odometry calibration after the last Optimize()
   /// ([scale, heading_drift_rad_per_m, rotation_scale]; zero while no loop constrains it).
   std::map<int, std::array<double, 3>> OdometryCalibrations() const;
+  /// Each trajectory's gyro bias after the last Optimize(): (segment start s, rad/s) in time
+  /// order (backend/gyro_bias_track.h); empty unless odometry_model is gyro.
+  std::map<int, std::vector<std::pair<double, double>>> GyroBiases() const;
   int NumNodes() const;
   int NumEdges() const;
   const BackendConfig& config() const { return config_; }
@@ -256,6 +274,10 @@ class PoseGraph {
   struct SolverLandmark;
   struct SolverObservation;
   struct CalibrationBlock;
+  struct PendingBiasMeasurement {
+    int trajectory = 0;
+    double t_s = 0.0, bias_radps = 0.0, sigma_radps = 0.0;
+  };
   struct PendingNode {
     int id = 0;
     Pose2 guess;
@@ -282,6 +304,11 @@ class PoseGraph {
   void ChordalStart();
   // backend/pose_graph_calibration.cc (also AddOdometryNode)
   CalibrationBlock* CalibrationFor(int trajectory);
+  /// The gyro bias block an odometry edge reads (a constant zero for a wheel base or an edge
+  /// of unknown times).
+  double* GyroBiasFor(const PoseGraphEdge& edge);
+  GyroBiasTrack* GyroBiasTrackFor(int trajectory);
+  bool UsesGyroBias(int trajectory) const;  ///< odometry_model gyro, calibrated trajectory
   void UpdateCalibrationFreedom();  ///< free a block while an accepted loop touches its nodes
   double TotalChi2() const;         ///< accepted edges and the free blocks' priors
   void TrialSolveHeldBackLoops(OptimizeResult* result);
@@ -321,6 +348,8 @@ class PoseGraph {
   std::vector<bool> removed_;  // by edge index: an edge of a removed node (RemoveNode)
   std::vector<int> fixed_ids_;
   std::map<int, std::array<double, 3>> calibrations_out_;
+  std::map<int, std::vector<std::pair<double, double>>> gyro_biases_out_;
+  std::vector<PendingBiasMeasurement> pending_bias_measurements_;
   std::vector<PendingNode> pending_nodes_;
   std::vector<int> pending_edges_;
   std::vector<int> pending_fixed_;
@@ -338,7 +367,9 @@ class PoseGraph {
   std::unique_ptr<ceres::Problem> problem_;
   std::unordered_map<int, std::unique_ptr<SolverNode>> solver_nodes_;
   std::vector<std::unique_ptr<SolverEdge>> solver_edges_;
-  std::map<int, std::unique_ptr<CalibrationBlock>> calibrations_;  // by trajectory
+  std::map<int, std::unique_ptr<CalibrationBlock>> calibrations_;   // by trajectory
+  std::map<int, std::unique_ptr<GyroBiasTrack>> gyro_bias_tracks_;  // by trajectory (gyro)
+  double no_gyro_bias_ = 0.0;  // the constant zero bias block (added on first use)
   std::map<int, std::unique_ptr<SolverLandmark>> solver_landmarks_;
   std::vector<std::unique_ptr<SolverObservation>> solver_observations_;
   std::vector<int> landmark_order_;  // ids in insertion order (right-angle candidates' partners)

@@ -1,30 +1,84 @@
 // PoseGraph's odometry calibration: a new node's estimate on the corrected odometry
 // (AddOdometryNode), the calibration blocks, and the trial solve of held-back loops (see
 // backend/pose_graph.h, steps 4b and the calibration paragraph).
+#include <ceres/manifold.h>
 #include <ceres/problem.h>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "backend/gyro_bias_track.h"
 #include "backend/odometry_calibration.h"
 #include "backend/pose_graph.h"
 #include "backend/pose_graph_solver.h"
+#include "core/errors.h"
 
 namespace uwbsar {
 
+bool PoseGraph::UsesGyroBias(int trajectory) const {
+  return config_.odometry_calibration && trajectory >= 0 &&
+         config_.odometry_model == OdometryModel::kGyro;
+}
+
 Pose2 PoseGraph::AddOdometryNode(int from_id, int to_id, const Pose2& T_from_to, int trajectory,
-                                 double path_m, double turn_rad) {
-  const Pose2 step = config_.odometry_calibration && trajectory >= 0
-                         ? CorrectedOdometryStep(config_.CalibrationMean(), T_from_to,
-                                                 TravelOf(T_from_to, path_m, turn_rad))
-                         : T_from_to;
+                                 double path_m, double turn_rad, double begin_s, double end_s) {
+  Pose2 step = T_from_to;
+  if (config_.odometry_calibration && trajectory >= 0) {
+    OdometryTravel travel = TravelOf(T_from_to, path_m, turn_rad);
+    double bias_radps = 0.0;
+    if (UsesGyroBias(trajectory) && std::isfinite(begin_s) && std::isfinite(end_s)) {
+      // The bias as last solved (or as the standstills measured it): a new keyframe starts on
+      // the corrected heading, not on the raw gyro's.
+      travel.duration_s = end_s - begin_s;
+      std::lock_guard<std::mutex> lock(data_mutex_);
+      auto it = gyro_biases_out_.find(trajectory);
+      if (it != gyro_biases_out_.end() && !it->second.empty())
+        bias_radps = it->second.back().second;
+    }
+    step = CorrectedOdometryStep(config_.CalibrationMean(), T_from_to, travel, bias_radps);
+  }
   const Pose2 estimate = GetPose(from_id) * step;
   AddNode(to_id, estimate, /*reseed_from_odometry=*/false);
-  AddOdometryEdge(from_id, to_id, T_from_to, trajectory, path_m, turn_rad);
+  AddOdometryEdge(from_id, to_id, T_from_to, trajectory, path_m, turn_rad, begin_s, end_s);
   return estimate;
+}
+
+void PoseGraph::AddGyroBiasMeasurement(int trajectory, double t_s, double bias_radps,
+                                       double sigma_radps) {
+  if (!std::isfinite(t_s) || !std::isfinite(bias_radps) || !(sigma_radps > 0) ||
+      !std::isfinite(sigma_radps)) {
+    throw InputError("pose graph: gyro bias measurement at " + std::to_string(t_s) +
+                     " s: " + std::to_string(bias_radps) + " +- " + std::to_string(sigma_radps) +
+                     " rad/s (finite, sigma > 0)");
+  }
+  if (!UsesGyroBias(trajectory)) return;
+  std::lock_guard<std::mutex> lock(data_mutex_);
+  pending_bias_measurements_.push_back({trajectory, t_s, bias_radps, sigma_radps});
+}
+
+GyroBiasTrack* PoseGraph::GyroBiasTrackFor(int trajectory) {
+  auto it = gyro_bias_tracks_.find(trajectory);
+  if (it == gyro_bias_tracks_.end()) {
+    it = gyro_bias_tracks_
+             .emplace(trajectory, std::make_unique<GyroBiasTrack>(problem_.get(), config_))
+             .first;
+  }
+  return it->second.get();
+}
+
+double* PoseGraph::GyroBiasFor(const PoseGraphEdge& edge) {
+  if (!UsesGyroBias(edge.trajectory) || std::isnan(edge.begin_s)) {
+    if (!problem_->HasParameterBlock(&no_gyro_bias_)) {
+      problem_->AddParameterBlock(&no_gyro_bias_, 1);
+      problem_->SetParameterBlockConstant(&no_gyro_bias_);
+    }
+    return &no_gyro_bias_;
+  }
+  return GyroBiasTrackFor(edge.trajectory)->BlockAt(0.5 * (edge.begin_s + edge.end_s));
 }
 
 PoseGraph::CalibrationBlock* PoseGraph::CalibrationFor(int trajectory) {
@@ -46,6 +100,11 @@ PoseGraph::CalibrationBlock* PoseGraph::CalibrationFor(int trajectory) {
   for (int i = 0; i < 3; ++i) {
     problem_->SetParameterLowerBound(x, i, mean[i] - 5.0 * sigma[i]);
     problem_->SetParameterUpperBound(x, i, mean[i] + 5.0 * sigma[i]);
+  }
+  // A gyro base's heading error is its bias (backend/gyro_bias_track.h), never a drift per metre:
+  // the two would trade against each other along any path driven at a steady speed.
+  if (config_.odometry_model == OdometryModel::kGyro) {
+    problem_->SetManifold(x, new ceres::SubsetManifold(3, {kCalibHeadingDrift}));
   }
   problem_->SetParameterBlockConstant(x);
   CalibrationBlock* out = block.get();
@@ -90,6 +149,7 @@ double PoseGraph::TotalChi2() const {
     if (!se->rejected) sum += se->Chi2();
   }
   for (const auto& [trajectory, block] : calibrations_) sum += block->prior->Chi2(block->x);
+  for (const auto& [trajectory, track] : gyro_bias_tracks_) sum += track->Chi2();
   return sum + ObservationChi2Sum();
 }
 
@@ -114,6 +174,8 @@ void PoseGraph::TrialSolveHeldBackLoops(OptimizeResult* result) {
     for (const auto& [id, node] : solver_nodes_) nodes.push_back(node->x);
     std::vector<OdometryCalibration> calibrations;
     for (const auto& [trajectory, block] : calibrations_) calibrations.push_back(block->x);
+    std::vector<std::vector<double>> gyro_biases;
+    for (const auto& [trajectory, track] : gyro_bias_tracks_) gyro_biases.push_back(track->State());
     std::vector<bool> rejected;
     for (const auto& se : solver_edges_) rejected.push_back(se->rejected);
     const std::vector<std::array<double, 2>> landmarks = LandmarkStates();
@@ -148,6 +210,8 @@ void PoseGraph::TrialSolveHeldBackLoops(OptimizeResult* result) {
     for (auto& [id, node] : solver_nodes_) node->x = nodes[k++];
     k = 0;
     for (auto& [trajectory, block] : calibrations_) block->x = calibrations[k++];
+    k = 0;
+    for (auto& [trajectory, track] : gyro_bias_tracks_) track->Restore(gyro_biases[k++]);
     for (std::size_t i = 0; i < solver_edges_.size(); ++i) solver_edges_[i]->rejected = rejected[i];
     RestoreLandmarkStates(landmarks);
     for (std::size_t i = 0; i < solver_observations_.size(); ++i)

@@ -81,9 +81,7 @@ int PoseGraph::RemoveNode(int id, Pose2* T_hub_node) {
     // The measurement (a calibrated odometry step as the current calibration corrects it),
     // not the estimate: composed measurements keep the pull the node's edges exerted on its
     // neighbours, so that a chain folds exactly (two springs in series).
-    const Pose2 z = se->calibration != nullptr
-                        ? CorrectedOdometryStep(se->calibration->x, se->edge.T_from_to, se->travel)
-                        : se->edge.T_from_to;
+    const Pose2 z = se->CorrectedMeasurement();
     const RelativePose m{z, cov};
     NodeEdge tie;
     tie.neighbour = from ? se->edge.to_id : se->edge.from_id;

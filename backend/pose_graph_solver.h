@@ -8,6 +8,7 @@
 #include <array>
 #include <memory>
 
+#include "backend/gyro_bias_track.h"
 #include "backend/odometry_calibration.h"
 #include "backend/pose_graph.h"
 #include "backend/se2_edge_cost.h"
@@ -44,7 +45,8 @@ struct PoseGraph::SolverEdge {
   SolverNode* to = nullptr;
   ceres::ResidualBlockId residual = nullptr;  // in the problem (RemoveNode takes it out)
   CalibrationBlock* calibration = nullptr;    // calibrated odometry edges only
-  OdometryTravel travel;                      // the robot's path and turn (calibrated edges)
+  double* gyro_bias = nullptr;                // their gyro bias block (rad/s)
+  OdometryTravel travel;                      // the robot's path, turn and time (calibrated)
   // Loops only: the loss is swapped between robust, none and "switched off" without
   // touching the problem's structure (the wrapper is owned here, not by the problem).
   std::unique_ptr<ceres::LossFunctionWrapper> loss;
@@ -56,10 +58,17 @@ struct PoseGraph::SolverEdge {
   int support = -1;
   double chi2 = 0.0;
 
+  /// The measurement as the current calibration and gyro bias correct it.
+  Pose2 CorrectedMeasurement() const {
+    return calibration != nullptr
+               ? CorrectedOdometryStep(calibration->x, edge.T_from_to, travel, *gyro_bias)
+               : edge.T_from_to;
+  }
+
   double Chi2() const {
     if (calibration != nullptr) {
       return CalibratedOdometryChi2(from->x.data(), to->x.data(), calibration->x, edge.T_from_to,
-                                    travel, sqrt_information);
+                                    travel, sqrt_information, *gyro_bias);
     }
     return Se2Chi2(from->x.data(), to->x.data(), edge.T_from_to, sqrt_information);
   }

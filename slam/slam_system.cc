@@ -7,6 +7,7 @@
 #include <malloc.h>
 #endif
 #include <cmath>
+#include <optional>
 #include <set>
 
 #include "core/errors.h"
@@ -19,6 +20,9 @@ namespace uwbsar::slam {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+/// A stamp as seconds (the pose graph's time: gyro bias).
+double Seconds(TimestampNs stamp_ns) { return static_cast<double>(stamp_ns) * 1e-9; }
 
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -44,6 +48,7 @@ SlamSystem::SlamSystem(const Config& config)
       wall_edges_(config.place_recognition.wall_profiles),
       wall_landmarks_(config.place_recognition.wall_profiles),
       wall_landmarks_on_(UsesWallLandmarks(config)),
+      stillness_(config.backend),
       tiles_(static_cast<std::size_t>(config.limits.tile_cache_mb * 1024.0 * 1024.0)),
       worker_(config.slam.keyframe_thread, config.slam.keyframe_queue_size,
               [this](Work&& work) { Process(std::move(work)); }) {
@@ -77,6 +82,7 @@ void SlamSystem::Finish() {
   HandOver(true);
   WaitIdle();
   std::lock_guard<std::mutex> lock(state_mutex_);
+  if (const std::optional<GyroStandstill> still = stillness_.Flush()) AddStandstill(*still);
   if (graph_->NumNodes() > 0) Optimize();
   // Final state of every loop edge still in the graph (a retired keyframe's loops keep the
   // state they had when it was folded in: accepted).
@@ -138,6 +144,11 @@ void SlamSystem::Process(Work&& work) {
   {
     const auto lock = LockForKeyframeWork();
     odometry_.insert(odometry_.end(), work.odometry.begin(), work.odometry.end());
+    for (const OdometryEntry& e : work.odometry) {
+      const std::optional<GyroStandstill> still =
+          stillness_.Add(Seconds(e.stamp_ns), e.T_world_robot);
+      if (still) AddStandstill(*still);
+    }
   }
   for (Keyframe& k : work.keyframes) AddKeyframe(std::move(k));
 #ifdef __GLIBC__
@@ -210,6 +221,12 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
   if (graph_dirty_ && every > 0 && keyframes_since_solve_ >= every) Optimize();
 }
 
+void SlamSystem::AddStandstill(const GyroStandstill& still) {
+  graph_->AddGyroBiasMeasurement(/*trajectory=*/0, 0.5 * (still.begin_s + still.end_s),
+                                 still.bias_radps, still.sigma_radps);
+  standstills_.push_back(still);
+}
+
 Pose2 SlamSystem::AddGraphNode(const Keyframe& keyframe) {
   const auto lock = LockForKeyframeWork();
   if (keyframes_.empty()) {
@@ -226,8 +243,9 @@ Pose2 SlamSystem::AddGraphNode(const Keyframe& keyframe) {
   const double turn_rad =
       NormalizeAngle(keyframe.T_world_robot.yaw_rad - prev.T_world_robot.yaw_rad);
   // The node starts on the corrected trajectory (the backend applies the base's calibration).
+  // Their times: a gyro base's heading error is its bias over the time between them.
   return graph_->AddOdometryNode(prev.id, keyframe.id, T_prev_this, /*trajectory=*/0, path_m,
-                                 turn_rad);
+                                 turn_rad, Seconds(prev.stamp_ns), Seconds(keyframe.stamp_ns));
 }
 
 void SlamSystem::AddLoop(const LoopAttempt& attempt, int keyframe_id) {

@@ -25,6 +25,7 @@
 #include <mutex>
 #include <vector>
 
+#include "backend/gyro_stillness.h"
 #include "backend/pose_graph.h"
 #include "frontend/imaging_frontend.h"
 #include "frontend/place_recognition/place_recognizer.h"
@@ -93,6 +94,8 @@ class SlamSystem {
   /// The odometry trajectory as the frontend used it (jumps corrected), every sample
   /// handed to the keyframe thread (up to the last keyframe while running; all after Finish).
   const std::vector<OdometryEntry>& odometry() const { return odometry_; }
+  /// The standstills that measured the gyro's bias (backend/gyro_stillness.h).
+  const std::vector<GyroStandstill>& standstills() const { return standstills_; }
   /// The odometry trajectory corrected by the optimised keyframes: each sample's
   /// correction is interpolated in time between the two keyframes around it.
   std::vector<std::pair<TimestampNs, Pose2>> CorrectedTrajectory() const;
@@ -127,6 +130,8 @@ class SlamSystem {
   /// holds state_mutex_.
   void RetireRevisitedViews();
   void Retire(int id);
+  /// A standstill's measurement of the gyro bias, to the graph; caller holds state_mutex_.
+  void AddStandstill(const GyroStandstill& still);
   /// state_mutex_ for the keyframe thread, recording how long it waited.
   std::unique_lock<std::mutex> LockForKeyframeWork();
 
@@ -144,6 +149,8 @@ class SlamSystem {
   WallEdgeFinder wall_edges_;                    // keyframe thread only
   WallLandmarkTracker wall_landmarks_;           // keyframe thread only
   const bool wall_landmarks_on_;                 // UsesWallLandmarks: fixed at construction
+  GyroStillness stillness_;                      // GUARDED_BY(state_mutex_): the odometry's
+  std::vector<GyroStandstill> standstills_;      // GUARDED_BY(state_mutex_)   standstills
   TileStore tiles_;                              // thread-safe (detected tiles out of core)
   std::vector<KeyframeRecord> keyframes_;        // GUARDED_BY(state_mutex_)
   std::vector<RetiredKeyframe> retired_;         // GUARDED_BY(state_mutex_)

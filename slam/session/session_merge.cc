@@ -156,10 +156,23 @@ std::vector<int> BuildJointGraph(const SessionData& a, const SessionData& b,
   for (const SessionKeyframe& k : b.keyframes) {
     graph->AddNode(k.id, T_mapA_mapB * k.T_map_anchor, false);
   }
+  // An odometry edge's times are its keyframes' (a gyro base's bias acts over them): the file
+  // keeps the stamps, not the edges' times.
+  std::map<int, TimestampNs> stamp_of;
+  for (const SessionData* s : {&a, &b}) {
+    for (const SessionKeyframe& k : s->keyframes) stamp_of[k.id] = k.stamp_ns;
+  }
   for (const SessionData* s : {&a, &b}) {
     for (const SessionEdge& e : s->edges) {
       if (e.rejected) continue;
-      graph->AddEdge(e.edge);
+      PoseGraphEdge edge = e.edge;
+      const auto from = stamp_of.find(edge.from_id), to = stamp_of.find(edge.to_id);
+      if (edge.kind == EdgeKind::kOdometry && from != stamp_of.end() && to != stamp_of.end() &&
+          to->second >= from->second) {
+        edge.begin_s = static_cast<double>(from->second) * 1e-9;
+        edge.end_s = static_cast<double>(to->second) * 1e-9;
+      }
+      graph->AddEdge(edge);
     }
   }
   // Both sessions' walls, b's moved into a's map frame with it.

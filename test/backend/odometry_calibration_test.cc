@@ -76,6 +76,7 @@ TEST(OdometryCalibrationTest, LoopsRecoverAsymmetricDriftAndWheelbase) {
   const OdometryCalibration truth_calibration{0.0, 0.004, 0.03};
   const OdometryRun run = OutAndBack(truth_calibration);
   BackendConfig config;
+  config.odometry_model = OdometryModel::kWheel;  // a drift per metre: a wheel-only base's
   config.calibration_rotation_sigma = 0.05;  // observable here (the default holds it near 0)
   PoseGraph calibrated(config);
   Build(run, true, &calibrated);
@@ -150,6 +151,7 @@ TEST(OdometryCalibrationTest, WithLoopsAGivenScaleHoldsAndTheRestIsEstimated) {
   const OdometryCalibration base{-0.01, 0.004, 0.03};
   const OdometryRun run = OutAndBack(base);
   BackendConfig config;
+  config.odometry_model = OdometryModel::kWheel;  // a drift per metre: a wheel-only base's
   config.calibration_scale_mean = -0.01;
   config.calibration_scale_sigma = 0.001;
   config.calibration_rotation_sigma = 0.05;
@@ -179,6 +181,7 @@ TEST(OdometryCalibrationTest, WithLoopsAGivenScaleHoldsAndTheRestIsEstimated) {
 // the same odometry edge as AddOdometryEdge; switched off, the step is taken as measured.
 TEST(OdometryCalibrationTest, AnOdometryNodeStartsOnTheCorrectedStepWithItsEdge) {
   BackendConfig config;
+  config.odometry_model = OdometryModel::kWheel;  // a drift per metre: a wheel-only base's
   config.calibration_scale_mean = -0.01;
   config.calibration_heading_drift_mean_rad_per_m = 0.004;
   config.calibration_rotation_mean = 0.03;

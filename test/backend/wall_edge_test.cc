@@ -82,10 +82,13 @@ TEST(WallEdgeTest, StraightCorridorIsStraightenedWithoutLoopsAndTheCalibrationSt
 }
 
 // One accepted loop (the last two metres driven again) frees the block; the wall edges along
-// the whole corridor then measure the drift.
+// the whole corridor then measure the drift (a wheel-only base's: a gyro's heading error is its
+// bias over time, gyro_bias_track_test.cc).
 TEST(WallEdgeTest, OnceALoopFreesTheCalibrationTheWallEdgesMeasureTheDrift) {
   const OdometryRun run = Corridor();
-  PoseGraph g;
+  BackendConfig config;
+  config.odometry_model = OdometryModel::kWheel;
+  PoseGraph g(config);
   BuildOdometryChain(run, &g);
   AddWallEdges(run, -1, &g);
   const int last = static_cast<int>(run.truth.size()) - 1;
