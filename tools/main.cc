@@ -2,46 +2,11 @@
 #include <malloc.h>
 
 #include <CLI/CLI.hpp>
-#include <cstring>
-#include <exception>
-#include <iostream>
 
-#include "core/errors.h"
 #include "core/interrupt_cleanup.h"
 #include "core/log.h"
 #include "tools/commands.h"
-
-namespace {
-
-/// The first word of the command line that is neither an option nor --config's value: what
-/// the user meant as the subcommand ("" when there is none).
-std::string FirstWord(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--config") == 0) {
-      ++i;
-    } else if (argv[i][0] != '-') {
-      return argv[i];
-    }
-  }
-  return {};
-}
-
-/// Every error in one style, on one line: "uwbsar: error: <what>". CLI11's own form
-/// ("<what>\nRun with --help for more information.") is replaced; an unknown subcommand is
-/// named (CLI11 says "A subcommand is required").
-int ReportParseError(const CLI::App& app, const CLI::ParseError& e, int argc, char** argv) {
-  const std::string word = FirstWord(argc, argv);
-  std::string what = e.what();
-  if (!word.empty() && app.get_subcommands().empty()) {
-    bool known = false;
-    for (const CLI::App* sub : app.get_subcommands({})) known = known || sub->check_name(word);
-    if (!known) what = "unknown subcommand '" + word + "'";
-  }
-  std::cerr << "uwbsar: error: " << what << " (see uwbsar --help)\n";
-  return uwbsar::tools::kExitUsage;
-}
-
-}  // namespace
+#include "tools/usage_error.h"
 
 int main(int argc, char** argv) {
   using namespace uwbsar;
@@ -79,36 +44,35 @@ int main(int argc, char** argv) {
     LoadGlobalConfig(&globals);
   });
 
-  AddConfigCommand(app, globals);
-  AddImageCommand(app, globals);
+  // `uwbsar --help` lists the commands in this order: the main job first (try it, map, use
+  // the map, live, join maps), then what a robot of one's own needs, the tools around a map,
+  // and last the developers' tools, under their own heading.
   AddDemoCommand(app, globals);
-  AddOptimizeCommand(app, globals);
-  AddCalibrateCommand(app, globals);
-  AddLoopsCommand(app, globals);
-  AddMatchCommand(app, globals);
-  AddDetectorsCommand(app, globals);
   AddMapCommand(app, globals);
-  AddInfoCommand(app, globals);
-  AddSimulateCommand(app, globals);
-  AddCompareCommand(app, globals);
-  AddExportPcdCommand(app, globals);
+  AddLocalizeCommand(app, globals);
   AddRunCommand(app, globals);
   AddMergeCommand(app, globals);
-  AddLocalizeCommand(app, globals);
+  AddCalibrateCommand(app, globals);
   AddCheckCommand(app, globals);
+  AddCompareCommand(app, globals);
+  AddInfoCommand(app, globals);
+  AddSimulateCommand(app, globals);
+  AddExportPcdCommand(app, globals);
+  AddConfigCommand(app, globals);
+  AddImageCommand(app, globals);
+  AddMatchCommand(app, globals);
+  AddLoopsCommand(app, globals);
+  AddDetectorsCommand(app, globals);
+  AddOptimizeCommand(app, globals);
+  for (CLI::App* command : app.get_subcommands({})) command->group("Commands");
+  for (const char* name : {"image", "match", "loops", "detectors", "optimize"}) {
+    app.get_subcommand(name)->group("Developer tools");
+  }
 
   try {
     app.parse(argc, argv);
-  } catch (const CLI::Success& e) {  // --help, --version
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    return ReportParseError(app, e, argc, argv);
-  } catch (const InputError& e) {
-    std::cerr << "uwbsar: error: " << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const std::exception& e) {
-    std::cerr << "uwbsar: error: " << e.what() << "\n";
-    return kExitFailure;
+  } catch (...) {  // every error in one style, on one line (tools/usage_error.h)
+    return ReportError(app, argc, argv);
   }
   return kExitOk;
 }

@@ -41,6 +41,52 @@ TEST(CliTest, ConfigWithUnknownKeyIsBadInputNamingKeyAndFile) {
   EXPECT_NE(r.output.find("imaging.pixle_size_m"), std::string::npos) << r.output;
 }
 
+// Issue 49 item 5: a mistyped option is named (not the required option it left out), with the
+// closest known one; a mistyped subcommand likewise.
+TEST(CliTest, AnUnknownOptionOrSubcommandIsNamedWithTheClosestKnownOne) {
+  const std::string dir = TempDir("unknown_option");
+  WriteFile(dir + "/x.bag", "");
+  CliRun r = Uwbsar("map " + dir + "/x.bag --outt " + dir + "/out");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("uwbsar: error: unknown option '--outt' (did you mean '--out'?)"),
+            std::string::npos)
+      << r.output;
+  r = Uwbsar("mpa x.bag");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("unknown subcommand 'mpa' (did you mean 'map'?)"), std::string::npos)
+      << r.output;
+  r = Uwbsar("map " + dir + "/x.bag --out " + dir + "/out --colour red");
+  EXPECT_NE(r.output.find("unknown option '--colour' (see"), std::string::npos) << r.output;
+}
+
+TEST(CliTest, ACommandLineErrorPointsToTheCommandsOwnHelp) {
+  CliRun r = Uwbsar("map");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("(see uwbsar map --help)"), std::string::npos) << r.output;
+  r = Uwbsar("nosuchcommand");
+  EXPECT_NE(r.output.find("(see uwbsar --help)"), std::string::npos) << r.output;
+}
+
+// The main job first, then the tools around a map, then the developers' tools.
+TEST(CliTest, HelpListsTheCommandsInTheOrderAUserNeedsThem) {
+  const CliRun r = Uwbsar("--help");
+  ASSERT_EQ(r.exit_code, 0);
+  std::size_t last = 0;
+  std::string previous = "(start)";
+  for (const char* name :
+       {"demo", "map", "localize", "run", "merge", "calibrate", "check", "compare", "info",
+        "simulate", "export-pcd", "config", "Developer tools:", "image", "match", "loops",
+        "detectors", "optimize"}) {
+    const std::string line = name[0] == 'D' ? "\n" + std::string(name) + "\n"  // the heading
+                                            : "\n  " + std::string(name) + " ";
+    const std::size_t at = r.output.find(line);
+    ASSERT_NE(at, std::string::npos) << name << " missing:\n" << r.output;
+    EXPECT_GT(at, last) << name << " listed before " << previous << ":\n" << r.output;
+    last = at;
+    previous = name;
+  }
+}
+
 TEST(CliTest, MalformedTextLogNamesFileAndLine) {
   const std::string dir = TempDir("log");
   WriteFile(dir + "/run.log", "odom 100 0 0 0\nscan 200 0 3 1.0 2.0\n");
