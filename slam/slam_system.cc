@@ -38,13 +38,24 @@ bool UsesWallLandmarks(const Config& config) {
          (calibrated || !walls.landmarks.require_calibrated_base);
 }
 
+/// Place recognition's view of the configuration, with the candidate search widening as a gyro
+/// base's heading error grows with time.
+PlaceRecognizerConfig RecognizerConfig(const Config& config) {
+  PlaceRecognizerConfig pr(config);
+  if (config.backend.odometry_model == OdometryModel::kGyro) {
+    pr.place_recognition.candidates.heading_rate_sigma_radps =
+        config.backend.gyro_bias_sigma_dps * M_PI / 180.0;
+  }
+  return pr;
+}
+
 }  // namespace
 
 SlamSystem::SlamSystem(const Config& config)
     : config_(config),
       frontend_(std::make_unique<ImagingFrontend>(ImagingFrontendConfig(config))),
       graph_(std::make_unique<PoseGraph>(config.backend)),
-      recognizer_(std::make_unique<PlaceRecognizer>(PlaceRecognizerConfig(config))),
+      recognizer_(std::make_unique<PlaceRecognizer>(RecognizerConfig(config))),
       wall_edges_(config.place_recognition.wall_profiles),
       wall_landmarks_(config.place_recognition.wall_profiles),
       wall_landmarks_on_(UsesWallLandmarks(config)),

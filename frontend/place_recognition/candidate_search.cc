@@ -75,9 +75,12 @@ std::vector<KeyframeIndex::Hit> KeyframeIndex::All(const Point2& p) const {
   return out;
 }
 
-double SearchRadius(const CandidateSearchConfig& c, double travelled_since_loop_m) {
-  return std::min(c.max_radius_m,
-                  c.base_radius_m + c.radius_growth_per_m * std::max(0.0, travelled_since_loop_m));
+double SearchRadius(const CandidateSearchConfig& c, double travelled_since_loop_m,
+                    double seconds_since_loop_s) {
+  const double d = std::max(0.0, travelled_since_loop_m);
+  const double t = std::isfinite(seconds_since_loop_s) ? std::max(0.0, seconds_since_loop_s) : 0.0;
+  const double heading_m = 3.0 * c.heading_rate_sigma_radps * d * t / 2.0;
+  return std::min(c.max_radius_m, c.base_radius_m + c.radius_growth_per_m * d + heading_m);
 }
 
 CandidateSet FindCandidates(const KeyframeIndex& index, const CandidateQuery& query,
@@ -86,7 +89,7 @@ CandidateSet FindCandidates(const KeyframeIndex& index, const CandidateQuery& qu
   set.used_prior = c.use_pose_prior;
   std::vector<KeyframeIndex::Hit> hits;
   if (c.use_pose_prior) {
-    set.radius_m = SearchRadius(c, query.travelled_since_loop_m);
+    set.radius_m = SearchRadius(c, query.travelled_since_loop_m, query.seconds_since_loop_s);
     hits = index.Within(query.position_world, set.radius_m);
   } else {
     set.radius_m = std::numeric_limits<double>::infinity();

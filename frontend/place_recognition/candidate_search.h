@@ -56,6 +56,7 @@ struct CandidateQuery {
   Point2 position_world;                ///< estimated position of the new keyframe
   double path_begin_m = 0.0;            ///< its odometry path at its start
   double travelled_since_loop_m = 0.0;  ///< odometry since the last accepted loop
+  double seconds_since_loop_s = 0.0;    ///< time since the last accepted loop
 };
 
 struct CandidateSet {
@@ -65,8 +66,12 @@ struct CandidateSet {
   int considered = 0;  ///< keyframes the index returned before filtering
 };
 
-/// Search radius for a query: base + growth * travelled, capped.
-double SearchRadius(const CandidateSearchConfig& config, double travelled_since_loop_m);
+/// Search radius for a query: base + growth * travelled, plus, for a heading whose error grows
+/// with time (a gyro's bias, sigma heading_rate_sigma_radps), three sigmas of the sideways error
+/// it makes over the stretch since the last loop (a heading error growing linearly in time over
+/// d metres and t seconds moves the end sideways by rate * d * t / 2); capped at max_radius_m.
+double SearchRadius(const CandidateSearchConfig& config, double travelled_since_loop_m,
+                    double seconds_since_loop_s = 0.0);
 
 CandidateSet FindCandidates(const KeyframeIndex& index, const CandidateQuery& query,
                             const CandidateSearchConfig& config);

@@ -167,6 +167,10 @@ struct CandidateSearchConfig {
   double exclude_recent_path_m = 3.0;   ///< keyframes that began less than this much path
                                         ///< before the new one are skipped (they share scans)
   double grid_cell_m = 2.0;             ///< cell size of the spatial hash of keyframe positions
+  /// Not a key: how fast the odometry's heading error may grow (rad/s, one sigma). A gyro base's
+  /// bias spread (backend.gyro_bias_sigma_dps with backend.odometry_model gyro, set by the SLAM
+  /// system); 0 for a wheel base, whose heading error grows with the path (radius_growth_per_m).
+  double heading_rate_sigma_radps = 0.0;
 
   template <class V>
   void Visit(V& v) {

@@ -51,6 +51,7 @@ KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe,
   k.id = keyframe.id;
   k.grid = keyframe.grid;
   k.path_begin_m = keyframe.path_begin_m;
+  k.stamp_s = static_cast<double>(keyframe.stamp_ns) * 1e-9;
   k.T_world_anchor = keyframe.T_world_anchor;
   if (!keyframe.image.empty()) k.grid = DownsampledGrid(keyframe.grid, config.feature_downsampling);
   // The radars' tiles on a thread of their own while the combined tile is done here: they are
@@ -133,6 +134,7 @@ PlaceRecognitionResult PlaceRecognizer::Process(KeyframeFeatures features, doubl
   result.features_ms = features_ms;
   if (!have_path_origin_) {
     path_at_last_loop_m_ = features.path_begin_m;
+    time_at_last_loop_s_ = features.stamp_s;
     have_path_origin_ = true;
   }
   const auto start = std::chrono::steady_clock::now();
@@ -140,6 +142,7 @@ PlaceRecognitionResult PlaceRecognizer::Process(KeyframeFeatures features, doubl
   query.position_world = CentreInWorld(features);
   query.path_begin_m = features.path_begin_m;
   query.travelled_since_loop_m = features.path_begin_m - path_at_last_loop_m_;
+  query.seconds_since_loop_s = features.stamp_s - time_at_last_loop_s_;  // NaN: unknown
   // Re-localisation: after a long stretch without a loop the odometry may have drifted
   // farther than any search radius, so now and then a keyframe is matched against every
   // past keyframe. Once a loop is found the solve corrects the estimates and the prior
@@ -177,7 +180,10 @@ PlaceRecognitionResult PlaceRecognizer::Process(KeyframeFeatures features, doubl
     if (attempt.validation.accepted) result.loops.push_back(attempt.validation.constraint);
     result.attempts.push_back(std::move(attempt));
   }
-  if (!result.loops.empty()) path_at_last_loop_m_ = features.path_begin_m;
+  if (!result.loops.empty()) {
+    path_at_last_loop_m_ = features.path_begin_m;
+    time_at_last_loop_s_ = features.stamp_s;
+  }
   GuidedPass(features, &result);
   result.matching_ms = MsSince(start);
   const int id = features.id;

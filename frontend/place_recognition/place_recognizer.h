@@ -6,6 +6,7 @@
 // metric LoopConstraint. Every attempt is reported with its reason.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <set>
 #include <unordered_map>
@@ -30,6 +31,7 @@ struct KeyframeFeatures {
   DetectorMap<FeatureSet> by_detector;  ///< the validation pair's detectors
   Point2 centre_anchor;  ///< mean robot position of the tile's scans, in the anchor frame
   double path_begin_m = 0.0;
+  double stamp_s = std::numeric_limits<double>::quiet_NaN();  ///< its time (NaN: unknown)
   Pose2 T_world_anchor;  ///< latest estimate (odometry, or optimised via UpdatePose)
   /// Per-radar features (radar_match.h; empty without sensor tiles): every radar's keypoints
   /// in pixels of `grid`, class_id = sensor id.
@@ -154,6 +156,7 @@ class PlaceRecognizer {
   KeyframeIndex index_;
   std::unordered_map<int, std::unique_ptr<KeyframeFeatures>> database_;
   double path_at_last_loop_m_ = 0.0;
+  double time_at_last_loop_s_ = std::numeric_limits<double>::quiet_NaN();
   double path_at_last_global_m_ = -1e300;  ///< path of the last query without a pose prior
   bool have_path_origin_ = false;
   LoopConstraint last_loop_;  ///< the last loop validated (unguided, or guided forward)

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 namespace uwbsar {
@@ -17,6 +18,23 @@ TEST(CandidateSearchTest, RadiusGrowsWithTravelSinceTheLastLoopUpToTheCap) {
   EXPECT_DOUBLE_EQ(SearchRadius(c, 10.0), 2.0);
   EXPECT_DOUBLE_EQ(SearchRadius(c, 1000.0), 4.0);
   EXPECT_DOUBLE_EQ(SearchRadius(c, -5.0), 1.0);
+}
+
+// A gyro base's heading error grows with time: a slow stretch since the last loop widens the
+// search more than a fast one over the same path (3 sigmas of rate * d * t / 2 sideways).
+TEST(CandidateSearchTest, RadiusWidensWithTheTimeSinceTheLastLoopForAGyroBase) {
+  CandidateSearchConfig c;
+  c.base_radius_m = 1.0;
+  c.radius_growth_per_m = 0.1;
+  c.max_radius_m = 10.0;
+  EXPECT_DOUBLE_EQ(SearchRadius(c, 20.0, 250.0), 3.0);  // a wheel base: the path alone
+  c.heading_rate_sigma_radps = 0.03 * M_PI / 180.0;     // the Kobuki's turn-on bias spread
+  const double fast = SearchRadius(c, 20.0, 100.0);     // 0.2 m/s
+  const double slow = SearchRadius(c, 20.0, 250.0);     // 0.08 m/s
+  EXPECT_NEAR(fast, 3.0 + 3.0 * 0.03 * M_PI / 180.0 * 20.0 * 100.0 / 2.0, 1e-12);
+  EXPECT_GT(slow - 3.0, 2.4 * (fast - 3.0));
+  EXPECT_DOUBLE_EQ(SearchRadius(c, 20.0, NAN), 3.0);  // time unknown
+  EXPECT_DOUBLE_EQ(SearchRadius(c, 200.0, 5000.0), 10.0);
 }
 
 TEST(CandidateSearchTest, WithinMatchesBruteForceOnRandomKeyframes) {
