@@ -22,6 +22,7 @@
 #include "slam/output_folder.h"
 #include "slam/progress.h"
 #include "slam/results_timeline.h"
+#include "slam/summary_json.h"
 
 namespace uwbsar::slam {
 namespace {
@@ -64,6 +65,8 @@ LocalizeRun LocalizeSource(const SessionData& map, const Config& config,
   busy_s += std::chrono::duration<double>(Clock::now() - t0).count();
   LocalizeRun run = pipeline.Result();
   run.ground_truth = std::move(ground_truth);
+  run.frontend_stats = pipeline.frontend_stats();
+  run.backend = config.backend;
   run.processing_s = busy_s;
   if (run.odometry.size() >= 2) {
     run.log_duration_s = NsToSeconds(run.odometry.back().stamp_ns - run.odometry.front().stamp_ns);
@@ -136,16 +139,44 @@ nlohmann::json WriteLocalizeFiles(const LocalizeRun& run, const std::string& out
     csv << "," << k.candidates << "," << k.loops << "," << k.walls << "\n";
   }
   WriteTextAtomic(out_dir + "/localize.csv", csv.str());
+  // A single map run's keys (docs/formats.md), then localisation's own.
   nlohmann::json s;
   s["input"] = run.input;
-  s["processing_s"] = run.processing_s;
-  s["log_duration_s"] = run.log_duration_s;
-  s["real_time_factor"] = run.processing_s > 0 ? run.log_duration_s / run.processing_s : 0.0;
-  s["keyframes"] = {{"total", run.keyframes.size()},
-                    {"tracking", tracking},
-                    {"lost", lost},
-                    {"relocalised", relocalised},
-                    {"observing_walls", with_walls}};
+  CommandWork work;
+  work.log_duration_s = run.log_duration_s;
+  work.processing_s = run.processing_s;
+  work.frontend = run.frontend_stats;
+  work.stages_timed = false;  // imaging, features and localisation overlap, timed together
+  AddCommandWork(work, &s);
+  int candidates = 0, loops = 0;
+  for (const LocalizedKeyframe& k : run.keyframes) candidates += k.candidates, loops += k.loops;
+  s["keyframes"] = run.keyframes.size();
+  s["path_length_m"] = run.odometry.empty() ? 0.0 : run.odometry.back().path_m;
+  s["loops"] = {{"candidates", candidates},
+                {"validated", loops},
+                {"accepted", loops},
+                {"rejected_by_backend", 0}};
+  s["odometry_calibration"] = OdometryCalibrationJson(run.backend);
+  s["map"] = nullptr;  // it localises in a map and makes none
+  nlohmann::json only_run = {{"id", 0},
+                             {"input", run.input},
+                             {"keyframes", run.keyframes.size()},
+                             {"keyframes_kept", run.keyframes.size()},
+                             {"tum", "trajectory.tum"}};
+  if (!run.ground_truth.empty() && run.first_fix >= 0) {
+    std::vector<std::pair<TimestampNs, Pose2>> from_fix, odometry;
+    for (const auto& [t, p] : trajectory)
+      if (t >= run.first_fix_stamp_ns) from_fix.push_back({t, p});
+    for (const OdometryEntry& e : run.odometry) odometry.push_back({e.stamp_ns, e.T_world_robot});
+    s["ate"] = AteJson(TrajectoryError(from_fix, run.ground_truth));
+    s["odometry_ate"] = AteJson(TrajectoryError(odometry, run.ground_truth));
+    only_run["ate"] = s["ate"];
+  }
+  s["runs"] = nlohmann::json::array({only_run});
+  s["localization"] = {{"tracking", tracking},
+                       {"lost", lost},
+                       {"relocalised", relocalised},
+                       {"observing_walls", with_walls}};
   if (run.first_fix >= 0) {
     s["first_fix"] = {{"keyframe_id", run.keyframes[run.first_fix].id},
                       {"path_m", run.first_fix_path_m},

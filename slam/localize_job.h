@@ -13,8 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "backend/backend_config.h"
 #include "backend/trajectory_metrics.h"
 #include "core/message.h"
+#include "frontend/imaging_frontend.h"
 #include "frontend/odometry_buffer.h"
 #include "imaging/occupancy_grid.h"
 #include "slam/app_config.h"
@@ -28,7 +30,9 @@ struct LocalizeRun {
   std::vector<LocalizedKeyframe> keyframes;
   std::vector<OdometryEntry> odometry;
   std::vector<OdometrySample> ground_truth;
-  double processing_s = 0.0;  ///< imaging, features and localisation (not the log source)
+  FrontendStats frontend_stats;  ///< the scans and odometry read
+  BackendConfig backend;         ///< the odometry calibration applied (summary.json)
+  double processing_s = 0.0;     ///< imaging, features and localisation (not the log source)
   double log_duration_s = 0.0;
   int first_fix = -1;                  ///< index into keyframes, -1 when never placed
   double first_fix_path_m = 0.0;       ///< odometry path from the start to the first fix

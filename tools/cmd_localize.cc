@@ -49,8 +49,8 @@ void AddLocalizeCommand(CLI::App& app, const GlobalOptions& globals) {
         "localised %.1f s of log in %.2f s: %zu keyframes (%d tracking, %d lost, %d "
         "relocalised)\n",
         run.log_duration_s, run.processing_s, run.keyframes.size(),
-        s["keyframes"]["tracking"].get<int>(), s["keyframes"]["lost"].get<int>(),
-        s["keyframes"]["relocalised"].get<int>());
+        s["localization"]["tracking"].get<int>(), s["localization"]["lost"].get<int>(),
+        s["localization"]["relocalised"].get<int>());
     if (run.first_fix >= 0) {
       std::printf("first fix after %.2f m (%.1f s of log)\n", run.first_fix_path_m,
                   run.first_fix_time_s);

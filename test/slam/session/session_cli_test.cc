@@ -76,7 +76,8 @@ TEST_F(SessionCliTest, ResumeJoinsTheRevisitAsASecondRun) {
 
 TEST_F(SessionCliTest, ResumeIntoAPlainMapsFolderReplacesItsOutputsAsOneSet) {
   // Resuming into the saved map's own folder: the joined set replaces the plain map's files
-  // (no trajectory.tum, odometry.tum or loops.csv of the earlier run is left beside it).
+  // (trajectory.tum, odometry.tum, ground_truth.tum and loops.csv now over both runs; no other
+  // file of the earlier run, such as trajectory_aligned.tum or a stale trajectory_9.tum, is left).
   const std::string out = *dir_ + "/resumed_in_place";
   fs::copy(Map("a"), out, fs::copy_options::recursive);
   std::ofstream(out + "/trajectory_9.tum") << "stale\n";
@@ -86,9 +87,11 @@ TEST_F(SessionCliTest, ResumeIntoAPlainMapsFolderReplacesItsOutputsAsOneSet) {
   std::set<std::string> names;
   for (const auto& e : fs::directory_iterator(out)) names.insert(e.path().filename().string());
   const std::set<std::string> expected = {
-      ".uwbsar.lock",  "trajectory_0.tum", "trajectory_1.tum", "map.png",   "map_float.tif",
-      "map_grid.yaml", "map.yaml",         "map.pgm",          "graph.g2o", "session.uwbsar",
-      "report.html",   "summary.json",     "results.mcap"};
+      ".uwbsar.lock",     "trajectory_0.tum",   "trajectory_1.tum",  "map.png",
+      "map_float.tif",    "map_grid.yaml",      "map.yaml",          "map.pgm",
+      "graph.g2o",        "session.uwbsar",     "report.html",       "summary.json",
+      "results.mcap",     "trajectory.tum",     "odometry.tum",      "loops.csv",
+      "ground_truth.tum", "ground_truth_0.tum", "ground_truth_1.tum"};
   EXPECT_EQ(names, expected);
   EXPECT_EQ(Json(out + "/summary.json")["runs"].size(), 2u);
 }
