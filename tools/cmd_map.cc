@@ -1,4 +1,6 @@
 // `uwbsar map BAG --out DIR`: the main job on a recorded (or simulated) bag.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 
@@ -11,6 +13,25 @@
 #include "tools/map_resume.h"
 
 namespace uwbsar::tools {
+
+namespace {
+
+/// A gyro base's bias as this run estimated it (it belongs to the run: never calibrated).
+void PrintGyroBias(const slam::SlamSystem& slam) {
+  const auto biases = slam.graph().GyroBiases();
+  auto it = biases.find(0);
+  if (it == biases.end() || it->second.empty()) return;
+  double sum = 0.0, lo = it->second.front().second, hi = lo;
+  for (const auto& [t_s, b] : it->second) sum += b, lo = std::min(lo, b), hi = std::max(hi, b);
+  constexpr double kDegPerRad = 180.0 / M_PI;
+  std::printf(
+      "gyro bias of this run: %+.4f deg/s (%+.4f .. %+.4f over %zu segments; %zu standstills "
+      "measured it)\n",
+      kDegPerRad * sum / static_cast<double>(it->second.size()), kDegPerRad * lo, kDegPerRad * hi,
+      it->second.size(), slam.standstills().size());
+}
+
+}  // namespace
 
 void PrintMapSummary(const slam::MapRun& run, const slam::MapOutputs& outputs,
                      const std::string& out_dir, const GlobalOptions& globals) {
@@ -30,6 +51,7 @@ void PrintMapSummary(const slam::MapRun& run, const slam::MapOutputs& outputs,
   }
   std::printf("peak memory %.0f MiB\n", s["peak_memory_mib"].get<double>());
   PrintOdometryCalibration(run.slam->config(), globals);
+  PrintGyroBias(*run.slam);
   std::printf("report: %s/report.html\n", out_dir.c_str());
   PrintWrittenFolder(out_dir, outputs.files, globals);
 }
