@@ -115,6 +115,35 @@ void DrawMarker(cv::Mat* image, cv::Point at, bool start, const cv::Scalar& colo
   }
 }
 
+/// `points` joined by lines `width` pixels wide; dashed (`dash` pixels on, 3/4 of that off,
+/// along the whole path) when `dash` > 0.
+void DrawPolyline(cv::Mat* image, const std::vector<cv::Point2d>& points, const cv::Scalar& colour,
+                  int width, int dash) {
+  auto px = [](const cv::Point2d& p) {
+    return cv::Point(static_cast<int>(std::lround(p.x)), static_cast<int>(std::lround(p.y)));
+  };
+  const double on = dash, period = 1.75 * dash;
+  double travelled = 0.0;
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    const cv::Point2d a = points[i - 1], d = points[i] - points[i - 1];
+    const double length = std::hypot(d.x, d.y);
+    if (dash <= 0) {
+      cv::line(*image, px(a), px(points[i]), colour, width, cv::LINE_AA);
+      continue;
+    }
+    for (double s = 0.0; s < length;) {
+      const double phase = std::fmod(travelled + s, period);
+      const double e = std::min(length, s + (phase < on ? on - phase : period - phase));
+      if (phase < on) {
+        cv::line(*image, px(a + d * (s / length)), px(a + d * (e / length)), colour, width,
+                 cv::LINE_AA);
+      }
+      s = e;
+    }
+    travelled += length;
+  }
+}
+
 }  // namespace
 
 cv::Mat RenderMapFigure(const MapFigure& f, MapFigureLayout* layout_out) {
@@ -133,15 +162,22 @@ cv::Mat RenderMapFigure(const MapFigure& f, MapFigureLayout* layout_out) {
     return cv::Point(static_cast<int>(std::lround(g.XToCol(p.x_m))),
                      static_cast<int>(std::lround(g.YToRow(p.y_m))));
   };
+  auto width_px = [&](const FigurePath& path) {
+    return std::max(1, static_cast<int>(std::lround(path.width * line_px)));
+  };
   for (const FigurePath& path : f.paths) {
-    for (std::size_t i = 1; path.line && i < path.points.size(); ++i) {
-      cv::line(plot, pixel(path.points[i - 1]), pixel(path.points[i]), path.colour.bgr, line_px,
-               cv::LINE_AA);
-    }
+    if (!path.line) continue;
+    std::vector<cv::Point2d> points;
+    for (const Point2& p : path.points) points.push_back({g.XToCol(p.x_m), g.YToRow(p.y_m)});
+    DrawPolyline(&plot, points, path.colour.bgr, width_px(path),
+                 path.dashed ? 4 * width_px(path) : 0);
   }
   for (const auto& [a, b] : f.loops) {
     cv::line(plot, pixel(a), pixel(b), FigurePalette::kLoop.bgr, std::max(1, line_px - 1),
              cv::LINE_AA);
+    for (const Point2& end : {a, b}) {
+      cv::circle(plot, pixel(end), line_px, FigurePalette::kLoop.bgr, cv::FILLED, cv::LINE_AA);
+    }
   }
   const int marker_px = 2 * line_px + 2;
   for (const FigurePath& path : f.paths) {
@@ -166,11 +202,15 @@ cv::Mat RenderMapFigure(const MapFigure& f, MapFigureLayout* layout_out) {
     std::string text;
     cv::Scalar colour;
     int kind;  // 0 line, 1 start marker, 2 end marker
+    int width_px = 0;
+    bool dashed = false;
   };
   std::vector<LegendRow> legend;
-  for (const FigurePath& p : f.paths) legend.push_back({p.label, p.colour.bgr, 0});
-  if (!f.loops.empty()) legend.push_back({f.loop_label, FigurePalette::kLoop.bgr, 0});
-  for (const auto& [text, colour] : f.raster_legend) legend.push_back({text, colour, 0});
+  for (const FigurePath& p : f.paths) {
+    legend.push_back({p.label, p.colour.bgr, 0, width_px(p), p.dashed});
+  }
+  if (!f.loops.empty()) legend.push_back({f.loop_label, FigurePalette::kLoop.bgr, 0, line_px});
+  for (const auto& [text, colour] : f.raster_legend) legend.push_back({text, colour, 0, line_px});
   legend.push_back({"start", cv::Scalar(200, 200, 200), 1});
   legend.push_back({"end", cv::Scalar(200, 200, 200), 2});
   const int swatch_w = 3 * pen.line() / 2;
@@ -229,7 +269,8 @@ cv::Mat RenderMapFigure(const MapFigure& f, MapFigureLayout* layout_out) {
     if (row.kind == 0) {
       cv::rectangle(figure, cv::Rect(px0, y - pen.line() / 4, swatch_w, pen.line() / 2),
                     f.background, cv::FILLED);
-      cv::line(figure, {px0 + 2, y}, {px0 + swatch_w - 2, y}, row.colour, line_px, cv::LINE_AA);
+      DrawPolyline(&figure, {cv::Point2d(px0 + 2, y), cv::Point2d(px0 + swatch_w - 2, y)},
+                   row.colour, row.width_px, row.dashed ? swatch_w / 4 : 0);
       layout.legend_swatches.push_back(swatch);
     } else {
       DrawMarker(&figure, swatch, row.kind == 1, row.colour, marker_px);

@@ -51,15 +51,19 @@ struct FigurePath {
   std::vector<Point2> points;  ///< in the figure's frame, in time order
   bool markers = true;         ///< start (circle) and end (square) markers
   bool line = true;            ///< false: markers only (the line is in the raster already)
+  double width = 1.0;          ///< times the figure's line width
+  bool dashed = false;         ///< dashed: a path under it shows between the dashes
 };
 
 struct MapFigure {
   cv::Mat map_bgr;  ///< CV_8UC3, one pixel per cell of `grid` (ScaledMapImage)
   ImageGrid grid;
-  std::string frame = "world";                   ///< named in the axis labels
-  std::string colormap;                          ///< what ScaledMapImage used, for the colour bar
-  std::vector<FigurePath> paths;                 ///< drawn in order
-  std::vector<std::pair<Point2, Point2>> loops;  ///< drawn above every path
+  std::string frame = "world";    ///< named in the axis labels
+  std::string colormap;           ///< what ScaledMapImage used, for the colour bar
+  std::vector<FigurePath> paths;  ///< drawn in order
+  /// Drawn above every path, with a dot at each end (a loop between two passes along one
+  /// line has no length).
+  std::vector<std::pair<Point2, Point2>> loops;
   std::string loop_label = "accepted loop";
   /// Legend lines for what the raster holds already (e.g. a pose-graph plot's edges), after
   /// the paths' and the loops'.

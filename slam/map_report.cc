@@ -113,6 +113,29 @@ LoopCounts CountLoops(const SlamSnapshot& slam) {
   return counts;
 }
 
+std::vector<FigurePath> RunFigurePaths(const MapTrajectories& trajectories, std::size_t every) {
+  std::vector<FigurePath> paths;
+  FigurePath slam{"SLAM", FigurePalette::kSlam, PlotPoints(trajectories.slam, every)};
+  slam.width = 2.0;
+  paths.push_back(slam);
+  paths.push_back({"odometry", FigurePalette::kOdometry, PlotPoints(trajectories.odometry, every)});
+  if (!trajectories.ground_truth.empty()) {
+    FigurePath truth{"ground truth", FigurePalette::kGroundTruth,
+                     PlotPoints(trajectories.ground_truth, every)};
+    truth.dashed = true;
+    paths.push_back(truth);
+  }
+  return paths;
+}
+
+std::vector<ReportTrajectory> RunReportTrajectories(const MapTrajectories& trajectories) {
+  std::vector<ReportTrajectory> out;
+  for (const FigurePath& p : RunFigurePaths(trajectories, 5)) {
+    out.push_back({p.label, p.colour.css, p.points, 2.0 * p.width, p.dashed});
+  }
+  return out;
+}
+
 cv::Mat MapReportFigure(const MapState& run, const MapTrajectories& trajectories,
                         const cv::Mat& map_bgr, const ImageGrid& grid) {
   const SlamSnapshot& slam = run.slam;
@@ -120,13 +143,7 @@ cv::Mat MapReportFigure(const MapState& run, const MapTrajectories& trajectories
   figure.map_bgr = map_bgr;
   figure.grid = grid;
   figure.colormap = slam.config->enhance.colormap;
-  if (!trajectories.ground_truth.empty()) {
-    figure.paths.push_back(
-        {"ground truth", FigurePalette::kGroundTruth, PlotPoints(trajectories.ground_truth, 1)});
-  }
-  figure.paths.push_back(
-      {"odometry", FigurePalette::kOdometry, PlotPoints(trajectories.odometry, 1)});
-  figure.paths.push_back({"SLAM", FigurePalette::kSlam, PlotPoints(trajectories.slam, 1)});
+  figure.paths = RunFigurePaths(trajectories, 1);
   figure.loops = slam.AcceptedLoopSegments();
   return RenderMapFigure(figure);
 }
@@ -138,13 +155,7 @@ RunReport BuildMapReport(const MapState& run, const MapOutputs& outputs,
   report.title = "uwbsar map: " + run.input;
   report.summary = ReportSummary(run, outputs);
   report.images.push_back({kMapFigureCaption, figure_png});
-  if (!run.ground_truth.empty()) {
-    report.trajectories.push_back(
-        {"ground truth", FigurePalette::kGroundTruth.css, PlotPoints(trajectories.ground_truth)});
-  }
-  report.trajectories.push_back(
-      {"odometry", FigurePalette::kOdometry.css, PlotPoints(trajectories.odometry)});
-  report.trajectories.push_back({"SLAM", FigurePalette::kSlam.css, PlotPoints(trajectories.slam)});
+  report.trajectories = RunReportTrajectories(trajectories);
   report.loop_segments = slam.AcceptedLoopSegments();
   report.tables.push_back(
       StageTimingTable(slam.times, run.processing_s, slam.config->slam.keyframe_thread));

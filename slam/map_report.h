@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "slam/map_figure.h"
 #include "slam/map_outputs.h"
 #include "slam/report_html.h"
 
@@ -38,8 +39,17 @@ inline const char* const kMapFigureCaption =
     "metres, a scale bar, the colour bar, the paths with start (circle) and end (square) "
     "markers, and accepted loops drawn above the paths (legend on the right)";
 
+/// A run's paths in drawing order, each in its palette colour: the SLAM path twice as wide at
+/// the bottom, the odometry, and the ground truth dashed on top, so that on a straight run,
+/// where the SLAM path lies on the ground truth within a pixel, both stay visible (loops
+/// are drawn above all three). Every `every`-th pose (PlotPoints).
+std::vector<FigurePath> RunFigurePaths(const MapTrajectories& trajectories, std::size_t every);
+
+/// The same paths for the report's trajectory plot (CSS colours, widths in px).
+std::vector<ReportTrajectory> RunReportTrajectories(const MapTrajectories& trajectories);
+
 /// The annotated figure of `state`'s map (slam/map_figure.h): `map_bgr` is map.png's bare
-/// raster on `grid`, under ground truth (when the run has it), odometry, SLAM and the loops.
+/// raster on `grid`, under the RunFigurePaths and the loops.
 cv::Mat MapReportFigure(const MapState& state, const MapTrajectories& trajectories,
                         const cv::Mat& map_bgr, const ImageGrid& grid);
 

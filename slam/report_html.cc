@@ -60,6 +60,14 @@ std::string HtmlEscape(const std::string& text) {
 namespace {
 
 /// `v` with as many decimals as `step` needs, "-0" printed as "0".
+/// A path's stroke-width (and dashes: a path drawn under it shows between them).
+std::string StrokeStyle(double width, bool dashed) {
+  char buf[80];
+  std::snprintf(buf, sizeof(buf), "stroke-width=\"%.1f\"%s", width,
+                dashed ? " stroke-dasharray=\"6 4\"" : "");
+  return buf;
+}
+
 std::string Tick(double v, double step) {
   const int decimals = step >= 1.0 ? 0 : static_cast<int>(std::ceil(-std::log10(step) - 1e-9));
   if (std::fabs(v) < 0.5 * step) v = 0.0;
@@ -129,8 +137,8 @@ std::string TrajectorySvg(const RunReport& r) {
                 left + plot_w / 2, top + plot_h + 34, top + 12);
   svg << buf;
   for (const auto& t : r.trajectories) {
-    svg << "<polyline fill=\"none\" stroke=\"" << HtmlEscape(t.colour)
-        << "\" stroke-width=\"2\" points=\"";
+    svg << "<polyline fill=\"none\" stroke=\"" << HtmlEscape(t.colour) << "\" "
+        << StrokeStyle(t.width, t.dashed) << " points=\"";
     for (const Point2& p : t.points) {
       std::snprintf(buf, sizeof(buf), "%.1f,%.1f ", X(p.x_m), Y(p.y_m));
       svg << buf;
@@ -143,6 +151,12 @@ std::string TrajectorySvg(const RunReport& r) {
                   "<line class=\"loop\" x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" ",
                   X(seg.first.x_m), Y(seg.first.y_m), X(seg.second.x_m), Y(seg.second.y_m));
     svg << buf << "stroke=\"" << FigurePalette::kLoop.css << "\" stroke-width=\"1.5\"/>\n";
+    for (const Point2& end : {seg.first, seg.second}) {
+      std::snprintf(buf, sizeof(buf),
+                    "<circle class=\"loop-end\" cx=\"%.1f\" cy=\"%.1f\" r=\"2.5\" ", X(end.x_m),
+                    Y(end.y_m));
+      svg << buf << "fill=\"" << FigurePalette::kLoop.css << "\"/>\n";
+    }
   }
   for (const auto& t : r.trajectories) {
     if (t.points.empty()) continue;
@@ -159,15 +173,19 @@ std::string TrajectorySvg(const RunReport& r) {
     svg << buf << HtmlEscape(t.colour) << "\"/>\n";
   }
   // The legend: four entries a row, under the axis title.
-  std::vector<std::pair<std::string, std::string>> entries;
-  for (const auto& t : r.trajectories) entries.push_back({t.label, t.colour});
-  if (!r.loop_segments.empty()) entries.push_back({"accepted loop", FigurePalette::kLoop.css});
-  entries.push_back({"start", ""});
-  entries.push_back({"end", ""});
+  std::vector<ReportTrajectory> entries;  // the paths' styles, then the loops and markers
+  for (const auto& t : r.trajectories)
+    entries.push_back({t.label, t.colour, {}, t.width, t.dashed});
+  if (!r.loop_segments.empty()) {
+    entries.push_back({"accepted loop", FigurePalette::kLoop.css, {}, 2.0, false});
+  }
+  entries.push_back({"start", "", {}});
+  entries.push_back({"end", "", {}});
   for (std::size_t i = 0; i < entries.size(); ++i) {
     const double ex = left + 180.0 * static_cast<double>(i % 4);
     const double ey = top + plot_h + 52 + 18 * static_cast<double>(i / 4);
-    const auto& [label, colour] = entries[i];
+    const std::string& label = entries[i].label;
+    const std::string& colour = entries[i].colour;
     if (label == "start" && colour.empty()) {
       std::snprintf(buf, sizeof(buf),
                     "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"5\" fill=\"#ccc\" stroke=\"#000\"/>",
@@ -180,11 +198,13 @@ std::string TrajectorySvg(const RunReport& r) {
     } else {
       std::snprintf(buf, sizeof(buf),
                     "<rect x=\"%.1f\" y=\"%.1f\" width=\"26\" height=\"10\" fill=\"#282828\"/>"
-                    "<line class=\"swatch\" x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" "
-                    "stroke-width=\"3\" stroke=\"",
+                    "<line class=\"swatch\" x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" ",
                     ex - 1, ey - 9, ex + 1, ey - 4, ex + 23, ey - 4);
     }
     svg << buf;
+    if (!colour.empty()) {
+      svg << StrokeStyle(std::max(3.0, entries[i].width), entries[i].dashed) << " stroke=\"";
+    }
     if (!colour.empty()) svg << HtmlEscape(colour) << "\"/>";
     std::snprintf(buf, sizeof(buf), "<text x=\"%.1f\" y=\"%.1f\">", ex + 30, ey);
     svg << buf << HtmlEscape(label) << "</text>\n";

@@ -23,6 +23,8 @@ struct ReportTrajectory {
   std::string label;
   std::string colour;  ///< CSS colour (FigurePalette's, slam/map_figure.h)
   std::vector<Point2> points;
+  double width = 2.0;   ///< stroke width, px
+  bool dashed = false;  ///< dashed: a path under it shows between the dashes
 };
 
 struct RunReport {
@@ -30,7 +32,9 @@ struct RunReport {
   std::vector<std::pair<std::string, std::string>> summary;  ///< key figures, in order
   std::vector<std::pair<std::string, std::string>> images;   ///< caption, PNG file bytes
   std::vector<ReportTrajectory> trajectories;
-  std::vector<std::pair<Point2, Point2>> loop_segments;  ///< accepted loops, drawn
+  /// Accepted loops, drawn above the paths with a dot at each end (a loop between two passes
+  /// along one line has no length).
+  std::vector<std::pair<Point2, Point2>> loop_segments;
   std::vector<ReportTable> tables;
   /// Parts of the page with the same content, each under its title after the tables (one
   /// per run of a joined session).
