@@ -7,9 +7,11 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
+#include <map>
 #include <memory>
 #include <sstream>
 
+#include "backend/gyro_stillness.h"
 #include "backend/se2_edge_cost.h"
 #include "core/errors.h"
 
@@ -18,16 +20,19 @@ namespace {
 
 /// One segment: the odometry's increments with their travel, and the truth's step.
 struct Segment {
-  std::vector<Pose2> increments;  ///< odometry sample to sample, in the robot's frame
-  std::vector<OdometryTravel> travels;
+  std::vector<Pose2> increments;        ///< odometry sample to sample, in the robot's frame
+  std::vector<OdometryTravel> travels;  ///< with each increment's duration (a gyro's bias)
   Pose2 truth;
   double path_m = 0.0;
   double turn_rad = 0.0;
+  double duration_s = 0.0;
+  double middle_s = 0.0;  ///< its middle's time after the first odometry sample
 };
 
-/// The segment's odometry, each increment corrected by the calibration (CorrectOdometryStep,
-/// the backend's model applied at the odometry's own rate) and composed; the residual is its
-/// SE(2) error against the truth, whitened like an odometry edge of that path.
+/// The segment's odometry, each increment corrected by the calibration and the gyro bias
+/// (CorrectOdometryStep, the backend's model applied at the odometry's own rate) and composed;
+/// the residual is its SE(2) error against the truth, whitened like an odometry edge of that
+/// path. Without a bias block (a wheel base) the bias is 0.
 class SegmentCost {
  public:
   SegmentCost(const Segment* segment, const Eigen::Matrix3d& sqrt_information)
@@ -35,12 +40,19 @@ class SegmentCost {
 
   template <typename T>
   bool operator()(const T* calibration, T* residuals) const {
+    const T no_bias(0.0);
+    return operator()(calibration, &no_bias, residuals);
+  }
+
+  template <typename T>
+  bool operator()(const T* calibration, const T* gyro_bias, T* residuals) const {
     using std::cos;
     using std::sin;
     T x(0.0), y(0.0), yaw(0.0);
     for (std::size_t i = 0; i < segment_->increments.size(); ++i) {
       T step[3];
-      CorrectOdometryStep(calibration, segment_->increments[i], segment_->travels[i], step);
+      CorrectOdometryStep(calibration, gyro_bias[0], segment_->increments[i], segment_->travels[i],
+                          step);
       x += cos(yaw) * step[0] - sin(yaw) * step[1];
       y += sin(yaw) * step[0] + cos(yaw) * step[1];
       yaw += step[2];
@@ -100,6 +112,7 @@ std::vector<Segment> CutSegments(const std::vector<OdometrySample>& odometry,
   Segment current;
   Pose2 truth_start;
   const OdometrySample* prev = nullptr;  // null: no segment open
+  const TimestampNs t0 = odometry.empty() ? 0 : odometry.front().stamp_ns;
   for (const OdometrySample& o : odometry) {
     Pose2 truth;
     if (!truth_at(o.stamp_ns, &truth)) {
@@ -115,13 +128,16 @@ std::vector<Segment> CutSegments(const std::vector<OdometrySample>& odometry,
     const Pose2 increment = Between(prev->T_world_robot, o.T_world_robot);
     current.increments.push_back(increment);
     current.travels.push_back(TravelOf(increment));
+    current.travels.back().duration_s = NsToSeconds(o.stamp_ns - prev->stamp_ns);
     current.path_m += current.travels.back().path_m;
     current.turn_rad += increment.yaw_rad;
+    current.duration_s += current.travels.back().duration_s;
     prev = &o;
     // A spin in place travels no path: its turn ends the segment (1 rad keeps it unambiguous).
     // The small margin keeps a path of n equal steps from missing the end by rounding.
     if (current.path_m < options.segment_m - 1e-9 && std::abs(current.turn_rad) < 1.0) continue;
     current.truth = Between(truth_start, truth);
+    current.middle_s = NsToSeconds(o.stamp_ns - t0) - 0.5 * current.duration_s;
     segments.push_back(std::move(current));
     current = Segment{};
     truth_start = truth;
@@ -223,14 +239,15 @@ Eigen::Matrix3d SegmentSqrtInformation(const Segment& s, const BackendConfig& co
                               .asDiagonal());
 }
 
-/// Position and heading error of the segments' odometry corrected by `c`, rms.
+/// Position and heading error of the segments' odometry corrected by `c` and `bias[i]` (one
+/// per segment, rad/s), rms.
 void SegmentErrors(const std::vector<Segment>& segments, const OdometryCalibration& c,
-                   double* xy_rms_m, double* yaw_rms_rad) {
+                   const std::vector<double>& bias, double* xy_rms_m, double* yaw_rms_rad) {
   double xy = 0.0, yaw = 0.0;
   const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
-  for (const Segment& s : segments) {
+  for (std::size_t i = 0; i < segments.size(); ++i) {
     double e[3];
-    SegmentCost(&s, identity)(c.data(), e);
+    SegmentCost(&segments[i], identity)(c.data(), &bias[i], e);
     xy += e[0] * e[0] + e[1] * e[1];
     yaw += e[2] * e[2];
   }
@@ -239,17 +256,35 @@ void SegmentErrors(const std::vector<Segment>& segments, const OdometryCalibrati
   *yaw_rms_rad = std::sqrt(yaw / n);
 }
 
-/// J^T J of every residual of `problem` at its current parameters (one 3-vector block).
-Eigen::Matrix3d InformationOf(ceres::Problem* problem) {
-  ceres::CRSMatrix jacobian;
-  problem->Evaluate(ceres::Problem::EvaluateOptions(), nullptr, nullptr, nullptr, &jacobian);
-  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
-  for (int row = 0; row < jacobian.num_rows; ++row) {
-    for (int a = jacobian.rows[row]; a < jacobian.rows[row + 1]; ++a) {
-      for (int b = jacobian.rows[row]; b < jacobian.rows[row + 1]; ++b) {
-        information(jacobian.cols[a], jacobian.cols[b]) += jacobian.values[a] * jacobian.values[b];
-      }
+/// J^T J of every residual of `problem` at its current parameters, over the parameter blocks
+/// `columns` (each of its size, at its offset: the blocks' ambient coordinates).
+Eigen::MatrixXd InformationOf(const ceres::Problem& problem,
+                              const std::vector<std::pair<double*, int>>& columns) {
+  int size = 0;
+  std::map<const double*, int> offset;
+  for (const auto& [block, n] : columns) {
+    offset[block] = size;
+    size += n;
+  }
+  Eigen::MatrixXd information = Eigen::MatrixXd::Zero(size, size);
+  std::vector<ceres::ResidualBlockId> residuals;
+  problem.GetResidualBlocks(&residuals);
+  for (const ceres::ResidualBlockId id : residuals) {
+    std::vector<double*> blocks;
+    problem.GetParameterBlocksForResidualBlock(id, &blocks);
+    const ceres::CostFunction* cost = problem.GetCostFunctionForResidualBlock(id);
+    const int m = cost->num_residuals();
+    std::vector<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> jacobians;
+    std::vector<double*> jacobian_ptrs;
+    for (const int n : cost->parameter_block_sizes()) jacobians.emplace_back(m, n);
+    for (auto& j : jacobians) jacobian_ptrs.push_back(j.data());
+    Eigen::VectorXd r(m);
+    cost->Evaluate(blocks.data(), r.data(), jacobian_ptrs.data());
+    Eigen::MatrixXd row = Eigen::MatrixXd::Zero(m, size);
+    for (std::size_t k = 0; k < blocks.size(); ++k) {
+      row.middleCols(offset.at(blocks[k]), jacobians[k].cols()) = jacobians[k];
     }
+    information += row.transpose() * row;
   }
   return information;
 }
@@ -265,6 +300,154 @@ double Solve(ceres::Problem* problem) {
     throw InputError("odometry calibration: the fit failed: " + summary.message);
   }
   return summary.final_cost;
+}
+
+/// One model's least-squares fit of the segments: the calibration (a gyro's drift per metre
+/// held at 0) and, for a gyro, a bias per `bias_segment_s` of time; `cost` is its final cost.
+struct ModelFit {
+  CalibrationFit fit;
+  std::vector<double> segment_bias;  ///< the bias each segment was corrected with (rad/s)
+  double cost = 0.0;
+  int unknowns = 0;
+};
+
+ModelFit FitModel(const std::vector<Segment>& segments, const BackendConfig& priors,
+                  OdometryModel model, double bias_segment_s) {
+  const bool gyro = model == OdometryModel::kGyro;
+  ModelFit result;
+  CalibrationFit& fit = result.fit;
+  fit.model = model;
+  OdometryCalibration mean = priors.CalibrationMean();
+  if (gyro) mean[kCalibHeadingDrift] = 0.0;
+  fit.calibration = mean;
+  double* x = fit.calibration.data();
+  // The gyro's bias blocks, by segment of time (std::map: stable addresses, in time order).
+  std::map<long long, double> bias;
+  ceres::Problem problem;
+  for (const Segment& s : segments) {
+    auto* cost = new SegmentCost(&s, SegmentSqrtInformation(s, priors));
+    if (gyro) {
+      double* b = &bias[static_cast<long long>(std::floor(s.middle_s / bias_segment_s))];
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<SegmentCost, 3, 3, 1>(cost), nullptr,
+                               x, b);
+    } else {
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<SegmentCost, 3, 3>(cost), nullptr,
+                               x);
+    }
+    fit.path_m += s.path_m;
+    fit.abs_turn_rad += std::abs(s.turn_rad);
+  }
+  if (gyro) problem.SetManifold(x, new ceres::SubsetManifold(3, {kCalibHeadingDrift}));
+  Solve(&problem);
+  // Observed: with the backend's priors (the calibration's, and a gyro bias's turn-on spread),
+  // the run leaves it under half the prior's sigma (the data hold at least 3x the prior's
+  // information on it). A straight run cannot tell the heading drift from the turns' scale
+  // (its only turning is the drift); at the backend's prior the turns' scale barely moves, so
+  // the drift counts as observed and the rotation not. A gyro's drift is held: not observed.
+  const Eigen::Vector3d prior_sigma(priors.calibration_scale_sigma,
+                                    priors.calibration_heading_drift_sigma_rad_per_m,
+                                    priors.calibration_rotation_sigma);
+  std::vector<std::pair<double*, int>> columns = {{x, 3}};
+  for (auto& [k, b] : bias) columns.emplace_back(&b, 1);
+  Eigen::MatrixXd information = InformationOf(problem, columns);
+  information.diagonal().head<3>() += prior_sigma.cwiseInverse().cwiseAbs2();
+  const double bias_sigma = priors.gyro_bias_sigma_dps * M_PI / 180.0;
+  information.diagonal().tail(bias.size()).array() += 1.0 / (bias_sigma * bias_sigma);
+  if (gyro) {  // held: out of the inverse
+    information.row(kCalibHeadingDrift).setZero();
+    information.col(kCalibHeadingDrift).setZero();
+    information(kCalibHeadingDrift, kCalibHeadingDrift) = 1.0;
+  }
+  const Eigen::VectorXd sigma_m = information.inverse().diagonal().cwiseSqrt();
+  std::vector<int> unobserved;
+  for (int i = 0; i < 3; ++i) {
+    fit.observed[i] = !(gyro && i == kCalibHeadingDrift) && std::isfinite(sigma_m[i]) &&
+                      sigma_m[i] < 0.5 * prior_sigma[i];
+    if (!fit.observed[i]) unobserved.push_back(i);
+  }
+  // The unobserved ones are the base's given calibration (the prior's mean), and the others
+  // are fitted with them held there: the least squares alone, no prior pulling them.
+  for (const int i : unobserved) fit.calibration[i] = mean[i];
+  if (unobserved.size() == 3) {
+    problem.SetParameterBlockConstant(x);
+  } else if (!unobserved.empty()) {
+    problem.SetManifold(x, new ceres::SubsetManifold(3, unobserved));
+  }
+  result.cost = Solve(&problem);
+  result.unknowns = static_cast<int>(3 - unobserved.size() + bias.size());
+  // The standard error, scaled by the residuals' chi2 per degree of freedom: the base's actual
+  // noise, not the configured bound.
+  const double dof = std::max(1.0, 3.0 * static_cast<double>(segments.size()) - result.unknowns);
+  const double noise = std::sqrt(2.0 * result.cost / dof);
+  for (int i = 0; i < 3; ++i) {
+    fit.sigma[i] = fit.observed[i] ? sigma_m[i] * noise
+                                   : (gyro && i == kCalibHeadingDrift ? 0.0 : prior_sigma[i]);
+  }
+  fit.segments = static_cast<int>(segments.size());
+  // Each segment of the bias, weighted by the time the fitted segments spend in it.
+  std::map<long long, double> seconds;
+  for (const Segment& s : segments) {
+    const double b =
+        gyro ? bias[static_cast<long long>(std::floor(s.middle_s / bias_segment_s))] : 0.0;
+    result.segment_bias.push_back(b);
+    if (gyro)
+      seconds[static_cast<long long>(std::floor(s.middle_s / bias_segment_s))] += s.duration_s;
+  }
+  double total_s = 0.0, weighted = 0.0, weighted2 = 0.0;
+  for (const auto& [k, b] : bias) {
+    fit.gyro_bias_segments.emplace_back(static_cast<double>(k) * bias_segment_s, b);
+    total_s += seconds[k];
+    weighted += seconds[k] * b;
+    weighted2 += seconds[k] * b * b;
+  }
+  if (total_s > 0.0) {
+    fit.gyro_bias_mean_radps = weighted / total_s;
+    fit.gyro_bias_spread_radps = std::sqrt(
+        std::max(0.0, weighted2 / total_s - fit.gyro_bias_mean_radps * fit.gyro_bias_mean_radps));
+  }
+  return result;
+}
+
+/// The standstills of `odometry` (backend/gyro_stillness.h): their time and the heading's
+/// turn over them.
+void Standstills(const std::vector<OdometrySample>& odometry, const BackendConfig& priors,
+                 CalibrationModelEvidence* evidence) {
+  GyroStillness stillness(priors);
+  const auto count = [evidence](const std::optional<GyroStandstill>& s) {
+    if (!s) return;
+    evidence->still_s += s->end_s - s->begin_s;
+    evidence->still_turn_rad += std::abs(s->bias_radps) * (s->end_s - s->begin_s);
+  };
+  for (const OdometrySample& o : odometry) {
+    count(stillness.Add(NsToSeconds(o.stamp_ns), o.T_world_robot));
+  }
+  count(stillness.Flush());
+}
+
+/// Which model explains the run (the header's rule): both fitted with one constant each.
+OdometryModel DetectModel(const std::vector<Segment>& segments,
+                          const std::vector<OdometrySample>& odometry, const BackendConfig& priors,
+                          const ModelFit& wheel, CalibrationModelEvidence* evidence) {
+  const ModelFit gyro =
+      FitModel(segments, priors, OdometryModel::kGyro, std::numeric_limits<double>::infinity());
+  const double dof = std::max(1.0, 3.0 * static_cast<double>(segments.size()) - wheel.unknowns);
+  // The better model's noise per degree of freedom (a floor: noiseless odometry fits exactly).
+  const double noise2 = std::max(2.0 * std::min(wheel.cost, gyro.cost) / dof, 1e-12);
+  evidence->wheel_chi2 = 2.0 * wheel.cost / noise2;
+  evidence->gyro_chi2 = 2.0 * gyro.cost / noise2;
+  Standstills(odometry, priors, evidence);
+  // 25: five standard deviations of a chi2 difference of one degree of freedom.
+  if (std::abs(evidence->wheel_chi2 - evidence->gyro_chi2) >= 25.0) {
+    evidence->decided_by = "residuals";
+    return evidence->gyro_chi2 < evidence->wheel_chi2 ? OdometryModel::kGyro
+                                                      : OdometryModel::kWheel;
+  }
+  if (evidence->still_s > 0.0) {
+    evidence->decided_by = "standstills";
+    return evidence->still_turn_rad > 0.0 ? OdometryModel::kGyro : OdometryModel::kWheel;
+  }
+  evidence->decided_by = "configuration";
+  return priors.odometry_model;
 }
 
 }  // namespace
@@ -290,51 +473,26 @@ CalibrationFit FitOdometryCalibration(const std::vector<OdometrySample>& odometr
     throw InputError(what.str());
   }
   RequirePlausiblePaths(segments, options);
-  CalibrationFit fit;
-  const OdometryCalibration mean = priors.CalibrationMean();
-  fit.calibration = mean;
-  ceres::Problem problem;
-  double* x = fit.calibration.data();
-  for (const Segment& s : segments) {
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<SegmentCost, 3, 3>(
-                                 new SegmentCost(&s, SegmentSqrtInformation(s, priors))),
-                             nullptr, x);
-    fit.path_m += s.path_m;
-    fit.abs_turn_rad += std::abs(s.turn_rad);
+  const ModelFit wheel = FitModel(segments, priors, OdometryModel::kWheel, 0.0);
+  CalibrationModelEvidence evidence;
+  OdometryModel model;
+  if (options.model) {
+    model = *options.model;
+    evidence.told = true;
+    evidence.decided_by = "told";
+    Standstills(odometry, priors, &evidence);
+  } else {
+    model = DetectModel(segments, odometry, priors, wheel, &evidence);
   }
-  Solve(&problem);
-  // Observed: with the backend's prior, the run leaves it under half the prior's sigma (the
-  // data hold at least 3x the prior's information on it). A straight run cannot tell the
-  // heading drift from the turns' scale (its only turning is the drift); at the backend's
-  // prior the turns' scale barely moves, so the drift counts as observed and the rotation not.
-  const Eigen::Vector3d prior_sigma(priors.calibration_scale_sigma,
-                                    priors.calibration_heading_drift_sigma_rad_per_m,
-                                    priors.calibration_rotation_sigma);
-  Eigen::Matrix3d information = InformationOf(&problem);
-  information.diagonal() += prior_sigma.cwiseInverse().cwiseAbs2();
-  const Eigen::Vector3d sigma_m = information.inverse().diagonal().cwiseSqrt();
-  std::vector<int> unobserved;
-  for (int i = 0; i < 3; ++i) {
-    fit.observed[i] = std::isfinite(sigma_m[i]) && sigma_m[i] < 0.5 * prior_sigma[i];
-    if (!fit.observed[i]) unobserved.push_back(i);
-  }
-  // The unobserved ones are the base's given calibration (the prior's mean), and the others
-  // are fitted with them held there: the least squares alone, no prior pulling them.
-  for (const int i : unobserved) fit.calibration[i] = mean[i];
-  if (unobserved.size() == 3) {
-    problem.SetParameterBlockConstant(x);
-  } else if (!unobserved.empty()) {
-    problem.SetManifold(x, new ceres::SubsetManifold(3, unobserved));
-  }
-  const double final_cost = Solve(&problem);
-  // The standard error, scaled by the residuals' chi2 per degree of freedom: the base's actual
-  // noise, not the configured bound.
-  const double dof = std::max(1.0, 3.0 * static_cast<double>(segments.size()) - 3.0);
-  const double noise = std::sqrt(2.0 * final_cost / dof);
-  for (int i = 0; i < 3; ++i) fit.sigma[i] = fit.observed[i] ? sigma_m[i] * noise : prior_sigma[i];
-  fit.segments = static_cast<int>(segments.size());
-  SegmentErrors(segments, {0.0, 0.0, 0.0}, &fit.xy_rms_before_m, &fit.yaw_rms_before_rad);
-  SegmentErrors(segments, fit.calibration, &fit.xy_rms_after_m, &fit.yaw_rms_after_rad);
+  const ModelFit chosen = model == OdometryModel::kWheel
+                              ? wheel
+                              : FitModel(segments, priors, model, priors.gyro_bias_segment_s);
+  CalibrationFit fit = chosen.fit;
+  fit.evidence = evidence;
+  SegmentErrors(segments, {0.0, 0.0, 0.0}, std::vector<double>(segments.size(), 0.0),
+                &fit.xy_rms_before_m, &fit.yaw_rms_before_rad);
+  SegmentErrors(segments, fit.calibration, chosen.segment_bias, &fit.xy_rms_after_m,
+                &fit.yaw_rms_after_rad);
   RequireLoadable(fit, options);
   return fit;
 }

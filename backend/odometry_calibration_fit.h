@@ -11,10 +11,24 @@
 // (information / path). An intrinsic the run cannot observe (the rotation scale on a straight
 // run: less than 3x the backend prior's information on it) keeps the prior's mean and is
 // reported as not observed; the others are the least-squares solution, no prior pulling them.
+//
+// Which intrinsics belong to the robot depends on its kind of base (backend.odometry_model):
+//  - wheel: the distance scale, the heading drift per metre and the turns' scale;
+//  - gyro: the distance scale and the turns' scale. Its heading error is the gyro's bias, in
+//    rad/s over time (standstills included), set at each power-up and wandering: it is fitted
+//    per gyro_bias_segment_s of the run and reported, but it belongs to the run, and the drift
+//    per metre is held at 0.
+// Unless told, the kind is detected: both models are fitted with one constant each (drift per
+// metre, or bias per second; same number of unknowns) and the one whose residuals are clearly
+// smaller wins; when they explain the run alike (time and path grow together at a steady
+// speed), the standstills decide: a gyro's heading turns while the base stands still, a wheel
+// base's does not move; with neither, the configured model.
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "backend/backend_config.h"
@@ -43,6 +57,18 @@ struct CalibrationFitOptions {
   /// The line of truth_source holding each ground-truth sample (a TUM file), to name it in
   /// messages; empty when the truth is not a text file.
   std::vector<int> truth_lines;
+  /// The kind of base; none: detected from the run (the file comment).
+  std::optional<OdometryModel> model;
+};
+
+/// Why the fit chose its model, with the evidence of both tests (filled also when told).
+struct CalibrationModelEvidence {
+  bool told = false;            ///< CalibrationFitOptions::model was given
+  std::string decided_by;       ///< "told", "residuals", "standstills" or "configuration"
+  double wheel_chi2 = 0.0;      ///< both models' residuals (one constant each), chi2 in units of
+  double gyro_chi2 = 0.0;       ///< the better one's noise per degree of freedom
+  double still_s = 0.0;         ///< time the base stood still (backend/gyro_stillness.h)
+  double still_turn_rad = 0.0;  ///< |heading change| summed over the standstills
 };
 
 struct CalibrationFit {
@@ -56,6 +82,14 @@ struct CalibrationFit {
   double xy_rms_after_m = 0.0;   ///< ... and of the calibrated odometry
   double yaw_rms_before_rad = 0.0;
   double yaw_rms_after_rad = 0.0;
+  /// The model fitted. A gyro's calibration[kCalibHeadingDrift] is 0 and not observed.
+  OdometryModel model = OdometryModel::kWheel;
+  CalibrationModelEvidence evidence;
+  /// Gyro only: the run's bias (rad/s), one per gyro_bias_segment_s of the run that holds
+  /// segments (start time from the first odometry sample, bias) and their mean over time.
+  std::vector<std::pair<double, double>> gyro_bias_segments;
+  double gyro_bias_mean_radps = 0.0;
+  double gyro_bias_spread_radps = 0.0;  ///< rms of the segments' biases about the mean
 };
 
 /// Fits the calibration of `odometry` against `ground_truth` (both in stamp order, each in its

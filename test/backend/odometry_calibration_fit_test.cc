@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,8 +22,22 @@ struct Streams {
   std::vector<OdometrySample> odometry, truth;
 };
 
-/// `steps` driven at 50 Hz in pieces of 1/25, by a base with intrinsics `base`.
-Streams Drive(const OdometryCalibration& base, const std::vector<Pose2>& steps) {
+/// What a gyro base reports for the true piece `truth` of `dt_s` seconds: the heading turned
+/// by (1 + rotation) and the gyro's bias over the time (the exact inverse of
+/// CorrectOdometryStep with the bias).
+Pose2 GyroMeasuredStep(const OdometryCalibration& base, double bias_radps, double dt_s,
+                       const Pose2& truth) {
+  const double k = 1.0 / (1.0 + base[kCalibScale]);
+  const double yaw = (truth.yaw_rad + bias_radps * dt_s) / (1.0 + base[kCalibRotation]);
+  const double half_turn = 0.5 * (truth.yaw_rad - yaw);
+  const double c = std::cos(half_turn), s = std::sin(half_turn);
+  return {k * (c * truth.x_m + s * truth.y_m), k * (-s * truth.x_m + c * truth.y_m), yaw};
+}
+
+/// `steps` driven at 50 Hz in pieces of 1/25, by a base with intrinsics `base` (and, when
+/// `gyro_bias_radps` is given, a gyro's heading with that bias instead of a drift per metre).
+Streams Drive(const OdometryCalibration& base, const std::vector<Pose2>& steps,
+              std::optional<double> gyro_bias_radps = std::nullopt) {
   Streams s;
   Pose2 odom, truth;
   TimestampNs t = 1'000'000'000;
@@ -37,7 +53,8 @@ Streams Drive(const OdometryCalibration& base, const std::vector<Pose2>& steps) 
     const Pose2 piece{step.x_m / 25, step.y_m / 25, step.yaw_rad / 25};
     for (int i = 0; i < 25; ++i) {
       t += 20'000'000;
-      odom = odom * MeasuredStep(base, piece);
+      odom = odom * (gyro_bias_radps ? GyroMeasuredStep(base, *gyro_bias_radps, 0.02, piece)
+                                     : MeasuredStep(base, piece));
       truth = truth * piece;
       s.odometry.push_back(sample(odom));
       s.truth.push_back(sample(truth));
@@ -63,6 +80,88 @@ TEST(OdometryCalibrationFitTest, RecoversTheBaseIntrinsicsFromALapWithGroundTrut
   EXPECT_EQ(fit.observed, (std::array<bool, 3>{true, true, true}));
   EXPECT_NEAR(fit.path_m, 2 * 40.0 / (1 + base[kCalibScale]), 0.01);
   EXPECT_LT(fit.xy_rms_after_m, 0.1 * fit.xy_rms_before_m);
+  // Its corners are turned on the spot: a drift per metre explains the heading, a bias over
+  // time does not.
+  EXPECT_EQ(fit.model, OdometryModel::kWheel);
+  EXPECT_EQ(fit.evidence.decided_by, "residuals");
+  EXPECT_GT(fit.evidence.gyro_chi2, 25.0 + fit.evidence.wheel_chi2);
+}
+
+/// The L-shaped lap both ways with a 2 s standstill at the start and at every 8th step.
+std::vector<Pose2> LapWithStandstills() {
+  std::vector<Pose2> steps(4, Pose2{});
+  for (const bool reverse : {false, true}) {
+    for (const Pose2& p : LShapeLap(reverse)) {
+      steps.push_back(p);
+      if (steps.size() % 8 == 0) steps.insert(steps.end(), 4, Pose2{});
+    }
+  }
+  return steps;
+}
+
+// Issue 44: a gyro base's heading error is its bias over time (standstills included), which
+// belongs to the run. The fit finds the kind of base, the robot's distance scale and turn
+// scale, and the run's bias, and holds the drift per metre at 0.
+TEST(OdometryCalibrationFitTest, AGyroBaseGivesItsScalesAndTheRunsBiasAndNoDriftPerMetre) {
+  const OdometryCalibration base{-0.004975, 0.0, 0.02};
+  const double bias = 0.042 * M_PI / 180;  // 0.042 deg/s
+  const Streams run = Drive(base, LapWithStandstills(), bias);
+  const CalibrationFit fit = FitOdometryCalibration(run.odometry, run.truth, BackendConfig{});
+  EXPECT_EQ(fit.model, OdometryModel::kGyro);
+  EXPECT_EQ(fit.evidence.decided_by, "residuals");
+  EXPECT_GT(fit.evidence.wheel_chi2, 25.0 + fit.evidence.gyro_chi2);
+  EXPECT_GT(fit.evidence.still_s, 30.0);
+  // At rest the heading turns at the bias, reported through the turns' scale.
+  EXPECT_NEAR(fit.evidence.still_turn_rad, bias * fit.evidence.still_s / 1.02, 1e-6);
+  EXPECT_NEAR(fit.calibration[kCalibScale], base[kCalibScale], 1e-5);
+  EXPECT_NEAR(fit.calibration[kCalibRotation], base[kCalibRotation], 1e-4);
+  EXPECT_EQ(fit.calibration[kCalibHeadingDrift], 0.0);
+  EXPECT_EQ(fit.observed, (std::array<bool, 3>{true, false, true}));
+  // One bias per 30 s of the run (about 190 s), all the run's constant one.
+  EXPECT_GE(fit.gyro_bias_segments.size(), 6u);
+  for (const auto& [t, b] : fit.gyro_bias_segments) EXPECT_NEAR(b, bias, 2e-6) << t;
+  EXPECT_NEAR(fit.gyro_bias_mean_radps, bias, 1e-6);
+  EXPECT_LT(fit.gyro_bias_spread_radps, 1e-6);
+  EXPECT_LT(fit.xy_rms_after_m, 0.1 * fit.xy_rms_before_m);
+  // Told it is a wheel base, the same run fits worse.
+  CalibrationFitOptions wheel;
+  wheel.model = OdometryModel::kWheel;
+  const CalibrationFit told = FitOdometryCalibration(run.odometry, run.truth, {}, wheel);
+  EXPECT_EQ(told.model, OdometryModel::kWheel);
+  EXPECT_EQ(told.evidence.decided_by, "told");
+  EXPECT_GT(told.yaw_rms_after_rad, 10 * fit.yaw_rms_after_rad);
+}
+
+// When time and path grow together (one speed, no standstill, no turn on the spot), a bias
+// per second and a drift per metre explain the run alike: standstills decide, and without
+// them the configured model.
+TEST(OdometryCalibrationFitTest, WhenTheResidualsCannotTellTheStandstillsOrTheConfigurationDo) {
+  const std::vector<Pose2> straight(80, Pose2{0.5, 0.0, 0.0});
+  const Streams wheel = Drive({0.01, -0.002, 0.0}, straight);
+  for (const OdometryModel configured : {OdometryModel::kGyro, OdometryModel::kWheel}) {
+    BackendConfig priors;
+    priors.odometry_model = configured;
+    const CalibrationFit fit = FitOdometryCalibration(wheel.odometry, wheel.truth, priors);
+    EXPECT_EQ(fit.evidence.decided_by, "configuration");
+    EXPECT_EQ(fit.model, configured);
+  }
+  // A standstill, and the same ambiguous run after it: a wheel base's heading does not move at
+  // rest, a gyro's turns at its bias.
+  std::vector<Pose2> with_pause(10, Pose2{});
+  with_pause.insert(with_pause.end(), straight.begin(), straight.end());
+  const Streams paused_wheel = Drive({0.01, -0.002, 0.0}, with_pause);
+  std::vector<OdometrySample> truth(paused_wheel.truth.begin() + 250, paused_wheel.truth.end());
+  // The truth only from where the base moves: the standstill lies outside every segment.
+  const CalibrationFit w = FitOdometryCalibration(paused_wheel.odometry, truth, BackendConfig{});
+  EXPECT_EQ(w.evidence.decided_by, "standstills");
+  EXPECT_NEAR(w.evidence.still_s, 5.0, 0.03);
+  EXPECT_EQ(w.evidence.still_turn_rad, 0.0);
+  EXPECT_EQ(w.model, OdometryModel::kWheel);
+  const Streams paused_gyro = Drive({0.01, 0.0, 0.0}, with_pause, 0.0005);
+  const CalibrationFit g = FitOdometryCalibration(paused_gyro.odometry, truth, BackendConfig{});
+  EXPECT_EQ(g.evidence.decided_by, "standstills");
+  EXPECT_EQ(g.model, OdometryModel::kGyro);
+  EXPECT_NEAR(g.gyro_bias_mean_radps, 0.0005, 1e-7);
 }
 
 // A straight run observes the distance scale and the heading drift but not the turns: the
@@ -70,7 +169,11 @@ TEST(OdometryCalibrationFitTest, RecoversTheBaseIntrinsicsFromALapWithGroundTrut
 TEST(OdometryCalibrationFitTest, AStraightRunLeavesTheRotationAtItsPrior) {
   const OdometryCalibration base{0.01, -0.002, 0.0};
   const Streams run = Drive(base, std::vector<Pose2>(80, Pose2{0.5, 0.0, 0.0}));  // 40 m
-  const CalibrationFit fit = FitOdometryCalibration(run.odometry, run.truth, BackendConfig{});
+  // One speed and no standstill: nothing tells a drift per metre from a bias per second.
+  CalibrationFitOptions wheel;
+  wheel.model = OdometryModel::kWheel;
+  const CalibrationFit fit =
+      FitOdometryCalibration(run.odometry, run.truth, BackendConfig{}, wheel);
   EXPECT_NEAR(fit.calibration[kCalibScale], 0.01, 1e-5);
   EXPECT_NEAR(fit.calibration[kCalibHeadingDrift], -0.002, 1e-5);
   EXPECT_NEAR(fit.calibration[kCalibRotation], 0.0, 1e-6);
