@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -49,6 +50,12 @@ template <class T>
 struct IsVector : std::false_type {};
 template <class T>
 struct IsVector<std::vector<T>> : std::true_type {};
+
+/// An optional value is written `null` when it has none (and read so from null, ~ or nothing).
+template <class T>
+struct IsOptional : std::false_type {};
+template <class T>
+struct IsOptional<std::optional<T>> : std::true_type {};
 
 /// A list whose items have a `name` and declare kListAddRequires is merged by name when read
 /// over a list in effect, not replaced (see Reader::MergeByName).
@@ -122,6 +129,14 @@ class Reader {
         Read(node[i], items[i], key + "[" + std::to_string(i) + "]");
       }
       value = std::move(items);
+    } else if constexpr (IsOptional<T>::value) {
+      if (node.IsNull()) {
+        value.reset();
+      } else {
+        typename T::value_type given{};
+        Read(node, given, key);
+        value = given;
+      }
     } else if constexpr (std::is_enum_v<T>) {
       if (!node.IsScalar() || !EnumFromName(node.Scalar(), &value)) {
         throw ConfigError(Where(source_, node) + ": '" + key + "' must be one of " +
@@ -259,6 +274,12 @@ class Writer {
       out_ << YAML::BeginSeq;
       for (auto& item : value) Write(item);
       out_ << YAML::EndSeq;
+    } else if constexpr (IsOptional<T>::value) {
+      if (value) {
+        Write(*value);
+      } else {
+        out_ << YAML::Null;
+      }
     } else if constexpr (std::is_enum_v<T>) {
       out_ << EnumName(value);
     } else if constexpr (std::is_floating_point_v<T>) {

@@ -19,8 +19,11 @@ GyroModel::GyroModel(const SimGyroConfig& config, double start_yaw_rad, std::uin
       bias_walk_radps_per_sqrt_s_(config.bias_walk_dps_per_sqrt_s * kRadPerDeg),
       range_radps_(config.range_dps * kRadPerDeg),
       resolution_rad_(config.angle_resolution_deg * kRadPerDeg) {
-  // Always draw, so the noise sequence does not depend on whether there is a turn-on bias.
-  bias_radps_ = unit_(rng_) * config.turn_on_bias_std_dps * kRadPerDeg;
+  // Always draw, so the noise sequence does not depend on whether there is a turn-on bias, nor
+  // on whether it is fixed.
+  const double sigmas = unit_(rng_);
+  bias_radps_ =
+      config.turn_on_bias_sigmas.value_or(sigmas) * config.turn_on_bias_std_dps * kRadPerDeg;
 }
 
 double GyroModel::Step(double dt_s, double true_dyaw_rad) {

@@ -5,7 +5,8 @@
 //
 // Noise model (continuous time, integrated exactly over each step of length dt):
 //   measured rate = (1 + scale_error) * true rate + bias(t) + white noise of density N;
-//   bias(t) starts at a draw from N(0, turn_on_bias_std) and walks with density K.
+//   bias(t) starts at a draw from N(0, turn_on_bias_std) (or at turn_on_bias_sigmas times
+//   turn_on_bias_std, when fixed) and walks with density K.
 // Over a step the heading increment then carries the bias times dt and white noise of
 // standard deviation N * sqrt(dt), so at standstill the heading error after t seconds has the
 // standard deviation N * sqrt(t) around bias * t (plus the walk's K * t^1.5 / sqrt(3)).
@@ -20,7 +21,8 @@ namespace uwbsar::sim {
 
 class GyroModel {
  public:
-  /// Starts at heading `start_yaw_rad`; draws the turn-on bias from `seed`.
+  /// Starts at heading `start_yaw_rad`; draws the turn-on bias from `seed` unless the
+  /// configuration fixes it (turn_on_bias_sigmas).
   GyroModel(const SimGyroConfig& config, double start_yaw_rad, std::uint64_t seed);
 
   /// Advances by `dt_s` over which the robot truly turned by `true_dyaw_rad`; returns the

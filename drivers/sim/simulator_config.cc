@@ -63,6 +63,8 @@ void Validate(const SimulatorConfig& s, const std::string& src) {
           src, kg + "rate_noise_density_dps_per_sqrt_hz", "must be in [0, 10)");
   Require(g.turn_on_bias_std_dps >= 0 && g.turn_on_bias_std_dps < 100, src,
           kg + "turn_on_bias_std_dps", "must be in [0, 100)");
+  Require(!g.turn_on_bias_sigmas || std::abs(*g.turn_on_bias_sigmas) <= 10, src,
+          kg + "turn_on_bias_sigmas", "must be null (drawn from the seed) or in [-10, 10]");
   Require(g.bias_walk_dps_per_sqrt_s >= 0 && g.bias_walk_dps_per_sqrt_s < 10, src,
           kg + "bias_walk_dps_per_sqrt_s", "must be in [0, 10)");
   Require(std::abs(g.scale_error) < 0.5, src, kg + "scale_error", "must be in (-0.5, 0.5)");

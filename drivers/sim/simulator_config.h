@@ -3,6 +3,7 @@
 // written by the generic loader in core/config_io.h.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -94,6 +95,9 @@ struct SimGyroConfig {
   double rate_noise_density_dps_per_sqrt_hz = 0.03;  ///< white rate noise (L3G4200D Rn)
   double turn_on_bias_std_dps = 0.03;  ///< bias left after the factory calibration, drawn per
                                        ///< run: the zero-rate drift of 0.03 dps/degC for 1 degC
+  /// The turn-on bias fixed at this many turn_on_bias_std_dps (e.g. +3 or -3, to test a run
+  /// with a bias of that size and sign); none: drawn from the run's seed.
+  std::optional<double> turn_on_bias_sigmas;
   double bias_walk_dps_per_sqrt_s = 0.0005;  ///< random walk of the bias: 0.03 dps (1 degC of
                                              ///< zero-rate drift) in one hour
   double scale_error = 0.0003;  ///< the gyro over-reports rates by this fraction: sensitivity
@@ -105,6 +109,7 @@ struct SimGyroConfig {
   void Visit(V& v) {
     v("rate_noise_density_dps_per_sqrt_hz", rate_noise_density_dps_per_sqrt_hz);
     v("turn_on_bias_std_dps", turn_on_bias_std_dps);
+    v("turn_on_bias_sigmas", turn_on_bias_sigmas);
     v("bias_walk_dps_per_sqrt_s", bias_walk_dps_per_sqrt_s);
     v("scale_error", scale_error);
     v("range_dps", range_dps);

@@ -179,6 +179,46 @@ TEST(GyroModelTest, SameSeedSameHeadingsOtherSeedOthers) {
   EXPECT_TRUE(differs);
 }
 
+TEST(GyroModelTest, TurnOnBiasFixedInSigmasIsThatManySigmasOnEverySeed) {
+  // simulator.odometry.gyro.turn_on_bias_sigmas: k fixes the turn-on bias at exactly k times
+  // turn_on_bias_std_dps whatever the seed (the noise and the walk still come from it); null, the
+  // default, draws it from the seed.
+  const SimulatorConfig plus = ReadConfigYaml<SimulatorConfig>(
+      "odometry:\n  gyro:\n    turn_on_bias_sigmas: 3\n", "plus.yaml");
+  const SimulatorConfig minus = ReadConfigYaml<SimulatorConfig>(
+      "odometry:\n  gyro:\n    turn_on_bias_sigmas: -3.0\n", "minus.yaml");
+  const SimulatorConfig drawn = ReadConfigYaml<SimulatorConfig>(
+      "odometry:\n  gyro:\n    turn_on_bias_sigmas: null\n", "drawn.yaml");
+  EXPECT_NO_THROW(Validate(plus, "plus.yaml"));
+  EXPECT_FALSE(drawn.odometry.gyro.turn_on_bias_sigmas.has_value());
+  const double sigma_radps = SimGyroConfig{}.turn_on_bias_std_dps * kRadPerDeg;
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    GyroModel p(plus.odometry.gyro, 0.0, seed), m(minus.odometry.gyro, 0.0, seed);
+    GyroModel d(drawn.odometry.gyro, 0.0, seed), default_gyro(SimGyroConfig{}, 0.0, seed);
+    EXPECT_EQ(p.bias_radps(), 3.0 * sigma_radps) << seed;
+    EXPECT_EQ(m.bias_radps(), -3.0 * sigma_radps) << seed;
+    EXPECT_EQ(d.bias_radps(), default_gyro.bias_radps()) << seed;
+    // The same noise and walk as the drawn run: the headings differ by the biases' difference.
+    const double offset_radps = p.bias_radps() - d.bias_radps();
+    for (int i = 1; i <= 100; ++i) {
+      p.Step(0.02, 0.001);
+      d.Step(0.02, 0.001);
+      ASSERT_NEAR(p.heading_rad() - d.heading_rad(), offset_radps * 0.02 * i, 1e-12) << seed;
+    }
+  }
+  // More than 10 sigmas is no turn-on bias a gyro has: refused, naming the key.
+  SimulatorConfig far = plus;
+  far.odometry.gyro.turn_on_bias_sigmas = 11.0;
+  try {
+    Validate(far, "far.yaml");
+    FAIL() << "accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("simulator.odometry.gyro.turn_on_bias_sigmas"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // --- Profiles ---
 
 std::vector<OdometrySample> Drive(const Trajectory& t, const SimOdometryConfig& c,
