@@ -12,7 +12,14 @@
 //   build/bin/uwbsar_bench --benchmark_filter=Tour
 // UWBSAR_TOUR_SEEDS=N runs seeds 1..N (default 5; UWBSAR_TOUR_FIRST_SEED=K: K..K+N-1);
 // UWBSAR_TOUR_CONFIG=FILE.yaml maps with that configuration instead of the defaults (for
-// comparisons); UWBSAR_TOUR_VERBOSE=1 lists every validated loop.
+// comparisons); UWBSAR_TOUR_VERBOSE=1 lists every validated loop. The base and the drive:
+// UWBSAR_TOUR_SPEED=0.08 drives every route at that speed (simulator.route.speed_mps; 0.08:
+// the slow tours of issue 44, 700 s and more each, about 3x the time per run);
+// UWBSAR_TOUR_BASE=wheel simulates a wheel-only base and maps it with backend.odometry_model
+// wheel (gyro: the kobuki_gyro base and the gyro model, the defaults);
+// UWBSAR_TOUR_BIAS_SIGMAS=3 fixes the gyro's turn-on bias at +3 sigma on every seed
+// (simulator.odometry.gyro.turn_on_bias_sigmas). With a gyro base each run also prints its
+// true gyro bias beside the estimate (eval/tour/gyro_bias_eval.h).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -21,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "eval/tour/gyro_bias_eval.h"
 #include "eval/tour/tour_eval.h"
 #include "slam/app_config_io.h"
 
@@ -52,6 +60,27 @@ std::string MapsFile(const std::string& name) {
   return std::string(UWBSAR_SOURCE_DIR) + "/config/maps/" + name;
 }
 
+/// The base and drive of the UWBSAR_TOUR_SPEED, _BASE and _BIAS_SIGMAS variables, over `config`.
+Config WithTourBase(Config config) {
+  if (const char* speed = std::getenv("UWBSAR_TOUR_SPEED")) {
+    config.simulator.route.speed_mps = std::atof(speed);
+  }
+  if (const char* base = std::getenv("UWBSAR_TOUR_BASE")) {
+    const bool wheel = std::string(base) == "wheel";
+    config.simulator.odometry.profile = wheel ? "wheel" : "kobuki_gyro";
+    config.backend.odometry_model = wheel ? OdometryModel::kWheel : OdometryModel::kGyro;
+  }
+  if (const char* sigmas = std::getenv("UWBSAR_TOUR_BIAS_SIGMAS")) {
+    config.simulator.odometry.gyro.turn_on_bias_sigmas = std::atof(sigmas);
+  }
+  ValidateConfig(config, "the UWBSAR_TOUR_* variables");
+  std::printf("tours: %s base, %.3f m/s, turn-on bias %s\n",
+              config.simulator.odometry.profile.c_str(), config.simulator.route.speed_mps,
+              std::getenv("UWBSAR_TOUR_BIAS_SIGMAS") ? std::getenv("UWBSAR_TOUR_BIAS_SIGMAS")
+                                                       : "drawn per seed");
+  return config;
+}
+
 void BM_Tour(benchmark::State& state) {
   const Tour& tour = Tours()[static_cast<std::size_t>(state.range(0))];
   const char* seeds_env = std::getenv("UWBSAR_TOUR_SEEDS");
@@ -59,7 +88,7 @@ void BM_Tour(benchmark::State& state) {
   const char* first_env = std::getenv("UWBSAR_TOUR_FIRST_SEED");
   const int first_seed = first_env ? std::atoi(first_env) : 1;
   const char* config_env = std::getenv("UWBSAR_TOUR_CONFIG");
-  Config config = config_env ? LoadConfig(config_env) : Config{};
+  Config config = WithTourBase(config_env ? LoadConfig(config_env) : Config{});
   config.simulator.route.clearance_m = 0.3;  // every route keeps 0.45 m from obstacles
   for (auto _ : state) {
     int closed = 0, false_loops = 0, overlap = 0, overlap_accepted = 0, revisits = 0, recalled = 0;
@@ -77,6 +106,8 @@ void BM_Tour(benchmark::State& state) {
           tour.name, seed, slam::FormatTourEvaluation(e).c_str(), by_radar,
           run.slam->graph().RightAnglePriors(), run.slam->graph().BuildingSpreadDeg(),
           times.features_s, times.matching_s);
+      const slam::GyroBiasEvaluation bias = slam::EvaluateGyroBias(run, config, seed);
+      if (bias.segments > 0) std::printf("  %s\n", slam::FormatGyroBiasEvaluation(bias).c_str());
       for (const auto& [trajectory, c] : run.slam->graph().OdometryCalibrations()) {
         std::printf(
             "  odometry calibration: scale %+.4f, heading drift %+.5f rad/m, rotation %+.4f\n",

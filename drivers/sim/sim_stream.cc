@@ -19,6 +19,21 @@ long long CountFor(double duration_s, double rate_hz) {
 
 }  // namespace
 
+std::vector<double> TrueGyroBiasRadps(const SimOdometryConfig& config, std::uint64_t seed,
+                                      const std::vector<double>& times_s) {
+  if (config.profile != "kobuki_gyro") return {};
+  // As BaseOdometrySimulator steps it: one step per odometry period after the first sample.
+  GyroModel gyro(config.gyro, 0.0, DeriveSeed(seed, kGyroStream));
+  const double period_s = 1.0 / config.rate_hz;
+  std::vector<double> bias;
+  long long steps = 0;
+  for (double t : times_s) {
+    for (; steps < std::llround(t / period_s); ++steps) gyro.Step(period_s, 0.0);
+    bias.push_back(gyro.bias_radps());
+  }
+  return bias;
+}
+
 SimScenario MakeScenario(const SimSettings& config, const std::string& map_yaml,
                          const std::string& route_spec, std::uint64_t seed,
                          const std::vector<PointTargetConfig>& extra_targets) {

@@ -48,6 +48,13 @@ SimScenario MakeScenario(const SimSettings& config, const std::string& map_yaml,
                          const std::string& route_spec, std::uint64_t seed,
                          const std::vector<PointTargetConfig>& extra_targets = {});
 
+/// The true bias (rad/s) of the base's gyro in the run of `seed` (profile kobuki_gyro; empty
+/// with wheel) at each of `times_s` (ascending, seconds from the run's start): the turn-on bias
+/// at 0, then as it walked, replayed from the run's own generator (the draws do not depend on
+/// the motion). For tests and benchmarks that compare a run's estimated bias with the truth.
+std::vector<double> TrueGyroBiasRadps(const SimOdometryConfig& config, std::uint64_t seed,
+                                      const std::vector<double>& times_s);
+
 class SimStream {
  public:
   /// Uses config.simulator (rates, odometry, radar and laser models) and config.radars.
