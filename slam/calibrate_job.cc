@@ -66,13 +66,17 @@ std::string CalibrationYaml(const CalibrationFit& fit) {
   Config config;
   BackendConfig& b = config.backend;
   constexpr int kDigits = 6;  // a measured figure: more digits would be noise
+  b.odometry_model = fit.model;
   b.calibration_scale_mean = RoundToDigits(fit.calibration[kCalibScale], kDigits);
-  b.calibration_heading_drift_mean_rad_per_m =
-      RoundToDigits(fit.calibration[kCalibHeadingDrift], kDigits);
   b.calibration_rotation_mean = RoundToDigits(fit.calibration[kCalibRotation], kDigits);
-  std::vector<const void*> fields = {&b.calibration_scale_mean,
-                                     &b.calibration_heading_drift_mean_rad_per_m,
+  std::vector<const void*> fields = {&b.odometry_model, &b.calibration_scale_mean,
                                      &b.calibration_rotation_mean};
+  // A gyro's heading error is the run's bias: nothing per metre belongs to the robot.
+  if (fit.model == OdometryModel::kWheel) {
+    b.calibration_heading_drift_mean_rad_per_m =
+        RoundToDigits(fit.calibration[kCalibHeadingDrift], kDigits);
+    fields.push_back(&b.calibration_heading_drift_mean_rad_per_m);
+  }
   if (fit.observed[kCalibScale]) {
     b.calibration_scale_sigma =
         RoundToDigits(std::max(0.001, 3.0 * fit.sigma[kCalibScale]), kDigits);
@@ -85,7 +89,8 @@ std::string CalibrationYaml(const CalibrationFit& fit) {
   out << YAML::EndMap;
   std::ostringstream y;
   y.precision(kDigits);
-  y << "# uwbsar calibrate: " << fit.segments << " segments, " << fit.path_m << " m\n"
+  y << "# uwbsar calibrate: " << fit.segments << " segments, " << fit.path_m << " m, "
+    << EnumName(fit.model) << " base\n"
     << out.c_str() << "\n";
   return y.str();
 }
@@ -104,6 +109,7 @@ CalibrateJobResult RunCalibrateJob(const Config& config, const CalibrateJobOptio
                      "); give one with --ground-truth");
   }
   fit_options.segment_m = options.segment_m;
+  fit_options.model = options.base;
   fit_options.max_step_m = config.gating.max_odom_jump_m;
   fit_options.max_speed_mps = config.gating.max_odom_speed_mps;
   fit_options.max_turn_rate_radps = config.gating.max_odom_turn_rate_radps;

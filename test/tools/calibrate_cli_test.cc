@@ -1,6 +1,8 @@
 // `uwbsar calibrate` as a user meets it: a simulated run with ground truth gives the simulated
 // base's distance scale and a configuration file that loads; a bag without ground truth, or
 // with too little of it, is refused with one line; `map` says which calibration it applies.
+// It finds which kind of base drove the run and writes only what belongs to the robot: a gyro
+// base's bias is the run's, reported in one line and never written.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -8,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -36,6 +39,11 @@ class CalibrateCliTest : public ::testing::Test {
         "--config " + wheel + " simulate --map " + std::string(UWBSAR_SOURCE_DIR) +
         "/config/maps/seed_hall/seed_hall.yaml --route loop --seed 7 --out " + dir_ + "/bag");
     ASSERT_EQ(sim.exit_code, 0) << sim.output;
+    // The same loop with the default base: heading from the Kobuki's gyro.
+    const CliRun gyro = Uwbsar(
+        "simulate --map " + std::string(UWBSAR_SOURCE_DIR) +
+        "/config/maps/seed_hall/seed_hall.yaml --route loop --seed 7 --out " + dir_ + "/gyro_bag");
+    ASSERT_EQ(gyro.exit_code, 0) << gyro.output;
   }
   static std::string dir_;
 };
@@ -58,8 +66,14 @@ TEST_F(CalibrateCliTest, ASimulatedRunGivesTheBasesScaleAndAConfigurationThatLoa
   const double scale = ValueAfter(r.output, "calibration_scale_mean:");
   EXPECT_NEAR(scale, truth, 0.0015) << r.output;
   EXPECT_GT(ValueAfter(r.output, "calibration_rotation_mean:"), 0.005);  // turns under-reported
+  // A wheel-only base: detected (its heading stands still at rest), with its drift per metre.
+  EXPECT_NE(r.output.find("base: wheel (detected: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("odometry_model: wheel\n"), std::string::npos) << r.output;
+  EXPECT_GT(ValueAfter(r.output, "calibration_heading_drift_mean_rad_per_m:"), 0.001);
+  EXPECT_EQ(r.output.find("gyro bias"), std::string::npos) << r.output;
   const CliRun loaded = Uwbsar("--config " + out + " config");
   ASSERT_EQ(loaded.exit_code, 0) << loaded.output;
+  EXPECT_NE(loaded.output.find("odometry_model: wheel"), std::string::npos);
   EXPECT_NEAR(ValueAfter(loaded.output, "calibration_scale_mean:"), scale, 1e-5);
   EXPECT_GT(ValueAfter(loaded.output, "calibration_scale_sigma:"), 0.0009);
   EXPECT_LT(ValueAfter(loaded.output, "calibration_scale_sigma:"), 0.02);
@@ -83,6 +97,45 @@ TEST_F(CalibrateCliTest, MapSaysWhichCalibrationItApplies) {
   EXPECT_NEAR(summary["odometry_calibration"]["scale"].get<double>(), scale_percent / 100.0, 1e-5);
   std::ifstream plain_file(dir_ + "/plain/summary.json");
   EXPECT_EQ(nlohmann::json::parse(plain_file)["odometry_calibration"]["scale"].get<double>(), 0.0);
+}
+
+// Issue 44: a gyro's bias is set at each power-up and wanders; written as the robot's, it made
+// runs whose bias had the other sign worse than no calibration. calibrate reports it in one
+// line, writes the robot's scales and kind only, and the file maps.
+TEST_F(CalibrateCliTest, AGyroRunWritesNoPerRunBiasAndSaysSoInOneLine) {
+  const std::string out = dir_ + "/gyro_calibration.yaml";
+  const CliRun r = Uwbsar("calibrate " + dir_ + "/gyro_bag --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::printf("%s", r.output.c_str());
+  EXPECT_NE(r.output.find("base: gyro (detected: "), std::string::npos) << r.output;
+  const std::size_t line = r.output.find("\ngyro bias of this run: ");
+  ASSERT_NE(line, std::string::npos) << r.output;
+  const std::string bias_line = r.output.substr(line + 1, r.output.find('\n', line + 1) - line - 1);
+  EXPECT_NE(bias_line.find(" deg/s (walk: "), std::string::npos) << bias_line;
+  EXPECT_NE(bias_line.find("): not written, a gyro's bias belongs to the run and is estimated in "
+                           "every run"),
+            std::string::npos)
+      << bias_line;
+  EXPECT_LT(std::abs(ValueAfter(bias_line, "gyro bias of this run:")), 0.2);  // deg/s
+  EXPECT_EQ(r.output.find("heading drift"), std::string::npos) << r.output;
+  std::ifstream file(out);
+  const std::string yaml((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  EXPECT_NE(yaml.find("  odometry_model: gyro\n"), std::string::npos) << yaml;
+  EXPECT_NE(yaml.find("  calibration_scale_mean: "), std::string::npos) << yaml;
+  EXPECT_NE(yaml.find("  calibration_rotation_mean: "), std::string::npos) << yaml;
+  EXPECT_EQ(yaml.find("drift"), std::string::npos) << yaml;
+  EXPECT_EQ(yaml.find("bias"), std::string::npos) << yaml;
+  EXPECT_NEAR(ValueAfter(yaml, "calibration_scale_mean:"), 1.0 / 1.005 - 1.0, 0.0015) << yaml;
+  // The file loads where it is used: map with it.
+  const CliRun mapped =
+      Uwbsar("--config " + out + " map " + dir_ + "/gyro_bag --out " + dir_ + "/gyro_map");
+  ASSERT_EQ(mapped.exit_code, 0) << mapped.output;
+  EXPECT_NE(mapped.output.find("odometry calibration: distance scale"), std::string::npos)
+      << mapped.output;
+  // Told the kind, it fits that model and says so.
+  const CliRun told = Uwbsar("calibrate " + dir_ + "/gyro_bag --base wheel");
+  ASSERT_EQ(told.exit_code, 0) << told.output;
+  EXPECT_NE(told.output.find("base: wheel (--base)"), std::string::npos) << told.output;
 }
 
 TEST_F(CalibrateCliTest, NoGroundTruthOrTooLittleIsRefusedWithOneLine) {
