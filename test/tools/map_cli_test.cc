@@ -32,6 +32,8 @@ TEST(MapCliTest, GoodBagWritesEveryOutputAndAReportThatRenders) {
   const std::string bag = WriteRunBag(dir, {});
   const CliRun r = Uwbsar("map " + bag + " --out " + dir + "/out");
   ASSERT_EQ(r.exit_code, 0) << r.output;
+  // A gyro base (backend.odometry_model, the default): the run's own bias is shown.
+  EXPECT_NE(r.output.find("gyro bias of this run: "), std::string::npos) << r.output;
   for (const char* f :
        {"map.png", "map_float.tif", "map_grid.yaml", "map.pgm", "map.yaml", "trajectory.tum",
         "odometry.tum", "graph.g2o", "loops.csv", "summary.json", "report.html"}) {
