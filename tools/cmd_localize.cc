@@ -57,10 +57,10 @@ void AddLocalizeCommand(CLI::App& app, const GlobalOptions& globals) {
     } else {
       std::printf("never placed in the map: lost\n");
     }
-    if (s.contains("ate_tracking")) {
-      std::printf("ATE RMSE %.2f cm over %d poses, from the first fix\n",
-                  s["ate_tracking"]["rmse_m"].get<double>() * 100,
-                  s["ate_tracking"]["poses"].get<int>());
+    if (s.contains("ate") && s["ate"].is_object()) {  // as map prints it, from the first fix
+      std::printf("ATE RMSE %.2f cm (odometry alone %.2f cm) over %d poses, from the first fix\n",
+                  s["ate"]["rmse_m"].get<double>() * 100,
+                  s["odometry_ate"]["rmse_m"].get<double>() * 100, s["ate"]["poses"].get<int>());
     } else {
       std::printf("no ground truth or no fix: ATE not computed\n");
     }
