@@ -157,6 +157,41 @@ TEST(SimStreamTest, OdometryAndTruthStartTogetherAndDrift) {
   EXPECT_NEAR(max_x, 1.5 * 1.05, 0.01);
 }
 
+TEST(SimStreamTest, TrueGyroBiasIsTheBiasTheRunsOdometryIntegrated) {
+  // A gyro whose only error is its bias (fixed turn-on, a fast walk): each odometry step's
+  // heading error is the mean of the replayed biases at its ends times the step.
+  UWBSAR_NEED_SEED_LAB_MAP();
+  Config config = ShortRunConfig();
+  SimGyroConfig& g = config.simulator.odometry.gyro;
+  g.rate_noise_density_dps_per_sqrt_hz = g.scale_error = g.angle_resolution_deg = 0.0;
+  g.bias_walk_dps_per_sqrt_s = 0.05;
+  g.turn_on_bias_sigmas = 3.0;
+  g.range_dps = 1000.0;
+  config.simulator.odometry.ground_truth_rate_hz = config.simulator.odometry.rate_hz;
+  const SimScenario scenario = MakeScenario(config, testing::SeedLabMap(), "depart-return", 2);
+  SimStream stream(config, scenario, 2);
+  const SimRecording rec = RecordStream(&stream);
+  ASSERT_EQ(rec.odometry.size(), rec.ground_truth.size());
+  std::vector<double> times_s;
+  for (const OdometrySample& o : rec.odometry) {
+    times_s.push_back(NsToSeconds(o.stamp_ns - rec.odometry.front().stamp_ns));
+  }
+  const std::vector<double> bias = TrueGyroBiasRadps(config.simulator.odometry, 2, times_s);
+  ASSERT_EQ(bias.size(), times_s.size());
+  EXPECT_DOUBLE_EQ(bias.front(), 3.0 * g.turn_on_bias_std_dps * M_PI / 180.0);
+  EXPECT_NE(bias.back(), bias.front());  // it walked
+  auto error = [&rec](std::size_t i) {
+    return NormalizeAngle(rec.odometry[i].T_world_robot.yaw_rad -
+                          rec.ground_truth[i].T_world_robot.yaw_rad);
+  };
+  for (std::size_t i = 1; i < rec.odometry.size(); ++i) {
+    ASSERT_EQ(rec.odometry[i].stamp_ns, rec.ground_truth[i].stamp_ns);
+    const double dt = times_s[i] - times_s[i - 1];
+    ASSERT_NEAR(NormalizeAngle(error(i) - error(i - 1)), 0.5 * (bias[i - 1] + bias[i]) * dt, 1e-9)
+        << i;
+  }
+}
+
 TEST(SimStreamTest, LaserMeasuresTheWallsWhenEnabled) {
   UWBSAR_NEED_SEED_LAB_MAP();
   Config config = ShortRunConfig();
