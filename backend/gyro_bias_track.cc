@@ -2,7 +2,9 @@
 
 #include <ceres/sized_cost_function.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <utility>
 
 namespace uwbsar {
@@ -46,64 +48,65 @@ class BiasWalk final : public ceres::SizedCostFunction<1, 1, 1> {
 GyroBiasTrack::GyroBiasTrack(ceres::Problem* problem, const BackendConfig& config)
     : problem_(problem),
       segment_s_(config.gyro_bias_segment_s),
-      walk_sigma_radps_(config.gyro_bias_walk_dps_per_sqrt_s * kRadPerDeg *
-                        std::sqrt(config.gyro_bias_segment_s)),
+      walk_radps_per_sqrt_s_(config.gyro_bias_walk_dps_per_sqrt_s * kRadPerDeg),
       turn_on_sigma_radps_(config.gyro_bias_sigma_dps * kRadPerDeg) {}
 
 long long GyroBiasTrack::SegmentOf(double t_s) const {
   // Without a walk the bias is one constant: one segment for the whole run.
-  if (!(walk_sigma_radps_ > 0.0) || !std::isfinite(t_s)) return 0;
-  return static_cast<long long>(std::floor(t_s / segment_s_));
+  if (!(walk_radps_per_sqrt_s_ > 0.0) || !std::isfinite(t_s)) return 0;
+  constexpr double kMaxSegment = 1e15;  // far beyond any stamp (core/stamp_range.h)
+  return static_cast<long long>(
+      std::clamp(std::floor(t_s / segment_s_), -kMaxSegment, kMaxSegment));
 }
 
-double* GyroBiasTrack::MakeSegment(long long k) {
-  auto value = std::make_unique<double>(Latest());  // the newest estimate: the walk's mean
-  double* x = value.get();
-  problem_->AddParameterBlock(x, 1);
-  if (segments_.empty()) {
-    problem_->AddResidualBlock(new BiasPrior(0.0, turn_on_sigma_radps_), nullptr, x);
-    terms_.push_back({x, nullptr, 0.0, turn_on_sigma_radps_});
-  }
-  segments_.emplace(k, std::move(value));
-  return x;
+void GyroBiasTrack::Tie(long long from, long long to) {
+  Walk w;
+  w.a = segments_.at(from).get();
+  w.b = segments_.at(to).get();
+  w.sigma = walk_radps_per_sqrt_s_ * std::sqrt(static_cast<double>(to - from) * segment_s_);
+  w.residual = problem_->AddResidualBlock(new BiasWalk(w.sigma), nullptr, w.a, w.b);
+  walks_[from] = w;
 }
 
 double* GyroBiasTrack::BlockAt(double t_s) {
   const long long k = SegmentOf(t_s);
   auto it = segments_.find(k);
   if (it != segments_.end()) return it->second.get();
-  if (segments_.empty()) return MakeSegment(k);
-  // Contiguous: every segment between the track's nearer end and k, each tied to its neighbour.
-  if (k > segments_.rbegin()->first) {
-    for (long long i = segments_.rbegin()->first + 1; i <= k; ++i) {
-      double* prev = segments_.rbegin()->second.get();
-      double* x = MakeSegment(i);
-      problem_->AddResidualBlock(new BiasWalk(walk_sigma_radps_), nullptr, prev, x);
-      terms_.push_back({prev, x, 0.0, walk_sigma_radps_});
-    }
-  } else {
-    for (long long i = segments_.begin()->first - 1; i >= k; --i) {
-      double* next = segments_.begin()->second.get();
-      double* x = MakeSegment(i);
-      problem_->AddResidualBlock(new BiasWalk(walk_sigma_radps_), nullptr, x, next);
-      terms_.push_back({x, next, 0.0, walk_sigma_radps_});
-    }
+  auto value = std::make_unique<double>(Latest());  // the newest estimate: the walk's mean
+  double* x = value.get();
+  problem_->AddParameterBlock(x, 1);
+  const bool first = segments_.empty();
+  segments_.emplace(k, std::move(value));
+  if (first) {
+    problem_->AddResidualBlock(new BiasPrior(0.0, turn_on_sigma_radps_), nullptr, x);
+    priors_.push_back({x, 0.0, turn_on_sigma_radps_});
+    return x;
   }
-  return segments_.at(k).get();
+  auto self = segments_.find(k);
+  const bool has_prev = self != segments_.begin();
+  const auto next = std::next(self);
+  if (has_prev) {
+    const long long prev = std::prev(self)->first;
+    if (next != segments_.end()) {  // between two tied segments: the walk now passes through k
+      problem_->RemoveResidualBlock(walks_.at(prev).residual);
+      walks_.erase(prev);
+    }
+    Tie(prev, k);
+  }
+  if (next != segments_.end()) Tie(k, next->first);
+  return x;
 }
 
 void GyroBiasTrack::AddMeasurement(double t_s, double bias_radps, double sigma_radps) {
   double* x = BlockAt(t_s);
   problem_->AddResidualBlock(new BiasPrior(bias_radps, sigma_radps), nullptr, x);
-  terms_.push_back({x, nullptr, bias_radps, sigma_radps});
+  priors_.push_back({x, bias_radps, sigma_radps});
 }
 
 double GyroBiasTrack::Chi2() const {
   double sum = 0.0;
-  for (const Term& t : terms_) {
-    const double r = (t.b != nullptr ? *t.b - *t.a : *t.a - t.mean) / t.sigma;
-    sum += r * r;
-  }
+  for (const Prior& p : priors_) sum += std::pow((*p.x - p.mean) / p.sigma, 2);
+  for (const auto& [k, w] : walks_) sum += std::pow((*w.b - *w.a) / w.sigma, 2);
   return sum;
 }
 

@@ -4,13 +4,15 @@
 // so it is estimated online, like the poses:
 //  - piecewise constant over segments of gyro_bias_segment_s (absolute time: segment k covers
 //    [k T, (k + 1) T)); each calibrated odometry edge reads the segment of its middle;
-//  - consecutive segments are tied by the walk: r = (b_k+1 - b_k) / (K sqrt(T)), K the
-//    walk's density (gyro_bias_walk_dps_per_sqrt_s); with K = 0 the run has one segment;
+//  - neighbouring segments k < j are tied by the walk: r = (b_j - b_k) / (K sqrt((j - k) T)),
+//    K the walk's density (gyro_bias_walk_dps_per_sqrt_s); with K = 0 the run has one segment;
 //  - the first segment made carries the turn-on prior r = b / gyro_bias_sigma_dps;
 //  - a standstill measures the bias directly (backend/gyro_stillness.h): r = (b - z) / sigma_z
 //    on the segment it falls in.
-// Loops, wall edges and landmarks then observe it through the odometry edges. The segments are
-// made on demand, contiguous from the first to the last, so every pair of neighbours is tied.
+// Loops, wall edges and landmarks then observe it through the odometry edges. Segments are made
+// on demand, only where an edge or a standstill falls (a recording with a stray stamp decades
+// away makes two segments, not millions); a segment made between two tied ones takes the place
+// of their walk with two.
 #pragma once
 
 #include <ceres/problem.h>
@@ -28,8 +30,8 @@ class GyroBiasTrack {
   /// Adds its blocks and residuals to `problem` (not owned; must outlive the track).
   GyroBiasTrack(ceres::Problem* problem, const BackendConfig& config);
 
-  /// The bias block (1 value, rad/s) of the segment holding time `t_s`; makes the segments
-  /// between the track's ends and it.
+  /// The bias block (1 value, rad/s) of the segment holding time `t_s`, made (and tied to its
+  /// neighbours) if new.
   double* BlockAt(double t_s);
   /// A direct measurement of the bias at `t_s` (a standstill): `bias_radps` +- `sigma_radps`.
   void AddMeasurement(double t_s, double bias_radps, double sigma_radps);
@@ -45,21 +47,27 @@ class GyroBiasTrack {
   std::vector<std::pair<double, double>> Segments() const;
 
  private:
-  struct Term {
-    double* a = nullptr;
-    double* b = nullptr;  ///< walks only
-    double mean = 0.0;    ///< priors and measurements
+  struct Prior {  ///< the turn-on prior and the standstills
+    double* x = nullptr;
+    double mean = 0.0;
     double sigma = 1.0;
   };
+  struct Walk {  ///< between a segment and the next one made
+    double* a = nullptr;
+    double* b = nullptr;
+    double sigma = 1.0;
+    ceres::ResidualBlockId residual = nullptr;
+  };
   long long SegmentOf(double t_s) const;
-  double* MakeSegment(long long k);
+  void Tie(long long from, long long to);  ///< adds the walk from segment `from` to `to`
 
   ceres::Problem* problem_;
   double segment_s_;
-  double walk_sigma_radps_;  ///< between neighbours: K sqrt(T)
+  double walk_radps_per_sqrt_s_;  ///< K
   double turn_on_sigma_radps_;
   std::map<long long, std::unique_ptr<double>> segments_;
-  std::vector<Term> terms_;
+  std::vector<Prior> priors_;
+  std::map<long long, Walk> walks_;  ///< by the earlier segment
 };
 
 }  // namespace uwbsar

@@ -47,18 +47,23 @@ TEST(GyroStillnessTest, AStandstillMeasuresTheBiasAndATurnInPlaceDoesNot) {
   EXPECT_NEAR(found[1].end_s - found[1].begin_s, 2.0, 1e-9);
 }
 
-TEST(GyroBiasTrackTest, SegmentsAreContiguousAndTiedByTheWalk) {
+TEST(GyroBiasTrackTest, SegmentsAreMadeWhereNeededAndTiedByTheWalk) {
   ceres::Problem problem;
   BackendConfig config;
   config.gyro_bias_segment_s = 10.0;
   GyroBiasTrack track(&problem, config);
   double* b25 = track.BlockAt(25.0);
   EXPECT_EQ(track.BlockAt(29.9), b25);
-  track.BlockAt(55.0);  // segments 2..5
-  track.BlockAt(3.0);   // and 0..1
-  EXPECT_EQ(track.Segments().size(), 6u);
-  EXPECT_EQ(problem.NumParameterBlocks(), 6);
-  EXPECT_EQ(problem.NumResidualBlocks(), 6);  // the turn-on prior and 5 walks
+  track.BlockAt(55.0);  // segment 5, tied to 2
+  track.BlockAt(3.0);   // segment 0, tied to 2
+  track.BlockAt(12.0);  // segment 1 between them: the walk 0 -> 2 becomes 0 -> 1 -> 2
+  EXPECT_EQ(track.Segments().size(), 4u);
+  EXPECT_EQ(problem.NumParameterBlocks(), 4);
+  EXPECT_EQ(problem.NumResidualBlocks(), 4);  // the turn-on prior and 3 walks
+  // A stray stamp decades away is one more segment, weakly tied, not millions.
+  track.BlockAt(-1.7e9);
+  EXPECT_EQ(problem.NumParameterBlocks(), 5);
+  EXPECT_EQ(problem.NumResidualBlocks(), 5);
   track.AddMeasurement(51.0, 0.001, 0.0001);
   ceres::Solver::Options options;
   ceres::Solver::Summary summary;
@@ -69,6 +74,9 @@ TEST(GyroBiasTrackTest, SegmentsAreContiguousAndTiedByTheWalk) {
   EXPECT_LT(s.front().second, s.back().second);
   EXPECT_GT(s.front().second, 0.0);
   EXPECT_GT(track.Chi2(), 0.0);
+  double cost = 0.0;
+  problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr);
+  EXPECT_NEAR(track.Chi2(), 2.0 * cost, 1e-9 * track.Chi2());  // every term counted once
   // Without a walk the bias is one constant: one segment.
   config.gyro_bias_walk_dps_per_sqrt_s = 0.0;
   ceres::Problem p2;
