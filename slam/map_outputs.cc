@@ -80,12 +80,7 @@ std::string LoopsCsv(const SlamSnapshot& slam) {
   // Three columns per detector of the validation pair, named after it (the paper's pair:
   // ratio_akaze,good_akaze,scale_akaze,ratio_orb,good_orb,scale_orb).
   const std::vector<DetectorKind> detectors = slam.LoopDetectors();
-  csv << "query_id,match_id,";
-  for (DetectorKind d : detectors) {
-    const std::string n = DetectorColumnName(d);
-    csv << "ratio_" << n << ",good_" << n << ",scale_" << n << ",";
-  }
-  csv << "x_m,y_m,yaw_deg,validator,reason,backend,chi2\n";
+  csv << LoopsCsvHeader(detectors) << "\n";
   for (const LoopRecord& l : slam.loops) {
     const Pose2& T = l.validation.constraint.T_ij;
     std::string reason = l.validation.reason;
@@ -108,6 +103,15 @@ std::string LoopsCsv(const SlamSnapshot& slam) {
 }
 
 }  // namespace
+
+std::string LoopsCsvHeader(const std::vector<DetectorKind>& detectors) {
+  std::string header = "query_id,match_id,";
+  for (DetectorKind d : detectors) {
+    const std::string n = DetectorColumnName(d);
+    header += "ratio_" + n + ",good_" + n + ",scale_" + n + ",";
+  }
+  return header + "x_m,y_m,yaw_deg,validator,reason,backend,chi2";
+}
 
 MapState CaptureMapState(const MapRun& run) {
   MapState state;

@@ -14,6 +14,7 @@
 
 #include "core/folder_lock.h"
 #include "core/interrupt_cleanup.h"
+#include "frontend/place_recognition/detector_kind.h"
 #include "slam/map_job.h"
 
 namespace uwbsar {
@@ -128,6 +129,10 @@ MapOutputs WriteMapOutputs(const MapState& state, const std::string& out_dir);
 /// map_exact.png (the paper's enhancement). Returns the files written. Needs the run mapped
 /// with slam.keep_scan_profiles (std::logic_error otherwise).
 std::vector<std::string> WriteExactMap(const MapRun& run, const std::string& out_dir);
+
+/// loops.csv's header (no newline): query_id,match_id, ratio_, good_ and scale_ of each of
+/// `detectors` (named after it), x_m,y_m,yaw_deg,validator,reason,backend,chi2.
+std::string LoopsCsvHeader(const std::vector<DetectorKind>& detectors);
 
 /// The text of a *_grid.yaml: the pixel geometry of the float map `image` (what `uwbsar
 /// compare` reads), with a comment naming `what` it describes and the `frame` of x, y.

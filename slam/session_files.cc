@@ -7,6 +7,7 @@
 #include "backend/g2o_io.h"
 #include "imaging/image_io.h"
 #include "slam/map_job.h"
+#include "slam/map_outputs.h"
 #include "slam/map_report.h"
 #include "slam/session_outputs.h"
 
@@ -25,12 +26,7 @@ void Append(const Stamped& from, std::vector<std::pair<double, Pose2>>* to) {
 std::string JoinedLoopsCsv(const SessionData& session, const Config& config) {
   const std::vector<DetectorKind>& detectors = config.place_recognition.validation.detectors;
   std::ostringstream csv;
-  csv << "query_id,match_id,";
-  for (DetectorKind d : detectors) {
-    const std::string n = DetectorColumnName(d);
-    csv << "ratio_" << n << ",good_" << n << ",scale_" << n << ",";
-  }
-  csv << "x_m,y_m,yaw_deg,validator,reason,backend,chi2,query_run,match_run\n";
+  csv << LoopsCsvHeader(detectors) << ",query_run,match_run\n";
   for (const SessionLoop& l : session.loops) {
     const bool v = l.validated;
     std::string reason = l.reason;
