@@ -20,8 +20,8 @@ std::optional<GyroStandstill> GyroStillness::Add(double t_s, const Pose2& T_worl
     const double travel_m =
         std::hypot(T_world_robot.x_m - last_.x_m, T_world_robot.y_m - last_.y_m);
     const double turn_rad = NormalizeAngle(T_world_robot.yaw_rad - last_.yaw_rad);
-    const bool still =
-        travel_m < kMaxStillStepM && std::abs(turn_rad) < kMaxStillRateDps * kRadPerDeg * dt_s;
+    const bool still = dt_s <= kMaxStillStepS && travel_m < kMaxStillStepM &&
+                       std::abs(turn_rad) < kMaxStillRateDps * kRadPerDeg * dt_s;
     if (still) {
       if (!still_) {
         still_ = true;

@@ -3,11 +3,12 @@
 // change over a standstill divided by its time measures the bias directly, with a standard
 // deviation of N / sqrt(T) for a rate noise density N over T seconds.
 //
-// A step between two odometry samples is still when the base did not travel (under 0.1 mm) and
-// its heading turned slower than kMaxStillRateDps (a turn in place is faster; a bias is far
-// slower). A run of still steps lasting at least backend.gyro_still_min_s is one standstill,
-// reported when the base moves again (or at Flush). Works on any stamped pose stream; a wheel-only
-// base's standstills measure a bias of 0, which its model ignores.
+// A step between two odometry samples is still when the base did not travel (under 0.1 mm), its
+// heading turned slower than kMaxStillRateDps (a turn in place is faster; a bias is far slower),
+// and the samples are at most kMaxStillStepS apart. A run of still steps lasting at least
+// backend.gyro_still_min_s is one standstill, reported when the base moves again (or at Flush).
+// Works on any stamped pose stream; a wheel-only base's standstills measure a bias of 0, which its
+// model ignores.
 #pragma once
 
 #include <optional>
@@ -32,6 +33,9 @@ class GyroStillness {
   static constexpr double kMaxStillRateDps = 1.0;
   /// Less travel than this between two samples is standing still.
   static constexpr double kMaxStillStepM = 1e-4;
+  /// Samples farther apart than this are a gap in the odometry, not a standstill (nothing says
+  /// what the heading did in between): a gap ends a standstill.
+  static constexpr double kMaxStillStepS = 1.0;
 
   explicit GyroStillness(const BackendConfig& config);
 

@@ -37,6 +37,9 @@ TEST(GyroStillnessTest, AStandstillMeasuresTheBiasAndATurnInPlaceDoesNot) {
   for (int i = 0; i < 100; ++i) add(0.02, 0.0, 10 * kRadPerDeg * 0.02);  // a turn in place
   for (int i = 0; i < 10; ++i) add(0.02, 0.0, bias_radps * 0.02);        // 0.2 s: too short
   for (int i = 0; i < 50; ++i) add(0.02, 0.004, 0.0);
+  add(0.02, 0.004, 0.0);
+  add(100.0, 0.0, 0.0);  // a gap in the odometry with the same pose on both sides: not still
+  for (int i = 0; i < 10; ++i) add(0.02, 0.004, 0.0);
   for (int i = 0; i < 100; ++i) add(0.02, 0.0, -bias_radps * 0.02);  // 2 s still at the end
   if (auto s = still.Flush()) found.push_back(*s);
   ASSERT_EQ(found.size(), 2u);
