@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -74,10 +75,15 @@ Config WithTourBase(Config config) {
     config.simulator.odometry.gyro.turn_on_bias_sigmas = std::atof(sigmas);
   }
   ValidateConfig(config, "the UWBSAR_TOUR_* variables");
-  std::printf("tours: %s base, %.3f m/s, turn-on bias %s\n",
-              config.simulator.odometry.profile.c_str(), config.simulator.route.speed_mps,
-              std::getenv("UWBSAR_TOUR_BIAS_SIGMAS") ? std::getenv("UWBSAR_TOUR_BIAS_SIGMAS")
-                                                       : "drawn per seed");
+  const std::optional<double> sigmas = config.simulator.odometry.gyro.turn_on_bias_sigmas;
+  char gyro[80] = "";  // a wheel base has none
+  if (config.simulator.odometry.profile != "wheel" && sigmas) {
+    std::snprintf(gyro, sizeof(gyro), ", gyro turn-on bias at %+g sigma", *sigmas);
+  } else if (config.simulator.odometry.profile != "wheel") {
+    std::snprintf(gyro, sizeof(gyro), ", gyro turn-on bias drawn per seed");
+  }
+  std::printf("tours: %s base, %.3f m/s%s\n", config.simulator.odometry.profile.c_str(),
+              config.simulator.route.speed_mps, gyro);
   return config;
 }
 
