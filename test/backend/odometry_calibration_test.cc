@@ -77,7 +77,7 @@ TEST(OdometryCalibrationTest, LoopsRecoverAsymmetricDriftAndWheelbase) {
   const OdometryRun run = OutAndBack(truth_calibration);
   BackendConfig config;
   config.odometry_model = OdometryModel::kWheel;  // a drift per metre: a wheel-only base's
-  config.calibration_rotation_sigma = 0.05;  // observable here (the default holds it near 0)
+  config.calibration_rotation_sigma = 0.05;       // observable here (the default holds it near 0)
   PoseGraph calibrated(config);
   Build(run, true, &calibrated);
   const OptimizeResult r = calibrated.Optimize();
