@@ -22,6 +22,7 @@
 #include "slam/app_config.h"
 #include "slam/app_config_io.h"
 #include "slam/calibrate_job.h"
+#include "test/slam/simulated_calibration.h"
 
 namespace uwbsar {
 namespace {
@@ -37,14 +38,7 @@ Config CalibratedOnARunWithBiasAt(Config config, double sigmas) {
   calibration_config.simulator.odometry.gyro.turn_on_bias_sigmas = sigmas;
   const slam::MapRun run = slam::MapSimulation(
       calibration_config, MapsFile("seed_hall/seed_hall.yaml"), "loop", /*seed=*/7);
-  std::vector<OdometrySample> odometry;
-  for (const OdometryEntry& e : run.slam->odometry()) {
-    OdometrySample o;
-    o.stamp_ns = e.stamp_ns;
-    o.T_world_robot = e.T_world_robot;
-    odometry.push_back(o);
-  }
-  const CalibrationFit fit = FitOdometryCalibration(odometry, run.ground_truth, config.backend);
+  const CalibrationFit fit = testing::FitSimulatedRun(run, config.backend);
   const std::string yaml = slam::CalibrationYaml(fit);
   std::printf("calibrated on a run at %+.0f sigma:\n%s", sigmas, yaml.c_str());
   config.backend = LoadConfigFromString(yaml, "calibration.yaml").backend;

@@ -25,6 +25,7 @@
 #include "slam/calibrate_job.h"
 #include "slam/localize_job.h"
 #include "slam/session_capture.h"
+#include "test/slam/simulated_calibration.h"
 
 namespace uwbsar {
 namespace {
@@ -73,15 +74,7 @@ TEST(TourRunTest, RingClosedAfterFiftyMetresWithoutFalseLoops) {
 Config CalibratedBase(Config config) {
   const slam::MapRun calibration_run =
       slam::MapSimulation(config, ToursFile("seed_hall/seed_hall.yaml"), "loop", /*seed=*/7);
-  std::vector<OdometrySample> odometry;
-  for (const OdometryEntry& e : calibration_run.slam->odometry()) {
-    OdometrySample o;
-    o.stamp_ns = e.stamp_ns;
-    o.T_world_robot = e.T_world_robot;
-    odometry.push_back(o);
-  }
-  const CalibrationFit fit =
-      FitOdometryCalibration(odometry, calibration_run.ground_truth, config.backend);
+  const CalibrationFit fit = testing::FitSimulatedRun(calibration_run, config.backend);
   const double true_scale = 1.0 / (1.0 + config.simulator.odometry.wheel_scale_error) - 1.0;
   std::printf(
       "calibration: %s base, scale %.5f +- %.5f (truth %.5f), drift %.5f, rotation %.4f; run's "
