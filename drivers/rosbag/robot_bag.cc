@@ -45,8 +45,11 @@ std::vector<TopicPlan> PlanTopics(const BagReader& reader, const RobotBagOptions
       Log(LogLevel::kWarning, info.path + ": no radar topic " + options.radar_topics[r]);
       continue;
     }
+    const std::string radar = r < options.radar_names.size() && !options.radar_names[r].empty()
+                                  ? options.radar_names[r]
+                                  : std::to_string(r);
     Expect(info, info.topics[static_cast<std::size_t>(i)], kFloat32MultiArrayType,
-           "radars[" + std::to_string(r) + "].topic");
+           "radars[" + radar + "].topic");
     plans[static_cast<std::size_t>(i)].role = Role::kRadar;
     plans[static_cast<std::size_t>(i)].sensor_id = static_cast<int>(r);
   }
@@ -150,7 +153,11 @@ RobotBagOptions RobotBagOptionsFor(const std::vector<RadarConfig>& radars,
                                    const std::string& ground_truth_topic) {
   RobotBagOptions options;
   options.radar_topics.clear();
-  for (const RadarConfig& r : radars) options.radar_topics.push_back(r.topic);
+  options.radar_names.clear();
+  for (const RadarConfig& r : radars) {
+    options.radar_topics.push_back(r.topic);
+    options.radar_names.push_back(r.name);
+  }
   options.odometry_topic = odometry_topic;
   options.ground_truth_topic = ground_truth_topic;
   return options;

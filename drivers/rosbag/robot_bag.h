@@ -21,6 +21,9 @@ namespace uwbsar::rosbag {
 struct RobotBagOptions {
   /// Radar scan topics; sensor_id = index (Config::radars[i].topic).
   std::vector<std::string> radar_topics = {"/UWBradar0/readings", "/UWBradar1/readings"};
+  /// Their radars' names (Config::radars[i].name), for messages: radars[left].topic. A topic
+  /// without a name is named by its index.
+  std::vector<std::string> radar_names = {"left", "right"};
   std::string odometry_topic = "/odom";                   ///< wheel odometry
   std::string ground_truth_topic = "/ground_truth/odom";  ///< optional (simulated runs)
   /// Stamp odometry with its header stamp instead of the receive time. Off by default:

@@ -145,7 +145,7 @@ TEST(BagReaderTest, TopicOfTheWrongTypeIsNamed) {
     FAIL() << "no error";
   } catch (const InputError& e) {
     ExpectError(e.what(), bag,
-                "topic /odom has type nav_msgs/msg/Odometry, but radars[1].topic expects "
+                "topic /odom has type nav_msgs/msg/Odometry, but radars[right].topic expects "
                 "std_msgs/msg/Float32MultiArray");
   }
 }
