@@ -12,6 +12,7 @@
 
 #include "core/errors.h"
 #include "core/log.h"
+#include "core/types.h"
 #include "slam/app_config.h"
 #include "slam/detected_tile.h"
 #include "slam/session/place_views.h"
@@ -20,9 +21,6 @@ namespace uwbsar::slam {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-/// A stamp as seconds (the pose graph's time: gyro bias).
-double Seconds(TimestampNs stamp_ns) { return static_cast<double>(stamp_ns) * 1e-9; }
 
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -157,7 +155,7 @@ void SlamSystem::Process(Work&& work) {
     odometry_.insert(odometry_.end(), work.odometry.begin(), work.odometry.end());
     for (const OdometryEntry& e : work.odometry) {
       const std::optional<GyroStandstill> still =
-          stillness_.Add(Seconds(e.stamp_ns), e.T_world_robot);
+          stillness_.Add(NsToSeconds(e.stamp_ns), e.T_world_robot);
       if (still) AddStandstill(*still);
     }
   }
@@ -256,7 +254,8 @@ Pose2 SlamSystem::AddGraphNode(const Keyframe& keyframe) {
   // The node starts on the corrected trajectory (the backend applies the base's calibration).
   // Their times: a gyro base's heading error is its bias over the time between them.
   return graph_->AddOdometryNode(prev.id, keyframe.id, T_prev_this, /*trajectory=*/0, path_m,
-                                 turn_rad, Seconds(prev.stamp_ns), Seconds(keyframe.stamp_ns));
+                                 turn_rad, NsToSeconds(prev.stamp_ns),
+                                 NsToSeconds(keyframe.stamp_ns));
 }
 
 void SlamSystem::AddLoop(const LoopAttempt& attempt, int keyframe_id) {

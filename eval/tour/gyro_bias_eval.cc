@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/types.h"
 #include "drivers/sim/sim_stream.h"
 
 namespace uwbsar::slam {
@@ -17,8 +18,8 @@ GyroBiasEvaluation EvaluateGyroBias(const MapRun& run, const Config& config, std
   if (it == biases.end() || it->second.empty()) return e;
   const std::vector<std::pair<double, double>>& segments = it->second;
   // Segments are in absolute time (the stamps' seconds); the truth is in seconds from the start.
-  const double start_s = static_cast<double>(run.first_stamp_ns) * 1e-9;
-  const double end_s = static_cast<double>(run.last_stamp_ns) * 1e-9;
+  const double start_s = NsToSeconds(run.first_stamp_ns);
+  const double end_s = NsToSeconds(run.last_stamp_ns);
   const double segment_s = config.backend.gyro_bias_segment_s;
   std::vector<double> middles, lengths;
   for (std::size_t i = 0; i < segments.size(); ++i) {

@@ -5,6 +5,7 @@
 #include <future>
 #include <opencv2/imgproc.hpp>
 
+#include "core/types.h"
 #include "frontend/place_recognition/dense_refinement.h"
 #include "frontend/place_recognition/guided_match.h"
 #include "frontend/place_recognition/radar_match.h"
@@ -51,7 +52,7 @@ KeyframeFeatures ExtractKeyframeFeatures(const Keyframe& keyframe,
   k.id = keyframe.id;
   k.grid = keyframe.grid;
   k.path_begin_m = keyframe.path_begin_m;
-  k.stamp_s = static_cast<double>(keyframe.stamp_ns) * 1e-9;
+  k.stamp_s = NsToSeconds(keyframe.stamp_ns);
   k.T_world_anchor = keyframe.T_world_anchor;
   if (!keyframe.image.empty()) k.grid = DownsampledGrid(keyframe.grid, config.feature_downsampling);
   // The radars' tiles on a thread of their own while the combined tile is done here: they are

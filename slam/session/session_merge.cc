@@ -6,6 +6,7 @@
 #include <map>
 
 #include "core/log.h"
+#include "core/types.h"
 #include "frontend/place_recognition/feature_matcher.h"
 #include "frontend/place_recognition/loop_validator.h"
 #include "slam/session/join_retirement.h"
@@ -169,8 +170,8 @@ std::vector<int> BuildJointGraph(const SessionData& a, const SessionData& b,
       const auto from = stamp_of.find(edge.from_id), to = stamp_of.find(edge.to_id);
       if (edge.kind == EdgeKind::kOdometry && from != stamp_of.end() && to != stamp_of.end() &&
           to->second >= from->second) {
-        edge.begin_s = static_cast<double>(from->second) * 1e-9;
-        edge.end_s = static_cast<double>(to->second) * 1e-9;
+        edge.begin_s = NsToSeconds(from->second);
+        edge.end_s = NsToSeconds(to->second);
       }
       graph->AddEdge(edge);
     }
