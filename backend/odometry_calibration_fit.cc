@@ -323,11 +323,14 @@ ModelFit FitModel(const std::vector<Segment>& segments, const BackendConfig& pri
   double* x = fit.calibration.data();
   // The gyro's bias blocks, by segment of time (std::map: stable addresses, in time order).
   std::map<long long, double> bias;
+  const auto bias_segment_of = [bias_segment_s](const Segment& s) {
+    return static_cast<long long>(std::floor(s.middle_s / bias_segment_s));
+  };
   ceres::Problem problem;
   for (const Segment& s : segments) {
     auto* cost = new SegmentCost(&s, SegmentSqrtInformation(s, priors));
     if (gyro) {
-      double* b = &bias[static_cast<long long>(std::floor(s.middle_s / bias_segment_s))];
+      double* b = &bias[bias_segment_of(s)];
       problem.AddResidualBlock(new ceres::AutoDiffCostFunction<SegmentCost, 3, 3, 1>(cost), nullptr,
                                x, b);
     } else {
@@ -387,11 +390,13 @@ ModelFit FitModel(const std::vector<Segment>& segments, const BackendConfig& pri
   // Each segment of the bias, weighted by the time the fitted segments spend in it.
   std::map<long long, double> seconds;
   for (const Segment& s : segments) {
-    const double b =
-        gyro ? bias[static_cast<long long>(std::floor(s.middle_s / bias_segment_s))] : 0.0;
-    result.segment_bias.push_back(b);
-    if (gyro)
-      seconds[static_cast<long long>(std::floor(s.middle_s / bias_segment_s))] += s.duration_s;
+    if (!gyro) {
+      result.segment_bias.push_back(0.0);
+      continue;
+    }
+    const long long k = bias_segment_of(s);
+    result.segment_bias.push_back(bias[k]);
+    seconds[k] += s.duration_s;
   }
   double total_s = 0.0, weighted = 0.0, weighted2 = 0.0;
   for (const auto& [k, b] : bias) {
