@@ -1,16 +1,10 @@
 // GPIO output lines behind a small interface: the robot's libgpiod (v1 C++ API,
-// gpiod::chip + line.request) backend, and a fake that records every change with
-// its time so tests can check sequences. v2 of libgpiod differs; only gpio.cc
-// knows the API.
+// gpiod::chip + line.request) backend; the tests' chip that records every change is
+// test/drivers/live/fake_gpio_chip.h. v2 of libgpiod differs; only gpio.cc knows the API.
 #pragma once
 
-#include <chrono>
 #include <memory>
-#include <mutex>
-#include <set>
-#include <stdexcept>
 #include <string>
-#include <vector>
 
 #include "core/errors.h"
 
@@ -41,29 +35,5 @@ class GpioChip {
 
 /// Opens a chip by name, path or number through libgpiod. Throws GpioError naming it.
 std::unique_ptr<GpioChip> OpenGpiodChip(const std::string& name);
-
-/// A chip with `num_lines` lines that records every level change.
-class FakeGpioChip : public GpioChip {
- public:
-  struct Event {
-    int offset = 0;
-    bool high = false;
-    std::chrono::steady_clock::time_point time;
-  };
-  explicit FakeGpioChip(std::string name = "fakechip0", int num_lines = 64)
-      : name_(std::move(name)), num_lines_(num_lines) {}
-  std::unique_ptr<GpioOutput> RequestOutput(int offset, const std::string& role,
-                                            bool initial) override;
-  const std::string& name() const override { return name_; }
-  std::vector<Event> events() const;
-  void Record(int offset, bool high);
-
- private:
-  std::string name_;
-  int num_lines_;
-  mutable std::mutex mutex_;
-  std::set<int> requested_;
-  std::vector<Event> events_;
-};
 
 }  // namespace uwbsar::live

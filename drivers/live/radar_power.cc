@@ -1,5 +1,6 @@
 #include "drivers/live/radar_power.h"
 
+#include <chrono>
 #include <thread>
 
 namespace uwbsar::live {

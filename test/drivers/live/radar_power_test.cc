@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test/drivers/live/fake_gpio_chip.h"
+
 namespace uwbsar::live {
 namespace {
 
