@@ -7,11 +7,12 @@
 // = total x 2 x bytes per value, samples per scan = the count from the echoed range, one
 // channel, the configured format).
 //
-// The radar behaviour assumed (REFERENCE.md 4a): it acquires at its actual frame rate (the
-// `f` answer) whether or not a `d` waits, and answers `d` with its latest frame, so a `d`
-// sent before the next frame returns the same frame again and one sent more than a period
-// late skips frames. The documentation does not say whether an early `d` is answered at once
-// or held until the next frame: both work here.
+// The radar behaviour assumed (ARIA Sensing's public toolbox; docs/live.md, "Polled
+// acquisition"): it acquires at its actual frame rate (the `f` answer) whether or not a `d`
+// waits, and answers `d` with its latest frame, so a `d` sent before the next frame returns
+// the same frame again and one sent more than a period late skips frames. The documentation
+// does not say whether an early `d` is answered at once or held until the next frame: both
+// work here.
 // - Frame identity: an answer whose payload equals the last delivered frame's byte for byte
 //   is that frame again (frame noise makes two acquisitions differ): dropped, counted
 //   `frames_repeated`; it is never handed to the sink. (The header's 12-bit elapsed-time

@@ -87,9 +87,10 @@ TEST(Lt102StartupTest, DefaultSequenceSendsExactlyTheseBytes) {
   EXPECT_EQ(run.counts.retries, 0);
 }
 
-/// The request payloads the vendor table (REFERENCE.md section 4a) defines for each command
-/// the start-up may send; a command missing here may not be sent at all. Query values
-/// (0xFF, 0xFFFF, i32 -1) appear only where the table gives one.
+/// The request payloads the vendor table (the command table of ARIA Sensing's public toolbox,
+/// docs/live.md) defines for each command the start-up may send; a command missing here may
+/// not be sent at all. Query values (0xFF, 0xFFFF, i32 -1) appear only where the table gives
+/// one.
 bool AllowedByTheVendorTable(std::uint8_t code, const std::vector<std::uint8_t>& p,
                              std::string* why) {
   auto u8_in = [&](int lo, int hi, bool query) {
