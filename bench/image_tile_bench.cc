@@ -29,9 +29,9 @@
 #include "frontend/place_recognition/features.h"
 #include "frontend/place_recognition/place_recognizer.h"
 #include "imaging/enhance.h"
-#include "imaging/image_ncc.h"
 #include "slam/app_config.h"
 #include "slam/app_config_io.h"
+#include "test/imaging/image_ncc.h"
 #include "test/shared_data.h"
 
 namespace uwbsar {

@@ -33,9 +33,9 @@
 #include "frontend/strip_renderer.h"
 #include "imaging/enhance.h"
 #include "imaging/image_io.h"
-#include "imaging/image_ncc.h"
 #include "slam/app_config_io.h"
 #include "test/drivers/sim_test_util.h"
+#include "test/imaging/image_ncc.h"
 
 namespace uwbsar::sim {
 namespace {

@@ -11,8 +11,8 @@
 
 #include "drivers/logs/log_source.h"
 #include "frontend/imaging_frontend.h"
-#include "imaging/image_ncc.h"
 #include "test/frontend/imaging_scenario.h"
+#include "test/imaging/image_ncc.h"
 
 namespace uwbsar {
 namespace {

@@ -14,9 +14,9 @@
 
 #include "drivers/logs/text_log.h"
 #include "imaging/enhance.h"
-#include "imaging/image_ncc.h"
 #include "slam/app_config_io.h"
 #include "slam/imaging_job.h"
+#include "test/imaging/image_ncc.h"
 #include "test/shared_data.h"
 
 namespace uwbsar {

@@ -1,6 +1,7 @@
 // Zero-mean normalised cross-correlation of two images: how alike two SAR images are up to gain
-// and offset (1 = equal so, 0 = unrelated). The figure the imaging comparisons quote (ffbp
-// against direct, the simulator against real strips).
+// and offset (1 = equal so, 0 = unrelated). The figure the imaging comparisons of the tests and
+// benchmarks quote (ffbp against direct, the simulator against real strips); the product has no
+// use for it.
 #pragma once
 
 #include <cmath>
