@@ -102,18 +102,18 @@ void BM_Tour(benchmark::State& state) {
     for (int seed = first_seed; seed < first_seed + seeds; ++seed) {
       const slam::MapRun run =
           slam::MapSimulation(config, MapsFile(tour.map), MapsFile(tour.route), seed);
-      const slam::TourEvaluation e = slam::EvaluateTour(run);
+      const eval::TourEvaluation e = eval::EvaluateTour(run);
       const slam::StageTimes times = run.slam->times();
       int by_radar = 0;
       for (const slam::LoopRecord& l : run.slam->loops()) by_radar += l.accepted() && l.by_radar;
       std::printf(
           "%s seed %d: %s; %d loops by radar; %d right-angle priors (walls' spread %.2f deg); "
           "features %.1f s, matching %.1f s\n",
-          tour.name, seed, slam::FormatTourEvaluation(e).c_str(), by_radar,
+          tour.name, seed, eval::FormatTourEvaluation(e).c_str(), by_radar,
           run.slam->graph().RightAnglePriors(), run.slam->graph().BuildingSpreadDeg(),
           times.features_s, times.matching_s);
-      const slam::GyroBiasEvaluation bias = slam::EvaluateGyroBias(run, config, seed);
-      if (bias.segments > 0) std::printf("  %s\n", slam::FormatGyroBiasEvaluation(bias).c_str());
+      const eval::GyroBiasEvaluation bias = eval::EvaluateGyroBias(run, config, seed);
+      if (bias.segments > 0) std::printf("  %s\n", eval::FormatGyroBiasEvaluation(bias).c_str());
       for (const auto& [trajectory, c] : run.slam->graph().OdometryCalibrations()) {
         std::printf(
             "  odometry calibration: scale %+.4f, heading drift %+.5f rad/m, rotation %+.4f\n",

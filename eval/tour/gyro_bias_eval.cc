@@ -9,9 +9,10 @@
 #include "core/types.h"
 #include "drivers/sim/sim_stream.h"
 
-namespace uwbsar::slam {
+namespace uwbsar::eval {
 
-GyroBiasEvaluation EvaluateGyroBias(const MapRun& run, const Config& config, std::uint64_t seed) {
+GyroBiasEvaluation EvaluateGyroBias(const slam::MapRun& run, const Config& config,
+                                    std::uint64_t seed) {
   GyroBiasEvaluation e;
   const auto biases = run.slam->graph().GyroBiases();
   const auto it = biases.find(0);
@@ -66,4 +67,4 @@ std::string FormatGyroBiasEvaluation(const GyroBiasEvaluation& e) {
   return line;
 }
 
-}  // namespace uwbsar::slam
+}  // namespace uwbsar::eval

@@ -10,7 +10,7 @@
 #include "slam/app_config.h"
 #include "slam/map_job.h"
 
-namespace uwbsar::slam {
+namespace uwbsar::eval {
 
 struct GyroBiasEvaluation {
   int segments = 0;  ///< the run's bias segments (0: no gyro bias estimated, or no gyro)
@@ -22,9 +22,10 @@ struct GyroBiasEvaluation {
 };
 
 /// The evaluation of trajectory 0 of `run`, mapped from the simulation of `config` and `seed`.
-GyroBiasEvaluation EvaluateGyroBias(const MapRun& run, const Config& config, std::uint64_t seed);
+GyroBiasEvaluation EvaluateGyroBias(const slam::MapRun& run, const Config& config,
+                                    std::uint64_t seed);
 
 /// One line, in deg/s.
 std::string FormatGyroBiasEvaluation(const GyroBiasEvaluation& e);
 
-}  // namespace uwbsar::slam
+}  // namespace uwbsar::eval

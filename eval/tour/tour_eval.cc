@@ -8,7 +8,16 @@
 #include <map>
 #include <set>
 
-namespace uwbsar::slam {
+namespace uwbsar::eval {
+
+// The SLAM system's run, as the scoring reads it.
+using slam::KeyframeRecord;
+using slam::LoopRecord;
+using slam::MapRun;
+using slam::RetiredKeyframe;
+using slam::SlamSystem;
+using slam::TrajectoryError;
+
 namespace {
 
 constexpr double kFalseLoopM = 0.2;
@@ -217,4 +226,4 @@ std::string FormatTourEvaluation(const TourEvaluation& e) {
   return line;
 }
 
-}  // namespace uwbsar::slam
+}  // namespace uwbsar::eval

@@ -22,7 +22,7 @@
 
 #include "slam/map_job.h"
 
-namespace uwbsar::slam {
+namespace uwbsar::eval {
 
 struct TourEvaluation {
   double travel_m = 0.0;  ///< true path length
@@ -62,9 +62,9 @@ struct TourEvaluation {
   }
 };
 
-TourEvaluation EvaluateTour(const MapRun& run, double overlap_m = 1.0);
+TourEvaluation EvaluateTour(const slam::MapRun& run, double overlap_m = 1.0);
 
 /// One line: travel, ATE (odometry, ratio), loops, false loops, recalls.
 std::string FormatTourEvaluation(const TourEvaluation& e);
 
-}  // namespace uwbsar::slam
+}  // namespace uwbsar::eval

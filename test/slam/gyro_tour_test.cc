@@ -53,11 +53,11 @@ void ExpectSlowTourMappedWithBiasAt(double sigmas) {
   config.simulator.odometry.gyro.turn_on_bias_sigmas = sigmas;
   const slam::MapRun run = slam::MapSimulation(config, MapsFile("tours/office_block.yaml"),
                                                MapsFile("tours/office_block_tour.txt"), /*seed=*/1);
-  const slam::TourEvaluation e = slam::EvaluateTour(run);
-  const slam::GyroBiasEvaluation bias = slam::EvaluateGyroBias(run, config, /*seed=*/1);
+  const eval::TourEvaluation e = eval::EvaluateTour(run);
+  const eval::GyroBiasEvaluation bias = eval::EvaluateGyroBias(run, config, /*seed=*/1);
   std::printf("office_block at 0.08 m/s, turn-on bias %+.0f sigma, %.0f s: %s\n  %s\n", sigmas,
-              run.log_duration_s(), slam::FormatTourEvaluation(e).c_str(),
-              slam::FormatGyroBiasEvaluation(bias).c_str());
+              run.log_duration_s(), eval::FormatTourEvaluation(e).c_str(),
+              eval::FormatGyroBiasEvaluation(bias).c_str());
   ASSERT_GE(run.log_duration_s(), 700.0);
   EXPECT_EQ(e.false_accepted, 0);
   EXPECT_TRUE(e.ring_closed);

@@ -38,7 +38,7 @@ std::string WriteRoute(const std::string& name, const std::string& waypoints) {
   return path;
 }
 
-slam::TourEvaluation MapLooplessRun(const std::string& label, const std::string& map_yaml,
+eval::TourEvaluation MapLooplessRun(const std::string& label, const std::string& map_yaml,
                                     const std::string& route, OdometryCalibration* calibration,
                                     bool wall_landmarks = true) {
   Config config;
@@ -47,17 +47,17 @@ slam::TourEvaluation MapLooplessRun(const std::string& label, const std::string&
   config.place_recognition.wall_profiles.landmarks.require_calibrated_base = false;
   config.simulator.route.clearance_m = 0.3;  // both routes keep 0.45 m from every obstacle
   const slam::MapRun run = slam::MapSimulation(config, map_yaml, route, /*seed=*/3);
-  const slam::TourEvaluation e = slam::EvaluateTour(run);
+  const eval::TourEvaluation e = eval::EvaluateTour(run);
   *calibration = run.slam->graph().OdometryCalibrations().at(0);
   std::printf("%s: %s\ncalibration: scale %.5f, drift %.6f rad/m, rotation %.5f\n", label.c_str(),
-              slam::FormatTourEvaluation(e).c_str(), (*calibration)[kCalibScale],
+              eval::FormatTourEvaluation(e).c_str(), (*calibration)[kCalibScale],
               (*calibration)[kCalibHeadingDrift], (*calibration)[kCalibRotation]);
   return e;
 }
 
 TEST(LooplessRunTest, OfficeRingOneLapKeepsTheCalibrationAtItsPriorAndStaysNearTheOdometry) {
   OdometryCalibration calibration{};
-  const slam::TourEvaluation e = MapLooplessRun(
+  const eval::TourEvaluation e = MapLooplessRun(
       "office ring, one lap", MapsFile("office/office.yaml"),
       WriteRoute("office_one_lap.txt", "14 9\n4 9\n4 4\n16 4\n16 9\n14 9\n"), &calibration);
   ASSERT_GE(e.travel_m, 30.0);
@@ -69,7 +69,7 @@ TEST(LooplessRunTest, OfficeRingOneLapKeepsTheCalibrationAtItsPriorAndStaysNearT
 
 TEST(LooplessRunTest, StraightCorridorIsNoWorseThanOdometry) {
   OdometryCalibration calibration{};
-  const slam::TourEvaluation e =
+  const eval::TourEvaluation e =
       MapLooplessRun("hall_wing corridor", MapsFile("tours/hall_wing.yaml"),
                      WriteRoute("corridor.txt", "11 5\n37 5\n"), &calibration);
   ASSERT_GE(e.travel_m, 25.0);
@@ -87,7 +87,7 @@ TEST(LooplessRunTest, StraightCorridorIsNoWorseThanOdometry) {
 // the default, 3.88 cm).
 TEST(LooplessRunTest, StraightCorridorWithWallEdgesAloneIsNoWorseThanOdometry) {
   OdometryCalibration calibration{};
-  const slam::TourEvaluation e =
+  const eval::TourEvaluation e =
       MapLooplessRun("hall_wing corridor, wall edges alone", MapsFile("tours/hall_wing.yaml"),
                      WriteRoute("corridor_edges.txt", "11 5\n37 5\n"), &calibration, false);
   ASSERT_EQ(e.accepted, 0);

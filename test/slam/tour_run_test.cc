@@ -39,8 +39,8 @@ TEST(TourRunTest, RingClosedAfterFiftyMetresWithoutFalseLoops) {
   config.simulator.route.clearance_m = 0.3;  // the route keeps 0.45 m from every obstacle
   const slam::MapRun run = slam::MapSimulation(config, ToursFile("tours/two_rings.yaml"),
                                                ToursFile("tours/two_rings_west.txt"), /*seed=*/1);
-  const slam::TourEvaluation e = slam::EvaluateTour(run);
-  std::printf("two_rings west ring: %s\n", slam::FormatTourEvaluation(e).c_str());
+  const eval::TourEvaluation e = eval::EvaluateTour(run);
+  std::printf("two_rings west ring: %s\n", eval::FormatTourEvaluation(e).c_str());
   ASSERT_GE(e.travel_m, 50.0);
   EXPECT_EQ(e.false_accepted, 0);
   EXPECT_GE(e.longest_loop_path_m, 45.0);  // the ring's closure itself was accepted
@@ -97,8 +97,8 @@ TEST(TourRunTest, ABaseCalibratedOnAnotherRunKeepsTheTourWithinFiveCentimetres) 
   const double true_scale = 1.0 / (1.0 + config.simulator.odometry.wheel_scale_error) - 1.0;
   const slam::MapRun run = slam::MapSimulation(config, ToursFile("floor50/floor50.yaml"),
                                                ToursFile("floor50/route_tour.txt"), /*seed=*/1);
-  const slam::TourEvaluation e = slam::EvaluateTour(run);
-  std::printf("floor50 tour, calibrated base: %s\n", slam::FormatTourEvaluation(e).c_str());
+  const eval::TourEvaluation e = eval::EvaluateTour(run);
+  std::printf("floor50 tour, calibrated base: %s\n", eval::FormatTourEvaluation(e).c_str());
   EXPECT_EQ(e.false_accepted, 0);
   EXPECT_TRUE(e.ring_closed);
   EXPECT_LE(e.ate_m, 0.05);
