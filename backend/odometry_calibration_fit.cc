@@ -12,138 +12,17 @@
 #include <sstream>
 
 #include "backend/gyro_stillness.h"
-#include "backend/se2_edge_cost.h"
+#include "backend/odometry_calibration_segments.h"
 #include "core/errors.h"
 
 namespace uwbsar {
 namespace {
 
-/// One segment: the odometry's increments with their travel, and the truth's step.
-struct Segment {
-  std::vector<Pose2> increments;        ///< odometry sample to sample, in the robot's frame
-  std::vector<OdometryTravel> travels;  ///< with each increment's duration (a gyro's bias)
-  Pose2 truth;
-  double path_m = 0.0;
-  double turn_rad = 0.0;
-  double duration_s = 0.0;
-  double middle_s = 0.0;  ///< its middle's time after the first odometry sample
-};
-
-/// The segment's odometry, each increment corrected by the calibration and the gyro bias
-/// (CorrectOdometryStep, the backend's model applied at the odometry's own rate) and composed;
-/// the residual is its SE(2) error against the truth, whitened like an odometry edge of that
-/// path. Without a bias block (a wheel base) the bias is 0.
-class SegmentCost {
- public:
-  SegmentCost(const Segment* segment, const Eigen::Matrix3d& sqrt_information)
-      : segment_(segment), sqrt_information_(sqrt_information) {}
-
-  template <typename T>
-  bool operator()(const T* calibration, T* residuals) const {
-    const T no_bias(0.0);
-    return operator()(calibration, &no_bias, residuals);
-  }
-
-  template <typename T>
-  bool operator()(const T* calibration, const T* gyro_bias, T* residuals) const {
-    using std::cos;
-    using std::sin;
-    T x(0.0), y(0.0), yaw(0.0);
-    for (std::size_t i = 0; i < segment_->increments.size(); ++i) {
-      T step[3];
-      CorrectOdometryStep(calibration, gyro_bias[0], segment_->increments[i], segment_->travels[i],
-                          step);
-      x += cos(yaw) * step[0] - sin(yaw) * step[1];
-      y += sin(yaw) * step[0] + cos(yaw) * step[1];
-      yaw += step[2];
-    }
-    const Pose2& t = segment_->truth;
-    const double c = std::cos(t.yaw_rad), s = std::sin(t.yaw_rad);
-    const T dx = x - t.x_m, dy = y - t.y_m;
-    // A segment turns less than 1 rad (CutSegments): the yaw difference needs no wrapping.
-    const T e[3] = {c * dx + s * dy, -s * dx + c * dy, yaw - t.yaw_rad};
-    for (int r = 0; r < 3; ++r) {
-      residuals[r] = sqrt_information_(r, 0) * e[0] + sqrt_information_(r, 1) * e[1] +
-                     sqrt_information_(r, 2) * e[2];
-    }
-    return true;
-  }
-
- private:
-  const Segment* segment_;
-  Eigen::Matrix3d sqrt_information_;
-};
-
-/// Ground truth at `stamp_ns`, interpolated; false when no truth sample lies within `max_gap_ns`
-/// on both sides.
-class TruthAt {
- public:
-  TruthAt(const std::vector<OdometrySample>& truth, TimestampNs max_gap_ns)
-      : truth_(truth), max_gap_ns_(max_gap_ns) {}
-
-  bool operator()(TimestampNs stamp_ns, Pose2* pose) {
-    while (next_ < truth_.size() && truth_[next_].stamp_ns < stamp_ns) ++next_;
-    if (next_ < truth_.size() && truth_[next_].stamp_ns == stamp_ns) {
-      *pose = truth_[next_].T_world_robot;
-      return true;
-    }
-    if (next_ >= truth_.size() || next_ == 0) return false;
-    const OdometrySample& a = truth_[next_ - 1];
-    const OdometrySample& b = truth_[next_];
-    if (stamp_ns - a.stamp_ns > max_gap_ns_ || b.stamp_ns - stamp_ns > max_gap_ns_) return false;
-    const double t = b.stamp_ns == a.stamp_ns ? 0.0
-                                              : static_cast<double>(stamp_ns - a.stamp_ns) /
-                                                    static_cast<double>(b.stamp_ns - a.stamp_ns);
-    *pose = Interpolate(a.T_world_robot, b.T_world_robot, t);
-    return true;
-  }
-
- private:
-  const std::vector<OdometrySample>& truth_;
-  TimestampNs max_gap_ns_;
-  std::size_t next_ = 0;
-};
-
-std::vector<Segment> CutSegments(const std::vector<OdometrySample>& odometry,
-                                 const std::vector<OdometrySample>& ground_truth,
-                                 const CalibrationFitOptions& options) {
-  TruthAt truth_at(ground_truth, static_cast<TimestampNs>(options.max_truth_gap_s * 1e9));
-  std::vector<Segment> segments;
-  Segment current;
-  Pose2 truth_start;
-  const OdometrySample* prev = nullptr;  // null: no segment open
-  const TimestampNs t0 = odometry.empty() ? 0 : odometry.front().stamp_ns;
-  for (const OdometrySample& o : odometry) {
-    Pose2 truth;
-    if (!truth_at(o.stamp_ns, &truth)) {
-      prev = nullptr;  // a gap in the truth: start again after it
-      continue;
-    }
-    if (prev == nullptr) {
-      current = Segment{};
-      truth_start = truth;
-      prev = &o;
-      continue;
-    }
-    const Pose2 increment = Between(prev->T_world_robot, o.T_world_robot);
-    current.increments.push_back(increment);
-    current.travels.push_back(TravelOf(increment));
-    current.travels.back().duration_s = NsToSeconds(o.stamp_ns - prev->stamp_ns);
-    current.path_m += current.travels.back().path_m;
-    current.turn_rad += increment.yaw_rad;
-    current.duration_s += current.travels.back().duration_s;
-    prev = &o;
-    // A spin in place travels no path: its turn ends the segment (1 rad keeps it unambiguous).
-    // The small margin keeps a path of n equal steps from missing the end by rounding.
-    if (current.path_m < options.segment_m - 1e-9 && std::abs(current.turn_rad) < 1.0) continue;
-    current.truth = Between(truth_start, truth);
-    current.middle_s = NsToSeconds(o.stamp_ns - t0) - 0.5 * current.duration_s;
-    segments.push_back(std::move(current));
-    current = Segment{};
-    truth_start = truth;
-  }
-  return segments;
-}
+using calibration_fit::CutSegments;
+using calibration_fit::Segment;
+using calibration_fit::SegmentCost;
+using calibration_fit::SegmentErrors;
+using calibration_fit::SegmentSqrtInformation;
 
 /// Throws when the stamps of `samples` go back.
 void RequireStampOrder(const std::vector<OdometrySample>& samples, const std::string& source) {
@@ -229,31 +108,6 @@ void RequireLoadable(const CalibrationFit& fit, const CalibrationFitOptions& opt
          << "do not describe the same motion (another run, frame or unit); nothing written";
     throw InputError(what.str());
   }
-}
-
-Eigen::Matrix3d SegmentSqrtInformation(const Segment& s, const BackendConfig& config) {
-  const double d = std::max(s.path_m, config.odometry_min_distance_m);
-  return *SqrtInformation(Eigen::Vector3d(config.odometry_xy_information / d,
-                                          config.odometry_xy_information / d,
-                                          config.odometry_yaw_information / d)
-                              .asDiagonal());
-}
-
-/// Position and heading error of the segments' odometry corrected by `c` and `bias[i]` (one
-/// per segment, rad/s), rms.
-void SegmentErrors(const std::vector<Segment>& segments, const OdometryCalibration& c,
-                   const std::vector<double>& bias, double* xy_rms_m, double* yaw_rms_rad) {
-  double xy = 0.0, yaw = 0.0;
-  const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
-  for (std::size_t i = 0; i < segments.size(); ++i) {
-    double e[3];
-    SegmentCost(&segments[i], identity)(c.data(), &bias[i], e);
-    xy += e[0] * e[0] + e[1] * e[1];
-    yaw += e[2] * e[2];
-  }
-  const double n = std::max<double>(1.0, static_cast<double>(segments.size()));
-  *xy_rms_m = std::sqrt(xy / n);
-  *yaw_rms_rad = std::sqrt(yaw / n);
 }
 
 /// J^T J of every residual of `problem` at its current parameters, over the parameter blocks

@@ -4,11 +4,11 @@
 // backend.calibration_*_mean expects; it matters most for the distance scale, which nothing on
 // a mapping tour observes (a ring scaled by any factor still closes).
 //
-// The run is cut into segments of about `segment_m` of odometry path (or 1 rad of turn). For
-// each, the odometry's increments, each corrected by the calibration (CorrectOdometryStep at
-// the odometry's own rate) and composed, are compared with the true step (ground truth
-// interpolated at the odometry's stamps): one SE(2) residual, weighted like an odometry edge
-// (information / path). An intrinsic the run cannot observe (the rotation scale on a straight
+// The run is cut into segments of about `segment_m` of odometry path (or 1 rad of turn;
+// backend/odometry_calibration_segments.h). For each, the odometry's increments, each
+// corrected by the calibration (CorrectOdometryStep at the odometry's own rate) and composed,
+// are compared with the true step (ground truth interpolated at the odometry's stamps): one
+// SE(2) residual, weighted like an odometry edge (information / path). An intrinsic the run cannot observe (the rotation scale on a straight
 // run: less than 3x the backend prior's information on it) keeps the prior's mean and is
 // reported as not observed; the others are the least-squares solution, no prior pulling them.
 //
