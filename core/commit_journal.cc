@@ -1,19 +1,15 @@
 #include "core/commit_journal.h"
 
 #include <fcntl.h>
-#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
-#include <thread>
 
 #include "core/errors.h"
 #include "core/interrupt_cleanup.h"
@@ -29,21 +25,12 @@ constexpr std::size_t kMaxJournalBytes = 64 << 10;  // uwbsar's are a few hundre
 constexpr const char* kRemoveIt =
     " (not a commit journal uwbsar wrote; remove it to use the folder)";
 
-/// The test hook of the interruption tests (test/core/commit_journal_test.cc,
-/// test/slam/session/session_safety_cli_test.cc): UWBSAR_TEST_INTERRUPT_COMMIT=<step>:<kill|int>
-/// sends SIGKILL, or SIGINT, to this process at that step of a commit or completion (0: before
-/// the journal, 1: after it, then after each removal and each rename, last after the journal
-/// is gone). Unset in use. `step` counts the steps of one commit.
+std::atomic<CommitStepObserver> step_observer{nullptr};
+
+/// Step `*step` of one commit, shown to the observer if there is one (SetCommitStepObserver).
 void CommitStep(int* step) {
-  const char* hook = std::getenv("UWBSAR_TEST_INTERRUPT_COMMIT");
   const int now = (*step)++;
-  int at = -1;
-  char what[8] = {};
-  if (hook == nullptr || std::sscanf(hook, "%d:%7s", &at, what) != 2 || now != at) return;
-  if (std::strcmp(what, "kill") == 0) ::raise(SIGKILL);
-  ::kill(::getpid(), SIGINT);
-  // Give the signal watcher time to act while the commit goes on: it must wait for it.
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  if (const CommitStepObserver observer = step_observer.load()) observer(now);
 }
 
 [[noreturn]] void Fail(const std::string& path, const std::string& what, int error) {
@@ -273,5 +260,7 @@ bool HasInterruptedCommit(const std::string& dir) {
   struct stat st {};  // whatever is there, a link to nothing or a FIFO included
   return ::lstat((fs::path(dir) / kCommitJournalName).c_str(), &st) == 0;
 }
+
+void SetCommitStepObserver(CommitStepObserver observer) { step_observer.store(observer); }
 
 }  // namespace uwbsar

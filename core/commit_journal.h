@@ -42,4 +42,13 @@ bool RecoverInterruptedCommit(const std::string& dir);
 /// Whether `dir` holds the journal of an interrupted commit.
 bool HasInterruptedCommit(const std::string& dir);
 
+/// A step of a commit or of its completion, counted per commit: 0 before the journal, 1 after
+/// it, then one after each removal and each rename, the last after the journal is gone.
+using CommitStepObserver = void (*)(int step);
+
+/// Calls `observer` at every step of every commit and completion from now on (nullptr: none,
+/// the default). The seam through which the interruption tests kill a commit at a chosen step
+/// (test/core/commit_interrupt.h); set it before any commit starts.
+void SetCommitStepObserver(CommitStepObserver observer);
+
 }  // namespace uwbsar

@@ -1,8 +1,8 @@
 // A commit publishes a staged set of files as one: interrupted at any step (kill -9 through
-// the test hook, in a child process), the folder holds the old complete set until the next
-// command completes the journal, and then the new one; a SIGINT during the commit waits for it
-// to end. A journal that does not match its stage, or names uwbsar's own files, is refused
-// and nothing in the folder moves.
+// the journal's step seam, test/core/commit_interrupt.h, in a child process), the folder holds the
+// old complete set until the next command completes the journal, and then the new one; a SIGINT
+// during the commit waits for it to end. A journal that does not match its stage, or names uwbsar's
+// own files, is refused and nothing in the folder moves.
 #include "core/commit_journal.h"
 
 #include <gtest/gtest.h>
@@ -18,6 +18,7 @@
 
 #include "core/errors.h"
 #include "core/interrupt_cleanup.h"
+#include "test/core/commit_interrupt.h"
 
 namespace uwbsar {
 namespace {
@@ -67,11 +68,12 @@ fs::path FreshFolder(const std::string& tag) {
   return dir;
 }
 
-/// Runs the commit in a child process with the hook set; returns its wait status.
-int CommitInChild(const fs::path& dir, const std::string& hook, bool watch_signals) {
+/// Runs the commit in a child process that interrupts itself at `step` (SIGKILL if `kill`,
+/// else SIGINT); returns its wait status.
+int CommitInChild(const fs::path& dir, int step, bool kill, bool watch_signals) {
   const pid_t pid = ::fork();
   if (pid == 0) {
-    ::setenv("UWBSAR_TEST_INTERRUPT_COMMIT", hook.c_str(), 1);
+    testing::InterruptCommitAt(step, kill);
     if (watch_signals) InstallInterruptCleanup();
     const RemoveOnInterrupt guard((dir / kStage).string());
     try {
@@ -90,7 +92,7 @@ TEST(CommitJournalTest, AKillAtAnyStepLeavesTheOldOrTheNewCompleteSet) {
   int interrupted = 0;
   for (int step = 0; step < 40; ++step) {
     const fs::path dir = FreshFolder("kill");
-    const int status = CommitInChild(dir, std::to_string(step) + ":kill", false);
+    const int status = CommitInChild(dir, step, /*kill=*/true, false);
     if (WIFEXITED(status)) {  // past the last step: the commit ran through
       ASSERT_EQ(WEXITSTATUS(status), 0);
       EXPECT_EQ(ReadFiles(dir), kNew);
@@ -119,7 +121,7 @@ TEST(CommitJournalTest, AKillAtAnyStepLeavesTheOldOrTheNewCompleteSet) {
 TEST(CommitJournalTest, ASigintDuringTheCommitWaitsForItsEnd) {
   for (int step = 0; step < 8; ++step) {
     const fs::path dir = FreshFolder("int");
-    const int status = CommitInChild(dir, std::to_string(step) + ":int", true);
+    const int status = CommitInChild(dir, step, /*kill=*/false, true);
     // Before the commit point the signal ends the process at once; after it the commit ends
     // first (the process may even return before the watcher ends it).
     const bool by_signal = WIFSIGNALED(status) && WTERMSIG(status) == SIGINT;

@@ -16,6 +16,7 @@
 #include "core/commit_journal.h"
 #include "core/folder_lock.h"
 #include "test/cli_runner.h"
+#include "test/core/commit_interrupt.h"
 #include "test/slam/session/session_cli_fixture.h"
 
 namespace uwbsar {
@@ -74,8 +75,10 @@ TEST_F(SessionCliTest, AnInterruptedJoinLeavesTheSavedMapOrTheWholeJoinedOne) {
   for (const char* signal : {"kill", "int"}) {
     for (int step = 0; step < 40; ++step) {
       const std::string out = CopyOf(Map("a"), *dir_ + "/join_" + signal);
-      const CliRun r = RunCommand("UWBSAR_TEST_INTERRUPT_COMMIT=" + std::to_string(step) + ":" +
-                                  signal + " " + UWBSAR_BIN + " " + join + out + " --out " + out);
+      // The tests' build of uwbsar, whose commit this variable interrupts at `step`.
+      const CliRun r =
+          RunCommand(std::string(testing::kInterruptCommitVariable) + "=" + std::to_string(step) +
+                     ":" + signal + " " + UWBSAR_HOOKS_BIN + " " + join + out + " --out " + out);
       if (r.exit_code == 0) break;  // past the commit's last step
       // Ended by the signal (the shell reports 128 + SIGKILL or SIGINT, or the signal itself).
       ASSERT_TRUE(r.exit_code == -1 || r.exit_code == 137 || r.exit_code == 130)
