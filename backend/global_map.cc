@@ -4,8 +4,13 @@
 #include <climits>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <string>
+
+#include "backend/incremental_mosaic.h"
+#include "core/errors.h"
 
 namespace uwbsar {
 
@@ -217,6 +222,31 @@ OccupancyGrid MapToOccupancy(const cv::Mat& map, const cv::Mat& observed, const 
                                                                 : OccupancyGrid::kFree;
   }
   return occ;
+}
+
+RenderedGlobalMap RenderGlobalMap(const std::vector<MosaicTile>& tiles, double resolution_m,
+                                  double max_pixels, const std::string& what,
+                                  IncrementalMosaic* mosaic) {
+  std::optional<GlobalMap> fresh;
+  if (mosaic) {
+    mosaic->Update(tiles);
+  } else {
+    fresh.emplace(resolution_m);
+    for (const MosaicTile& t : tiles) fresh->AddTile(t.load(), t.grid, t.T_world_tile);
+  }
+  const GlobalMap& global = mosaic ? mosaic->map() : *fresh;
+  if (!(global.RenderPixels() <= max_pixels)) {
+    std::ostringstream msg;
+    msg << what << ": the map of its keyframes is " << global.RenderPixels() << " pixels at "
+        << resolution_m << " m, more than limits.max_image_pixels (" << max_pixels
+        << "); refused before allocation";
+    throw InputError(msg.str());
+  }
+  RenderedGlobalMap out;
+  out.map = global.Render(&out.grid, &out.observed);
+  out.blocks = global.num_blocks();
+  out.memory_bytes = global.memory_bytes();
+  return out;
 }
 
 }  // namespace uwbsar

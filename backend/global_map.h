@@ -7,10 +7,14 @@
 #pragma once
 
 #include <climits>
+#include <cstddef>
+#include <functional>
 #include <map>
 #include <opencv2/core.hpp>
 #include <set>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "core/pose2.h"
 #include "imaging/image_grid.h"
@@ -87,5 +91,34 @@ class GlobalMap {
 /// throws std::length_error rather than wrapping.
 OccupancyGrid MapToOccupancy(const cv::Mat& map, const cv::Mat& observed, const ImageGrid& grid,
                              double cell_m, double occupied_fraction, double reference_percentile);
+
+/// One keyframe's tile for a mosaic: `load` reads the tile back (CV_32FC1 on `grid`,
+/// non-negative) and is called only when the tile must be drawn.
+struct MosaicTile {
+  int id = 0;
+  Pose2 T_world_tile;
+  ImageGrid grid;
+  std::function<cv::Mat()> load;
+};
+
+class IncrementalMosaic;
+
+/// The global map of a run's keyframes, rendered (the map of `uwbsar map`'s outputs and of a
+/// live snapshot).
+struct RenderedGlobalMap {
+  cv::Mat map;       ///< CV_32FC1 on `grid`
+  cv::Mat observed;  ///< non-zero where some tile landed
+  ImageGrid grid;
+  std::size_t blocks = 0;        ///< the canvas's allocated blocks
+  std::size_t memory_bytes = 0;  ///< and their memory
+};
+
+/// Assembles and renders the global map of `tiles`: `mosaic` brought up to date when given (only
+/// what changed since its last update is redrawn), else a map drawn from every tile at
+/// `resolution_m`. A map that would pass `max_pixels` (a keyframe placed kilometres away by a
+/// wild odometry jump) is refused before it is allocated: InputError naming `what`.
+RenderedGlobalMap RenderGlobalMap(const std::vector<MosaicTile>& tiles, double resolution_m,
+                                  double max_pixels, const std::string& what,
+                                  IncrementalMosaic* mosaic = nullptr);
 
 }  // namespace uwbsar

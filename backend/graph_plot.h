@@ -1,6 +1,6 @@
 // A picture of a pose graph (`uwbsar optimize --png`): the odometry chain in black, accepted
 // loops in blue above it and rejected loops in vermillion above both (Okabe-Ito colours),
-// scaled to fit the image; slam/optimize_job frames it with axes and a legend.
+// scaled to fit the image; slam/jobs/optimize_job frames it with axes and a legend.
 #pragma once
 
 #include <map>

@@ -14,15 +14,6 @@
 
 namespace uwbsar {
 
-/// One keyframe's tile for a mosaic: `load` reads the tile back (CV_32FC1 on `grid`,
-/// non-negative) and is called only when the tile must be drawn.
-struct MosaicTile {
-  int id = 0;
-  Pose2 T_world_tile;
-  ImageGrid grid;
-  std::function<cv::Mat()> load;
-};
-
 /// What an update redid.
 struct MosaicUpdate {
   std::size_t added = 0;          ///< keyframes new to the map

@@ -22,6 +22,7 @@
 #include <cmath>
 #include <opencv2/core.hpp>
 
+#include "app/app_config_io.h"
 #include "drivers/logs/log_source.h"
 #include "drivers/logs/text_log.h"
 #include "drivers/sim/synthetic_run.h"
@@ -30,7 +31,6 @@
 #include "frontend/place_recognition/place_recognizer.h"
 #include "imaging/enhance.h"
 #include "slam/app_config.h"
-#include "slam/app_config_io.h"
 #include "test/imaging/image_ncc.h"
 #include "test/shared_data.h"
 

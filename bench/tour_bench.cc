@@ -29,9 +29,9 @@
 #include <string>
 #include <vector>
 
+#include "app/app_config_io.h"
 #include "eval/tour/gyro_bias_eval.h"
 #include "eval/tour/tour_eval.h"
-#include "slam/app_config_io.h"
 
 namespace uwbsar {
 namespace {

@@ -35,8 +35,8 @@
 #include "bench/resident_memory.h"
 #include "slam/app_config.h"
 #include "slam/map_job.h"
+#include "slam/outputs/session_capture.h"
 #include "slam/session/session_file.h"
-#include "slam/session_capture.h"
 
 namespace uwbsar {
 namespace {

@@ -4,11 +4,18 @@
 Each library folder lists the folders whose headers it may include (besides its own). The
 table follows the data: core is the floor; imaging sits on it; the driver families, the
 frontend and the backend sit on imaging and never include each other (drivers never include
-OpenCV feature code either); eval scores what frontend and backend make; slam/ is the SLAM
-system that ties them together, with its configuration (slam/config) and session file
-(slam/session) below it and the live runtime (slam/live) above it; eval/tour scores whole
-runs of the SLAM system; tools is the command line and includes slam/ only (and core/, the
-floor every layer shares). docs/architecture.md describes each folder.
+OpenCV feature code either); slam/ is the SLAM library that ties them together: its core,
+with its configuration (slam/config) and session file (slam/session) below it, then its rooms
+slam/localization, slam/outputs, slam/jobs and the live runtime (slam/live), each above the
+one before. The evaluation never enters the SLAM library: eval and eval/compare score what
+frontend and backend make and include nothing of slam/; app (the whole configuration file,
+with the evaluation's sections), eval/jobs (the evaluation's commands) and eval/tour (scores of
+whole runs) sit above slam/; tools is the command line (and core/, the floor every layer
+shares). docs/architecture.md describes each folder.
+
+The same rule holds for linking: the SLAM library's targets (ROBOT_TARGETS) may not link,
+directly or through another target, the evaluation's libraries or PCL (FORBIDDEN_LINKS), read
+from the target_link_libraries() calls of every CMakeLists.txt.
 
 Only quoted includes that name a project folder (`#include "backend/pose_graph.h"`) are
 checked, against the longest folder of the table that holds the header; `<...>` includes are
@@ -28,8 +35,11 @@ from repo_check import run_check
 
 DRIVERS = ["drivers/rosbag", "drivers/logs", "drivers/sim", "drivers/live", "drivers/dds"]
 BELOW_SLAM = ["core", "imaging", *DRIVERS, "drivers/emulators", "frontend",
-              "frontend/place_recognition", "backend", "eval", "eval/compare"]
-SLAM_PARTS = ["slam", "slam/config", "slam/session", "slam/live"]
+              "frontend/place_recognition", "backend"]
+# The evaluation: scores what frontend and backend make; never included by the SLAM library.
+EVAL = ["eval", "eval/compare"]
+SLAM_ROOMS = ["slam", "slam/localization", "slam/outputs", "slam/jobs"]
+SLAM_PARTS = [*SLAM_ROOMS, "slam/config", "slam/session", "slam/live"]
 
 # folder -> the folders whose headers it may include (its own always).
 ALLOWED = {
@@ -50,10 +60,25 @@ ALLOWED = {
     "slam/session": ["core", "imaging", "frontend", "frontend/place_recognition", "backend",
                      "slam/config"],
     "slam": [*BELOW_SLAM, "slam/config", "slam/session"],
-    "slam/live": [*BELOW_SLAM, "slam", "slam/config", "slam/session"],
-    "eval/tour": [*BELOW_SLAM, *SLAM_PARTS],
-    "tools": ["core", *SLAM_PARTS],
+    "slam/localization": [*BELOW_SLAM, "slam", "slam/config", "slam/session"],
+    "slam/outputs": [*BELOW_SLAM, "slam", "slam/localization", "slam/config", "slam/session"],
+    "slam/jobs": [*BELOW_SLAM, "slam", "slam/localization", "slam/outputs", "slam/config",
+                  "slam/session"],
+    "slam/live": [*BELOW_SLAM, *SLAM_ROOMS, "slam/config", "slam/session"],
+    # Above the SLAM library: the whole configuration file, the evaluation's jobs and tours.
+    "app": [*BELOW_SLAM, *SLAM_PARTS, "eval/compare"],
+    "eval/jobs": [*BELOW_SLAM, *SLAM_PARTS, *EVAL, "app"],
+    "eval/tour": [*BELOW_SLAM, *SLAM_PARTS, *EVAL],
+    "tools": ["core", *SLAM_PARTS, "app", "eval/jobs", "eval/compare"],
 }
+# The libraries that run on the robot, and what none of them may link, even transitively.
+ROBOT_TARGETS = ["uwbsar_slam", "uwbsar_slam_localization", "uwbsar_slam_outputs",
+                 "uwbsar_slam_jobs", "uwbsar_live"]
+FORBIDDEN_LINKS = ["uwbsar_eval", "uwbsar_compare", "uwbsar_eval_jobs", "uwbsar_tour_eval",
+                   "uwbsar_app_config", "${PCL_LIBRARIES}"]
+LINK_RE = re.compile(r"target_link_libraries\s*\(([^)]*)\)", re.S)
+LINK_KEYWORDS = {"PUBLIC", "PRIVATE", "INTERFACE"}
+
 # Folders whose sources may not include these system headers (drivers: no feature code).
 FORBIDDEN_SYSTEM = {folder: ("opencv2/features2d", "opencv2/xfeatures2d")
                     for folder in [*DRIVERS, "drivers/emulators"]}
@@ -116,9 +141,55 @@ def check(root):
     return errors
 
 
+def link_graph(root):
+    """target -> the items of its target_link_libraries() calls, over every CMakeLists.txt."""
+    graph = {}
+    for dirpath, dirnames, names in os.walk(root):
+        dirnames[:] = sorted(d for d in dirnames if d not in EXEMPT - {"cmake"}
+                             and not d.startswith((".", "build")))
+        if "CMakeLists.txt" not in names:
+            continue
+        with open(os.path.join(dirpath, "CMakeLists.txt"), encoding="utf-8") as f:
+            text = re.sub(r"#[^\n]*", "", f.read())
+        for m in LINK_RE.finditer(text):
+            words = m.group(1).split()
+            if words:
+                graph.setdefault(words[0], []).extend(w for w in words[1:]
+                                                      if w not in LINK_KEYWORDS)
+    return graph
+
+
+def check_links(root):
+    """One line per robot target that reaches a forbidden library, with the chain."""
+    graph = link_graph(root)
+    errors = []
+    for target in ROBOT_TARGETS:
+        if target not in graph:
+            errors.append(f"{target}: no target_link_libraries() found (update ROBOT_TARGETS)")
+            continue
+        chain = {target: [target]}
+        todo = [target]
+        while todo:
+            t = todo.pop()
+            for dep in graph.get(t, []):
+                if dep in chain:
+                    continue
+                chain[dep] = chain[t] + [dep]
+                if dep in FORBIDDEN_LINKS:
+                    errors.append(f"{target} links {dep} (the SLAM library links no evaluation): "
+                                  + " -> ".join(chain[dep]))
+                todo.append(dep)
+    return errors
+
+
+def check_all(root):
+    return check(root) + check_links(root)
+
+
 def main():
-    return run_check(check, "{} include(s) break the dependency table (cmake/check_layering.py)",
-                     "layering: every include is allowed by the dependency table")
+    return run_check(check_all,
+                     "{} include(s) or link(s) break the dependency table (cmake/check_layering.py)",
+                     "layering: every include and link is allowed by the dependency table")
 
 
 if __name__ == "__main__":

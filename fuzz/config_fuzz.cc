@@ -6,12 +6,12 @@
 #include <cstdint>
 #include <string>
 
-#include "slam/app_config_io.h"
+#include "app/app_config_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
-    const uwbsar::Config config = uwbsar::LoadConfigFromString(text, "fuzz.yaml");
+    const uwbsar::AppConfig config = uwbsar::LoadConfigFromString(text, "fuzz.yaml");
     uwbsar::LoadConfigFromString(uwbsar::ConfigFileYaml(config), "round-trip");
   } catch (const uwbsar::ConfigError& e) {
     const std::string what = e.what();

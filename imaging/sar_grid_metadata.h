@@ -1,5 +1,5 @@
 // Pixel geometry of a SAR image: `<prefix>_grid.yaml` next to a float SAR image
-// (slam/imaging_job.cc WriteStripOutputs, `map_grid.yaml` of `uwbsar map`), or a grid
+// (slam/jobs/imaging_job.cc WriteStripOutputs, `map_grid.yaml` of `uwbsar map`), or a grid
 // YAML written by hand for an image from another tool. Column = +x, row = -y in the world
 // frame, (x0_m, y0_m) = the centre of pixel (row 0, col 0). Keys: x0_m, y0_m,
 // resolution_m (required); rows, cols (optional: checked against the image when given);

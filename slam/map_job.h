@@ -21,7 +21,7 @@ struct MapRun {
   std::shared_ptr<SlamSystem> slam;  ///< shared: a live snapshot writer reads it on its own thread
   std::vector<OdometrySample> ground_truth;  ///< from the bag's topic or --ground-truth
   std::string input;                         ///< what was mapped (path or description)
-  /// The recording's identity (slam/saved_session.h BagFingerprint, set by `uwbsar map`):
+  /// The recording's identity (slam/jobs/saved_session.h BagFingerprint, set by `uwbsar map`):
   /// a session refuses to join it twice. "" for sources without one (the session then uses
   /// the input and first stamp).
   std::string fingerprint;

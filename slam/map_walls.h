@@ -1,7 +1,8 @@
-// A saved map's walls as a run localised in it sees them (`uwbsar localize`, slam/localizer.h):
-// the map's line landmarks (place_recognition.wall_profiles.landmarks) and where its keyframes
-// saw them. A straight wall a new keyframe sees, placed in the map by the keyframe's estimate,
-// observes the landmark it lies on; the landmark stays where the map has it.
+// A saved map's walls as a run localised in it sees them (`uwbsar localize`,
+// slam/localization/localizer.h): the map's line landmarks
+// (place_recognition.wall_profiles.landmarks) and where its keyframes saw them. A straight wall a
+// new keyframe sees, placed in the map by the keyframe's estimate, observes the landmark it lies
+// on; the landmark stays where the map has it.
 #pragma once
 
 #include <map>

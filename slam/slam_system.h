@@ -28,6 +28,7 @@
 #include "backend/gyro_stillness.h"
 #include "backend/pose_graph.h"
 #include "frontend/imaging_frontend.h"
+#include "frontend/keyframe_products.h"
 #include "frontend/place_recognition/place_recognizer.h"
 #include "slam/app_config.h"
 #include "slam/ordered_worker.h"
@@ -105,6 +106,12 @@ class SlamSystem {
   /// in keyframes, loops and odometry samples; the same rules as the accessors (hold
   /// LockState() while the keyframe thread may run).
   SlamSnapshot Capture() const;
+  /// The products of `keyframe` (frontend/keyframe_products.h) as mapping makes them, once per
+  /// keyframe: the detected tile, and the wall profile and lines where the walls read them (the
+  /// same products as localisation's, slam/localization/localize_pipeline.h). Any thread.
+  KeyframeProducts Products(const Keyframe& keyframe) const {
+    return MakeKeyframeProducts(keyframe, products_);
+  }
   /// The keyframe thread's longest wait for the state lock so far (any thread): what a
   /// reader holding LockState() costs SLAM.
   double keyframe_lock_wait_max_s() const;
@@ -149,6 +156,7 @@ class SlamSystem {
   WallEdgeFinder wall_edges_;                    // keyframe thread only
   WallLandmarkTracker wall_landmarks_;           // keyframe thread only
   const bool wall_landmarks_on_;                 // UsesWallLandmarks: fixed at construction
+  const KeyframeProductsConfig products_;        // what a keyframe's products are made of
   GyroStillness stillness_;                      // GUARDED_BY(state_mutex_): the odometry's
   std::vector<GyroStandstill> standstills_;      // GUARDED_BY(state_mutex_)   standstills
   TileStore tiles_;                              // thread-safe (detected tiles out of core)

@@ -32,12 +32,6 @@ PoseGraphEdge WallEdgeFinder::MakeEdge(int a_id, int b_id, const Pose2& T_a_b_od
   return e;
 }
 
-WallProfile KeyframeWallProfile(const Keyframe& keyframe, const cv::Mat& detected,
-                                const ImageGrid& grid, const WallProfileConfig& config) {
-  return ComputeWallProfile(
-      detected, grid, keyframe.T_world_robot.yaw_rad - keyframe.T_world_anchor.yaw_rad, config);
-}
-
 std::vector<PoseGraphEdge> WallEdgeFinder::Add(const Keyframe& keyframe, const cv::Mat& detected,
                                                const ImageGrid& grid) {
   if (!config_.enabled || !keyframe.complete || detected.empty()) return {};

@@ -10,14 +10,10 @@
 
 #include "backend/pose_graph.h"
 #include "frontend/keyframe.h"
+#include "frontend/keyframe_products.h"
 #include "frontend/wall_profile.h"
 
 namespace uwbsar::slam {
-
-/// The wall profile of a keyframe's detected tile (on `grid`, its anchor frame) across the
-/// robot's heading at the tile's middle: what the wall edges and the wall lines both read.
-WallProfile KeyframeWallProfile(const Keyframe& keyframe, const cv::Mat& detected,
-                                const ImageGrid& grid, const WallProfileConfig& config);
 
 class WallEdgeFinder {
  public:
@@ -28,7 +24,7 @@ class WallEdgeFinder {
   /// (!keyframe.complete) is neither paired nor kept.
   std::vector<PoseGraphEdge> Add(const Keyframe& keyframe, const cv::Mat& detected,
                                  const ImageGrid& grid);
-  /// The same with the tile's profile computed by the caller (KeyframeWallProfile).
+  /// The same with the tile's profile made by the caller (frontend/keyframe_products.h).
   std::vector<PoseGraphEdge> Add(const Keyframe& keyframe, const WallProfile& profile);
 
   int pairs_tried() const { return pairs_tried_; }

@@ -1,6 +1,7 @@
 #include "slam/wall_landmarks.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iterator>
 #include <set>
@@ -35,18 +36,21 @@ std::vector<SeenLine> SeenLines(const std::vector<WallLineObservation>& lines,
   return out;
 }
 
-std::vector<SeenLine> KeyframeSeenLines(const Keyframe& keyframe, const cv::Mat& detected,
-                                        const ImageGrid& grid, const WallProfile& profile,
-                                        const WallProfileConfig& config) {
-  if (!keyframe.complete || detected.empty()) return {};
-  return SeenLines(FindWallLines(detected, grid, profile, config), profile.heading_rad);
+bool UsesWallLandmarks(const WallProfileConfig& walls, const BackendConfig& backend) {
+  const std::array<double, 3> calibration = backend.CalibrationMean();
+  const bool calibrated = calibration[0] != 0.0 || calibration[1] != 0.0 || calibration[2] != 0.0;
+  return walls.enabled && walls.landmarks.enabled &&
+         (calibrated || !walls.landmarks.require_calibrated_base);
+}
+
+std::vector<SeenLine> SeenLines(const KeyframeProducts& products) {
+  if (!products.wall_profile) return {};
+  return SeenLines(products.wall_lines, products.wall_profile->heading_rad);
 }
 
 WallLandmarkTracker::Update WallLandmarkTracker::Add(const Keyframe& keyframe,
-                                                     const cv::Mat& detected, const ImageGrid& grid,
-                                                     const WallProfile& profile) {
-  const std::vector<SeenLine> lines =
-      KeyframeSeenLines(keyframe, detected, grid, profile, profile_config_);
+                                                     const KeyframeProducts& products) {
+  const std::vector<SeenLine> lines = SeenLines(products);
   lines_seen_ += static_cast<int>(lines.size());
   return Add(keyframe.id, keyframe.T_world_anchor, lines);
 }

@@ -18,9 +18,11 @@
 #include <utility>
 #include <vector>
 
+#include "backend/backend_config.h"
 #include "backend/line_landmark.h"
 #include "core/pose2.h"
 #include "frontend/keyframe.h"
+#include "frontend/keyframe_products.h"
 #include "frontend/wall_line.h"
 #include "frontend/wall_profile_config.h"
 
@@ -40,17 +42,19 @@ struct SeenLine {
 std::vector<SeenLine> SeenLines(const std::vector<WallLineObservation>& lines,
                                 double heading_anchor_rad);
 
-/// The walls of `keyframe`'s detected tile (on `grid`, its anchor frame) with its wall profile
-/// `profile` (KeyframeWallProfile), as SeenLines; none for a tile cut short (!keyframe.complete).
-std::vector<SeenLine> KeyframeSeenLines(const Keyframe& keyframe, const cv::Mat& detected,
-                                        const ImageGrid& grid, const WallProfile& profile,
-                                        const WallProfileConfig& config);
+/// A keyframe's wall lines (frontend/keyframe_products.h) as SeenLines; none without them.
+std::vector<SeenLine> SeenLines(const KeyframeProducts& products);
+
+/// Walls as landmarks (place_recognition.wall_profiles.landmarks): only for a base whose
+/// odometry calibration is given (backend.odometry_calibration), unless
+/// require_calibrated_base is off.
+bool UsesWallLandmarks(const WallProfileConfig& walls, const BackendConfig& backend);
 
 class WallLandmarkTracker {
  public:
   /// Landmark ids are handed out from `first_landmark_id` up.
   explicit WallLandmarkTracker(const WallProfileConfig& config, int first_landmark_id = 0)
-      : profile_config_(config), config_(config.landmarks), next_id_(first_landmark_id) {}
+      : config_(config.landmarks), next_id_(first_landmark_id) {}
 
   struct Update {
     /// Landmarks that enter the graph now, with their line in the odometry's world frame (the
@@ -61,11 +65,8 @@ class WallLandmarkTracker {
     std::vector<LineObservation> observations;
   };
 
-  /// The walls of `keyframe`, whose detected tile is `detected` on `grid` (its anchor frame)
-  /// with the wall profile `profile` (KeyframeWallProfile); a tile cut short
-  /// (!keyframe.complete) sees none.
-  Update Add(const Keyframe& keyframe, const cv::Mat& detected, const ImageGrid& grid,
-             const WallProfile& profile);
+  /// The walls of `keyframe`, its wall lines among `products` (none for a tile cut short).
+  Update Add(const Keyframe& keyframe, const KeyframeProducts& products);
 
   /// The walls keyframe `keyframe_id` sees; T_world_anchor is its anchor's odometry pose.
   /// Keyframes come in path order, one call each (an empty `lines` counts towards the gap).
@@ -89,7 +90,6 @@ class WallLandmarkTracker {
     std::vector<LineObservation> waiting;  ///< sightings before it enters the graph
   };
 
-  const WallProfileConfig profile_config_;
   const WallLineConfig config_;
   int next_id_ = 0;
   int lines_seen_ = 0;

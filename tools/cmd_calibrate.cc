@@ -1,13 +1,13 @@
 // `uwbsar calibrate BAG [--ground-truth TUM] [--segment-m M] [--base auto|gyro|wheel]
 // [--out FILE.yaml]`: measures the base's odometry calibration once, on a run with ground truth
 // (motion capture, a surveyed path, the simulator's topic), and prints the backend keys that
-// belong to the robot (slam/calibrate_job.h); a gyro base's bias is the run's: reported in one
+// belong to the robot (slam/jobs/calibrate_job.h); a gyro base's bias is the run's: reported in one
 // line, not written. --out writes the keys as a configuration file.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-#include "slam/calibrate_job.h"
+#include "slam/jobs/calibrate_job.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

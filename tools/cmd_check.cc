@@ -1,9 +1,9 @@
 // `uwbsar check BAG`: a recording against the configuration before mapping it, one line per
-// check (slam/check_job.h); exit 3 when something would make `map` fail or lose data.
+// check (slam/jobs/check_job.h); exit 3 when something would make `map` fail or lose data.
 #include <cstdio>
 
 #include "core/errors.h"
-#include "slam/check_job.h"
+#include "slam/jobs/check_job.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

@@ -6,8 +6,8 @@
 #include <iostream>
 #include <sstream>
 
+#include "eval/jobs/compare_job.h"
 #include "slam/app_config.h"
-#include "slam/compare_job.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -68,7 +68,7 @@ void AddCompareOptions(CLI::App* cmd, CompareOptions* opts) {
 }
 
 /// The alignment asked by --align (else compare.align), --method and --init.
-AlignRequest MakeAlignRequest(const CompareOptions& opts, const Config& config) {
+AlignRequest MakeAlignRequest(const CompareOptions& opts, const AppConfig& config) {
   AlignRequest request;
   request.mode = opts.align.empty() ? EnumName(config.compare.align) : opts.align;
   request.method = opts.method;
@@ -84,14 +84,14 @@ AlignRequest MakeAlignRequest(const CompareOptions& opts, const Config& config) 
 }
 
 void RunCompare(const CompareOptions& opts, const GlobalOptions& globals) {
-  Config config = LoadConfigFor(globals);
+  AppConfig config = LoadConfigFor(globals);
   RefuseOutputsOnInputs(globals, {{"--out", opts.out_dir}},
                         {{"the SAR map", opts.sar}, {"the LiDAR map", opts.lidar}});
   slam::CheckOutputFolder(opts.out_dir);  // before the work, creating nothing
   if (opts.tolerance_cells >= 0) config.compare.tolerance_cells = opts.tolerance_cells;
   const AlignRequest request = MakeAlignRequest(opts, config);
-  const slam::CompareJobResult result =
-      slam::RunCompareJob(config, opts.sar, opts.lidar, request, opts.out_dir);
+  const eval::CompareJobResult result =
+      eval::RunCompareJob(config, opts.sar, opts.lidar, request, opts.out_dir);
   if (opts.json) {
     std::cout << result.json << "\n";
     return;

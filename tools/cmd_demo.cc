@@ -7,9 +7,9 @@
 #include <filesystem>
 
 #include "slam/app_config.h"
-#include "slam/map_outputs.h"
-#include "slam/saved_session.h"
-#include "slam/session_capture.h"
+#include "slam/jobs/saved_session.h"
+#include "slam/outputs/map_outputs.h"
+#include "slam/outputs/session_capture.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

@@ -1,19 +1,19 @@
 // `uwbsar detectors BAG`: the paper's detector experiment on a depart-and-return log
-// (slam/detectors_job.h). The run is split where it turns back; each pass is imaged into
+// (eval/jobs/detectors_job.h). The run is split where it turns back; each pass is imaged into
 // the world frame and cut into regions (default 2 m every 1 m); SIFT, SURF, BRISK, AKAZE and
 // ORB match every D_i -> R_j. Writes Table III (loops D_i -> R_i) and Table IV (AKAZE and ORB
 // on non-loops |i - j| >= 2) as CSV and Markdown, the per-pair statistics for
 // `uwbsar loops --from-stats`, the loop matrix of the AKAZE+ORB rule, and match images.
 #include <cstdio>
 
+#include "eval/jobs/detectors_job.h"
 #include "slam/app_config.h"
-#include "slam/detectors_job.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
 namespace {
 
-void AddDetectorsOptions(CLI::App* cmd, slam::DetectorsJobOptions* opts) {
+void AddDetectorsOptions(CLI::App* cmd, eval::DetectorsJobOptions* opts) {
   cmd->add_option("BAG", opts->bag, "ROS 2 bag (directory, .db3 or .mcap)")
       ->required()
       ->check(InputPath());
@@ -31,11 +31,11 @@ void AddDetectorsOptions(CLI::App* cmd, slam::DetectorsJobOptions* opts) {
   cmd->add_flag("--no-images", opts->no_images, "Do not write match images");
 }
 
-void RunDetectors(slam::DetectorsJobOptions opts, const GlobalOptions& globals) {
+void RunDetectors(eval::DetectorsJobOptions opts, const GlobalOptions& globals) {
   const Config config = LoadConfigFor(globals);
   RefuseOutputsOnInputs(globals, {{"--out", opts.out_dir}}, {{"the input bag", opts.bag}});
   opts.progress = !globals.quiet;
-  const slam::DetectorsJobResult r = slam::RunDetectorsJob(config, opts);
+  const eval::DetectorsJobResult r = eval::RunDetectorsJob(config, opts);
   if (globals.quiet) return;
   std::printf("%zu scans (%zu departing, %zu returning), %zu regions of %.2f m every %.2f m\n\n",
               r.scans, r.departing, r.returning, r.regions, r.region_length_m, r.region_step_m);
@@ -50,7 +50,7 @@ void RunDetectors(slam::DetectorsJobOptions opts, const GlobalOptions& globals) 
 }  // namespace
 
 void AddDetectorsCommand(CLI::App& app, const GlobalOptions& globals) {
-  auto opts = std::make_shared<slam::DetectorsJobOptions>();
+  auto opts = std::make_shared<eval::DetectorsJobOptions>();
   CLI::App* cmd = app.add_subcommand(
       "detectors", "The paper's detector comparison on a depart-and-return bag (Tables III, IV)");
   AddDetectorsOptions(cmd, opts.get());

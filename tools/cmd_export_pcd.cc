@@ -1,10 +1,10 @@
 // `uwbsar export-pcd`: a map as a PCD v0.7 point cloud (PCL, CloudCompare): the occupied
 // cells of a map_server map, or the peaks of a float SAR map with their intensity
-// (slam/compare_job.h).
+// (eval/jobs/compare_job.h).
 #include <cstdio>
 
+#include "eval/jobs/compare_job.h"
 #include "slam/app_config.h"
-#include "slam/compare_job.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -25,15 +25,15 @@ void AddExportPcdCommand(CLI::App& app, const GlobalOptions& globals) {
                   "Pixel geometry of a float TIFF (default: <prefix>_grid.yaml)");
   cmd->add_flag("--ascii", opts->ascii, "ASCII PCD instead of binary");
   cmd->callback([opts, &globals] {
-    const Config config = LoadConfigFor(globals);
+    const AppConfig config = LoadConfigFor(globals);
     RefuseOutputsOnInputs(globals, {{"--out", opts->out}},
                           {{"the input map", opts->map}, {"the --grid file", opts->grid}});
     slam::CheckOutputFile(opts->out);  // before the work
-    if (!opts->grid.empty() && !slam::IsFloatSarMapPath(opts->map)) {
+    if (!opts->grid.empty() && !eval::IsFloatSarMapPath(opts->map)) {
       throw CLI::ValidationError("--grid", "only for a float TIFF MAP");
     }
-    const slam::PcdExportResult result =
-        slam::ExportPcdJob(config, opts->map, opts->grid, opts->out, !opts->ascii);
+    const eval::PcdExportResult result =
+        eval::ExportPcdJob(config, opts->map, opts->grid, opts->out, !opts->ascii);
     if (!globals.quiet) {
       std::printf("wrote %s: %zu %s\n", opts->out.c_str(), result.points, result.what.c_str());
     }

@@ -3,9 +3,9 @@
 #include <cstdio>
 #include <iostream>
 
+#include "app/app_config_io.h"
 #include "core/errors.h"
-#include "slam/app_config_io.h"
-#include "slam/imaging_job.h"
+#include "slam/jobs/imaging_job.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

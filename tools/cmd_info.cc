@@ -1,9 +1,9 @@
 // `uwbsar info BAG`: what is in a ROS 2 bag (directory, .db3 or .mcap), laid out like
 // `ros2 bag info`; --decode also decodes every message of the known types and reports
-// what the SLAM pipeline would receive (slam/info_job.h).
+// what the SLAM pipeline would receive (slam/jobs/info_job.h).
 #include <iostream>
 
-#include "slam/info_job.h"
+#include "slam/jobs/info_job.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

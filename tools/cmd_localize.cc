@@ -1,13 +1,14 @@
 // `uwbsar localize BAG --map SESSION --out DIR`: localise a log in a saved map without
-// changing it (slam/localize_job.h).
+// changing it (slam/localization/localize_job.h).
 #include <cstdio>
 
 #include "slam/app_config.h"
-#include "slam/localize_job.h"
-#include "slam/map_outputs.h"
-#include "slam/navigation_map.h"
-#include "slam/results_timeline.h"
-#include "slam/saved_session.h"
+#include "slam/jobs/saved_session.h"
+#include "slam/localization/localize_job.h"
+#include "slam/outputs/localize_outputs.h"
+#include "slam/outputs/map_outputs.h"
+#include "slam/outputs/navigation_map.h"
+#include "slam/outputs/results_timeline.h"
 #include "slam/session/session_file.h"
 #include "tools/commands.h"
 

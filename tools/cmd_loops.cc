@@ -2,13 +2,13 @@
 // on recorded per-pair statistics (`--from-stats STATS.csv`, e.g. the stats.csv that
 // `uwbsar detectors` writes, to tune thresholds without images) or measured on a folder of
 // region images D<i>, R<j> (`--images DIR`, through the same matching as `uwbsar match`);
-// slam/image_match_job.h.
+// eval/jobs/image_match_job.h.
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "eval/jobs/image_match_job.h"
 #include "slam/app_config.h"
-#include "slam/image_match_job.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -79,10 +79,10 @@ void AddLoopsCommand(CLI::App& app, const GlobalOptions& globals) {
     RefuseOutputsOnInputs(
         globals, {{"--out", opts->out_dir}},
         {{"the --from-stats file", opts->stats_path}, {"the --images folder", opts->images_dir}});
-    const slam::LoopMatrixJobResult result =
+    const eval::LoopMatrixJobResult result =
         !opts->stats_path.empty()
-            ? slam::LoopMatrixFromStats(config, opts->stats_path)
-            : slam::LoopMatrixFromImages(config, opts->images_dir, opts->resolution_m,
+            ? eval::LoopMatrixFromStats(config, opts->stats_path)
+            : eval::LoopMatrixFromImages(config, opts->images_dir, opts->resolution_m,
                                          opts->detectors, opts->out_dir);
     const LoopMatrix& m = result.matrix;
     const nlohmann::json& json = result.json;

@@ -6,9 +6,9 @@
 
 #include "slam/app_config.h"
 #include "slam/map_job.h"
-#include "slam/map_outputs.h"
+#include "slam/outputs/map_outputs.h"
+#include "slam/outputs/session_capture.h"
 #include "slam/session/session_file.h"
-#include "slam/session_capture.h"
 #include "tools/commands.h"
 #include "tools/map_resume.h"
 

@@ -1,12 +1,12 @@
 // `uwbsar match A B`: two SAR images (from uwbsar or another tool) matched as place
 // recognition matches two keyframe tiles, with the AKAZE+ORB rule and the fused metric
-// transform (slam/image_match_job.h). A rejection is an outcome (exit 0); bad input exits 3
+// transform (eval/jobs/image_match_job.h). A rejection is an outcome (exit 0); bad input exits 3
 // with one line.
 #include <cstdio>
 #include <iostream>
 
+#include "eval/jobs/image_match_job.h"
 #include "slam/app_config.h"
-#include "slam/image_match_job.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
@@ -34,7 +34,7 @@ void PrintText(const ImageMatch& m) {
 }  // namespace
 
 void AddMatchCommand(CLI::App& app, const GlobalOptions& globals) {
-  struct Options : slam::ImageMatchJobOptions {
+  struct Options : eval::ImageMatchJobOptions {
     bool json = false;
   };
   auto opts = std::make_shared<Options>();
@@ -62,7 +62,7 @@ void AddMatchCommand(CLI::App& app, const GlobalOptions& globals) {
     const Config config = LoadConfigFor(globals);
     RefuseOutputsOnInputs(globals, {{"--out", opts->out_dir}},
                           {{"the image", opts->a}, {"the image", opts->b}});
-    const slam::ImageMatchJobResult result = slam::RunImageMatchJob(config, *opts);
+    const eval::ImageMatchJobResult result = eval::RunImageMatchJob(config, *opts);
     const nlohmann::json& json = result.json;
     if (opts->json) {
       std::cout << json.dump() << "\n";

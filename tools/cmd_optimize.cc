@@ -1,14 +1,14 @@
 // `uwbsar optimize IN.g2o --out OUT.g2o [--json]`: solves a pose graph file with the
 // backend (robust loss, loop rejection, support gate; backend.* configuration) and
 // prints iterations, costs, solve time, termination and the rejected loops
-// (slam/optimize_job.h).
+// (slam/jobs/optimize_job.h).
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "slam/app_config.h"
-#include "slam/optimize_job.h"
+#include "slam/jobs/optimize_job.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

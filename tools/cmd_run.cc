@@ -11,9 +11,9 @@
 
 #include "core/interrupt_cleanup.h"
 #include "slam/app_config.h"
+#include "slam/jobs/saved_session.h"
 #include "slam/live/live_emulation.h"
 #include "slam/live/live_runner.h"
-#include "slam/saved_session.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

@@ -5,14 +5,14 @@
 //   BAG/ground_truth.tum    true poses (TUM: t x y z qx qy qz qw) at ground_truth_rate_hz
 // and, with --text-log FILE, the odometry and scans as a plain text log too.
 // Reproducible: the same configuration, map, route and seed give the same bytes
-// (slam/simulate_job.h).
+// (slam/jobs/simulate_job.h).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 
 #include "slam/app_config.h"
-#include "slam/simulate_job.h"
+#include "slam/jobs/simulate_job.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "slam/app_config.h"
-#include "slam/output_folder.h"  // EnsureDirectory, CheckOutputFolder, CheckOutputFile
+#include "app/app_config.h"
+#include "slam/outputs/output_folder.h"  // EnsureDirectory, CheckOutputFolder, CheckOutputFile
 
 namespace uwbsar::slam {
 struct MapOutputs;
@@ -35,11 +35,11 @@ struct GlobalOptions {
   bool verbose = false;
   /// The configuration, loaded once when the command line is parsed (before any subcommand
   /// runs), so a bad --config is refused by every subcommand before any work.
-  std::shared_ptr<const Config> config;
+  std::shared_ptr<const AppConfig> config;
 };
 
 /// The configuration named by --config, or the defaults.
-Config LoadConfigFor(const GlobalOptions& globals);
+AppConfig LoadConfigFor(const GlobalOptions& globals);
 /// Loads --config into globals->config; throws ConfigError (exit 3) for a bad file.
 void LoadGlobalConfig(GlobalOptions* globals);
 

@@ -5,21 +5,21 @@
 #include <cstring>
 #include <filesystem>
 
+#include "app/app_config_io.h"
 #include "core/errors.h"
-#include "slam/app_config_io.h"
 #include "slam/session/session_file.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {
 
-Config LoadConfigFor(const GlobalOptions& globals) {
+AppConfig LoadConfigFor(const GlobalOptions& globals) {
   if (globals.config) return *globals.config;
   return LoadConfigs(globals.config_paths);
 }
 
 void LoadGlobalConfig(GlobalOptions* globals) {
   if (globals->config_paths.empty()) return;
-  globals->config = std::make_shared<const Config>(LoadConfigs(globals->config_paths));
+  globals->config = std::make_shared<const AppConfig>(LoadConfigs(globals->config_paths));
 }
 
 namespace {

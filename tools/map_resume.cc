@@ -5,14 +5,14 @@
 
 #include "core/errors.h"
 #include "slam/app_config.h"
-#include "slam/map_outputs.h"
-#include "slam/map_report.h"
+#include "slam/outputs/map_outputs.h"
+#include "slam/outputs/map_report.h"
+#include "slam/outputs/session_capture.h"
+#include "slam/outputs/session_files.h"
+#include "slam/outputs/session_outputs.h"
+#include "slam/outputs/summary_json.h"
 #include "slam/session/session_file.h"
 #include "slam/session/session_merge.h"
-#include "slam/session_capture.h"
-#include "slam/session_files.h"
-#include "slam/session_outputs.h"
-#include "slam/summary_json.h"
 #include "tools/commands.h"
 
 namespace uwbsar::tools {

@@ -1,6 +1,6 @@
 // `uwbsar map BAG --resume SESSION`: the new run mapped as usual, then joined to the saved
 // session as a new trajectory (slam/session/session_merge.h) and the joined map written
-// (slam/session_outputs.h). A run that never connects is refused and nothing is written:
+// (slam/outputs/session_outputs.h). A run that never connects is refused and nothing is written:
 // the saved map is never replaced by a run that is not part of it.
 #pragma once
 
@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "slam/app_config.h"
+#include "slam/jobs/saved_session.h"
 #include "slam/map_job.h"
-#include "slam/map_outputs.h"
-#include "slam/saved_session.h"
+#include "slam/outputs/map_outputs.h"
 #include "slam/session/session_data.h"
 #include "slam/session/session_merge.h"
 #include "tools/commands.h"

@@ -15,6 +15,7 @@
 #include "frontend/keyframe_config.h"
 #include "frontend/place_recognition/place_recognition_config.h"
 #include "imaging/enhance_config.h"
+#include "imaging/image_grid.h"
 #include "imaging/imaging_config.h"
 #include "imaging/pulse_config.h"
 #include "slam/config/place_views_config.h"
@@ -56,8 +57,8 @@ struct SlamConfig {
   double occupancy_reference_percentile = 99.0;  ///< reference level: this percentile of
                                                  ///< the observed map pixels
   bool results_mcap = true;  ///< map, demo, map --resume and localize also write results.mcap
-                             ///< (slam/results_mcap.h); a mapping run then keeps the keyframe
-                             ///< poses of every solve (24 bytes per keyframe and solve)
+                             ///< (slam/outputs/results_mcap.h); a mapping run then keeps the
+                             ///< keyframe poses of every solve (24 bytes per keyframe and solve)
   double results_mcap_sar_max_pixels = 4e6;  ///< its SAR mosaic is averaged down to at most
                                              ///< this many pixels (a 20 m x 20 m map at 1 cm)
   PlaceViewsConfig place_views;  ///< keyframes bounded by area (slam/session/place_views.h)
@@ -125,5 +126,9 @@ void ValidateSystemConfig(const SystemConfig& config, const std::string& source_
 /// The sizes the imaging and map settings imply, against limits.* (the last step of
 /// ValidateSystemConfig, slam/config/system_config_limits.cc).
 void ValidateLimits(const SystemConfig& config, const std::string& source_name);
+
+/// Throws InputError when a whole-run image on `grid` (`what`: "the strip image", "the
+/// exact map") exceeds limits.max_image_pixels: checked before the image is allocated.
+void CheckWholeRunImage(const ImageGrid& grid, const LimitsConfig& limits, const std::string& what);
 
 }  // namespace uwbsar

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/config_require.h"
+#include "core/errors.h"
 #include "frontend/segment_canvas.h"
 #include "imaging/sensor_geometry.h"
 #include "slam/config/system_config.h"
@@ -154,6 +156,19 @@ void ValidateLimits(const SystemConfig& c, const std::string& src) {
                 "slam.map_resolution_m", map_m, "one tile's footprint in the map (pixels)",
                 "max_tile_pixels");
   ValidateNavigationRays(c, src);  // after the tile's budgets, which name tile_length_m first
+}
+
+void CheckWholeRunImage(const ImageGrid& grid, const LimitsConfig& limits,
+                        const std::string& what) {
+  const double pixels = static_cast<double>(grid.rows) * static_cast<double>(grid.cols);
+  if (grid.rows >= 0 && grid.cols >= 0 && pixels <= limits.max_image_pixels) return;
+  std::ostringstream msg;
+  msg.precision(3);
+  msg << what << " of this run would be " << grid.cols << " x " << grid.rows << " pixels ("
+      << pixels << ") at " << grid.resolution_m
+      << " m (imaging.pixel_size_m / --resolution), more than limits.max_image_pixels ("
+      << limits.max_image_pixels << ")";
+  throw InputError(msg.str());
 }
 
 }  // namespace uwbsar

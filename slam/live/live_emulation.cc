@@ -6,7 +6,7 @@
 #include "drivers/emulators/sim_device_player.h"
 #include "drivers/live/host_clock.h"
 #include "drivers/sim/sim_stream.h"
-#include "slam/output_folder.h"
+#include "slam/outputs/output_folder.h"
 
 namespace uwbsar::slam {
 

@@ -6,8 +6,9 @@
 
 #include "core/log.h"
 #include "slam/app_config.h"
+#include "slam/outputs/localize_outputs.h"
+#include "slam/outputs/session_capture.h"
 #include "slam/session/session_file.h"
-#include "slam/session_capture.h"
 
 namespace uwbsar::slam {
 

@@ -6,7 +6,7 @@
 // lock (CaptureMapState, linear in keyframes), rendering and writing after releasing it:
 // the feeding thread never waits for a snapshot, the keyframe thread only for the copy.
 // With a saved map (LiveRunOptions::localize_in) the feeding thread feeds a
-// LocalizePipeline instead (slam/localize_pipeline.h: the map is fixed, nothing is
+// LocalizePipeline instead (slam/localization/localize_pipeline.h: the map is fixed, nothing is
 // added to it) and the snapshots write the localisation outputs (WriteLocalizeOutputs).
 #pragma once
 
@@ -23,7 +23,7 @@
 #include "slam/app_config.h"
 #include "slam/live/live_recorder.h"
 #include "slam/live/live_runner.h"
-#include "slam/localize_pipeline.h"
+#include "slam/localization/localize_pipeline.h"
 
 namespace uwbsar::slam {
 

@@ -13,13 +13,13 @@
 #include "drivers/live/host_clock.h"
 #include "imaging/image_io.h"
 #include "slam/app_config.h"
+#include "slam/jobs/saved_session.h"
 #include "slam/live/live_processor.h"
 #include "slam/live/live_recorder.h"
 #include "slam/live/live_ros2_results.h"
 #include "slam/live/live_source.h"
-#include "slam/map_outputs.h"
-#include "slam/output_folder.h"
-#include "slam/saved_session.h"
+#include "slam/outputs/map_outputs.h"
+#include "slam/outputs/output_folder.h"
 #include "slam/session/session_file.h"
 
 namespace uwbsar::slam {

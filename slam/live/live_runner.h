@@ -27,9 +27,9 @@
 #include "drivers/live/gpio.h"
 #include "drivers/live/radar_device.h"
 #include "slam/app_config.h"
-#include "slam/localize_job.h"
+#include "slam/localization/localize_job.h"
 #include "slam/map_job.h"
-#include "slam/map_outputs.h"
+#include "slam/outputs/map_outputs.h"
 
 namespace uwbsar::slam {
 
@@ -81,7 +81,7 @@ struct LiveRunResult {
   std::vector<std::pair<std::string, live::RadarStats>> radars;
 };
 
-/// Locks options.out_dir for this process (slam/map_outputs.h LockOutputFolder) and
+/// Locks options.out_dir for this process (slam/outputs/map_outputs.h LockOutputFolder) and
 /// refuses a folder the run must not write: a saved map's folder when localising, one holding
 /// a saved map when mapping without options.overwrite. RunLive does this first; a caller that
 /// prepares devices inside out_dir (`run --emulate`) calls it before them.

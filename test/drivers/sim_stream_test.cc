@@ -10,10 +10,10 @@
 #include <fstream>
 #include <sstream>
 
+#include "app/app_config_io.h"
 #include "drivers/rosbag/robot_bag.h"
 #include "drivers/sim/sim_bag_writer.h"
 #include "drivers/sim/sim_recorder.h"
-#include "slam/app_config_io.h"
 #include "test/drivers/sim_test_util.h"
 #include "test/shared_data.h"
 

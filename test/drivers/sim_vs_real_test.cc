@@ -28,12 +28,12 @@
 #include <string>
 #include <vector>
 
+#include "app/app_config_io.h"
 #include "drivers/sim/sim_stream.h"
 #include "frontend/imaging_frontend.h"
 #include "frontend/strip_renderer.h"
 #include "imaging/enhance.h"
 #include "imaging/image_io.h"
-#include "slam/app_config_io.h"
 #include "test/drivers/sim_test_util.h"
 #include "test/imaging/image_ncc.h"
 

@@ -10,7 +10,7 @@
 #include "frontend/strip_renderer.h"
 #include "imaging/enhance.h"
 #include "slam/app_config.h"
-#include "slam/imaging_job.h"
+#include "slam/jobs/imaging_job.h"
 
 namespace uwbsar::testing {
 

@@ -1,11 +1,11 @@
 // The configuration file `uwbsar calibrate` writes: the fit's backend keys that belong to the
 // robot through the configuration writer, loadable by --config, and nothing else (never a
 // gyro's bias, which belongs to the run).
-#include "slam/calibrate_job.h"
+#include "slam/jobs/calibrate_job.h"
 
 #include <gtest/gtest.h>
 
-#include "slam/app_config_io.h"
+#include "app/app_config_io.h"
 
 namespace uwbsar::slam {
 namespace {

@@ -1,6 +1,6 @@
-// `uwbsar check`'s job (slam/check_job.h) on small bags written here: one as the robot records
+// `uwbsar check`'s job (slam/jobs/check_job.h) on small bags written here: one as the robot records
 // it, and six each broken in one way, whose problem the check must name.
-#include "slam/check_job.h"
+#include "slam/jobs/check_job.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -3,7 +3,7 @@
 // names; any other name is refused with the key and the allowed names.
 #include <gtest/gtest.h>
 
-#include "slam/app_config_io.h"
+#include "app/app_config_io.h"
 
 namespace uwbsar {
 namespace {
@@ -18,7 +18,7 @@ std::string LoadError(const std::string& yaml) {
 }
 
 TEST(ConfigEnumsTest, EachModeIsReadByItsName) {
-  const Config c = LoadConfigFromString(
+  const AppConfig c = LoadConfigFromString(
       "imaging:\n  mode: coherent\nbackend:\n  robust_loss: huber\n  initialization: chordal\n"
       "compare:\n  align: origin\n",
       "robot.yaml");
@@ -32,7 +32,7 @@ TEST(ConfigEnumsTest, EachModeIsReadByItsName) {
 }
 
 TEST(ConfigEnumsTest, DefaultsAreThePaperModes) {
-  const Config c;
+  const AppConfig c;
   EXPECT_EQ(c.imaging.mode, ImagingMode::kPaper);
   EXPECT_EQ(c.backend.robust_loss, RobustLoss::kCauchy);
   EXPECT_EQ(c.backend.initialization, GraphInitialization::kGuess);
@@ -57,7 +57,7 @@ TEST(ConfigEnumsTest, AnUnknownNameIsRefusedNamingTheKeyLineAndAllowedNames) {
 }
 
 TEST(ConfigEnumsTest, WrittenConfigKeepsTheNamesAndReadsBack) {
-  Config c;
+  AppConfig c;
   c.imaging.mode = ImagingMode::kCoherent;
   c.backend.robust_loss = RobustLoss::kNone;
   c.backend.initialization = GraphInitialization::kChordal;

@@ -3,7 +3,7 @@
 #include <array>
 #include <string>
 
-#include "slam/app_config_io.h"
+#include "app/app_config_io.h"
 #include "test/slam/config_refusal.h"
 
 namespace uwbsar {

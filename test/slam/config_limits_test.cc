@@ -7,9 +7,9 @@
 #include <fstream>
 #include <string>
 
+#include "app/app_config_io.h"
 #include "core/bounded_file.h"
 #include "core/yaml_file.h"
-#include "slam/app_config_io.h"
 #include "test/slam/config_refusal.h"
 
 namespace uwbsar {

@@ -7,8 +7,8 @@
 #include <fstream>
 #include <string>
 
+#include "app/app_config_io.h"
 #include "core/shortest_number.h"
-#include "slam/app_config_io.h"
 #include "slam/config/config_fingerprint.h"
 
 namespace uwbsar {

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "slam/app_config_io.h"
+#include "app/app_config_io.h"
 
 namespace uwbsar {
 

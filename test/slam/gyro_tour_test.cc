@@ -16,12 +16,12 @@
 #include <string>
 #include <vector>
 
+#include "app/app_config_io.h"
 #include "backend/odometry_calibration_fit.h"
 #include "eval/tour/gyro_bias_eval.h"
 #include "eval/tour/tour_eval.h"
 #include "slam/app_config.h"
-#include "slam/app_config_io.h"
-#include "slam/calibrate_job.h"
+#include "slam/jobs/calibrate_job.h"
 #include "test/slam/simulated_calibration.h"
 
 namespace uwbsar {

@@ -1,6 +1,6 @@
-// slam/map_figure.h: the report's annotated map figure frames map.png's raster with axes,
+// slam/outputs/map_figure.h: the report's annotated map figure frames map.png's raster with axes,
 // a scale bar, a colour bar and a legend in distinct colours, and draws loops above paths.
-#include "slam/map_figure.h"
+#include "slam/outputs/map_figure.h"
 
 #include <gtest/gtest.h>
 

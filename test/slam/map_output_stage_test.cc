@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "slam/map_outputs.h"
+#include "slam/outputs/map_outputs.h"
 
 namespace uwbsar::tools {
 namespace {

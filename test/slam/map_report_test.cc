@@ -1,7 +1,7 @@
-// slam/map_report.h: StageTimingTable (the stages' seconds, their sum and the wall time, the
-// shares of the wall time, a note that the stages overlap on two threads) and the run's paths
+// slam/outputs/map_report.h: StageTimingTable (the stages' seconds, their sum and the wall time,
+// the shares of the wall time, a note that the stages overlap on two threads) and the run's paths
 // in drawing order, so that a straight run's ground truth and loops stay visible.
-#include "slam/map_report.h"
+#include "slam/outputs/map_report.h"
 
 #include <gtest/gtest.h>
 

@@ -14,7 +14,7 @@
 #include "backend/incremental_mosaic.h"
 #include "drivers/sim/synthetic_run.h"
 #include "slam/app_config.h"
-#include "slam/map_outputs.h"
+#include "slam/outputs/map_outputs.h"
 
 namespace uwbsar::tools {
 namespace {

@@ -1,7 +1,7 @@
 // KeyframeWallRidges: on a straight keyframe each radar gets the near face of the first wall on
 // its side (the corridor tile of the wall-profile tests, test/frontend/corridor_tile.h); a
 // turning keyframe and a side without a wall get none.
-#include "slam/navigation_map.h"
+#include "slam/outputs/navigation_map.h"
 
 #include <gtest/gtest.h>
 

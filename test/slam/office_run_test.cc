@@ -12,7 +12,7 @@
 #include "backend/occupancy_io.h"
 #include "slam/app_config.h"
 #include "slam/map_job.h"
-#include "slam/navigation_map.h"
+#include "slam/outputs/navigation_map.h"
 #include "slam/slam_system.h"
 #include "test/navigation_checks.h"
 

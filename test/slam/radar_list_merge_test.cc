@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "slam/app_config_io.h"
+#include "app/app_config_io.h"
 #include "test/slam/config_refusal.h"
 
 namespace uwbsar {
@@ -17,7 +17,7 @@ namespace {
 std::string Yaml(const RadarConfig& radar) { return ConfigToYaml(radar); }
 
 TEST(RadarListMergeTest, ChangingOneKeyOfOneRadarKeepsTheOtherRadarExactly) {
-  const Config c =
+  const AppConfig c =
       LoadConfigFromString("radars:\n  - name: left\n    max_range_m: 2.5\n", "r.yaml");
   const std::vector<RadarConfig> defaults = DefaultRadars();
   ASSERT_EQ(c.radars.size(), 2u);
@@ -45,7 +45,7 @@ TEST(RadarListMergeTest, ChangingOneKeyOfOneRadarKeepsTheOtherRadarExactly) {
 }
 
 TEST(RadarListMergeTest, ANewNameAddsARadarFromTheDefaultsAndMustGiveItsTopic) {
-  const Config c = LoadConfigFromString(
+  const AppConfig c = LoadConfigFromString(
       "radars:\n  - name: left\n  - name: right\n  - name: front\n    topic: /front/readings\n"
       "    boresight_yaw_deg: 0\n",
       "r.yaml");
@@ -72,7 +72,7 @@ TEST(RadarListMergeTest, ANewNameAddsARadarFromTheDefaultsAndMustGiveItsTopic) {
 }
 
 TEST(RadarListMergeTest, ARadarIsRemovedByName) {
-  const Config c = LoadConfigFromString("radars:\n  - {name: right, remove: true}\n", "r.yaml");
+  const AppConfig c = LoadConfigFromString("radars:\n  - {name: right, remove: true}\n", "r.yaml");
   ASSERT_EQ(c.radars.size(), 1u);
   EXPECT_EQ(Yaml(c.radars[0]), Yaml(DefaultRadars()[0]));
   EXPECT_EQ(RefusalOf("radars:\n  - {name: back, remove: true}\n"),
@@ -85,7 +85,7 @@ TEST(RadarListMergeTest, ARadarIsRemovedByName) {
             "x.yaml:2: 'radars' must list at least one radar");
   // `uwbsar config` prints a file that loads back to the same radars.
   EXPECT_EQ(ConfigToYaml(LoadConfigFromString(ConfigFileYaml(c), "printed.yaml")), ConfigToYaml(c));
-  EXPECT_EQ(ConfigFileYaml(Config{}), ConfigToYaml(Config{}));
+  EXPECT_EQ(ConfigFileYaml(AppConfig{}), ConfigToYaml(AppConfig{}));
 }
 
 TEST(RadarListMergeTest, AnEntryWithoutANameIsRefusedNamingFileLineAndKey) {

@@ -1,10 +1,10 @@
-// slam/report_html.h: the trajectory plot has axes in metres, start and end markers and
+// slam/outputs/report_html.h: the trajectory plot has axes in metres, start and end markers and
 // its loops above the paths; per-run sections and table notes are rendered.
-#include "slam/report_html.h"
+#include "slam/outputs/report_html.h"
 
 #include <gtest/gtest.h>
 
-#include "slam/map_figure.h"
+#include "slam/outputs/map_figure.h"
 
 namespace uwbsar::slam {
 namespace {

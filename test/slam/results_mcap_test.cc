@@ -2,7 +2,7 @@
 // reader with the ROS schemas named and defined (the Python readers check the content end to
 // end in test/tools/contract_run_cli_test.cc), grids go out bottom row first, and the preview
 // keeps the mosaic's corner and averages observed pixels only.
-#include "slam/results_mcap.h"
+#include "slam/outputs/results_mcap.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -18,13 +18,13 @@
 #include <cstdio>
 #include <vector>
 
+#include "app/app_config_io.h"
 #include "backend/odometry_calibration_fit.h"
 #include "eval/tour/tour_eval.h"
 #include "slam/app_config.h"
-#include "slam/app_config_io.h"
-#include "slam/calibrate_job.h"
-#include "slam/localize_job.h"
-#include "slam/session_capture.h"
+#include "slam/jobs/calibrate_job.h"
+#include "slam/localization/localize_job.h"
+#include "slam/outputs/session_capture.h"
 #include "test/slam/simulated_calibration.h"
 
 namespace uwbsar {

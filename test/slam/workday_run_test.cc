@@ -12,9 +12,9 @@
 
 #include "slam/app_config.h"
 #include "slam/map_job.h"
+#include "slam/outputs/session_capture.h"
+#include "slam/outputs/session_outputs.h"
 #include "slam/session/session_file.h"
-#include "slam/session_capture.h"
-#include "slam/session_outputs.h"
 #include "slam/slam_system.h"
 
 namespace uwbsar {

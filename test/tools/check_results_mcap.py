@@ -1,5 +1,5 @@
 """Reads a results.mcap with the independent Python `mcap` + `mcap-ros2-support` readers and
-checks what uwbsar promises about it (slam/results_timeline.h):
+checks what uwbsar promises about it (slam/outputs/results_timeline.h):
 
   check_results_mcap.py run DIR       `map` / `demo`: one /map per solve (summary.json), the
                                       last /map is map.pgm, /path ends at trajectory.tum's end,

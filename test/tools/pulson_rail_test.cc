@@ -12,10 +12,10 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "app/app_config_io.h"
 #include "drivers/logs/text_log.h"
 #include "imaging/enhance.h"
-#include "slam/app_config_io.h"
-#include "slam/imaging_job.h"
+#include "slam/jobs/imaging_job.h"
 #include "test/imaging/image_ncc.h"
 #include "test/shared_data.h"
 

@@ -9,9 +9,9 @@
 #include <cstdio>
 #include <string>
 
+#include "app/app_config_io.h"
 #include "frontend/place_recognition/place_recognizer.h"
 #include "slam/app_config.h"
-#include "slam/app_config_io.h"
 #include "test/frontend/place_recognition/sar_scene.h"
 
 namespace uwbsar::testing {

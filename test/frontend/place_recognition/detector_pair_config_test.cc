@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "app/app_config_io.h"
 #include "slam/app_config.h"
-#include "slam/app_config_io.h"
 
 namespace uwbsar {
 namespace {

@@ -2,7 +2,7 @@
 // starting 2 m along and 20 deg turned (another seed) is placed within 3 m, its fixes are
 // all true, ATE while tracking within 5 cm, nothing added to the map; a run through a part
 // of the room the map never saw stays "lost" with no fix.
-#include "slam/localizer.h"
+#include "slam/localization/localizer.h"
 
 #include <gtest/gtest.h>
 
@@ -10,10 +10,10 @@
 #include <cstdio>
 
 #include "slam/app_config.h"
-#include "slam/localize_job.h"
+#include "slam/localization/localize_job.h"
 #include "slam/map_job.h"
+#include "slam/outputs/session_capture.h"
 #include "slam/scene_simulation.h"
-#include "slam/session_capture.h"
 #include "test/shared_data.h"
 #include "test/slam/session/session_test_util.h"
 

@@ -20,11 +20,11 @@
 #include <string>
 
 #include "core/errors.h"
+#include "slam/outputs/session_mosaic.h"
 #include "slam/session/blob_checksum.h"
 #include "slam/session/blob_codec.h"
 #include "slam/session/session_file.h"
 #include "slam/session/session_merge.h"
-#include "slam/session_mosaic.h"
 #include "test/slam/session/session_test_util.h"
 #include "test/slam/session/sqlite_edit.h"
 #include "test/slam/session/tiny_session.h"

@@ -12,10 +12,10 @@
 
 #include "slam/app_config.h"
 #include "slam/map_job.h"
+#include "slam/outputs/session_capture.h"
+#include "slam/outputs/session_outputs.h"
 #include "slam/scene_simulation.h"
 #include "slam/session/session_file.h"
-#include "slam/session_capture.h"
-#include "slam/session_outputs.h"
 #include "test/shared_data.h"
 #include "test/slam/session/session_test_util.h"
 

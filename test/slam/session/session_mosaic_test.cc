@@ -1,7 +1,7 @@
 // The map of several runs (session.joined_mosaic): with "normalized_max" a run imaged
 // brighter than another (other range, other heading) does not raise the occupancy
 // threshold over the other run's walls, as the plain mean does.
-#include "slam/session_mosaic.h"
+#include "slam/outputs/session_mosaic.h"
 
 #include <gtest/gtest.h>
 

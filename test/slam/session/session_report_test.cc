@@ -1,7 +1,7 @@
-// The report.html of a joined session (slam/session_outputs.h, slam/session_report.h) is as
-// full as a plain map's: the timings it is given, the loop table, the annotated figure of
-// all runs and one section per run with that run's own figure.
-#include "slam/session_report.h"
+// The report.html of a joined session (slam/outputs/session_outputs.h,
+// slam/outputs/session_report.h) is as full as a plain map's: the timings it is given, the loop
+// table, the annotated figure of all runs and one section per run with that run's own figure.
+#include "slam/outputs/session_report.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -11,7 +11,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "slam/session_outputs.h"
+#include "slam/outputs/session_outputs.h"
 #include "test/slam/session/tiny_session.h"
 
 namespace uwbsar::slam {

@@ -5,8 +5,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "app/app_config_io.h"
 #include "slam/app_config.h"
-#include "slam/app_config_io.h"
 #include "slam/config/config_fingerprint.h"
 #include "slam/session/session_data.h"
 
