@@ -83,7 +83,8 @@ format:
 format-check:
 	git ls-files '*.h' '*.cc' | xargs clang-format --dry-run --Werror
 
-# Every #include is allowed by the dependency table (cmake/check_layering.py).
+# Every #include and every link of the SLAM library is allowed by the dependency table
+# (cmake/check_layering.py: the robot's libraries link no evaluation and no PCL).
 layering-check:
 	python3 cmake/check_layering.py
 
