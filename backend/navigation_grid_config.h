@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <string>
 
 namespace uwbsar {
 
@@ -74,5 +75,9 @@ struct NavigationGridConfig {
     v("ridge_support_fraction", ridge_support_fraction);
   }
 };
+/// Semantic checks of slam.navigation.*; throws ConfigError naming the dotted key. The
+/// navigation rays' budget (limits.max_navigation_rays) joins sections and is checked with the
+/// limits (slam/config/system_config_limits.cc).
+void Validate(const NavigationGridConfig& config, const std::string& source_name);
 
 }  // namespace uwbsar

@@ -5,6 +5,8 @@
 // Part of WallProfileConfig (frontend/wall_profile_config.h).
 #pragma once
 
+#include <string>
+
 namespace uwbsar {
 
 struct WallLineConfig {
@@ -58,5 +60,8 @@ struct WallLineConfig {
     v("min_observations", min_observations);
   }
 };
+/// Semantic checks of place_recognition.wall_profiles.landmarks.*; throws ConfigError naming
+/// the dotted key.
+void Validate(const WallLineConfig& config, const std::string& source_name);
 
 }  // namespace uwbsar

@@ -7,6 +7,8 @@
 // Part of the configuration (frontend/place_recognition/place_recognition_config.h includes it).
 #pragma once
 
+#include <string>
+
 #include "frontend/wall_line_config.h"
 
 namespace uwbsar {
@@ -46,5 +48,8 @@ struct WallProfileConfig {
     v("landmarks", landmarks);
   }
 };
+/// Semantic checks of place_recognition.wall_profiles.* (its landmarks included); throws
+/// ConfigError naming the dotted key.
+void Validate(const WallProfileConfig& config, const std::string& source_name);
 
 }  // namespace uwbsar

@@ -110,44 +110,6 @@ void ValidatePerRadar(const RadarMatchConfig& r, const std::string& src, const s
           k + "per_radar.max_look_difference_deg", "must be in [0, 180]");
 }
 
-void ValidateWallProfiles(const WallProfileConfig& w, const std::string& src,
-                          const std::string& k) {
-  Require(w.min_gap >= 1, src, k + "wall_profiles.min_gap", "must be >= 1");
-  Require(w.max_gap >= w.min_gap && w.max_gap <= 100, src, k + "wall_profiles.max_gap",
-          "must be in [wall_profiles.min_gap, 100]");
-  Require(w.max_heading_change_deg > 0 && w.max_heading_change_deg <= 45, src,
-          k + "wall_profiles.max_heading_change_deg", "must be in (0, 45]");
-  Require(w.bin_m > 0 && w.bin_m <= 0.1, src, k + "wall_profiles.bin_m", "must be in (0, 0.1]");
-  Require(w.half_width_m >= 10 * w.bin_m && w.half_width_m / w.bin_m <= 1e5, src,
-          k + "wall_profiles.half_width_m", "must be in [10, 1e5] x wall_profiles.bin_m");
-  Require(w.search_m >= w.bin_m && w.search_m < w.half_width_m, src, k + "wall_profiles.search_m",
-          "must be in [bin_m, half_width_m)");
-  Require(w.min_wall_contrast >= 1, src, k + "wall_profiles.min_wall_contrast", "must be >= 1");
-  Require(w.min_correlation > 0 && w.min_correlation <= 1, src, k + "wall_profiles.min_correlation",
-          "must be in (0, 1]");
-  Require(w.lateral_std_m > 0, src, k + "wall_profiles.lateral_std_m", "must be > 0");
-  Require(w.max_side_disagreement_m >= 0 && w.max_side_disagreement_m <= w.search_m * 2, src,
-          k + "wall_profiles.max_side_disagreement_m",
-          "must be in [0, 2 x wall_profiles.search_m]");
-  const WallLineConfig& l = w.landmarks;
-  const std::string m = k + "wall_profiles.landmarks.";
-  Require(l.min_peak_contrast >= 1, src, m + "min_peak_contrast", "must be >= 1");
-  Require(l.min_distance_m >= 0, src, m + "min_distance_m", "must be >= 0");
-  Require(l.max_lines_per_side >= 1, src, m + "max_lines_per_side", "must be >= 1");
-  Require(l.strips >= 3, src, m + "strips", "must be >= 3");
-  Require(l.min_strips >= 3 && l.min_strips <= l.strips, src, m + "min_strips",
-          "must be in [3, strips]");
-  Require(l.band_m > 0, src, m + "band_m", "must be > 0");
-  Require(l.max_fit_rms_m > 0, src, m + "max_fit_rms_m", "must be > 0");
-  Require(l.offset_std_m > 0, src, m + "offset_std_m", "must be > 0");
-  Require(l.angle_std_deg > 0, src, m + "angle_std_deg", "must be > 0");
-  Require(l.gate_offset_m > 0, src, m + "gate_offset_m", "must be > 0");
-  Require(l.gate_angle_deg > 0 && l.gate_angle_deg < 45, src, m + "gate_angle_deg",
-          "must be in (0, 45)");
-  Require(l.max_gap >= 1, src, m + "max_gap", "must be >= 1");
-  Require(l.min_observations >= 2, src, m + "min_observations", "must be >= 2");
-}
-
 }  // namespace
 
 void Validate(const PlaceRecognitionConfig& p, const std::string& src) {
@@ -158,7 +120,7 @@ void Validate(const PlaceRecognitionConfig& p, const std::string& src) {
   ValidateCandidates(p.candidates, src, k);
   ValidateGuided(p.guided, src, k);
   ValidatePerRadar(p.per_radar, src, k);
-  ValidateWallProfiles(p.wall_profiles, src, k);
+  Validate(p.wall_profiles, src);  // beside its struct (frontend/wall_profile_config.h)
 }
 
 }  // namespace uwbsar

@@ -7,7 +7,10 @@
 #include <fstream>
 #include <string>
 
-#include "slam/app_config_io.h"
+#include "app/app_config_io.h"
+#include "backend/navigation_grid_config.h"
+#include "core/config_require.h"
+#include "frontend/wall_profile_config.h"
 #include "test/slam/config_refusal.h"
 
 namespace uwbsar {
@@ -46,6 +49,44 @@ TEST(ConfigMessagesTest, AnInvalidValueNamesTheFileAndLineThatSetItAndItsKey) {
   // A key no file set (a rule across keys) keeps naming the files.
   EXPECT_EQ(RefusalOf("slam:\n  map_resolution_m: 2\n"),
             "x.yaml: 'slam.occupancy_resolution_m' must be in [slam.map_resolution_m, 10]");
+}
+
+/// "'<key>' <rule>" of the refusal `validate` throws, as a section's own validator words it.
+template <class F>
+std::string OwnRefusalOf(F validate) {
+  try {
+    validate();
+  } catch (const ConfigValueError& e) {
+    return "'" + e.key() + "' " + e.rule();
+  }
+  return "";
+}
+
+// Issue 46 item 4: slam.navigation.* is validated beside its struct in backend/, the wall
+// settings beside theirs in frontend/; the whole file refuses them with the same words.
+TEST(ConfigMessagesTest, NavigationAndWallSettingsAreRefusedBesideTheirDeclaration) {
+  NavigationGridConfig navigation;
+  navigation.ray_width_m = 2;
+  EXPECT_EQ(OwnRefusalOf([&] { Validate(navigation, "x.yaml"); }),
+            "'slam.navigation.ray_width_m' must be in [0, 1]");
+  EXPECT_EQ(RefusalOf("slam:\n  navigation:\n    ray_width_m: 2\n"),
+            "x.yaml:3: " + OwnRefusalOf([&] { Validate(navigation, "x.yaml"); }));
+
+  WallProfileConfig walls;
+  walls.landmarks.min_strips = 9;
+  EXPECT_EQ(OwnRefusalOf([&] { Validate(walls, "x.yaml"); }),
+            "'place_recognition.wall_profiles.landmarks.min_strips' must be in [3, strips]");
+  EXPECT_EQ(OwnRefusalOf([&] { Validate(walls.landmarks, "x.yaml"); }),
+            OwnRefusalOf([&] { Validate(walls, "x.yaml"); }));
+  EXPECT_EQ(
+      RefusalOf("place_recognition:\n  wall_profiles:\n    landmarks:\n      min_strips: 9\n"),
+      "x.yaml:4: " + OwnRefusalOf([&] { Validate(walls, "x.yaml"); }));
+  walls = WallProfileConfig();
+  walls.max_gap = 1;
+  EXPECT_EQ(OwnRefusalOf([&] { Validate(walls, "x.yaml"); }),
+            "'place_recognition.wall_profiles.max_gap' must be in [wall_profiles.min_gap, 100]");
+  EXPECT_EQ(RefusalOf("place_recognition:\n  wall_profiles:\n    max_gap: 1\n"),
+            "x.yaml:3: " + OwnRefusalOf([&] { Validate(walls, "x.yaml"); }));
 }
 
 TEST(ConfigMessagesTest, AnUnknownKeySuggestsTheClosestKnownOne) {
