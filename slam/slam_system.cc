@@ -1,7 +1,6 @@
 #include "slam/slam_system.h"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -14,7 +13,6 @@
 #include "core/log.h"
 #include "core/types.h"
 #include "slam/app_config.h"
-#include "slam/detected_tile.h"
 #include "slam/session/place_views.h"
 
 namespace uwbsar::slam {
@@ -24,16 +22,6 @@ using Clock = std::chrono::steady_clock;
 
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-/// Walls as landmarks (place_recognition.wall_profiles.landmarks): only for a base whose
-/// odometry calibration is given, unless require_calibrated_base is off.
-bool UsesWallLandmarks(const Config& config) {
-  const WallProfileConfig& walls = config.place_recognition.wall_profiles;
-  const std::array<double, 3> calibration = config.backend.CalibrationMean();
-  const bool calibrated = calibration[0] != 0.0 || calibration[1] != 0.0 || calibration[2] != 0.0;
-  return walls.enabled && walls.landmarks.enabled &&
-         (calibrated || !walls.landmarks.require_calibrated_base);
 }
 
 /// Place recognition's view of the configuration, with the candidate search widening as a gyro
@@ -56,7 +44,8 @@ SlamSystem::SlamSystem(const Config& config)
       recognizer_(std::make_unique<PlaceRecognizer>(RecognizerConfig(config))),
       wall_edges_(config.place_recognition.wall_profiles),
       wall_landmarks_(config.place_recognition.wall_profiles),
-      wall_landmarks_on_(UsesWallLandmarks(config)),
+      wall_landmarks_on_(UsesWallLandmarks(config.place_recognition.wall_profiles, config.backend)),
+      products_(config, config.place_recognition.wall_profiles.enabled, wall_landmarks_on_),
       stillness_(config.backend),
       tiles_(static_cast<std::size_t>(config.limits.tile_cache_mb * 1024.0 * 1024.0)),
       worker_(config.slam.keyframe_thread, config.slam.keyframe_queue_size,
@@ -174,33 +163,24 @@ void SlamSystem::AddKeyframe(Keyframe&& keyframe) {
   // The long part, without the lock: only this thread uses the recognizer.
   const PlaceRecognitionResult found = recognizer_->Process(keyframe, estimate);
   const auto start = Clock::now();
-  KeyframeRecord record;
-  cv::Mat detected;
-  MakeDetected(keyframe, config_, &detected, &record.detected_grid);
+  const KeyframeProducts products = Products(keyframe);
   // Walls as landmarks where a straight wall is seen, the pairwise edges elsewhere: an edge
   // between two keyframes that see one landmark would measure that wall a second time. Both
-  // read the tile's wall profile, made once here.
-  const WallProfileConfig& wall_config = config_.place_recognition.wall_profiles;
+  // read the tile's wall profile, made once with its products.
   std::vector<PoseGraphEdge> walls;
+  if (products.wall_profile) walls = wall_edges_.Add(keyframe, *products.wall_profile);
   WallLandmarkTracker::Update seen;
-  if (wall_config.enabled && keyframe.complete && !detected.empty()) {
-    const WallProfile profile =
-        KeyframeWallProfile(keyframe, detected, record.detected_grid, wall_config);
-    if (wall_landmarks_on_) {
-      seen = wall_landmarks_.Add(keyframe, detected, record.detected_grid, profile);
-    }
-    walls = wall_edges_.Add(keyframe, profile);
-  } else if (wall_landmarks_on_) {
-    seen = wall_landmarks_.Add(keyframe.id, keyframe.T_world_anchor, {});  // counts as a gap
-  }
   if (wall_landmarks_on_) {
+    seen = wall_landmarks_.Add(keyframe, products);  // a tile without walls counts as a gap
     walls.erase(std::remove_if(walls.begin(), walls.end(),
                                [&](const PoseGraphEdge& e) {
                                  return wall_landmarks_.ShareLandmark(e.from_id, e.to_id);
                                }),
                 walls.end());
   }
-  record.detected = tiles_.Put(detected);  // out of core from here on
+  KeyframeRecord record;
+  record.detected_grid = products.grid;
+  record.detected = tiles_.Put(products.detected);  // out of core from here on
   if (!config_.slam.keep_tile_images) keyframe.image.release();
   keyframe.sensor_tiles.clear();  // per-radar images: only their features are kept
   const double detected_s = SecondsSince(start);
