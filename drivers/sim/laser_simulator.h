@@ -10,6 +10,7 @@
 #include "core/types.h"
 #include "drivers/sim/grid_ray_caster.h"
 #include "drivers/sim/simulator_config.h"
+#include "drivers/sim/walking_people.h"
 
 namespace uwbsar::sim {
 
@@ -24,7 +25,9 @@ struct SimLaserScan {
 };
 
 /// One scan from a laser at T_world_laser (x forward); noise from `rng` (nullptr: none).
+/// `movers` (people walking past, at this instant) stop the beams that meet them first.
 SimLaserScan SimulateLaserScan(const GridRayCaster& caster, const Pose2& T_world_laser,
-                               const SimLaserConfig& config, std::mt19937_64* rng);
+                               const SimLaserConfig& config, std::mt19937_64* rng,
+                               const std::vector<SimDisc>& movers = {});
 
 }  // namespace uwbsar::sim

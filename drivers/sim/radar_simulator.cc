@@ -35,7 +35,8 @@ void RadarSimulator::AddScatterer(const SimScatterer& s, const Pose2& T_world_se
                        static_cast<float>(gain * s.quadrature), scan, sensor_.num_samples);
 }
 
-std::vector<float> RadarSimulator::Simulate(const Pose2& T_world_sensor, std::mt19937_64* rng) {
+std::vector<float> RadarSimulator::Simulate(const Pose2& T_world_sensor, std::mt19937_64* rng,
+                                            const std::vector<SimDisc>& movers) {
   std::vector<float> scan(static_cast<std::size_t>(sensor_.num_samples), 0.0f);
   const Point2 antenna{T_world_sensor.x_m, T_world_sensor.y_m};
   lit_cells_.clear();
@@ -53,6 +54,16 @@ std::vector<float> RadarSimulator::Simulate(const Pose2& T_world_sensor, std::mt
   for (const SimScatterer& target : environment_.point_targets()) {
     if (caster_.Visible(antenna, {target.x_m, target.y_m}, tolerance)) {
       AddScatterer(target, T_world_sensor, scan.data());
+    }
+  }
+  for (const SimDisc& d : movers) {
+    const double dx = antenna.x_m - d.x_m, dy = antenna.y_m - d.y_m;
+    const double distance = std::hypot(dx, dy);
+    if (distance <= d.radius_m) continue;
+    const SimScatterer near{d.x_m + dx / distance * d.radius_m, d.y_m + dy / distance * d.radius_m,
+                            d.in_phase, d.quadrature};
+    if (caster_.Visible(antenna, {near.x_m, near.y_m}, tolerance)) {
+      AddScatterer(near, T_world_sensor, scan.data());
     }
   }
   if (config_.coupling_amplitude != 0.0) {

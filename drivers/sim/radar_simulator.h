@@ -16,6 +16,7 @@
 #include "drivers/sim/grid_ray_caster.h"
 #include "drivers/sim/pulse_table.h"
 #include "drivers/sim/sim_environment.h"
+#include "drivers/sim/walking_people.h"
 #include "imaging/sensor_geometry.h"
 
 namespace uwbsar::sim {
@@ -27,9 +28,11 @@ class RadarSimulator {
                  const SensorGeometry& sensor, const SimRadarConfig& config);
 
   /// One scan (sensor.num_samples samples) for the antenna at T_world_sensor (x along
-  /// boresight). Noise is drawn from `rng`; nullptr gives a noise-free scan.
-  /// Not thread-safe: use one simulator per thread.
-  std::vector<float> Simulate(const Pose2& T_world_sensor, std::mt19937_64* rng);
+  /// boresight). Noise is drawn from `rng`; nullptr gives a noise-free scan. `movers` (people
+  /// walking past, at this instant) each add the echo of their side facing the antenna where
+  /// no wall hides it. Not thread-safe: use one simulator per thread.
+  std::vector<float> Simulate(const Pose2& T_world_sensor, std::mt19937_64* rng,
+                              const std::vector<SimDisc>& movers = {});
 
   /// Occupied cells the last Simulate() lit (row * cols + col), for tests and metrics.
   const std::vector<int>& lit_cells() const { return lit_cells_; }

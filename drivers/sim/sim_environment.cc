@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 namespace uwbsar::sim {
 
@@ -15,13 +16,28 @@ std::uint64_t DeriveSeed(std::uint64_t seed, std::uint64_t a, std::uint64_t b) {
   return mix(mix(mix(seed) ^ a) ^ b);
 }
 
-SimEnvironment::SimEnvironment(OccupancyGrid grid, const SimRadarConfig& radar, std::uint64_t seed)
-    : grid_(std::move(grid)) {
-  std::mt19937_64 rng(DeriveSeed(seed, 0x5ca77e7));
+template <class Rng>
+void SimEnvironment::DrawCell(int row, int col, const SimRadarConfig& radar, Rng& rng) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::exponential_distribution<double> rcs(radar.cell_rcs_m2 > 0 ? 1.0 / radar.cell_rcs_m2 : 1.0);
   const int per_cell = radar.scatterers_per_cell;
   const double res = grid_.resolution_m;
+  const double cell_rcs = radar.cell_rcs_m2 > 0 ? rcs(rng) : 0.0;
+  const double amplitude = std::sqrt(cell_rcs / per_cell);
+  for (int k = 0; k < per_cell; ++k) {
+    // Position inside the cell, in the map frame, then to the world.
+    const Point2 p =
+        grid_.origin * Point2{(col + unit(rng)) * res, (grid_.rows - row - unit(rng)) * res};
+    const double phase = 2.0 * M_PI * unit(rng);
+    scatterers_.push_back({p.x_m, p.y_m, static_cast<float>(amplitude * std::cos(phase)),
+                           static_cast<float>(-amplitude * std::sin(phase))});
+  }
+}
+
+SimEnvironment::SimEnvironment(OccupancyGrid grid, const SimRadarConfig& radar, std::uint64_t seed,
+                               const OccupancyGrid* changed)
+    : grid_(std::move(grid)) {
+  std::mt19937_64 rng(DeriveSeed(seed, 0x5ca77e7));
   cell_begin_.assign(grid_.cells.size() + 1, 0);
   for (int row = 0; row < grid_.rows; ++row) {
     for (int col = 0; col < grid_.cols; ++col) {
@@ -29,16 +45,7 @@ SimEnvironment::SimEnvironment(OccupancyGrid grid, const SimRadarConfig& radar, 
       cell_begin_[cell] = static_cast<int>(scatterers_.size());
       if (!grid_.IsOccupied(row, col)) continue;
       ++num_occupied_;
-      const double cell_rcs = radar.cell_rcs_m2 > 0 ? rcs(rng) : 0.0;
-      const double amplitude = std::sqrt(cell_rcs / per_cell);
-      for (int k = 0; k < per_cell; ++k) {
-        // Position inside the cell, in the map frame, then to the world.
-        const Point2 p =
-            grid_.origin * Point2{(col + unit(rng)) * res, (grid_.rows - row - unit(rng)) * res};
-        const double phase = 2.0 * M_PI * unit(rng);
-        scatterers_.push_back({p.x_m, p.y_m, static_cast<float>(amplitude * std::cos(phase)),
-                               static_cast<float>(-amplitude * std::sin(phase))});
-      }
+      DrawCell(row, col, radar, rng);
     }
   }
   cell_begin_.back() = static_cast<int>(scatterers_.size());
@@ -46,6 +53,37 @@ SimEnvironment::SimEnvironment(OccupancyGrid grid, const SimRadarConfig& radar, 
     // A conducting target reflects with phase pi.
     point_targets_.push_back({t.x_m, t.y_m, static_cast<float>(-std::sqrt(t.rcs_m2)), 0.0f});
   }
+  if (changed != nullptr) Change(*changed, radar, seed);
+}
+
+void SimEnvironment::Change(const OccupancyGrid& changed, const SimRadarConfig& radar,
+                            std::uint64_t seed) {
+  if (changed.rows != grid_.rows || changed.cols != grid_.cols) {
+    throw std::invalid_argument("SimEnvironment: the changed building has another grid size");
+  }
+  const OccupancyGrid before = std::move(grid_);
+  const std::vector<int> begin_before = std::move(cell_begin_);
+  const std::vector<SimScatterer> scatterers_before = std::move(scatterers_);
+  grid_ = changed;
+  cell_begin_.assign(grid_.cells.size() + 1, 0);
+  scatterers_.clear();
+  num_occupied_ = 0;
+  for (int row = 0; row < grid_.rows; ++row) {
+    for (int col = 0; col < grid_.cols; ++col) {
+      const int cell = row * grid_.cols + col;
+      cell_begin_[cell] = static_cast<int>(scatterers_.size());
+      if (!grid_.IsOccupied(row, col)) continue;
+      ++num_occupied_;
+      if (before.IsOccupied(row, col)) {
+        scatterers_.insert(scatterers_.end(), scatterers_before.begin() + begin_before[cell],
+                           scatterers_before.begin() + begin_before[cell + 1]);
+      } else {
+        std::mt19937_64 rng(DeriveSeed(seed, 0xadded, static_cast<std::uint64_t>(cell)));
+        DrawCell(row, col, radar, rng);
+      }
+    }
+  }
+  cell_begin_.back() = static_cast<int>(scatterers_.size());
 }
 
 }  // namespace uwbsar::sim

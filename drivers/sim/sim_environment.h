@@ -29,7 +29,12 @@ class SimEnvironment {
   /// positions inside the cell, uniform phases, and a cell RCS drawn from an
   /// exponential distribution of mean `radar.cell_rcs_m2` (Swerling I), shared
   /// among the cell's scatterers. Point targets get their RCS with phase pi (metal).
-  SimEnvironment(OccupancyGrid grid, const SimRadarConfig& radar, std::uint64_t seed);
+  /// With `changed` (a grid of the same size: a later day's building, drivers/sim/scene_change.h)
+  /// the environment is that building: cells occupied in both keep the scatterers drawn for
+  /// `grid`, cells only `changed` occupies draw theirs from the seed and the cell alone, so a
+  /// change alters the echoes of the cells it edits and of no other.
+  SimEnvironment(OccupancyGrid grid, const SimRadarConfig& radar, std::uint64_t seed,
+                 const OccupancyGrid* changed = nullptr);
 
   const OccupancyGrid& grid() const { return grid_; }
   /// Scatterers of cell `cell` (row * cols + col): [begin, end) into scatterers().
@@ -40,6 +45,12 @@ class SimEnvironment {
   int num_occupied_cells() const { return num_occupied_; }
 
  private:
+  /// Appends the scatterers of occupied cell (row, col), drawn from `rng`.
+  template <class Rng>
+  void DrawCell(int row, int col, const SimRadarConfig& radar, Rng& rng);
+  /// Becomes the building `changed` (see the constructor).
+  void Change(const OccupancyGrid& changed, const SimRadarConfig& radar, std::uint64_t seed);
+
   OccupancyGrid grid_;
   std::vector<int> cell_begin_;  ///< size cells + 1
   std::vector<SimScatterer> scatterers_;

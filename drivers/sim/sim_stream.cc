@@ -11,6 +11,7 @@ namespace {
 constexpr std::uint64_t kOdometryStream = 1;
 constexpr std::uint64_t kLaserStream = 2;
 constexpr std::uint64_t kGyroStream = 3;
+constexpr std::uint64_t kPeopleStream = 4;
 constexpr std::uint64_t kRadarStream = 16;  // + sensor id
 
 long long CountFor(double duration_s, double rate_hz) {
@@ -40,11 +41,19 @@ SimScenario MakeScenario(const SimSettings& config, const std::string& map_yaml,
   SimRadarConfig radar = config.simulator.radar;
   radar.point_targets.insert(radar.point_targets.end(), extra_targets.begin(), extra_targets.end());
   SimScenario scenario;
-  scenario.environment = std::make_shared<const SimEnvironment>(
-      LoadOccupancyGrid(map_yaml, config.limits.max_map_image_pixels), radar, seed);
+  OccupancyGrid grid = LoadOccupancyGrid(map_yaml, config.limits.max_map_image_pixels);
   scenario.route =
       ResolveRoute(route_spec, config.simulator.route, config.limits.max_input_file_mb);
   scenario.trajectory = Trajectory::Plan(scenario.route, config.simulator.route);
+  const SimSceneChangeConfig& change = config.simulator.scene_change;
+  if (change.seed) {
+    SceneChange changed = DrawSceneChange(grid, scenario.route.waypoints, change, *change.seed);
+    scenario.scene_edits = std::move(changed.edits);
+    scenario.environment =
+        std::make_shared<const SimEnvironment>(std::move(grid), radar, seed, &changed.grid);
+  } else {
+    scenario.environment = std::make_shared<const SimEnvironment>(std::move(grid), radar, seed);
+  }
   scenario.trajectory.CheckClearance(scenario.environment->grid(),
                                      config.simulator.route.clearance_m);
   return scenario;
@@ -58,6 +67,8 @@ SimStream::SimStream(const SimSettings& config, const SimScenario& scenario, std
       laser_caster_(scenario.environment->grid()),
       odometry_(config.simulator.odometry, scenario.trajectory.At(0.0),
                 DeriveSeed(seed, kOdometryStream), DeriveSeed(seed, kGyroStream)) {
+  people_ = PlaceWalkingPeople(scenario.environment->grid(), scenario.route.waypoints,
+                               config.simulator.people, DeriveSeed(seed, kPeopleStream));
   for (const RadarConfig& radar : config.radars) {
     const SensorGeometry sensor = SensorGeometry::FromConfig(radar, config.pulse);
     T_robot_sensor_.push_back(sensor.T_robot_sensor);
@@ -115,7 +126,8 @@ bool SimStream::Next(SimMessage* msg) {
                                    static_cast<std::uint64_t>(clock.next)));
     msg->scan.stamp_ns = best_stamp;
     msg->scan.sensor_id = k;
-    msg->scan.samples = radars_[k]->Simulate(truth.T_world_robot * T_robot_sensor_[k], &rng);
+    msg->scan.samples = radars_[k]->Simulate(truth.T_world_robot * T_robot_sensor_[k], &rng,
+                                             PeopleAt(people_, TimeOf(clock)));
     if (++next_radar_ == static_cast<int>(radars_.size())) {
       next_radar_ = 0;
       ++clock.next;
@@ -123,8 +135,8 @@ bool SimStream::Next(SimMessage* msg) {
   } else {
     msg->kind = SimMessage::Kind::kLaserScan;
     std::mt19937_64 rng(DeriveSeed(seed_, kLaserStream, static_cast<std::uint64_t>(clock.next)));
-    msg->laser =
-        SimulateLaserScan(laser_caster_, truth.T_world_robot, config_.simulator.laser, &rng);
+    msg->laser = SimulateLaserScan(laser_caster_, truth.T_world_robot, config_.simulator.laser,
+                                   &rng, PeopleAt(people_, TimeOf(clock)));
     msg->laser.stamp_ns = best_stamp;
     ++clock.next;
   }

@@ -19,9 +19,11 @@
 #include "drivers/sim/base_odometry.h"
 #include "drivers/sim/laser_simulator.h"
 #include "drivers/sim/radar_simulator.h"
+#include "drivers/sim/scene_change.h"
 #include "drivers/sim/sim_environment.h"
 #include "drivers/sim/sim_settings.h"
 #include "drivers/sim/trajectory.h"
+#include "drivers/sim/walking_people.h"
 
 namespace uwbsar::sim {
 
@@ -39,11 +41,14 @@ struct SimScenario {
   std::shared_ptr<const SimEnvironment> environment;
   Route route;
   Trajectory trajectory;
+  std::vector<SceneEdit> scene_edits;  ///< simulator.scene_change's edits of the map (or none)
 };
 
-/// Loads the map, resolves the route (built-in name or waypoints file), plans the motion
-/// and checks the route's clearance. `extra_targets` are added to the configured point
-/// targets. Throws InputError on bad input (map, route, collision).
+/// Loads the map, resolves the route (built-in name or waypoints file), plans the motion,
+/// changes the building when simulator.scene_change.seed is set (drivers/sim/scene_change.h:
+/// the scene's scatterers still come from `seed`) and checks the route's clearance in it.
+/// `extra_targets` are added to the configured point targets. Throws InputError on bad input
+/// (map, route, collision).
 SimScenario MakeScenario(const SimSettings& config, const std::string& map_yaml,
                          const std::string& route_spec, std::uint64_t seed,
                          const std::vector<PointTargetConfig>& extra_targets = {});
@@ -89,6 +94,7 @@ class SimStream {
   double end_s_ = 0.0;
   std::vector<std::unique_ptr<RadarSimulator>> radars_;
   std::vector<Pose2> T_robot_sensor_;
+  std::vector<WalkingPerson> people_;  ///< simulator.people, from the run's seed
   GridRayCaster laser_caster_;
   BaseOdometrySimulator odometry_;
   Clock ground_truth_clock_, odometry_clock_, radar_clock_, laser_clock_;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "core/config_require.h"
 
@@ -79,6 +80,41 @@ void Validate(const SimulatorConfig& s, const std::string& src) {
   Require(l.min_range_m >= 0, src, k + "laser.min_range_m", "must be >= 0");
   Require(l.max_range_m > l.min_range_m, src, k + "laser.max_range_m", "must exceed min_range_m");
   Require(l.noise_std_m >= 0, src, k + "laser.noise_std_m", "must be >= 0");
+  const SimSceneChangeConfig& c = s.scene_change;
+  const std::string kc = k + "scene_change.";
+  for (const auto& [key, count] : {std::pair<const char*, int>{"objects_added", c.objects_added},
+                                   {"objects_removed", c.objects_removed},
+                                   {"objects_moved", c.objects_moved},
+                                   {"doors_closed", c.doors_closed},
+                                   {"doors_opened", c.doors_opened}}) {
+    Require(count >= 0 && count <= 1000, src, kc + key, "must be in [0, 1000]");
+  }
+  Require(c.object_size_min_m > 0, src, kc + "object_size_min_m", "must be > 0");
+  Require(c.object_size_max_m >= c.object_size_min_m && c.object_size_max_m <= 5, src,
+          kc + "object_size_max_m", "must be in [object_size_min_m, 5]");
+  Require(c.distance_min_m > 0, src, kc + "distance_min_m", "must be > 0");
+  Require(c.distance_max_m >= c.distance_min_m, src, kc + "distance_max_m",
+          "must be >= distance_min_m");
+  Require(c.object_max_extent_m > 0 && c.object_max_extent_m <= 5, src, kc + "object_max_extent_m",
+          "must be in (0, 5]");
+  Require(c.move_min_m >= 0, src, kc + "move_min_m", "must be >= 0");
+  Require(c.move_max_m >= c.move_min_m && c.move_max_m <= 20, src, kc + "move_max_m",
+          "must be in [move_min_m, 20]");
+  Require(c.door_width_min_m > 0, src, kc + "door_width_min_m", "must be > 0");
+  Require(c.door_width_max_m >= c.door_width_min_m && c.door_width_max_m <= 5, src,
+          kc + "door_width_max_m", "must be in [door_width_min_m, 5]");
+  Require(c.wall_max_thickness_m > 0 && c.wall_max_thickness_m <= 2, src,
+          kc + "wall_max_thickness_m", "must be in (0, 2]");
+  Require(c.reach_m > 0 && c.reach_m <= 50, src, kc + "reach_m", "must be in (0, 50]");
+  const SimPeopleConfig& p = s.people;
+  const std::string kp = k + "people.";
+  Require(p.count >= 0 && p.count <= 1000, src, kp + "count", "must be in [0, 1000]");
+  Require(p.width_m > 0 && p.width_m <= 5, src, kp + "width_m", "must be in (0, 5]");
+  Require(p.speed_mps > 0 && p.speed_mps <= 10, src, kp + "speed_mps", "must be in (0, 10]");
+  Require(p.offset_m >= 0 && p.offset_m <= 20, src, kp + "offset_m", "must be in [0, 20]");
+  Require(p.walk_length_m > 0 && p.walk_length_m <= 100, src, kp + "walk_length_m",
+          "must be in (0, 100]");
+  Require(p.rcs_m2 >= 0, src, kp + "rcs_m2", "must be >= 0");
   // The simulated bag's headers hold ROS 2 times (core/stamp_range.h).
   Require(s.start_time_s >= 0 && s.start_time_s < 2147483647.0, src, k + "start_time_s",
           "must be in [0, 2147483647) (seconds since 1970, until 2038-01-19: a ROS 2 time)");

@@ -3,6 +3,7 @@
 // written by the generic loader in core/config_io.h.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -185,12 +186,79 @@ struct SimLaserConfig {
   }
 };
 
+/// A changed building for a later run of the same map (day 2; drivers/sim/scene_change.h): small
+/// objects added beside the route, small objects of the map removed or moved, doors closed or
+/// opened. Off while `seed` is null; the map file stays as it is (the day-1 building).
+struct SimSceneChangeConfig {
+  std::optional<std::uint64_t> seed;  ///< null: the map's building unchanged; a number: the change
+  int objects_added = 6;              ///< new objects beside the route
+  int objects_removed = 2;            ///< small objects of the map taken away
+  int objects_moved = 2;              ///< small objects of the map put elsewhere nearby
+  int doors_closed = 1;               ///< doorways of the map closed (never one the route uses)
+  int doors_opened = 1;               ///< door-wide openings made in thin walls
+  double object_size_min_m = 0.15;    ///< added objects: squares of a side drawn in [min, max]
+  double object_size_max_m = 0.25;    ///< ...
+  double distance_min_m = 0.7;  ///< added and moved objects: centre this far from the route ...
+  double distance_max_m = 1.3;  ///< ... at most this far (added ones)
+  double object_max_extent_m = 0.5;   ///< isolated blobs of the map at most this big are objects
+  double move_min_m = 0.3;            ///< a moved object goes this far ...
+  double move_max_m = 1.0;            ///< ... to this far
+  double door_width_min_m = 0.6;      ///< a doorway is a gap this wide in a straight wall ...
+  double door_width_max_m = 1.2;      ///< ... at most this wide; opened doors: 0.9 m
+  double wall_max_thickness_m = 0.3;  ///< walls thicker than this hold no door
+  double reach_m = 3.0;  ///< removed, moved objects and toggled doors lie this close to the route
+
+  template <class V>
+  void Visit(V& v) {
+    v("seed", seed);
+    v("objects_added", objects_added);
+    v("objects_removed", objects_removed);
+    v("objects_moved", objects_moved);
+    v("doors_closed", doors_closed);
+    v("doors_opened", doors_opened);
+    v("object_size_min_m", object_size_min_m);
+    v("object_size_max_m", object_size_max_m);
+    v("distance_min_m", distance_min_m);
+    v("distance_max_m", distance_max_m);
+    v("object_max_extent_m", object_max_extent_m);
+    v("move_min_m", move_min_m);
+    v("move_max_m", move_max_m);
+    v("door_width_min_m", door_width_min_m);
+    v("door_width_max_m", door_width_max_m);
+    v("wall_max_thickness_m", wall_max_thickness_m);
+    v("reach_m", reach_m);
+  }
+};
+
+/// People walking past during a run (drivers/sim/walking_people.h): moving reflectors the radars
+/// and the LiDAR see, each walking to and fro on a straight path beside the route.
+struct SimPeopleConfig {
+  int count = 0;               ///< people walking during the run (0: none)
+  double width_m = 0.4;        ///< a person is a disc this wide
+  double speed_mps = 1.0;      ///< walking speed
+  double offset_m = 1.0;       ///< their path runs this far beside the route ...
+  double walk_length_m = 6.0;  ///< ... and is this long, walked to and fro
+  double rcs_m2 = 0.5;         ///< radar cross-section of a person
+
+  template <class V>
+  void Visit(V& v) {
+    v("count", count);
+    v("width_m", width_m);
+    v("speed_mps", speed_mps);
+    v("offset_m", offset_m);
+    v("walk_length_m", walk_length_m);
+    v("rcs_m2", rcs_m2);
+  }
+};
+
 /// The environment and robot simulator (`uwbsar simulate`).
 struct SimulatorConfig {
   SimRouteConfig route;
   SimRadarConfig radar;
   SimOdometryConfig odometry;
   SimLaserConfig laser;
+  SimSceneChangeConfig scene_change;
+  SimPeopleConfig people;
   double start_time_s = 1700000000.0;  ///< stamp of the first message (s since the Unix epoch)
 
   template <class V>
@@ -199,6 +267,8 @@ struct SimulatorConfig {
     v("radar", radar);
     v("odometry", odometry);
     v("laser", laser);
+    v("scene_change", scene_change);
+    v("people", people);
     v("start_time_s", start_time_s);
   }
 };
