@@ -11,8 +11,8 @@ namespace {
 
 TEST(ConfigIoTest, DefaultYamlEqualsInClassDefaults) {
   // config/default.yaml documents every field; it must not drift from the structs.
-  const Config from_file = LoadConfig(std::string(UWBSAR_SOURCE_DIR) + "/config/default.yaml");
-  EXPECT_EQ(ConfigToYaml(from_file), ConfigToYaml(Config{}));
+  const AppConfig from_file = LoadConfig(std::string(UWBSAR_SOURCE_DIR) + "/config/default.yaml");
+  EXPECT_EQ(ConfigToYaml(from_file), ConfigToYaml(AppConfig{}));
 }
 
 TEST(ConfigIoTest, DefaultsMatchThePaper) {
@@ -103,7 +103,7 @@ TEST(ConfigIoTest, SyntaxErrorAndMissingFileAreReported) {
 }
 
 TEST(ConfigIoTest, EmptyFileMeansDefaults) {
-  EXPECT_EQ(ConfigToYaml(LoadConfigFromString("", "e.yaml")), ConfigToYaml(Config{}));
+  EXPECT_EQ(ConfigToYaml(LoadConfigFromString("", "e.yaml")), ConfigToYaml(AppConfig{}));
 }
 
 TEST(ConfigIoTest, WrongShapeIsBadInputNamingFileLineAndKey) {

@@ -40,7 +40,7 @@ TEST(ConfigMergeTest, LaterFilesWinKeyByKeyAndRadarsByName) {
   EXPECT_EQ(c.radars[1].topic, "/b");              // kept from the first ...
   EXPECT_DOUBLE_EQ(c.radars[1].max_range_m, 2.5);  // ... with the second's key
   EXPECT_EQ(c.radars[2].name, "only");
-  EXPECT_EQ(ConfigToYaml(LoadConfigs({})), ConfigToYaml(Config{}));
+  EXPECT_EQ(ConfigToYaml(LoadConfigs({})), ConfigToYaml(AppConfig{}));
   EXPECT_EQ(ConfigToYaml(LoadConfigs({robot})), ConfigToYaml(LoadConfig(robot)));
   // The merged result is validated, naming the file and line that set the refused value.
   const std::string bad = WriteTemp("bad.yaml", "slam:\n  occupied_fraction: 7\n");

@@ -101,7 +101,7 @@ TEST(RadarListMergeTest, AnEntryWithoutANameIsRefusedNamingFileLineAndKey) {
 
 TEST(RadarListMergeTest, TheRobotTemplateLoadsAndStatesTheDefaults) {
   const std::string path = std::string(UWBSAR_SOURCE_DIR) + "/config/my_robot.yaml";
-  EXPECT_EQ(ConfigToYaml(LoadConfig(path)), ConfigToYaml(Config{}));
+  EXPECT_EQ(ConfigToYaml(LoadConfig(path)), ConfigToYaml(AppConfig{}));
   EXPECT_EQ(
       ConfigToYaml(LoadConfigs({std::string(UWBSAR_SOURCE_DIR) + "/config/robot.yaml", path})),
       ConfigToYaml(LoadConfig(std::string(UWBSAR_SOURCE_DIR) + "/config/robot.yaml")));
