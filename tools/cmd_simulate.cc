@@ -26,7 +26,9 @@ struct SimulateOptions {
   std::string targets_path;
   std::string text_log_path;
   std::uint64_t seed = 1;
-  std::string scene_seed;  ///< empty: the seed
+  std::string scene_seed;   ///< empty: the seed
+  std::string change_seed;  ///< empty: simulator.scene_change.seed
+  int people = -1;          ///< < 0: simulator.people.count
   bool laser = false;
 };
 
@@ -37,6 +39,8 @@ void RunSimulate(const SimulateOptions& o, const GlobalOptions& globals) {
                          {"the --route file", std::filesystem::exists(o.route) ? o.route : ""},
                          {"the --targets file", o.targets_path}});
   if (o.laser) config.simulator.laser.enabled = true;
+  if (!o.change_seed.empty()) config.simulator.scene_change.seed = std::stoull(o.change_seed);
+  if (o.people >= 0) config.simulator.people.count = o.people;
   slam::SimulateJobOptions options;
   options.map_yaml = o.map_path;
   options.route = o.route;
@@ -65,6 +69,19 @@ void RunSimulate(const SimulateOptions& o, const GlobalOptions& globals) {
       NormalizeAngle(odom.yaw_rad - truth.yaw_rad) * 180.0 / M_PI, o.out_dir.c_str(),
       o.storage.c_str(), o.out_dir.c_str(), o.text_log_path.empty() ? "" : ", ",
       o.text_log_path.c_str());
+  if (config.simulator.scene_change.seed) {
+    using Kind = sim::SceneEdit::Kind;
+    const sim::SceneChange& c = result.scene_change;
+    std::printf(
+        "scene changed (change seed %llu): %d objects added, %d removed, %d moved; %d doors "
+        "closed, %d opened\n",
+        static_cast<unsigned long long>(*config.simulator.scene_change.seed),
+        c.Count(Kind::kObjectAdded), c.Count(Kind::kObjectRemoved), c.Count(Kind::kObjectMoved),
+        c.Count(Kind::kDoorClosed), c.Count(Kind::kDoorOpened));
+  }
+  if (config.simulator.people.count > 0) {
+    std::printf("%d of %d people walking past\n", result.people, config.simulator.people.count);
+  }
 }
 
 }  // namespace
@@ -96,6 +113,13 @@ void AddSimulateCommand(CLI::App& app, const GlobalOptions& globals) {
          "Seed of the scene alone (the scatterers of the occupied cells; default: --seed): "
          "runs with one scene seed and different seeds revisit the same building")
       ->check(CheckSeed, "integer 0..2^64-1");
+  cmd->add_option("--change-seed", o->change_seed,
+                  "Seed of a changed building (simulator.scene_change): objects added, removed "
+                  "and moved, doors closed and opened; the map file stays the day-1 building")
+      ->check(CheckSeed, "integer 0..2^64-1");
+  cmd->add_option("--people", o->people,
+                  "People walking past during the run (simulator.people.count)")
+      ->check(CLI::Range(0, 1000));
   cmd->add_option("--targets", o->targets_path,
                   "Point targets file (YAML: point_targets: [{x_m, y_m, rcs_m2}, ...])")
       ->check(InputFile());

@@ -36,16 +36,27 @@ void SimEnvironment::DrawCell(int row, int col, const SimRadarConfig& radar, Rng
 
 SimEnvironment::SimEnvironment(OccupancyGrid grid, const SimRadarConfig& radar, std::uint64_t seed,
                                const OccupancyGrid* changed)
-    : grid_(std::move(grid)) {
+    : grid_(changed != nullptr ? *changed : std::move(grid)) {
+  const OccupancyGrid& day1 = changed != nullptr ? grid : grid_;
+  if (day1.rows != grid_.rows || day1.cols != grid_.cols) {
+    throw std::invalid_argument("SimEnvironment: the changed building has another grid size");
+  }
   std::mt19937_64 rng(DeriveSeed(seed, 0x5ca77e7));
   cell_begin_.assign(grid_.cells.size() + 1, 0);
   for (int row = 0; row < grid_.rows; ++row) {
     for (int col = 0; col < grid_.cols; ++col) {
       const int cell = row * grid_.cols + col;
       cell_begin_[cell] = static_cast<int>(scatterers_.size());
-      if (!grid_.IsOccupied(row, col)) continue;
-      ++num_occupied_;
-      DrawCell(row, col, radar, rng);
+      const bool was = day1.IsOccupied(row, col), is = grid_.IsOccupied(row, col);
+      if (was) {
+        // Drawn even when the change freed the cell, so that every other cell draws as on day 1.
+        DrawCell(row, col, radar, rng);
+        if (!is) scatterers_.resize(static_cast<std::size_t>(cell_begin_[cell]));
+      } else if (is) {
+        std::mt19937_64 cell_rng(DeriveSeed(seed, 0xadded, static_cast<std::uint64_t>(cell)));
+        DrawCell(row, col, radar, cell_rng);
+      }
+      num_occupied_ += is;
     }
   }
   cell_begin_.back() = static_cast<int>(scatterers_.size());
@@ -53,37 +64,6 @@ SimEnvironment::SimEnvironment(OccupancyGrid grid, const SimRadarConfig& radar, 
     // A conducting target reflects with phase pi.
     point_targets_.push_back({t.x_m, t.y_m, static_cast<float>(-std::sqrt(t.rcs_m2)), 0.0f});
   }
-  if (changed != nullptr) Change(*changed, radar, seed);
-}
-
-void SimEnvironment::Change(const OccupancyGrid& changed, const SimRadarConfig& radar,
-                            std::uint64_t seed) {
-  if (changed.rows != grid_.rows || changed.cols != grid_.cols) {
-    throw std::invalid_argument("SimEnvironment: the changed building has another grid size");
-  }
-  const OccupancyGrid before = std::move(grid_);
-  const std::vector<int> begin_before = std::move(cell_begin_);
-  const std::vector<SimScatterer> scatterers_before = std::move(scatterers_);
-  grid_ = changed;
-  cell_begin_.assign(grid_.cells.size() + 1, 0);
-  scatterers_.clear();
-  num_occupied_ = 0;
-  for (int row = 0; row < grid_.rows; ++row) {
-    for (int col = 0; col < grid_.cols; ++col) {
-      const int cell = row * grid_.cols + col;
-      cell_begin_[cell] = static_cast<int>(scatterers_.size());
-      if (!grid_.IsOccupied(row, col)) continue;
-      ++num_occupied_;
-      if (before.IsOccupied(row, col)) {
-        scatterers_.insert(scatterers_.end(), scatterers_before.begin() + begin_before[cell],
-                           scatterers_before.begin() + begin_before[cell + 1]);
-      } else {
-        std::mt19937_64 rng(DeriveSeed(seed, 0xadded, static_cast<std::uint64_t>(cell)));
-        DrawCell(row, col, radar, rng);
-      }
-    }
-  }
-  cell_begin_.back() = static_cast<int>(scatterers_.size());
 }
 
 }  // namespace uwbsar::sim

@@ -48,8 +48,6 @@ class SimEnvironment {
   /// Appends the scatterers of occupied cell (row, col), drawn from `rng`.
   template <class Rng>
   void DrawCell(int row, int col, const SimRadarConfig& radar, Rng& rng);
-  /// Becomes the building `changed` (see the constructor).
-  void Change(const OccupancyGrid& changed, const SimRadarConfig& radar, std::uint64_t seed);
 
   OccupancyGrid grid_;
   std::vector<int> cell_begin_;  ///< size cells + 1

@@ -74,6 +74,8 @@ class SimStream {
   double duration_s() const { return end_s_; }
   /// Cells lit by the latest scan of radar `sensor_id` (for metrics and tests).
   const std::vector<int>& lit_cells(int sensor_id) const { return radars_[sensor_id]->lit_cells(); }
+  /// The people walking past (simulator.people: as many as found a free path).
+  const std::vector<WalkingPerson>& people() const { return people_; }
 
  private:
   /// One periodic source: message k is at k / rate_hz seconds.

@@ -236,8 +236,10 @@ struct SimPeopleConfig {
   int count = 0;               ///< people walking during the run (0: none)
   double width_m = 0.4;        ///< a person is a disc this wide
   double speed_mps = 1.0;      ///< walking speed
-  double offset_m = 1.0;       ///< their path runs this far beside the route ...
-  double walk_length_m = 6.0;  ///< ... and is this long, walked to and fro
+  double offset_m = 1.0;       ///< their path runs this far beside the route (nearer, down to
+                               ///< width_m, where the way is narrower) ...
+  double walk_length_m = 6.0;  ///< ... and is this long, walked to and fro (shorter where a
+                               ///< wall ends it; at least 1 m)
   double rcs_m2 = 0.5;         ///< radar cross-section of a person
 
   template <class V>

@@ -65,12 +65,33 @@ std::vector<WalkingPerson> PlaceWalkingPeople(const OccupancyGrid& grid,
     const double t = unit(rng), side = unit(rng) < 0.5 ? -1.0 : 1.0;
     if (length <= 0) continue;
     const double ux = (b.x_m - a.x_m) / length, uy = (b.y_m - a.y_m) / length;
-    const Point2 centre{a.x_m + ux * t * length - side * uy * config.offset_m,
-                        a.y_m + uy * t * length + side * ux * config.offset_m};
+    // At most offset_m beside the route, nearer where the way is narrower (never nearer than
+    // the person is wide); the path runs up to walk_length_m / 2 each way, until a wall.
+    const double step = grid.resolution_m;
+    Point2 centre;
+    bool placed = false;
+    for (double offset = config.offset_m; offset >= config.width_m - 1e-9 && !placed;
+         offset -= 2.0 * step) {
+      centre = {a.x_m + ux * t * length - side * uy * offset,
+                a.y_m + uy * t * length + side * ux * offset};
+      placed = FreePath(grid, centre, centre, radius);
+    }
+    if (!placed) continue;
+    double reach[2] = {0.0, 0.0};
+    for (int end = 0; end < 2; ++end) {
+      const double sign = end == 0 ? -1.0 : 1.0;
+      const auto at = [&](double r) {
+        return Point2{centre.x_m + sign * ux * r, centre.y_m + sign * uy * r};
+      };
+      while (reach[end] + step <= half + 1e-9 &&
+             FreePath(grid, at(reach[end] + step), at(reach[end] + step), radius)) {
+        reach[end] += step;
+      }
+    }
+    if (reach[0] + reach[1] < std::min(1.0, config.walk_length_m) - 1e-9) continue;
     WalkingPerson person;
-    person.from = {centre.x_m - ux * half, centre.y_m - uy * half};
-    person.to = {centre.x_m + ux * half, centre.y_m + uy * half};
-    if (!FreePath(grid, person.from, person.to, radius)) continue;
+    person.from = {centre.x_m - ux * reach[0], centre.y_m - uy * reach[0]};
+    person.to = {centre.x_m + ux * reach[1], centre.y_m + uy * reach[1]};
     person.speed_mps = config.speed_mps;
     person.phase_m = 2.0 * config.walk_length_m * unit(rng);
     const double amplitude = std::sqrt(config.rcs_m2), phase = 2.0 * M_PI * unit(rng);

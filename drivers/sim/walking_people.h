@@ -1,6 +1,8 @@
 // People walking past during a simulated run (simulator.people): each walks to and fro at
-// speed_mps along a straight path walk_length_m long, offset_m beside the route (parallel to a
-// random stretch of it), on free cells at least width_m / 2 from any occupied one. A person is
+// speed_mps along a straight path parallel to a random stretch of the route, offset_m beside it
+// (nearer, down to width_m, where the way is narrower), up to walk_length_m / 2 each way from
+// there until a wall (at least 1 m in all), on free cells at least width_m / 2 from any
+// occupied one. A person is
 // a disc width_m across: the radars see one reflector of rcs_m2 on its side facing the antenna
 // unless a wall hides it (a person hides no wall from the radars); the LiDAR measures the
 // distance to the disc. Drawn from the run's seed: each run sees its own people.

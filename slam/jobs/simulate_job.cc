@@ -62,6 +62,8 @@ SimulateJobResult RunSimulateJob(const Config& config, const SimulateJobOptions&
     sim::SimStream again(config, scenario, o.seed);  // same seed: the same messages
     WriteTextLog(o.text_log, sim::ToTextLog(sim::RecordStream(&again)));
   }
+  result.scene_change.edits = scenario.scene_edits;
+  result.people = static_cast<int>(stream.people().size());
   result.route_name = scenario.route.name;
   result.route_length_m = scenario.trajectory.length_m();
   result.route_duration_s = scenario.trajectory.duration_s();

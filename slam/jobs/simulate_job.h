@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 
+#include "drivers/sim/scene_change.h"
 #include "drivers/sim/sim_bag_writer.h"
 #include "slam/app_config.h"
 
@@ -29,8 +30,10 @@ struct SimulateJobResult {
   std::string route_name;
   double route_length_m = 0.0;
   double route_duration_s = 0.0;
-  sim::SimBagSummary summary;  ///< message counts, last odometry and ground truth
-  double seconds = 0.0;        ///< wall time of the scenario and the bag
+  sim::SimBagSummary summary;     ///< message counts, last odometry and ground truth
+  sim::SceneChange scene_change;  ///< simulator.scene_change's edits (its grid left empty)
+  int people = 0;                 ///< people walking past (simulator.people)
+  double seconds = 0.0;           ///< wall time of the scenario and the bag
 };
 
 /// Loads the point targets, checks every output before the work (InputError: the bag folder
