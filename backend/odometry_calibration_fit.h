@@ -8,9 +8,10 @@
 // backend/odometry_calibration_segments.h). For each, the odometry's increments, each
 // corrected by the calibration (CorrectOdometryStep at the odometry's own rate) and composed,
 // are compared with the true step (ground truth interpolated at the odometry's stamps): one
-// SE(2) residual, weighted like an odometry edge (information / path). An intrinsic the run cannot observe (the rotation scale on a straight
-// run: less than 3x the backend prior's information on it) keeps the prior's mean and is
-// reported as not observed; the others are the least-squares solution, no prior pulling them.
+// SE(2) residual, weighted like an odometry edge (information / path). An intrinsic the run cannot
+// observe (the rotation scale on a straight run: less than 3x the backend prior's information on
+// it) keeps the prior's mean and is reported as not observed; the others are the least-squares
+// solution, no prior pulling them.
 //
 // Which intrinsics belong to the robot depends on its kind of base (backend.odometry_model):
 //  - wheel: the distance scale, the heading drift per metre and the turns' scale;
