@@ -12,7 +12,8 @@
 
 namespace uwbsar {
 
-AteResult ComputeAte(const std::vector<Pose2>& estimate, const std::vector<Pose2>& reference) {
+AteResult ComputeAte(const std::vector<Pose2>& estimate, const std::vector<Pose2>& reference,
+                     bool align) {
   if (estimate.size() != reference.size() || estimate.size() < 2) {
     throw std::invalid_argument("ComputeAte: trajectories must have the same length >= 2");
   }
@@ -38,7 +39,7 @@ AteResult ComputeAte(const std::vector<Pose2>& estimate, const std::vector<Pose2
   const double c = std::cos(theta), s = std::sin(theta);
   AteResult r;
   r.num_poses = static_cast<int>(estimate.size());
-  r.T_reference_estimate = {rx - (c * ex - s * ey), ry - (s * ex + c * ey), theta};
+  if (align) r.T_reference_estimate = {rx - (c * ex - s * ey), ry - (s * ex + c * ey), theta};
   double sum_sq = 0.0, sum = 0.0, yaw_sq = 0.0;
   for (std::size_t i = 0; i < estimate.size(); ++i) {
     const Pose2 aligned = r.T_reference_estimate * estimate[i];

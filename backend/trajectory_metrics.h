@@ -20,8 +20,11 @@ struct AteResult {
 };
 
 /// ATE of `estimate` against `reference` (same length, pose k <-> pose k, at least 2).
+/// Without `align`, the error in the frame both are given in (a localisation in a map whose
+/// frame is the reference's): T_reference_estimate stays the identity.
 /// Throws std::invalid_argument on mismatched or too short inputs.
-AteResult ComputeAte(const std::vector<Pose2>& estimate, const std::vector<Pose2>& reference);
+AteResult ComputeAte(const std::vector<Pose2>& estimate, const std::vector<Pose2>& reference,
+                     bool align = true);
 
 /// Poses of a chain of relative motions: pose 0 = identity, pose k+1 = pose k * step k.
 std::vector<Pose2> ComposeChain(const std::vector<Pose2>& steps);

@@ -198,7 +198,8 @@ void Feed(MapRun* run, const Message& m) {
 }
 
 AteResult TrajectoryError(const std::vector<std::pair<TimestampNs, Pose2>>& estimate,
-                          const std::vector<OdometrySample>& reference, double max_dt_s) {
+                          const std::vector<OdometrySample>& reference, double max_dt_s,
+                          bool align) {
   std::vector<OdometrySample> ref = reference;
   std::stable_sort(ref.begin(), ref.end(), [](const OdometrySample& a, const OdometrySample& b) {
     return a.stamp_ns < b.stamp_ns;
@@ -221,7 +222,7 @@ AteResult TrajectoryError(const std::vector<std::pair<TimestampNs, Pose2>>& esti
     ref_poses.push_back(best->T_world_robot);
   }
   if (est_poses.size() < 2) return AteResult{};
-  return ComputeAte(est_poses, ref_poses);
+  return ComputeAte(est_poses, ref_poses, align);
 }
 
 std::vector<OdometrySample> ReadGroundTruthFile(const std::string& tum_path, double max_mb,

@@ -80,10 +80,11 @@ std::vector<OdometrySample> ReadGroundTruthFile(const std::string& tum_path, dou
                                                 std::vector<int>* lines = nullptr);
 
 /// Trajectory error of `estimate` against `reference`: poses paired by nearest stamp
-/// within `max_dt_s` (as evo does), then ATE after SE(2) alignment. num_poses = 0 when
-/// fewer than two pairs.
+/// within `max_dt_s` (as evo does), then ATE after SE(2) alignment (without `align`: in the
+/// frame both are in). num_poses = 0 when fewer than two pairs.
 AteResult TrajectoryError(const std::vector<std::pair<TimestampNs, Pose2>>& estimate,
-                          const std::vector<OdometrySample>& reference, double max_dt_s = 0.01);
+                          const std::vector<OdometrySample>& reference, double max_dt_s = 0.01,
+                          bool align = true);
 
 /// Peak resident memory of this process so far, in MiB.
 double PeakMemoryMiB();

@@ -23,17 +23,6 @@ namespace {
 constexpr double kFalseLoopM = 0.2;
 constexpr double kFalseLoopDeg = 5.0;
 
-Pose2 TruePoseAt(const std::vector<OdometrySample>& truth, TimestampNs t) {
-  auto it = std::lower_bound(
-      truth.begin(), truth.end(), t,
-      [](const OdometrySample& s, TimestampNs stamp) { return s.stamp_ns < stamp; });
-  if (it == truth.end()) --it;
-  if (it != truth.begin() && std::llabs((it - 1)->stamp_ns - t) < std::llabs(it->stamp_ns - t)) {
-    --it;
-  }
-  return it->T_world_robot;
-}
-
 void EvaluateWallEdges(const SlamSystem& slam, const std::map<int, Pose2>& true_anchor,
                        TourEvaluation* e) {
   const std::vector<PoseGraphEdge> edges = slam.graph().Edges();
@@ -224,6 +213,17 @@ std::string FormatTourEvaluation(const TourEvaluation& e) {
       e.loop_error_rms_m * 100, e.loop_error_rms_yaw_rad * 180 / M_PI, e.loop_sigma_mean_m * 100,
       e.loop_sigma_mean_yaw_rad * 180 / M_PI);
   return line;
+}
+
+Pose2 TruePoseAt(const std::vector<OdometrySample>& truth, TimestampNs t) {
+  auto it = std::lower_bound(
+      truth.begin(), truth.end(), t,
+      [](const OdometrySample& s, TimestampNs stamp) { return s.stamp_ns < stamp; });
+  if (it == truth.end()) --it;
+  if (it != truth.begin() && std::llabs((it - 1)->stamp_ns - t) < std::llabs(it->stamp_ns - t)) {
+    --it;
+  }
+  return it->T_world_robot;
 }
 
 }  // namespace uwbsar::eval

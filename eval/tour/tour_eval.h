@@ -67,4 +67,7 @@ TourEvaluation EvaluateTour(const slam::MapRun& run, double overlap_m = 1.0);
 /// One line: travel, ATE (odometry, ratio), loops, false loops, recalls.
 std::string FormatTourEvaluation(const TourEvaluation& e);
 
+/// The true robot pose at `t`: the ground-truth sample nearest it (`truth` sorted by stamp).
+Pose2 TruePoseAt(const std::vector<OdometrySample>& truth, TimestampNs t);
+
 }  // namespace uwbsar::eval

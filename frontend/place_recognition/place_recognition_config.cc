@@ -121,6 +121,7 @@ void Validate(const PlaceRecognitionConfig& p, const std::string& src) {
   ValidateGuided(p.guided, src, k);
   ValidatePerRadar(p.per_radar, src, k);
   Validate(p.wall_profiles, src);  // beside its struct (frontend/wall_profile_config.h)
+  Validate(p.registration, src, k + "registration.");  // map_registration_config.h
 }
 
 }  // namespace uwbsar

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "frontend/place_recognition/detector_kind.h"
+#include "frontend/place_recognition/map_registration_config.h"
 #include "frontend/place_recognition/radar_match_config.h"
 #include "frontend/wall_profile_config.h"
 
@@ -217,6 +218,7 @@ struct PlaceRecognitionConfig {
   GuidedMatchConfig guided;
   RadarMatchConfig per_radar;
   WallProfileConfig wall_profiles;
+  MapRegistrationConfig registration;  ///< localisation's registration against the map's tiles
 
   template <class V>
   void Visit(V& v) {
@@ -227,6 +229,7 @@ struct PlaceRecognitionConfig {
     v("guided", guided);
     v("per_radar", per_radar);
     v("wall_profiles", wall_profiles);
+    v("registration", registration);
   }
 };
 

@@ -64,10 +64,18 @@ void LocalizePipeline::HandOver() {
 // The features and the matching (the long part) without the result lock.
 void LocalizePipeline::Localize(const Keyframe& k) {
   const KeyframeFeatures f = ExtractKeyframeFeatures(k, config_);
-  // The walls only for a map with walls to observe: the tile is not needed otherwise.
+  // The detected tile only for the map's walls and the registration against the map's tiles.
   std::vector<SeenLine> walls;
-  if (localizer_.UsesWalls() && k.complete) walls = SeenLines(Products(k));
-  const LocalizedKeyframe l = localizer_.Add(f, k.T_world_anchor, k.stamp_ns, k.path_end_m, walls);
+  RegistrationImage image;
+  if (localizer_.UsesWalls() || localizer_.UsesRegistration()) {
+    const KeyframeProducts p = Products(k);
+    if (localizer_.UsesWalls() && k.complete) walls = SeenLines(p);
+    if (localizer_.UsesRegistration()) {
+      image = MakeRegistrationImage(p.detected, p.grid, config_.place_recognition.registration);
+    }
+  }
+  const LocalizedKeyframe l =
+      localizer_.Add(f, k.T_world_anchor, k.stamp_ns, k.path_end_m, walls, image);
   std::lock_guard<std::mutex> lock(result_mutex_);
   run_.keyframes.push_back(l);
   if (l.placed) T_map_odom_ = l.T_map_anchor * l.T_odom_anchor.Inverse();

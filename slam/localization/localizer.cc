@@ -49,8 +49,8 @@ Localizer::Localizer(const SessionData& map, const SessionSettings& config)
 
 const LocalizedKeyframe& Localizer::Add(const KeyframeFeatures& features,
                                         const Pose2& T_odom_anchor, TimestampNs stamp_ns,
-                                        double path_end_m,
-                                        const std::vector<slam::SeenLine>& walls) {
+                                        double path_end_m, const std::vector<slam::SeenLine>& walls,
+                                        const RegistrationImage& image) {
   const SessionConfig& sc = config_.session;
   LocalizedKeyframe k;
   k.id = features.id;
@@ -80,6 +80,12 @@ const LocalizedKeyframe& Localizer::Add(const KeyframeFeatures& features,
     out.status = LocalizeStatus::kTracking;
   }
   out.loops = static_cast<int>(used.size());
+  if (placed_ && UsesRegistration() && !image.empty()) {
+    const std::vector<Loop> registered =
+        RegisterWithMap(image, features.centre_anchor, T_odom_anchor, index);
+    out.registrations = static_cast<int>(registered.size());
+    used.insert(used.end(), registered.begin(), registered.end());
+  }
   if (!used.empty()) {
     path_at_last_loop_m_ = path_end_m;
     for (const Loop& l : used) window_loops_.push_back(l);
@@ -150,6 +156,58 @@ std::vector<Localizer::Loop> Localizer::Place(const std::vector<Loop>& found,
     out->status = LocalizeStatus::kLost;
   }
   return used;
+}
+
+std::vector<Localizer::Loop> Localizer::RegisterWithMap(const RegistrationImage& image,
+                                                        const Point2& centre_anchor,
+                                                        const Pose2& T_odom_anchor, int index) {
+  const MapRegistrationConfig& rc = pr_.registration;
+  const Pose2 T_map_anchor = T_map_odom_ * T_odom_anchor;
+  const Point2 centre = T_map_anchor * centre_anchor;
+  // The map tiles whose centres lie nearest the keyframe's predicted centre.
+  std::vector<std::pair<double, const SessionKeyframe*>> near;
+  for (const SessionKeyframe& m : map_.keyframes) {
+    if (m.detected.empty()) continue;
+    const Point2 q = m.T_map_anchor * m.features.centre_anchor;
+    const double d = std::hypot(q.x_m - centre.x_m, q.y_m - centre.y_m);
+    if (d <= rc.max_centre_distance_m) near.emplace_back(d, &m);
+  }
+  const std::size_t n = std::min(near.size(), static_cast<std::size_t>(rc.max_map_tiles));
+  std::partial_sort(near.begin(), near.begin() + static_cast<long>(n), near.end(),
+                    [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<Loop> found;
+  for (std::size_t k = 0; k < n; ++k) {
+    const SessionKeyframe& m = *near[k].second;
+    const MapRegistration r =
+        RegisterTiles(MapImage(m), image, Between(m.T_map_anchor, T_map_anchor), rc);
+    if (!r.accepted) continue;
+    Loop l;
+    l.map_id = m.id;
+    l.keyframe_index = index;
+    l.T_ij = r.T_ab;
+    l.information = r.information;
+    l.T_map_odom = m.T_map_anchor * l.T_ij * T_odom_anchor.Inverse();
+    found.push_back(l);
+  }
+  return found;
+}
+
+const RegistrationImage& Localizer::MapImage(const SessionKeyframe& m) {
+  constexpr std::size_t kCachedImages = 64;  // a few tiles' worth of path around the robot
+  auto it = map_images_.find(m.id);
+  if (it != map_images_.end()) {
+    map_image_order_.splice(map_image_order_.begin(), map_image_order_, it->second.second);
+    return it->second.first;
+  }
+  if (map_images_.size() >= kCachedImages) {
+    map_images_.erase(map_image_order_.back());
+    map_image_order_.pop_back();
+  }
+  map_image_order_.push_front(m.id);
+  auto& entry = map_images_[m.id];
+  entry.first = MakeRegistrationImage(m.detected.Load(), m.detected_grid, pr_.registration);
+  entry.second = map_image_order_.begin();
+  return entry.first;
 }
 
 void Localizer::SolveWindow() {

@@ -25,14 +25,15 @@ nlohmann::json WriteLocalizeFiles(const LocalizeRun& run, const std::string& out
   }
   WriteTum(out_dir + "/trajectory.tum", tum);
   std::ostringstream csv;
-  csv << "keyframe_id,stamp_s,path_m,status,x_m,y_m,yaw_deg,candidates,loops,walls\n";
+  csv << "keyframe_id,stamp_s,path_m,status,x_m,y_m,yaw_deg,candidates,loops,registrations,walls\n";
   csv << std::fixed;
-  int tracking = 0, lost = 0, relocalised = 0, with_walls = 0;
+  int tracking = 0, lost = 0, relocalised = 0, with_walls = 0, registered = 0;
   for (const LocalizedKeyframe& k : run.keyframes) {
     tracking += k.status == LocalizeStatus::kTracking;
     lost += k.status == LocalizeStatus::kLost;
     relocalised += k.status == LocalizeStatus::kRelocalised;
     with_walls += k.walls > 0;
+    registered += k.registrations > 0;
     csv << k.id << "," << std::setprecision(6) << NsToSeconds(k.stamp_ns) << ","
         << std::setprecision(3) << k.path_end_m << "," << LocalizeStatusName(k.status) << ",";
     if (k.placed) {
@@ -41,7 +42,8 @@ nlohmann::json WriteLocalizeFiles(const LocalizeRun& run, const std::string& out
     } else {
       csv << ",,";
     }
-    csv << "," << k.candidates << "," << k.loops << "," << k.walls << "\n";
+    csv << "," << k.candidates << "," << k.loops << "," << k.registrations << "," << k.walls
+        << "\n";
   }
   WriteTextAtomic(out_dir + "/localize.csv", csv.str());
   // A single map run's keys (docs/formats.md), then localisation's own.
@@ -81,7 +83,8 @@ nlohmann::json WriteLocalizeFiles(const LocalizeRun& run, const std::string& out
   s["localization"] = {{"tracking", tracking},
                        {"lost", lost},
                        {"relocalised", relocalised},
-                       {"observing_walls", with_walls}};
+                       {"observing_walls", with_walls},
+                       {"registered", registered}};
   if (run.first_fix >= 0) {
     s["first_fix"] = {{"keyframe_id", run.keyframes[run.first_fix].id},
                       {"path_m", run.first_fix_path_m},
