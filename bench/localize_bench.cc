@@ -12,7 +12,9 @@
 // UWBSAR_LOCALIZE_SEEDS=N: change seeds 1..N (default 5); UWBSAR_LOCALIZE_CONFIG=FILE.yaml: the
 // robot's configuration (e.g. a calibration file from `uwbsar calibrate`); UWBSAR_LOCALIZE_
 // REGISTRATION=0: registration against the map off (loops and walls alone, for comparison);
-// UWBSAR_LOCALIZE_UNCHANGED=1: the day-2 building unchanged and nobody walking.
+// UWBSAR_LOCALIZE_UNCHANGED=1: the day-2 building unchanged and nobody walking;
+// UWBSAR_LOCALIZE_OBJECTS=N: N objects added instead of simulator.scene_change.objects_added (6;
+// the real buildings had 18 and 44 on 62-70 m).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -72,9 +74,14 @@ void BM_LocalizeChangedBuilding(benchmark::State& state) {
         slam::MapSimulation(config, MapsFile(tour.map), MapsFile(tour.route), /*seed=*/1);
     const SessionData map = slam::CaptureSession(day1);
     const double map_error_m = eval::MapFrameError(day1).rmse_m;
-    std::printf("%s: day-1 map-frame error %.2f cm; registration %s; building %s\n", tour.name,
-                map_error_m * 100, config.place_recognition.registration.enabled ? "on" : "off",
-                unchanged ? "unchanged" : "changed, one person walking");
+    const char* objects = std::getenv("UWBSAR_LOCALIZE_OBJECTS");
+    std::printf(
+        "%s: day-1 map-frame error %.2f cm; registration %s; building %s (%s objects added)\n",
+        tour.name, map_error_m * 100, config.place_recognition.registration.enabled ? "on" : "off",
+        unchanged ? "unchanged" : "changed, one person walking",
+        unchanged ? "no"
+        : objects ? objects
+                  : "6");
     double worst_fix_m = 0.0, worst_lost = 0.0, worst_excess_m = -1.0, worst_max_m = 0.0;
     int never = 0, false_fixes = 0;
     for (int change = 1; change <= seeds; ++change) {
@@ -82,6 +89,9 @@ void BM_LocalizeChangedBuilding(benchmark::State& state) {
       if (!unchanged) {
         day2.simulator.scene_change.seed = static_cast<std::uint64_t>(change);
         day2.simulator.people.count = 1;
+        if (const char* objects = std::getenv("UWBSAR_LOCALIZE_OBJECTS")) {
+          day2.simulator.scene_change.objects_added = std::atoi(objects);
+        }
       }
       const slam::LocalizeRun run = slam::LocalizeSimulation(
           map, day2, MapsFile(tour.map), route, /*scene_seed=*/1,

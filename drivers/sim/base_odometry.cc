@@ -16,12 +16,21 @@ BaseOdometrySimulator::BaseOdometrySimulator(const SimOdometryConfig& config,
   }
 }
 
-OdometrySample BaseOdometrySimulator::Step(TimestampNs stamp_ns, const RobotState& truth) {
-  OdometrySample wheel = wheels_.Step(stamp_ns, truth);
+OdometrySample BaseOdometrySimulator::Step(TimestampNs stamp_ns, const RobotState& truth,
+                                           bool carried) {
+  const double true_dyaw = truth.heading_rad - last_truth_.heading_rad;
+  if (carried) {
+    carried_path_m_ += truth.path_m - last_truth_.path_m;
+    carried_heading_rad_ += true_dyaw;
+  }
+  last_truth_ = truth;
+  // The wheels roll only where the robot drove: their truth leaves out what it was carried.
+  RobotState rolled = truth;
+  rolled.path_m -= carried_path_m_;
+  rolled.heading_rad -= carried_heading_rad_;
+  OdometrySample wheel = wheels_.Step(stamp_ns, rolled);
   if (!gyro_) return wheel;
   const double dt = started_ ? NsToSeconds(stamp_ns - last_stamp_ns_) : 0.0;
-  const double true_dyaw = truth.heading_rad - last_truth_.heading_rad;
-  last_truth_ = truth;
   const double yaw = gyro_->Step(dt, true_dyaw);
   // The wheels' distance along the mean of the heading before and after the step (midpoint
   // rule, as the wheel-only integration).

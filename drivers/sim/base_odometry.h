@@ -27,8 +27,10 @@ class BaseOdometrySimulator {
                         std::uint64_t wheel_seed, std::uint64_t gyro_seed);
 
   /// Advances to the true state `truth` at `stamp_ns` (calls in time order) and returns the
-  /// base's odometry: integrated pose and the velocities of the last step.
-  OdometrySample Step(TimestampNs stamp_ns, const RobotState& truth);
+  /// base's odometry: integrated pose and the velocities of the last step. `carried`: the robot
+  /// was carried, wheels off the ground, since the last step (simulator.carried): the wheels
+  /// measure nothing of it, a gyro still measures its turn.
+  OdometrySample Step(TimestampNs stamp_ns, const RobotState& truth, bool carried = false);
 
   /// The gyro, with the kobuki_gyro profile; nullptr with wheel.
   const GyroModel* gyro() const { return gyro_ ? &*gyro_ : nullptr; }
@@ -37,6 +39,8 @@ class BaseOdometrySimulator {
   WheelOdometrySimulator wheels_;
   std::optional<GyroModel> gyro_;
   RobotState last_truth_;
+  double carried_path_m_ = 0.0;       ///< true path and ...
+  double carried_heading_rad_ = 0.0;  ///< ... turn while carried: the wheels never saw them
   TimestampNs last_stamp_ns_ = 0;
   bool started_ = false;
   Pose2 pose_;

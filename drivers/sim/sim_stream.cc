@@ -1,6 +1,7 @@
 #include "drivers/sim/sim_stream.h"
 
 #include <cmath>
+#include <optional>
 
 #include "imaging/sensor_geometry.h"
 
@@ -117,7 +118,11 @@ bool SimStream::Next(SimMessage* msg) {
     ++clock.next;
   } else if (best == 1) {
     msg->kind = SimMessage::Kind::kOdometry;
-    msg->pose = odometry_.Step(best_stamp, truth);
+    // simulator.carried: the steps that end on the carried stretch of route.
+    const std::optional<double>& carry_m = config_.simulator.carried.at_path_m;
+    const bool carried = carry_m && truth.path_m > *carry_m &&
+                         truth.path_m <= *carry_m + config_.simulator.carried.distance_m;
+    msg->pose = odometry_.Step(best_stamp, truth, carried);
     ++clock.next;
   } else if (best == 2) {
     const int k = next_radar_;

@@ -115,6 +115,11 @@ void Validate(const SimulatorConfig& s, const std::string& src) {
   Require(p.walk_length_m > 0 && p.walk_length_m <= 100, src, kp + "walk_length_m",
           "must be in (0, 100]");
   Require(p.rcs_m2 >= 0, src, kp + "rcs_m2", "must be >= 0");
+  const SimCarryConfig& carried = s.carried;
+  Require(!carried.at_path_m || (*carried.at_path_m >= 0 && *carried.at_path_m <= 1e6), src,
+          k + "carried.at_path_m", "must be null or in [0, 1e6]");
+  Require(carried.distance_m > 0 && carried.distance_m <= 1e4, src, k + "carried.distance_m",
+          "must be in (0, 10000]");
   // The simulated bag's headers hold ROS 2 times (core/stamp_range.h).
   Require(s.start_time_s >= 0 && s.start_time_s < 2147483647.0, src, k + "start_time_s",
           "must be in [0, 2147483647) (seconds since 1970, until 2038-01-19: a ROS 2 time)");

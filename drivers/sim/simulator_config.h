@@ -253,6 +253,23 @@ struct SimPeopleConfig {
   }
 };
 
+/// The robot picked up and carried along its route (the kidnapped robot): over the stretch of
+/// route [at_path_m, at_path_m + distance_m) its wheels are off the ground, so the wheel encoders
+/// count nothing, while a gyro (profile kobuki_gyro) still measures the turns it is carried
+/// through; the radars keep scanning where it truly is. The odometry's path and pose stand still,
+/// the truth moves on: after the carry the odometry frame is distance_m off the world's.
+struct SimCarryConfig {
+  std::optional<double> at_path_m;  ///< null: never carried; else where along the route (true
+                                    ///< path, m) the carry starts
+  double distance_m = 10.0;         ///< how far along the route it is carried
+
+  template <class V>
+  void Visit(V& v) {
+    v("at_path_m", at_path_m);
+    v("distance_m", distance_m);
+  }
+};
+
 /// The environment and robot simulator (`uwbsar simulate`).
 struct SimulatorConfig {
   SimRouteConfig route;
@@ -261,6 +278,7 @@ struct SimulatorConfig {
   SimLaserConfig laser;
   SimSceneChangeConfig scene_change;
   SimPeopleConfig people;
+  SimCarryConfig carried;
   double start_time_s = 1700000000.0;  ///< stamp of the first message (s since the Unix epoch)
 
   template <class V>
@@ -271,6 +289,7 @@ struct SimulatorConfig {
     v("laser", laser);
     v("scene_change", scene_change);
     v("people", people);
+    v("carried", carried);
     v("start_time_s", start_time_s);
   }
 };

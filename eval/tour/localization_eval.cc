@@ -61,6 +61,32 @@ std::string FormatLocalizationEvaluation(const LocalizationEvaluation& e) {
   return buf;
 }
 
+double OdometryPathAtTruePath(const slam::LocalizeRun& run, double true_path_m) {
+  if (run.odometry.empty()) return 0.0;
+  double path_m = 0.0;
+  TimestampNs when = run.ground_truth.empty() ? 0 : run.ground_truth.back().stamp_ns;
+  for (std::size_t i = 1; i < run.ground_truth.size(); ++i) {
+    path_m += Distance(run.ground_truth[i - 1].T_world_robot, run.ground_truth[i].T_world_robot);
+    if (path_m >= true_path_m) {
+      when = run.ground_truth[i].stamp_ns;
+      break;
+    }
+  }
+  for (const OdometryEntry& o : run.odometry) {
+    if (o.stamp_ns >= when) return o.path_m;
+  }
+  return run.odometry.back().path_m;
+}
+
+double PathToRelocalisation(const slam::LocalizeRun& run, double from_path_m) {
+  for (const LocalizedKeyframe& k : run.keyframes) {
+    if (k.path_end_m > from_path_m && k.status == LocalizeStatus::kRelocalised) {
+      return k.path_end_m - from_path_m;
+    }
+  }
+  return -1.0;
+}
+
 void WriteRouteTail(const std::string& route_file, double from_fraction,
                     const std::string& out_file) {
   const std::vector<Point2> w = sim::ReadWaypointsFile(route_file).waypoints;

@@ -35,6 +35,13 @@ LocalizationEvaluation EvaluateLocalization(const slam::LocalizeRun& run, double
 /// One line: first fix, lost, registered, error.
 std::string FormatLocalizationEvaluation(const LocalizationEvaluation& e);
 
+/// The odometry's path (LocalizeRun::odometry path_m) when the truth had driven `true_path_m`
+/// (its path summed from the ground-truth poses); the last one when it never did.
+double OdometryPathAtTruePath(const slam::LocalizeRun& run, double true_path_m);
+/// The odometry path from `from_path_m` to the end of the first keyframe ending after it that
+/// (re)placed the robot (a kidnapped robot relocalised); -1 when none did.
+double PathToRelocalisation(const slam::LocalizeRun& run, double from_path_m);
+
 /// Writes to `out_file` the waypoints of the route in `route_file` from `from_fraction` of its
 /// length on (a day-2 run that starts part of the way round a tour). Throws InputError as
 /// sim::ReadWaypointsFile does, std::runtime_error when the file cannot be written.

@@ -12,15 +12,15 @@ namespace uwbsar {
 /// is distinct. Used by localisation once the robot is placed (slam/localization/localizer.h).
 struct MapRegistrationConfig {
   bool enabled = true;
-  double resolution_m = 0.02;      ///< pixel size the tiles are compared at
+  double resolution_m = 0.03;      ///< pixel size the tiles are compared at
   double white_percentile = 95.0;  ///< of each image's observed pixels, mapped to white: brighter
                                    ///< ones saturate, so a reflector that is new since the map
                                    ///< weighs no more than the scene's bright ones (robustness)
-  int max_map_tiles = 2;           ///< the map tiles nearest the prediction registered with
+  int max_map_tiles = 1;           ///< the map tiles nearest the prediction registered with
   double max_centre_distance_m = 2.0;  ///< ... whose centres lie within this of the keyframe's
   double search_m = 0.15;              ///< shifts searched, +- this around the prediction (the
                                        ///< search recentres once on a peak in its outer half)
-  double search_deg = 2.0;             ///< rotations searched, +- this ...
+  double search_deg = 1.0;             ///< rotations searched, +- this ...
   double step_deg = 0.5;               ///< ... in steps of this
   double min_peak_ncc = 0.3;           ///< the correlation at the peak at least this
   double min_peak_ratio = 1.2;     ///< the peak over the second peak (outside its lobe, or on the
