@@ -22,8 +22,8 @@ struct MapRegistrationConfig {
                                        ///< search recentres once on a peak in its outer half)
   double search_deg = 1.0;             ///< rotations searched, +- this ...
   double step_deg = 0.5;               ///< ... in steps of this
-  double min_peak_ncc = 0.3;           ///< the correlation at the peak at least this
-  double min_peak_ratio = 1.2;     ///< the peak over the second peak (outside its lobe, or on the
+  double min_peak_ncc = 0.12;          ///< the correlation at the peak at least this
+  double min_peak_ratio = 1.5;     ///< the peak over the second peak (outside its lobe, or on the
                                    ///< window's edge: a lone wall's ridge) at least this
   double highpass_sigma_m = 0.05;  ///< local mean (Gaussian of this sigma) taken off first
   double min_overlap_fraction = 0.3;  ///< of the smaller observed area, at the prediction
