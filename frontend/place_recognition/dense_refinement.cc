@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <vector>
@@ -242,6 +243,21 @@ DenseRefinement RefineByCorrelation(const FeatureImage& a, const FeatureImage& b
   out = Search(wa, wb, recentre, S, config, &recentre, &off_centre);
   out.overlap_fraction = overlap_fraction;
   return out;
+}
+
+std::string JudgePeak(const DenseRefinement& r, double min_peak_ncc, double min_peak_ratio) {
+  char buf[200];
+  if (!r.found) return r.reason;
+  if (r.peak_ncc < min_peak_ncc) {
+    std::snprintf(buf, sizeof(buf), "correlation peak %.3f < %.3f", r.peak_ncc, min_peak_ncc);
+    return buf;
+  }
+  if (r.peak_ratio < min_peak_ratio) {
+    std::snprintf(buf, sizeof(buf), "correlation peak not distinct (%.3f / %.3f = %.2f < %.2f)",
+                  r.peak_ncc, r.second_ncc, r.peak_ratio, min_peak_ratio);
+    return buf;
+  }
+  return "";
 }
 
 }  // namespace uwbsar

@@ -54,4 +54,9 @@ DenseRefinement RefineByCorrelation(const FeatureImage& a, const FeatureImage& b
                                     const PixelRigid& seed, double resolution_m,
                                     const DenseRefinementConfig& config);
 
+/// Empty when `r` found a peak whose correlation is at least `min_peak_ncc` and at least
+/// `min_peak_ratio` times its second peak; otherwise why not (loop validation's refinement and
+/// map registration judge their peaks alike).
+std::string JudgePeak(const DenseRefinement& r, double min_peak_ncc, double min_peak_ratio);
+
 }  // namespace uwbsar

@@ -96,18 +96,9 @@ bool LoopInformation(const RigidFit& fit, double n, double resolution_m,
 /// and its peak is distinct; otherwise why not.
 std::string JudgeRefinement(const DetectorStats& first, const DetectorStats& second,
                             const DenseRefinement& r, const LoopValidationConfig& c) {
+  const std::string peak = JudgePeak(r, c.refinement.min_peak_ncc, c.refinement.min_peak_ratio);
+  if (!peak.empty()) return peak;
   char buf[200];
-  if (!r.found) return r.reason;
-  if (r.peak_ncc < c.refinement.min_peak_ncc) {
-    std::snprintf(buf, sizeof(buf), "correlation peak %.3f < %.3f", r.peak_ncc,
-                  c.refinement.min_peak_ncc);
-    return buf;
-  }
-  if (r.peak_ratio < c.refinement.min_peak_ratio) {
-    std::snprintf(buf, sizeof(buf), "correlation peak not distinct (%.3f / %.3f = %.2f < %.2f)",
-                  r.peak_ncc, r.second_ncc, r.peak_ratio, c.refinement.min_peak_ratio);
-    return buf;
-  }
   for (int k = 0; k < 2; ++k) {
     const DetectorStats& s = k == 0 ? first : second;
     const double dtx = std::abs(s.tx_px - r.transform.tx_px);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
@@ -64,21 +63,20 @@ RegistrationImage MakeRegistrationImage(const cv::Mat& detected, const ImageGrid
   cv::warpAffine(weight, w, to_source, cv::Size(cols, rows),
                  cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_CONSTANT, 0);
   const cv::Mat mask = w >= 0.99f;  // the whole footprint observed
+  const cv::Mat normalised = v / cv::max(w, 1e-6f);
   std::vector<float> observed;
   observed.reserve(static_cast<std::size_t>(cols) * rows);
   for (int r = 0; r < rows; ++r) {
-    const float* vr = v.ptr<float>(r);
-    const float* wr = w.ptr<float>(r);
+    const float* nr = normalised.ptr<float>(r);
     const std::uint8_t* mr = mask.ptr<std::uint8_t>(r);
     for (int c = 0; c < cols; ++c) {
-      if (mr[c]) observed.push_back(vr[c] / wr[c]);
+      if (mr[c]) observed.push_back(nr[c]);
     }
   }
   if (observed.size() < 16) return out;
   const float lo = *std::min_element(observed.begin(), observed.end());
   const float hi = Quantile(std::move(observed), config.white_percentile / 100.0);
   const double span = hi > lo ? static_cast<double>(hi - lo) : 1.0;
-  cv::Mat normalised = v / cv::max(w, 1e-6f);
   // Observed pixels at least 1 (dense_refinement.h reads gray > 0 as observed when no mask).
   normalised.convertTo(out.image.gray, CV_8U, 254.0 / span, 1.0 - 254.0 * lo / span);
   out.image.gray.setTo(0, ~mask);
@@ -114,25 +112,12 @@ MapRegistration RegisterTiles(const RegistrationImage& a, const RegistrationImag
   out.correlation =
       RefineByCorrelation(a.image, b.image, seed, config.resolution_m, CorrelationConfig(config));
   const DenseRefinement& r = out.correlation;
-  char buf[160];
-  if (!r.found) {
-    out.reason = r.reason;
-    return out;
+  if (r.found) {
+    out.T_ab = PixelToMetricTransform(a.grid, b.grid, r.transform.tx_px, r.transform.ty_px,
+                                      r.transform.rotation_deg);
   }
-  out.T_ab = PixelToMetricTransform(a.grid, b.grid, r.transform.tx_px, r.transform.ty_px,
-                                    r.transform.rotation_deg);
-  if (r.peak_ncc < config.min_peak_ncc) {
-    std::snprintf(buf, sizeof(buf), "correlation peak %.3f < %.3f", r.peak_ncc,
-                  config.min_peak_ncc);
-    out.reason = buf;
-    return out;
-  }
-  if (r.peak_ratio < config.min_peak_ratio) {
-    std::snprintf(buf, sizeof(buf), "correlation peak not distinct (%.3f / %.3f = %.2f < %.2f)",
-                  r.peak_ncc, r.second_ncc, r.peak_ratio, config.min_peak_ratio);
-    out.reason = buf;
-    return out;
-  }
+  out.reason = JudgePeak(r, config.min_peak_ncc, config.min_peak_ratio);
+  if (!out.reason.empty()) return out;
   const double sxy = config.sigma_xy_m, syaw = config.sigma_yaw_deg * M_PI / 180.0;
   out.information.diagonal() << 1.0 / (sxy * sxy), 1.0 / (sxy * sxy), 1.0 / (syaw * syaw);
   out.accepted = true;
